@@ -1,0 +1,15 @@
+#version 330 core
+// Depth pass ("Shadows", the book's depth_vertex.vs): the scene as the light sees it.
+// Same inputs as the scene shader so one VAO serves both; only the position is used.
+
+layout (location = 0) in vec3 position;
+layout (location = 1) in vec2 texCoord;
+layout (location = 2) in vec3 vertexNormal;
+
+uniform mat4 modelLightViewMatrix;
+uniform mat4 orthoProjectionMatrix;
+
+void main()
+{
+    gl_Position = orthoProjectionMatrix * modelLightViewMatrix * vec4(position, 1.0);
+}

@@ -1,0 +1,109 @@
+#version 330 core
+// Scene pass fragment shader ("Shadows": scene_fragment.fs with calcShadow).
+// Compiled with defines from the shadow settings:
+//   PCF_RADIUS      0 = one comparison, 1 = the chapters' 3x3 PCF, 2 = 5x5
+//   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
+//   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
+
+in vec2 outTexCoord;
+in vec3 mvVertexNormal;
+in vec3 mvVertexPos;
+in vec4 mlightviewVertexPos;
+in vec3 worldPos;
+in vec3 worldNormal;
+
+layout (location = 0) out vec4 fragColor;
+layout (location = 1) out vec4 visibilityOut;  // r = shadow-test visibility, g = 1 on geometry
+layout (location = 2) out vec4 worldPosOut;
+layout (location = 3) out vec4 worldNormalOut;
+
+struct Material
+{
+    vec4 colour;
+    int hasTexture;
+    float reflectance;
+};
+
+struct DirectionalLight
+{
+    vec3 colour;
+    vec3 direction;  // view space, towards the light
+    float intensity;
+};
+
+uniform sampler2D textureSampler;  // unit 0
+uniform sampler2D shadowMap;       // unit 1
+uniform Material material;
+uniform DirectionalLight directionalLight;
+uniform vec3 ambientLight;
+uniform float specularPower;
+uniform float bias;
+uniform float biasMin;
+
+// Diffuse plus specular of one light (the book's calcLightColour).
+vec4 calcLightColour(vec4 baseColour, vec3 lightColour, float intensity, vec3 position,
+                     vec3 toLightDir, vec3 normal)
+{
+    float diffuseFactor = max(dot(normal, toLightDir), 0.0);
+    vec4 diffuse = baseColour * vec4(lightColour, 1.0) * intensity * diffuseFactor;
+
+    vec3 cameraDirection = normalize(-position);
+    vec3 reflected = normalize(reflect(-toLightDir, normal));
+    float specularFactor = pow(max(dot(cameraDirection, reflected), 0.0), specularPower);
+    vec4 specular = baseColour * intensity * specularFactor * material.reflectance
+                  * vec4(lightColour, 1.0);
+    return diffuse + specular;
+}
+
+// 1 = lit, 0 = in shadow (the book's calcShadow, returning 1 - shadowFactor).
+float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
+{
+    // Screen coordinates [-1, 1] to texture coordinates [0, 1].
+    vec3 projCoords = position.xyz * 0.5 + 0.5;
+#if BEYOND_FAR_LIT
+    if (projCoords.z > 1.0) {
+        return 1.0;
+    }
+#endif
+#if BIAS_MODE == 0
+    float b = 0.0;
+#elif BIAS_MODE == 1
+    float b = bias;
+#else
+    float b = max(bias * (1.0 - dot(normal, toLightDir)), biasMin);
+#endif
+    float current = projCoords.z - b;
+    float shadowFactor = 0.0;
+#if PCF_RADIUS == 0
+    shadowFactor = current > texture(shadowMap, projCoords.xy).r ? 1.0 : 0.0;
+#else
+    vec2 inc = 1.0 / vec2(textureSize(shadowMap, 0));
+    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
+        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
+            float textDepth = texture(shadowMap, projCoords.xy + vec2(row, col) * inc).r;
+            shadowFactor += current > textDepth ? 1.0 : 0.0;
+        }
+    }
+    shadowFactor /= float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+#endif
+    return 1.0 - shadowFactor;
+}
+
+void main()
+{
+    vec4 baseColour = material.hasTexture == 1 ? texture(textureSampler, outTexCoord)
+                                               : material.colour;
+    vec3 normal = normalize(mvVertexNormal);
+    vec3 toLight = normalize(directionalLight.direction);
+    vec4 diffuseSpecular = calcLightColour(baseColour, directionalLight.colour,
+                                           directionalLight.intensity, mvVertexPos, toLight,
+                                           normal);
+    float shadow = calcShadow(mlightviewVertexPos, normal, toLight);
+    // Ambient light is not shadowed.
+    fragColor = clamp(baseColour * vec4(ambientLight, 1.0) + diffuseSpecular * shadow, 0.0, 1.0);
+    fragColor.a = 1.0;
+
+    visibilityOut = vec4(shadow, 1.0, 0.0, 1.0);
+    worldPosOut = vec4(worldPos, 1.0);
+    worldNormalOut = vec4(normalize(worldNormal), 1.0);
+}

@@ -1,0 +1,34 @@
+#version 330 core
+// Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
+// Lighting happens in view space, as in the book; world position and normal are passed on
+// for the G-buffer outputs that tests and the exact reference read.
+
+layout (location = 0) in vec3 position;
+layout (location = 1) in vec2 texCoord;
+layout (location = 2) in vec3 vertexNormal;
+
+out vec2 outTexCoord;
+out vec3 mvVertexNormal;
+out vec3 mvVertexPos;
+out vec4 mlightviewVertexPos;
+out vec3 worldPos;
+out vec3 worldNormal;
+
+uniform mat4 modelMatrix;
+uniform mat4 modelViewMatrix;
+uniform mat4 projectionMatrix;
+uniform mat4 modelLightViewMatrix;
+uniform mat4 orthoProjectionMatrix;
+
+void main()
+{
+    vec4 mvPos = modelViewMatrix * vec4(position, 1.0);
+    gl_Position = projectionMatrix * mvPos;
+    outTexCoord = texCoord;
+    mvVertexNormal = normalize(modelViewMatrix * vec4(vertexNormal, 0.0)).xyz;
+    mvVertexPos = mvPos.xyz;
+    // An orthographic light needs no divide by w (the book skips it too).
+    mlightviewVertexPos = orthoProjectionMatrix * modelLightViewMatrix * vec4(position, 1.0);
+    worldPos = (modelMatrix * vec4(position, 1.0)).xyz;
+    worldNormal = normalize(mat3(modelMatrix) * vertexNormal);
+}

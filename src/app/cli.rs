@@ -1,0 +1,179 @@
+//! The command line: `shadowmap` (the demo window), `shadowmap render` (headless frames).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use shadowmap::settings::{BeyondFar, BiasMode, Cull, DepthFormat, Filter, LightView, Wrap};
+use shadowmap::{Scene, ShadowSettings};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "shadowmap",
+    version,
+    about = "The classic shadow-mapping chapters, ported to Rust and OpenGL 3.3 core.",
+    long_about = "The classic shadow-mapping chapters, ported to Rust and OpenGL 3.3 core.\n\n\
+        With no command, opens the DummyGame demo in a window (or, with no display, renders it \
+        headless to shadowmap-demo.png). `render` draws frames headless through EGL and writes \
+        PNGs.\n\nScenes: a built-in name (dummy) or a path to a .toml scene file (see the README, \
+        \"Scene files\").",
+    after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
+        shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Open the interactive window (the default).
+    Demo(DemoArgs),
+    /// Render frames headless (EGL, no display needed) and write PNG files.
+    Render(RenderArgs),
+}
+
+/// Scene choice and the light angle, shared by every command.
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// A built-in scene (dummy) or a .toml scene file.
+    #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
+    pub scene: String,
+    /// The DummyGame light angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    pub light_angle: Option<f32>,
+    /// Frame size in pixels; default: the scene's size.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+}
+
+/// Every shadow setting; unset flags keep the scene's values.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SettingsArgs {
+    /// Shadow-map side in texels (1 to the driver's maximum texture size).
+    #[arg(long, value_name = "N")]
+    pub map_size: Option<u32>,
+    /// Depth-map precision.
+    #[arg(long, value_enum)]
+    pub depth_format: Option<DepthFormat>,
+    /// How the shadow map is sampled.
+    #[arg(long, value_enum)]
+    pub filter: Option<Filter>,
+    /// How the depth comparison is offset against acne.
+    #[arg(long, value_enum)]
+    pub bias_mode: Option<BiasMode>,
+    /// Constant bias, or the slope bias' maximum, in [0, 1] depth units.
+    #[arg(long, value_name = "B")]
+    pub bias: Option<f32>,
+    /// The slope bias' floor.
+    #[arg(long, value_name = "B")]
+    pub bias_min: Option<f32>,
+    /// Faces culled in the depth pass.
+    #[arg(long, value_enum)]
+    pub cull: Option<Cull>,
+    /// Shadow-map wrap mode for lookups outside [0, 1].
+    #[arg(long, value_enum)]
+    pub wrap: Option<Wrap>,
+    /// What fragments beyond the light's far plane get.
+    #[arg(long, value_enum)]
+    pub beyond_far: Option<BeyondFar>,
+    /// How the light's view matrix is built.
+    #[arg(long, value_enum)]
+    pub light_view: Option<LightView>,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct DemoArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Close the window after this many frames (for scripted runs).
+    #[arg(long, value_name = "N")]
+    pub exit_after_frames: Option<u64>,
+    /// With --exit-after-frames: save the last frame to this PNG.
+    #[arg(long, value_name = "FILE", requires = "exit_after_frames")]
+    pub screenshot: Option<PathBuf>,
+    /// Freeze the scene's animation (the cube stops turning).
+    #[arg(long)]
+    pub no_animation: bool,
+}
+
+impl Default for DemoArgs {
+    fn default() -> Self {
+        DemoArgs {
+            scene: SceneArgs {
+                scene: "dummy".into(),
+                light_angle: None,
+                size: None,
+            },
+            settings: SettingsArgs::default(),
+            exit_after_frames: None,
+            screenshot: None,
+            no_animation: false,
+        }
+    }
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// The rendered image.
+    #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
+    pub out: PathBuf,
+    /// Frames to render (the scene animates between them); the last one is written.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
+    #[arg(long, value_name = "FILE.png")]
+    pub shadow_out: Option<PathBuf>,
+    /// Also write the shadow map as a grey image (black = near the light).
+    #[arg(long, value_name = "FILE.png")]
+    pub depth_out: Option<PathBuf>,
+}
+
+/// Parses `WxH`, e.g. `1280x720`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(err)?;
+    let w: u32 = w.trim().parse().map_err(|_| err())?;
+    let h: u32 = h.trim().parse().map_err(|_| err())?;
+    if w == 0 || h == 0 {
+        return Err(err());
+    }
+    Ok((w, h))
+}
+
+impl SceneArgs {
+    /// Loads the scene and applies the light angle.
+    pub fn load(&self) -> shadowmap::Result<Scene> {
+        let mut scene = Scene::load(&self.scene)?;
+        if let Some(a) = self.light_angle {
+            if !a.is_finite() {
+                return Err(shadowmap::Error::Invalid(format!(
+                    "--light-angle {a}: expected degrees from 0 to 180"
+                )));
+            }
+            scene.set_light_angle(a);
+        }
+        Ok(scene)
+    }
+
+    pub fn size(&self, scene: &Scene) -> (u32, u32) {
+        self.size.unwrap_or((scene.size[0], scene.size[1]))
+    }
+}
+
+impl SettingsArgs {
+    /// The scene's settings with the given flags applied.
+    pub fn apply(&self, base: &ShadowSettings) -> ShadowSettings {
+        let mut s = *base;
+        macro_rules! set {
+            ($($f:ident),*) => { $( if let Some(v) = self.$f { s.$f = v; } )* };
+        }
+        set!(map_size, depth_format, filter, bias_mode, bias, bias_min, cull, wrap, beyond_far, light_view);
+        s
+    }
+}

@@ -1,0 +1,325 @@
+//! The demo: the DummyGame in a window (winit 0.30 + glutin), with the book's controls.
+//! Without a display it renders the same scene headless to `shadowmap-demo.png`.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use shadowmap::engine::window_context::WindowContext;
+use shadowmap::engine::{HeadlessContext, Outputs};
+use shadowmap::frame::render_frames;
+use shadowmap::image_data::ImageData;
+use shadowmap::{Error, Renderer, Result, Scene, ShadowSettings, Target};
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+use super::cli::DemoArgs;
+
+/// The book's fixed update rate.
+const UPDATES_PER_SECOND: f64 = 30.0;
+/// Camera step per update (DummyGame's CAMERA_POS_STEP).
+const CAMERA_POS_STEP: f32 = 0.05;
+/// Degrees of camera rotation per pixel of mouse drag (DummyGame's MOUSE_SENSITIVITY).
+const MOUSE_SENSITIVITY: f32 = 0.2;
+/// Light-angle acceleration per update while a key is held (DummyGame: +-0.05).
+const ANGLE_STEP: f32 = 0.05;
+
+/// Where the no-display fallback writes its picture.
+const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
+
+pub fn run(args: &DemoArgs) -> Result<()> {
+    let mut scene = args.scene.load()?;
+    let settings = args.settings.apply(&scene.shadow);
+    if args.no_animation {
+        scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
+    }
+    let event_loop = match EventLoop::new() {
+        Ok(l) => l,
+        Err(e) => {
+            if args.exit_after_frames.is_some() {
+                // A scripted window run must not quietly turn into a headless one.
+                return Err(Error::Context(format!(
+                    "cannot open a window: {e}. A window needs an X11 display (set DISPLAY, e.g. \
+                     run `Xvfb :99 &` and `DISPLAY=:99`)"
+                )));
+            }
+            return headless_fallback(args, scene, &settings, &e.to_string());
+        }
+    };
+    let size = args.scene.size(&scene);
+    let mut demo = Demo {
+        args: args.clone(),
+        scene,
+        settings,
+        size,
+        running: None,
+        error: None,
+        keys: HashSet::new(),
+        dragging: false,
+        cursor: None,
+        mouse_delta: (0.0, 0.0),
+        angle_inc: 0.0,
+        frames: 0,
+        last_frame: Instant::now(),
+        update_debt: 0.0,
+        frame_ms: 0.0,
+        last_title: Instant::now() - Duration::from_secs(1),
+        screenshot_requested: false,
+        screenshots: 0,
+    };
+    event_loop
+        .run_app(&mut demo)
+        .map_err(|e| Error::Context(format!("window event loop: {e}")))?;
+    match demo.error {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// No display: render the same frame headless and say what a window would need.
+fn headless_fallback(
+    args: &DemoArgs,
+    mut scene: Scene,
+    settings: &ShadowSettings,
+    why: &str,
+) -> Result<()> {
+    let (w, h) = args.scene.size(&scene);
+    let context = HeadlessContext::new()?;
+    let frame = render_frames(context.gl(), &mut scene, settings, w, h, 1, Outputs::default())?;
+    let path = Path::new(FALLBACK_IMAGE);
+    frame.colour.save_png(path)?;
+    let shown = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    println!(
+        "No display for a window ({why}).\nRendered the {} scene headless instead: {}\n\
+         For the interactive window, run under an X11 display: set DISPLAY (on a headless \
+         machine: `apt-get install xvfb`, `Xvfb :99 &`, `DISPLAY=:99 cargo run --release`).",
+        scene.name,
+        shown.display()
+    );
+    Ok(())
+}
+
+/// Window, GL context and renderer; the renderer is declared first so it drops first.
+struct Running {
+    renderer: Renderer,
+    context: WindowContext,
+}
+
+struct Demo {
+    args: DemoArgs,
+    scene: Scene,
+    settings: ShadowSettings,
+    size: (u32, u32),
+    running: Option<Running>,
+    error: Option<Error>,
+    keys: HashSet<KeyCode>,
+    dragging: bool,
+    cursor: Option<(f64, f64)>,
+    mouse_delta: (f64, f64),
+    angle_inc: f32,
+    frames: u64,
+    last_frame: Instant,
+    update_debt: f64,
+    frame_ms: f64,
+    last_title: Instant,
+    screenshot_requested: bool,
+    screenshots: u32,
+}
+
+impl Demo {
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
+        self.error.get_or_insert(e);
+        self.running = None;
+        event_loop.exit();
+    }
+
+    fn open(&mut self, event_loop: &ActiveEventLoop) -> Result<Running> {
+        let attributes = Window::default_attributes()
+            .with_title("shadowmap")
+            .with_inner_size(PhysicalSize::new(self.size.0.max(1), self.size.1.max(1)));
+        let context = WindowContext::new(event_loop, attributes)?;
+        let renderer = Renderer::new(context.gl(), &self.scene, &self.settings)?;
+        Ok(Running { renderer, context })
+    }
+
+    /// One fixed update: the book's `input` and `update`.
+    fn update(&mut self) {
+        let held = |k| self.keys.contains(&k);
+        // The book's code: LEFT/RIGHT accelerate the angle; the text says UP/DOWN.
+        if held(KeyCode::ArrowLeft) || held(KeyCode::ArrowDown) {
+            self.angle_inc -= ANGLE_STEP;
+        } else if held(KeyCode::ArrowRight) || held(KeyCode::ArrowUp) {
+            self.angle_inc += ANGLE_STEP;
+        } else {
+            self.angle_inc = 0.0;
+        }
+        if self.angle_inc != 0.0 {
+            let angle = (self.scene.light.angle_deg() + self.angle_inc).clamp(0.0, 180.0);
+            self.scene.set_light_angle(angle);
+        }
+        let mut step = Vec3::ZERO;
+        let axis = |neg, pos| f32::from(u8::from(held(pos))) - f32::from(u8::from(held(neg)));
+        step.z = axis(KeyCode::KeyW, KeyCode::KeyS);
+        step.x = axis(KeyCode::KeyA, KeyCode::KeyD);
+        step.y = axis(KeyCode::KeyZ, KeyCode::KeyX);
+        self.scene.camera.move_position(step * CAMERA_POS_STEP);
+        let (dx, dy) = std::mem::take(&mut self.mouse_delta);
+        self.scene.camera.move_rotation(Vec3::new(
+            dy as f32 * MOUSE_SENSITIVITY,
+            dx as f32 * MOUSE_SENSITIVITY,
+            0.0,
+        ));
+        self.scene.update();
+    }
+
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) {
+        let now = Instant::now();
+        let dt = now.duration_since(self.last_frame).as_secs_f64();
+        self.last_frame = now;
+        // Fixed updates at the book's rate, however fast frames come (at most 5 per frame).
+        self.update_debt = (self.update_debt + dt * UPDATES_PER_SECOND).min(5.0);
+        while self.update_debt >= 1.0 {
+            self.update_debt -= 1.0;
+            self.update();
+        }
+        let Some(running) = &mut self.running else {
+            return;
+        };
+        let (w, h) = running.context.framebuffer_size();
+        if w == 0 || h == 0 {
+            return; // minimised: nothing to draw into
+        }
+        if let Err(e) = running.renderer.render(&self.scene, Target::Window { width: w, height: h }) {
+            return self.fail(event_loop, e);
+        }
+        self.frames += 1;
+        let last = self.args.exit_after_frames.is_some_and(|n| self.frames >= n);
+        let shot = if last {
+            self.args.screenshot.clone()
+        } else if std::mem::take(&mut self.screenshot_requested) {
+            self.screenshots += 1;
+            Some(screenshot_path(self.screenshots))
+        } else {
+            None
+        };
+        if let Some(path) = shot {
+            let image = ImageData {
+                width: w,
+                height: h,
+                rgba: running.context.read_back_buffer(),
+            };
+            match image.save_png(&path) {
+                Ok(()) => println!("screenshot: {}", path.display()),
+                Err(e) => eprintln!("error: {e}"),
+            }
+        }
+        if let Err(e) = running.context.swap_buffers() {
+            return self.fail(event_loop, e);
+        }
+        self.frame_ms = if self.frame_ms == 0.0 {
+            dt * 1000.0
+        } else {
+            0.9 * self.frame_ms + 0.1 * dt * 1000.0
+        };
+        if now.duration_since(self.last_title) > Duration::from_millis(250) {
+            self.last_title = now;
+            running.context.window().set_title(&format!(
+                "shadowmap: {} | light {:.1} deg | {} | {:.2} ms ({}x{})",
+                self.scene.name,
+                self.scene.light.angle_deg(),
+                self.settings.summary(),
+                self.frame_ms,
+                w,
+                h
+            ));
+        }
+        if last {
+            event_loop.exit();
+        }
+    }
+}
+
+fn screenshot_path(n: u32) -> PathBuf {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
+    PathBuf::from(format!("shadowmap-screenshot-{secs}-{n}.png"))
+}
+
+impl ApplicationHandler for Demo {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_some() || self.error.is_some() {
+            return;
+        }
+        match self.open(event_loop) {
+            Ok(r) => {
+                self.last_frame = Instant::now();
+                self.running = Some(r);
+            }
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                if let Some(r) = &self.running {
+                    r.context.resize(size.width, size.height);
+                    r.context.window().request_redraw();
+                }
+            }
+            WindowEvent::KeyboardInput { event, .. } => {
+                let PhysicalKey::Code(code) = event.physical_key else {
+                    return;
+                };
+                match event.state {
+                    ElementState::Pressed => {
+                        match code {
+                            KeyCode::Escape => event_loop.exit(),
+                            KeyCode::F12 if !event.repeat => self.screenshot_requested = true,
+                            _ => {}
+                        }
+                        self.keys.insert(code);
+                    }
+                    ElementState::Released => {
+                        self.keys.remove(&code);
+                    }
+                }
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Right,
+                ..
+            } => self.dragging = state == ElementState::Pressed,
+            WindowEvent::CursorMoved { position, .. } => {
+                if let (true, Some((x, y))) = (self.dragging, self.cursor) {
+                    self.mouse_delta.0 += position.x - x;
+                    self.mouse_delta.1 += position.y - y;
+                }
+                self.cursor = Some((position.x, position.y));
+            }
+            WindowEvent::CursorLeft { .. } => self.cursor = None,
+            WindowEvent::RedrawRequested => self.redraw(event_loop),
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(r) = &self.running else { return };
+        let (w, h) = r.context.framebuffer_size();
+        if w == 0 || h == 0 {
+            // Minimised: sleep until the window changes instead of spinning.
+            event_loop.set_control_flow(ControlFlow::Wait);
+        } else {
+            event_loop.set_control_flow(ControlFlow::Poll);
+            r.context.window().request_redraw();
+        }
+    }
+}

@@ -1,0 +1,5 @@
+//! The program around the library: command line, demo window, headless commands.
+
+pub mod cli;
+pub mod demo;
+pub mod render;

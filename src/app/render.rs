@@ -1,0 +1,50 @@
+//! `shadowmap render`: headless frames through EGL, written as PNGs.
+
+use std::time::Instant;
+
+use shadowmap::engine::{HeadlessContext, Outputs};
+use shadowmap::frame::render_frames;
+use shadowmap::image_data::save_grey_png;
+use shadowmap::Result;
+
+use super::cli::RenderArgs;
+
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let start = Instant::now();
+    let mut scene = args.scene.load()?;
+    let settings = args.settings.apply(&scene.shadow);
+    let (width, height) = args.scene.size(&scene);
+    let context = HeadlessContext::new()?;
+    let outputs = Outputs {
+        visibility: args.shadow_out.is_some(),
+        gbuffer: false,
+    };
+    let frame = render_frames(
+        context.gl(),
+        &mut scene,
+        &settings,
+        width,
+        height,
+        args.frames,
+        outputs,
+    )?;
+    frame.colour.save_png(&args.out)?;
+    if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
+        image.save_png(path)?;
+    }
+    if let Some(path) = &args.depth_out {
+        let size = frame.depth_map.0;
+        save_grey_png(path, size, size, &frame.depth_grey())?;
+    }
+    println!(
+        "wrote {} ({}x{}, scene {}, light {:.1} deg, {}) in {:.0} ms",
+        args.out.display(),
+        width,
+        height,
+        scene.name,
+        scene.light.angle_deg(),
+        settings.summary(),
+        start.elapsed().as_secs_f64() * 1000.0
+    );
+    Ok(())
+}

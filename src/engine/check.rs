@@ -1,0 +1,104 @@
+//! GL error checks and driver limits, so failures become errors instead of black images.
+
+use glow::HasContext;
+
+use super::Gl;
+use crate::error::{Error, Result};
+
+/// The readable name of a glGetError code.
+pub fn gl_error_name(code: u32) -> &'static str {
+    match code {
+        glow::INVALID_ENUM => "GL_INVALID_ENUM",
+        glow::INVALID_VALUE => "GL_INVALID_VALUE",
+        glow::INVALID_OPERATION => "GL_INVALID_OPERATION",
+        glow::INVALID_FRAMEBUFFER_OPERATION => "GL_INVALID_FRAMEBUFFER_OPERATION",
+        glow::OUT_OF_MEMORY => "GL_OUT_OF_MEMORY",
+        glow::STACK_UNDERFLOW => "GL_STACK_UNDERFLOW",
+        glow::STACK_OVERFLOW => "GL_STACK_OVERFLOW",
+        _ => "unknown GL error",
+    }
+}
+
+/// Drains glGetError and reports the first error, naming the pass it happened in.
+pub fn check_gl(gl: &Gl, during: &str) -> Result<()> {
+    let mut first = None;
+    // glGetError keeps one flag per error kind; drain them all so the next check starts clean.
+    for _ in 0..16 {
+        let code = unsafe { gl.get_error() };
+        if code == glow::NO_ERROR {
+            break;
+        }
+        first.get_or_insert(code);
+    }
+    match first {
+        None => Ok(()),
+        Some(code) => Err(Error::Gl {
+            code,
+            name: gl_error_name(code),
+            during: during.to_string(),
+        }),
+    }
+}
+
+/// The readable name of a glCheckFramebufferStatus result.
+pub fn framebuffer_status_name(status: u32) -> &'static str {
+    match status {
+        glow::FRAMEBUFFER_COMPLETE => "GL_FRAMEBUFFER_COMPLETE",
+        glow::FRAMEBUFFER_UNDEFINED => "GL_FRAMEBUFFER_UNDEFINED",
+        glow::FRAMEBUFFER_INCOMPLETE_ATTACHMENT => "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT",
+        glow::FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT => {
+            "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT"
+        }
+        glow::FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER => "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER",
+        glow::FRAMEBUFFER_INCOMPLETE_READ_BUFFER => "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER",
+        glow::FRAMEBUFFER_UNSUPPORTED => "GL_FRAMEBUFFER_UNSUPPORTED",
+        glow::FRAMEBUFFER_INCOMPLETE_MULTISAMPLE => "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE",
+        _ => "unknown framebuffer status",
+    }
+}
+
+/// Checks the bound draw framebuffer; the book throws "Could not create FrameBuffer" here.
+pub(crate) fn check_framebuffer(gl: &Gl, what: &str) -> Result<()> {
+    let status = unsafe { gl.check_framebuffer_status(glow::FRAMEBUFFER) };
+    if status == glow::FRAMEBUFFER_COMPLETE {
+        Ok(())
+    } else {
+        Err(Error::IncompleteFramebuffer {
+            what: what.to_string(),
+            status,
+            name: framebuffer_status_name(status),
+        })
+    }
+}
+
+/// Driver facts the settings are validated against.
+#[derive(Debug, Clone, Copy)]
+pub struct GlLimits {
+    pub max_texture_size: u32,
+    pub max_renderbuffer_size: u32,
+    pub max_viewport: [u32; 2],
+}
+
+/// Reads the limits of the current context.
+pub fn gl_limits(gl: &Gl) -> GlLimits {
+    let mut viewport = [0i32; 2];
+    unsafe {
+        gl.get_parameter_i32_slice(glow::MAX_VIEWPORT_DIMS, &mut viewport);
+        GlLimits {
+            max_texture_size: gl.get_parameter_i32(glow::MAX_TEXTURE_SIZE).max(0) as u32,
+            max_renderbuffer_size: gl.get_parameter_i32(glow::MAX_RENDERBUFFER_SIZE).max(0) as u32,
+            max_viewport: [viewport[0].max(0) as u32, viewport[1].max(0) as u32],
+        }
+    }
+}
+
+/// The renderer string, for reports ("llvmpipe (LLVM 15.0.6, 256 bits)").
+pub fn renderer_name(gl: &Gl) -> String {
+    unsafe {
+        format!(
+            "{} / OpenGL {}",
+            gl.get_parameter_string(glow::RENDERER),
+            gl.get_parameter_string(glow::VERSION)
+        )
+    }
+}

@@ -1,0 +1,127 @@
+//! `Mesh`: a VAO with its vertex and index buffers (the book's `Mesh` class), uploaded from
+//! CPU-side [`MeshData`]. Attribute locations match the book: 0 position, 1 texture
+//! coordinate, 2 normal.
+
+use glow::HasContext;
+
+use super::Gl;
+use crate::error::{Error, Result};
+use crate::geometry::MeshData;
+
+/// An uploaded mesh; its VAO and buffers are deleted on drop.
+pub struct Mesh {
+    gl: Gl,
+    vao: glow::VertexArray,
+    vbo: glow::Buffer,
+    ebo: glow::Buffer,
+    index_count: i32,
+}
+
+impl Mesh {
+    /// Uploads interleaved position / texture coordinate / normal data and the indices.
+    /// The data was validated when it was built ([`MeshData::validate`]), so every index
+    /// points at a vertex.
+    pub fn new(gl: &Gl, data: &MeshData) -> Result<Mesh> {
+        data.validate()?;
+        let mut interleaved = Vec::with_capacity(data.positions.len() * 8);
+        for i in 0..data.positions.len() {
+            interleaved.extend_from_slice(&data.positions[i]);
+            interleaved.extend_from_slice(&data.tex_coords[i]);
+            interleaved.extend_from_slice(&data.normals[i]);
+        }
+        let index_count = i32::try_from(data.indices.len())
+            .map_err(|_| Error::Invalid(format!("mesh '{}': too many indices", data.name)))?;
+        unsafe {
+            let vao = gl
+                .create_vertex_array()
+                .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
+            let vbo = match gl.create_buffer() {
+                Ok(b) => b,
+                Err(e) => {
+                    gl.delete_vertex_array(vao);
+                    return Err(Error::Create(format!("vertex buffer: {e}")));
+                }
+            };
+            let ebo = match gl.create_buffer() {
+                Ok(b) => b,
+                Err(e) => {
+                    gl.delete_vertex_array(vao);
+                    gl.delete_buffer(vbo);
+                    return Err(Error::Create(format!("index buffer: {e}")));
+                }
+            };
+            gl.bind_vertex_array(Some(vao));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(
+                glow::ARRAY_BUFFER,
+                as_bytes(&interleaved),
+                glow::STATIC_DRAW,
+            );
+            let stride = 8 * 4;
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, stride, 0);
+            gl.enable_vertex_attrib_array(1);
+            gl.vertex_attrib_pointer_f32(1, 2, glow::FLOAT, false, stride, 3 * 4);
+            gl.enable_vertex_attrib_array(2);
+            gl.vertex_attrib_pointer_f32(2, 3, glow::FLOAT, false, stride, 5 * 4);
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+            gl.buffer_data_u8_slice(
+                glow::ELEMENT_ARRAY_BUFFER,
+                as_bytes(&data.indices),
+                glow::STATIC_DRAW,
+            );
+            gl.bind_vertex_array(None);
+            gl.bind_buffer(glow::ARRAY_BUFFER, None);
+            Ok(Mesh {
+                gl: gl.clone(),
+                vao,
+                vbo,
+                ebo,
+                index_count,
+            })
+        }
+    }
+
+    /// Draws the mesh once with whatever program and uniforms are bound.
+    pub fn render(&self) {
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl
+                .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+            self.gl.bind_vertex_array(None);
+        }
+    }
+
+    /// Draws the mesh once per item, calling `before_each` to set that item's uniforms
+    /// (the book's `renderList`): the VAO is bound once for the whole list.
+    pub fn render_list<T>(&self, items: impl IntoIterator<Item = T>, mut before_each: impl FnMut(T)) {
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            for item in items {
+                before_each(item);
+                self.gl
+                    .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+            }
+            self.gl.bind_vertex_array(None);
+        }
+    }
+
+    pub fn index_count(&self) -> usize {
+        self.index_count as usize
+    }
+}
+
+impl Drop for Mesh {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.delete_vertex_array(self.vao);
+            self.gl.delete_buffer(self.vbo);
+            self.gl.delete_buffer(self.ebo);
+        }
+    }
+}
+
+fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
+    // f32 and u32 have no padding and any bit pattern is a valid byte sequence.
+    unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
+}

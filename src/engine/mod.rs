@@ -1,0 +1,27 @@
+//! The GL-facing engine: every `unsafe` OpenGL call of the project lives in this module.
+//!
+//! Each type owns its GL objects and frees them in `Drop`, so app code never sees a raw GL
+//! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
+//! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
+
+pub mod check;
+pub mod headless;
+pub mod mesh;
+pub mod render_target;
+pub mod shader_program;
+pub mod shadow_map;
+pub mod texture;
+pub mod window_context;
+
+use std::rc::Rc;
+
+/// A shared handle to the current GL context; every GL object keeps one so it can free itself.
+pub type Gl = Rc<glow::Context>;
+
+pub use check::{check_gl, gl_limits, GlLimits};
+pub use headless::HeadlessContext;
+pub use mesh::Mesh;
+pub use render_target::{Outputs, RenderTarget};
+pub use shader_program::{ShaderProgram, ShaderSource};
+pub use shadow_map::ShadowMap;
+pub use texture::{DepthFormat, Texture, Wrap};

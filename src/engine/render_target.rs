@@ -1,0 +1,274 @@
+//! `RenderTarget`: an offscreen framebuffer that stands in for the window when rendering
+//! headless, with optional extra outputs the scene shader writes (visibility, world
+//! position, world normal) for tests and for the exact reference.
+
+use glow::HasContext;
+
+use super::check::check_framebuffer;
+use super::texture::Texture;
+use super::Gl;
+use crate::error::{Error, Result};
+
+/// Which extra outputs to attach besides colour.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Outputs {
+    /// Attachment 1: R = shadow-test visibility, G = 1 where geometry was drawn.
+    pub visibility: bool,
+    /// Attachments 2 and 3: world position and world normal (RGBA32F, A = 1 on geometry).
+    pub gbuffer: bool,
+}
+
+/// An owned framebuffer with a colour texture, a depth renderbuffer and the chosen outputs.
+pub struct RenderTarget {
+    gl: Gl,
+    fbo: glow::Framebuffer,
+    depth: glow::Renderbuffer,
+    colour: Texture,
+    visibility: Option<Texture>,
+    positions: Option<Texture>,
+    normals: Option<Texture>,
+    width: u32,
+    height: u32,
+}
+
+impl RenderTarget {
+    pub fn new(gl: &Gl, width: u32, height: u32, outputs: Outputs) -> Result<RenderTarget> {
+        let colour = Texture::attachment(
+            gl,
+            width,
+            height,
+            glow::RGBA8,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+        )?;
+        let visibility = outputs
+            .visibility
+            .then(|| Texture::attachment(gl, width, height, glow::RG8, glow::RG, glow::UNSIGNED_BYTE))
+            .transpose()?;
+        let float_target =
+            || Texture::attachment(gl, width, height, glow::RGBA32F, glow::RGBA, glow::FLOAT);
+        let positions = outputs.gbuffer.then(float_target).transpose()?;
+        let normals = outputs.gbuffer.then(float_target).transpose()?;
+        unsafe {
+            let fbo = gl
+                .create_framebuffer()
+                .map_err(|e| Error::Create(format!("render-target framebuffer: {e}")))?;
+            let depth = match gl.create_renderbuffer() {
+                Ok(d) => d,
+                Err(e) => {
+                    gl.delete_framebuffer(fbo);
+                    return Err(Error::Create(format!("depth renderbuffer: {e}")));
+                }
+            };
+            let target = RenderTarget {
+                gl: gl.clone(),
+                fbo,
+                depth,
+                colour,
+                visibility,
+                positions,
+                normals,
+                width,
+                height,
+            };
+            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
+            gl.renderbuffer_storage(
+                glow::RENDERBUFFER,
+                glow::DEPTH_COMPONENT24,
+                width as i32,
+                height as i32,
+            );
+            gl.bind_renderbuffer(glow::RENDERBUFFER, None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            gl.framebuffer_renderbuffer(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                glow::RENDERBUFFER,
+                Some(depth),
+            );
+            let mut draw_buffers = Vec::new();
+            for (i, tex) in target.attachments() {
+                match tex {
+                    Some(tex) => {
+                        gl.framebuffer_texture_2d(
+                            glow::FRAMEBUFFER,
+                            glow::COLOR_ATTACHMENT0 + i,
+                            glow::TEXTURE_2D,
+                            Some(tex.id()),
+                            0,
+                        );
+                        draw_buffers.push(glow::COLOR_ATTACHMENT0 + i);
+                    }
+                    None => draw_buffers.push(glow::NONE),
+                }
+            }
+            while draw_buffers.last() == Some(&glow::NONE) {
+                draw_buffers.pop();
+            }
+            gl.draw_buffers(&draw_buffers);
+            let status = check_framebuffer(gl, &format!("render target {width}x{height}"));
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            status?;
+            Ok(target)
+        }
+    }
+
+    fn attachments(&self) -> [(u32, Option<&Texture>); 4] {
+        [
+            (0, Some(&self.colour)),
+            (1, self.visibility.as_ref()),
+            (2, self.positions.as_ref()),
+            (3, self.normals.as_ref()),
+        ]
+    }
+
+    /// Binds the framebuffer and clears colour to `clear`, the extra outputs to zero.
+    pub fn bind_and_clear(&self, clear: [f32; 4]) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl
+                .viewport(0, 0, self.width as i32, self.height as i32);
+            self.gl.depth_mask(true);
+            self.gl.clear_buffer_f32_slice(glow::COLOR, 0, &clear);
+            for (i, tex) in self.attachments().iter().skip(1) {
+                if tex.is_some() {
+                    self.gl
+                        .clear_buffer_f32_slice(glow::COLOR, *i, &[0.0, 0.0, 0.0, 0.0]);
+                }
+            }
+            self.gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+        }
+    }
+
+    pub fn framebuffer(&self) -> glow::Framebuffer {
+        self.fbo
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The colour image as RGBA8, rows top to bottom.
+    pub fn read_colour(&self) -> Vec<u8> {
+        read_rgba8(&self.gl, Some(self.fbo), 0, self.width, self.height)
+    }
+
+    /// Per pixel: `Some(visibility)` where geometry was drawn, `None` elsewhere; rows top to
+    /// bottom. Errors if the target was made without the visibility output.
+    pub fn read_visibility(&self) -> Result<Vec<Option<f32>>> {
+        if self.visibility.is_none() {
+            return Err(Error::Invalid(
+                "render target has no visibility output".into(),
+            ));
+        }
+        let raw = self.read(1, glow::RG, glow::UNSIGNED_BYTE, 2);
+        Ok(raw
+            .chunks_exact(2)
+            .map(|p| (p[1] > 127).then_some(p[0] as f32 / 255.0))
+            .collect())
+    }
+
+    /// World positions and normals, rows top to bottom; NaN where no geometry was drawn.
+    pub fn read_gbuffer(&self) -> Result<(Vec<[f32; 3]>, Vec<[f32; 3]>)> {
+        if self.positions.is_none() {
+            return Err(Error::Invalid("render target has no G-buffer outputs".into()));
+        }
+        let unpack = |raw: Vec<u8>| -> Vec<[f32; 3]> {
+            raw.chunks_exact(16)
+                .map(|c| {
+                    let f = |k: usize| f32::from_ne_bytes([c[k], c[k + 1], c[k + 2], c[k + 3]]);
+                    if f(12) > 0.5 {
+                        [f(0), f(4), f(8)]
+                    } else {
+                        [f32::NAN; 3]
+                    }
+                })
+                .collect()
+        };
+        let positions = unpack(self.read(2, glow::RGBA, glow::FLOAT, 16));
+        let normals = unpack(self.read(3, glow::RGBA, glow::FLOAT, 16));
+        Ok((positions, normals))
+    }
+
+    fn read(&self, attachment: u32, format: u32, ty: u32, bytes_per_pixel: usize) -> Vec<u8> {
+        let w = self.width as usize;
+        let h = self.height as usize;
+        let mut data = vec![0u8; w * h * bytes_per_pixel];
+        unsafe {
+            self.gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo));
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0 + attachment);
+            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+            self.gl.read_pixels(
+                0,
+                0,
+                w as i32,
+                h as i32,
+                format,
+                ty,
+                glow::PixelPackData::Slice(Some(&mut data)),
+            );
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            self.gl.bind_framebuffer(glow::READ_FRAMEBUFFER, None);
+        }
+        flip_rows(&mut data, w * bytes_per_pixel);
+        data
+    }
+}
+
+impl Drop for RenderTarget {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.delete_framebuffer(self.fbo);
+            self.gl.delete_renderbuffer(self.depth);
+        }
+    }
+}
+
+/// Reads RGBA8 pixels from a framebuffer (`None` = the window's back buffer), rows top to
+/// bottom, as image files store them.
+pub fn read_rgba8(
+    gl: &Gl,
+    fbo: Option<glow::Framebuffer>,
+    attachment: u32,
+    width: u32,
+    height: u32,
+) -> Vec<u8> {
+    let mut data = vec![0u8; width as usize * height as usize * 4];
+    unsafe {
+        gl.bind_framebuffer(glow::READ_FRAMEBUFFER, fbo);
+        gl.read_buffer(if fbo.is_some() {
+            glow::COLOR_ATTACHMENT0 + attachment
+        } else {
+            glow::BACK
+        });
+        gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+        gl.read_pixels(
+            0,
+            0,
+            width as i32,
+            height as i32,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+            glow::PixelPackData::Slice(Some(&mut data)),
+        );
+        gl.bind_framebuffer(glow::READ_FRAMEBUFFER, None);
+    }
+    flip_rows(&mut data, width as usize * 4);
+    data
+}
+
+/// GL's row 0 is the bottom; images want it at the top.
+fn flip_rows(data: &mut [u8], row_bytes: usize) {
+    if row_bytes == 0 {
+        return;
+    }
+    let rows = data.len() / row_bytes;
+    for y in 0..rows / 2 {
+        let (top, bottom) = data.split_at_mut((rows - 1 - y) * row_bytes);
+        top[y * row_bytes..(y + 1) * row_bytes].swap_with_slice(&mut bottom[..row_bytes]);
+    }
+}

@@ -1,0 +1,266 @@
+//! `ShaderProgram`: compiles and links GLSL, caches uniform locations, and turns driver logs
+//! into `file:line:column` messages (the book's `ShaderProgram` class).
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+use glam::{Mat4, Vec3, Vec4};
+use glow::HasContext;
+
+use super::Gl;
+use crate::error::{Error, Result};
+
+/// A shader's text and the file it came from, so errors can name it.
+#[derive(Debug, Clone)]
+pub struct ShaderSource {
+    pub name: String,
+    pub text: String,
+}
+
+impl ShaderSource {
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> Self {
+        ShaderSource {
+            name: name.into(),
+            text: text.into(),
+        }
+    }
+
+    /// The text with `#define`s inserted after the `#version` line, and a `#line` directive so
+    /// the driver's line numbers still match the file.
+    fn with_defines(&self, defines: &[(String, String)]) -> String {
+        if defines.is_empty() {
+            return self.text.clone();
+        }
+        let (first, rest) = match self.text.split_once('\n') {
+            Some((first, rest)) if first.trim_start().starts_with("#version") => (first, rest),
+            _ => {
+                // No #version line: defines go first and line numbering restarts at 1.
+                let mut out = String::new();
+                for (k, v) in defines {
+                    out.push_str(&format!("#define {k} {v}\n"));
+                }
+                out.push_str("#line 1\n");
+                out.push_str(&self.text);
+                return out;
+            }
+        };
+        let mut out = String::with_capacity(self.text.len() + 64 * defines.len());
+        out.push_str(first);
+        out.push('\n');
+        for (k, v) in defines {
+            out.push_str(&format!("#define {k} {v}\n"));
+        }
+        out.push_str("#line 2\n");
+        out.push_str(rest);
+        out
+    }
+}
+
+/// Rewrites a driver info log so each message starts with `file:line:column:`.
+///
+/// Mesa writes `0:12(5): error: ...`; NVIDIA writes `0(12) : error ...`. Lines in neither form
+/// are kept as they are.
+pub fn annotate_log(file: &str, log: &str) -> String {
+    let mut out = Vec::new();
+    for line in log.lines().filter(|l| !l.trim().is_empty()) {
+        out.push(annotate_line(file, line).unwrap_or_else(|| format!("{file}: {line}")));
+    }
+    out.join("\n")
+}
+
+fn annotate_line(file: &str, line: &str) -> Option<String> {
+    let digits = |s: &str| -> Option<(u32, usize)> {
+        let n = s.bytes().take_while(|b| b.is_ascii_digit()).count();
+        if n == 0 {
+            return None;
+        }
+        Some((s[..n].parse().ok()?, n))
+    };
+    let (_, n) = digits(line)?;
+    let rest = &line[n..];
+    if let Some(rest) = rest.strip_prefix(':') {
+        // Mesa: <string>:<line>(<col>): message
+        let (ln, n) = digits(rest)?;
+        let rest = &rest[n..];
+        let (col, rest) = match rest.strip_prefix('(') {
+            Some(r) => {
+                let (c, n) = digits(r)?;
+                (Some(c), r[n..].strip_prefix(')')?)
+            }
+            None => (None, rest),
+        };
+        let msg = rest.trim_start_matches(':').trim();
+        Some(match col {
+            Some(c) => format!("{file}:{ln}:{c}: {msg}"),
+            None => format!("{file}:{ln}: {msg}"),
+        })
+    } else if let Some(rest) = rest.strip_prefix('(') {
+        // NVIDIA: <string>(<line>) : message
+        let (ln, n) = digits(rest)?;
+        let msg = rest[n..].strip_prefix(')')?.trim().trim_start_matches(':').trim();
+        Some(format!("{file}:{ln}: {msg}"))
+    } else {
+        None
+    }
+}
+
+/// A linked program; deleted on drop.
+pub struct ShaderProgram {
+    gl: Gl,
+    program: glow::Program,
+    uniforms: RefCell<HashMap<&'static str, Option<glow::UniformLocation>>>,
+}
+
+impl ShaderProgram {
+    /// Compiles a vertex and a fragment shader with the given `#define`s and links them.
+    pub fn new(
+        gl: &Gl,
+        vertex: &ShaderSource,
+        fragment: &ShaderSource,
+        defines: &[(String, String)],
+    ) -> Result<ShaderProgram> {
+        let program =
+            unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
+        let this = ShaderProgram {
+            gl: gl.clone(),
+            program,
+            uniforms: RefCell::new(HashMap::new()),
+        };
+        let vs = compile(gl, glow::VERTEX_SHADER, vertex, defines)?;
+        let fs = match compile(gl, glow::FRAGMENT_SHADER, fragment, defines) {
+            Ok(fs) => fs,
+            Err(e) => {
+                unsafe { gl.delete_shader(vs) };
+                return Err(e);
+            }
+        };
+        unsafe {
+            gl.attach_shader(program, vs);
+            gl.attach_shader(program, fs);
+            gl.link_program(program);
+            gl.detach_shader(program, vs);
+            gl.detach_shader(program, fs);
+            gl.delete_shader(vs);
+            gl.delete_shader(fs);
+            if !gl.get_program_link_status(program) {
+                let log = gl.get_program_info_log(program);
+                return Err(Error::Shader {
+                    file: format!("{} + {}", vertex.name, fragment.name),
+                    log: annotate_log(&format!("{} + {}", vertex.name, fragment.name), &log),
+                });
+            }
+        }
+        Ok(this)
+    }
+
+    pub fn bind(&self) {
+        unsafe { self.gl.use_program(Some(self.program)) };
+    }
+
+    pub fn unbind(&self) {
+        unsafe { self.gl.use_program(None) };
+    }
+
+    /// Looks a uniform up once and remembers it (the book's `createUniform`, done lazily).
+    /// Uniforms the compiler removed as unused resolve to `None` and are skipped.
+    fn location(&self, name: &'static str) -> Option<glow::UniformLocation> {
+        let mut cache = self.uniforms.borrow_mut();
+        cache
+            .entry(name)
+            .or_insert_with(|| unsafe { self.gl.get_uniform_location(self.program, name) })
+            .clone()
+    }
+
+    pub fn set_mat4(&self, name: &'static str, m: &Mat4) {
+        if let Some(loc) = self.location(name) {
+            unsafe {
+                self.gl
+                    .uniform_matrix_4_f32_slice(Some(&loc), false, &m.to_cols_array())
+            };
+        }
+    }
+
+    pub fn set_vec3(&self, name: &'static str, v: Vec3) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_3_f32(Some(&loc), v.x, v.y, v.z) };
+        }
+    }
+
+    pub fn set_vec4(&self, name: &'static str, v: Vec4) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_4_f32(Some(&loc), v.x, v.y, v.z, v.w) };
+        }
+    }
+
+    pub fn set_f32(&self, name: &'static str, v: f32) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_1_f32(Some(&loc), v) };
+        }
+    }
+
+    pub fn set_i32(&self, name: &'static str, v: i32) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_1_i32(Some(&loc), v) };
+        }
+    }
+}
+
+impl Drop for ShaderProgram {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_program(self.program) };
+    }
+}
+
+fn compile(
+    gl: &Gl,
+    kind: u32,
+    source: &ShaderSource,
+    defines: &[(String, String)],
+) -> Result<glow::Shader> {
+    unsafe {
+        let shader = gl
+            .create_shader(kind)
+            .map_err(|e| Error::Create(format!("shader {}: {e}", source.name)))?;
+        gl.shader_source(shader, &source.with_defines(defines));
+        gl.compile_shader(shader);
+        if !gl.get_shader_compile_status(shader) {
+            let log = gl.get_shader_info_log(shader);
+            gl.delete_shader(shader);
+            return Err(Error::Shader {
+                file: source.name.clone(),
+                log: annotate_log(&source.name, &log),
+            });
+        }
+        Ok(shader)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesa_and_nvidia_logs_get_file_and_line() {
+        let mesa = "0:12(5): error: syntax error, unexpected '}'\n";
+        assert_eq!(
+            annotate_log("shaders/scene.frag", mesa),
+            "shaders/scene.frag:12:5: error: syntax error, unexpected '}'"
+        );
+        let nv = "0(7) : error C0000: syntax error";
+        assert_eq!(
+            annotate_log("a.vert", nv),
+            "a.vert:7: error C0000: syntax error"
+        );
+        assert_eq!(annotate_log("a.vert", "odd text"), "a.vert: odd text");
+    }
+
+    #[test]
+    fn defines_keep_line_numbers() {
+        let s = ShaderSource::new("x", "#version 330 core\nvoid main() {}\n");
+        let out = s.with_defines(&[("PCF_RADIUS".into(), "1".into())]);
+        assert_eq!(
+            out,
+            "#version 330 core\n#define PCF_RADIUS 1\n#line 2\nvoid main() {}\n"
+        );
+    }
+}

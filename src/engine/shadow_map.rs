@@ -1,0 +1,105 @@
+//! `ShadowMap`: the FBO the depth pass renders into, and its depth texture
+//! ("Shadows", section "Shadow Mapping": the `ShadowMap` class).
+
+use glow::HasContext;
+
+use super::check::check_framebuffer;
+use super::texture::{DepthFormat, Texture};
+use super::Gl;
+use crate::error::{Error, Result};
+
+/// Owns the framebuffer and the depth texture attached to it; both are freed on drop.
+pub struct ShadowMap {
+    gl: Gl,
+    fbo: glow::Framebuffer,
+    depth_map: Texture,
+    format: DepthFormat,
+}
+
+impl ShadowMap {
+    /// Creates a `size` x `size` depth-only framebuffer. Like the book, it has no colour
+    /// buffer (draw and read buffer NONE) and its completeness is checked.
+    pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<ShadowMap> {
+        let depth_map = Texture::depth(gl, size, size, format)?;
+        let fbo = unsafe { gl.create_framebuffer() }
+            .map_err(|e| Error::Create(format!("shadow-map framebuffer: {e}")))?;
+        // Build the struct first so Drop frees the FBO if the completeness check fails.
+        let map = ShadowMap {
+            gl: gl.clone(),
+            fbo,
+            depth_map,
+            format,
+        };
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            gl.framebuffer_texture_2d(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                glow::TEXTURE_2D,
+                Some(map.depth_map.id()),
+                0,
+            );
+            gl.draw_buffer(glow::NONE);
+            gl.read_buffer(glow::NONE);
+        }
+        let status = check_framebuffer(gl, &format!("shadow map {size}x{size}"));
+        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
+        status?;
+        Ok(map)
+    }
+
+    /// Binds the FBO and sets the viewport to the map's size (the start of `renderDepthMap`).
+    pub fn bind_for_writing(&self) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl.viewport(
+                0,
+                0,
+                self.depth_map.width() as i32,
+                self.depth_map.height() as i32,
+            );
+        }
+    }
+
+    pub fn depth_map_texture(&self) -> &Texture {
+        &self.depth_map
+    }
+
+    pub fn size(&self) -> u32 {
+        self.depth_map.width()
+    }
+
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    /// Reads the depth values back (row 0 at the bottom, as GL stores them).
+    pub fn read_depth(&self) -> Vec<f32> {
+        let n = (self.size() * self.size()) as usize;
+        let mut bytes = vec![0u8; n * 4];
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
+            self.gl.read_pixels(
+                0,
+                0,
+                self.size() as i32,
+                self.size() as i32,
+                glow::DEPTH_COMPONENT,
+                glow::FLOAT,
+                glow::PixelPackData::Slice(Some(&mut bytes)),
+            );
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+        bytes
+            .chunks_exact(4)
+            .map(|c| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]))
+            .collect()
+    }
+}
+
+impl Drop for ShadowMap {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_framebuffer(self.fbo) };
+    }
+}

@@ -1,0 +1,114 @@
+//! Headless frames: render a scene into an offscreen target and read back what was asked
+//! for (colour, shadow-test visibility, world positions and normals, the depth map).
+
+use crate::engine::render_target::Outputs;
+use crate::engine::{Gl, RenderTarget};
+use crate::error::{Error, Result};
+use crate::image_data::ImageData;
+use crate::renderer::{Renderer, Target};
+use crate::scene::Scene;
+use crate::settings::ShadowSettings;
+
+/// What a headless render returns. Images are rows top to bottom.
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    pub colour: ImageData,
+    /// Per pixel: the shadow test's visibility where geometry was drawn.
+    pub visibility: Option<Vec<Option<f32>>>,
+    /// World positions and normals (NaN where no geometry).
+    pub positions: Option<Vec<[f32; 3]>>,
+    pub normals: Option<Vec<[f32; 3]>>,
+    /// The shadow map's size and its depth values (rows top to bottom).
+    pub depth_map: (u32, Vec<f32>),
+}
+
+impl Frame {
+    /// The visibility as an RGBA image: grey 255 lit, 0 shadowed, alpha 0 where no geometry.
+    pub fn visibility_image(&self) -> Option<ImageData> {
+        let vis = self.visibility.as_ref()?;
+        let mut rgba = Vec::with_capacity(vis.len() * 4);
+        for v in vis {
+            match v {
+                Some(v) => {
+                    let g = (v * 255.0).round() as u8;
+                    rgba.extend_from_slice(&[g, g, g, 255]);
+                }
+                None => rgba.extend_from_slice(&[0, 0, 0, 0]),
+            }
+        }
+        Some(ImageData {
+            width: self.width,
+            height: self.height,
+            rgba,
+        })
+    }
+
+    /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane).
+    pub fn depth_grey(&self) -> Vec<u8> {
+        self.depth_map
+            .1
+            .iter()
+            .map(|d| (d.clamp(0.0, 1.0) * 255.0).round() as u8)
+            .collect()
+    }
+}
+
+/// Renders `frames` frames (updating the scene before each one after the first) at
+/// `width` x `height` and reads the last one back.
+pub fn render_frames(
+    gl: &Gl,
+    scene: &mut Scene,
+    settings: &ShadowSettings,
+    width: u32,
+    height: u32,
+    frames: u32,
+    outputs: Outputs,
+) -> Result<Frame> {
+    let limits = crate::engine::gl_limits(gl);
+    let max = limits.max_renderbuffer_size.min(limits.max_viewport[0]).min(limits.max_viewport[1]);
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(Error::Invalid(format!(
+            "frame size {width}x{height}: expected each side from 1 to {max} (the driver's maximum)"
+        )));
+    }
+    let mut renderer = Renderer::new(gl, scene, settings)?;
+    let target = RenderTarget::new(gl, width, height, outputs)?;
+    for i in 0..frames.max(1) {
+        if i > 0 {
+            scene.update();
+        }
+        renderer.render(scene, Target::Offscreen(&target))?;
+    }
+    let colour = ImageData {
+        width,
+        height,
+        rgba: target.read_colour(),
+    };
+    let visibility = outputs.visibility.then(|| target.read_visibility()).transpose()?;
+    let (positions, normals) = match outputs.gbuffer {
+        true => {
+            let (p, n) = target.read_gbuffer()?;
+            (Some(p), Some(n))
+        }
+        false => (None, None),
+    };
+    let size = renderer.shadow_map().size();
+    let mut depth = renderer.shadow_map().read_depth();
+    // GL rows run bottom-up; flip so the image shows the map with +v up.
+    let row = size as usize;
+    for y in 0..row / 2 {
+        let (a, b) = depth.split_at_mut((row - 1 - y) * row);
+        a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
+    }
+    crate::engine::check_gl(gl, "reading the frame back")?;
+    Ok(Frame {
+        width,
+        height,
+        colour,
+        visibility,
+        positions,
+        normals,
+        depth_map: (size, depth),
+    })
+}

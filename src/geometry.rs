@@ -1,0 +1,314 @@
+//! CPU-side meshes: the built-in shapes of the chapters' scenes and OBJ models read with
+//! `tobj`, validated before anything reaches the GPU.
+
+use std::path::Path;
+
+use glam::Vec3;
+
+use crate::error::{Error, Result};
+
+/// The largest coordinate magnitude accepted in a model; beyond it f32 precision is gone.
+pub const MAX_COORDINATE: f32 = 1.0e7;
+
+/// Triangles with interleavable attributes, indexed. Counter-clockwise faces are front faces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshData {
+    pub name: String,
+    pub positions: Vec<[f32; 3]>,
+    pub tex_coords: Vec<[f32; 2]>,
+    pub normals: Vec<[f32; 3]>,
+    pub indices: Vec<u32>,
+}
+
+impl MeshData {
+    /// Checks the invariants the GPU upload relies on; the message names the mesh.
+    pub fn validate(&self) -> Result<()> {
+        let n = self.positions.len();
+        let bad = |what: String| Err(Error::Invalid(format!("mesh '{}': {what}", self.name)));
+        if self.tex_coords.len() != n || self.normals.len() != n {
+            return bad(format!(
+                "{} positions but {} texture coordinates and {} normals",
+                n,
+                self.tex_coords.len(),
+                self.normals.len()
+            ));
+        }
+        if self.indices.is_empty() || self.indices.len() % 3 != 0 {
+            return bad(format!(
+                "{} indices: expected a non-zero multiple of 3 (triangles)",
+                self.indices.len()
+            ));
+        }
+        if let Some(i) = self.indices.iter().find(|&&i| i as usize >= n) {
+            return bad(format!("index {i} out of range: the mesh has {n} vertices"));
+        }
+        if let Some(p) = self
+            .positions
+            .iter()
+            .find(|p| p.iter().any(|c| !c.is_finite() || c.abs() > MAX_COORDINATE))
+        {
+            return bad(format!(
+                "vertex position {p:?}: expected finite coordinates within +-{MAX_COORDINATE:e}"
+            ));
+        }
+        Ok(())
+    }
+
+    /// The triangles as position triples, in model space.
+    pub fn triangles(&self) -> impl Iterator<Item = [Vec3; 3]> + '_ {
+        self.indices.chunks_exact(3).map(|t| {
+            let p = |i: u32| Vec3::from(self.positions[i as usize]);
+            [p(t[0]), p(t[1]), p(t[2])]
+        })
+    }
+
+    /// Axis-aligned bounds in model space.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        self.positions.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(Vec3::from(*p)), hi.max(Vec3::from(*p))),
+        )
+    }
+
+    /// The book's `cube.obj`: a cube spanning [-1, 1] on each axis, one normal per face.
+    pub fn cube() -> MeshData {
+        // Each face: outward normal, and the two in-face axes u, v with u x v = normal.
+        let faces: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
+            ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
+            ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+            ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+            ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+            ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+            ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        ];
+        let mut mesh = MeshData::empty("cube");
+        for (n, u, v) in faces {
+            let (n, u, v) = (Vec3::from(n), Vec3::from(u), Vec3::from(v));
+            mesh.push_quad(n, u, v, n, [1.0, 1.0]);
+        }
+        mesh
+    }
+
+    /// The book's `plane.obj`: a 2 x 2 square in the XZ plane at y = 0, facing +Y,
+    /// counter-clockwise seen from above. `tiles` repeats the texture (LearnOpenGL tiles 25).
+    pub fn plane(tiles: f32) -> MeshData {
+        let mut mesh = MeshData::empty("plane");
+        mesh.push_quad(Vec3::ZERO, Vec3::X, -Vec3::Z, Vec3::Y, [tiles, tiles]);
+        mesh
+    }
+
+    fn empty(name: &str) -> MeshData {
+        MeshData {
+            name: name.to_string(),
+            positions: Vec::new(),
+            tex_coords: Vec::new(),
+            normals: Vec::new(),
+            indices: Vec::new(),
+        }
+    }
+
+    /// Appends the square centre +- u +- v, wound counter-clockwise about `normal`.
+    fn push_quad(&mut self, centre: Vec3, u: Vec3, v: Vec3, normal: Vec3, uv_scale: [f32; 2]) {
+        let base = self.positions.len() as u32;
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        for (a, b) in corners {
+            self.positions.push((centre + u * a + v * b).to_array());
+            self.tex_coords.push([
+                (a + 1.0) * 0.5 * uv_scale[0],
+                (b + 1.0) * 0.5 * uv_scale[1],
+            ]);
+            self.normals.push(normal.to_array());
+        }
+        self.indices
+            .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+    }
+
+    /// Reverses every triangle's winding (LearnOpenGL's floor is wound clockwise on purpose).
+    pub fn flip_winding(mut self) -> MeshData {
+        for t in self.indices.chunks_exact_mut(3) {
+            t.swap(1, 2);
+        }
+        self
+    }
+
+    /// Loads an OBJ file: polygons are triangulated, missing normals are computed, missing
+    /// texture coordinates are zero. Errors name the file and, where possible, the line.
+    pub fn load_obj(path: &Path) -> Result<MeshData> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::file(path, format!("cannot read OBJ model: {e}")))?;
+        Self::parse_obj(path, &text)
+    }
+
+    /// Parses OBJ text; `path` names the source in errors.
+    pub fn parse_obj(path: &Path, text: &str) -> Result<MeshData> {
+        let options = tobj::LoadOptions {
+            single_index: true,
+            triangulate: true,
+            ..Default::default()
+        };
+        let mut reader = std::io::BufReader::new(text.as_bytes());
+        let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
+            Err(tobj::LoadError::GenericFailure)
+        })
+        .map_err(|e| {
+            let at = first_bad_obj_line(text)
+                .map(|(line, why)| format!(" at line {line}: {why}"))
+                .unwrap_or_default();
+            Error::file(path, format!("not a valid OBJ model ({e}){at}"))
+        })?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "model".into());
+        let mut mesh = MeshData::empty(&name);
+        for model in &models {
+            let m = &model.mesh;
+            let base = mesh.positions.len() as u32;
+            let count = m.positions.len() / 3;
+            let has_normals = m.normals.len() == m.positions.len();
+            let has_uv = m.texcoords.len() / 2 == count;
+            for i in 0..count {
+                mesh.positions
+                    .push([m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]]);
+                mesh.normals.push(if has_normals {
+                    [m.normals[3 * i], m.normals[3 * i + 1], m.normals[3 * i + 2]]
+                } else {
+                    [0.0; 3]
+                });
+                mesh.tex_coords.push(if has_uv {
+                    [m.texcoords[2 * i], m.texcoords[2 * i + 1]]
+                } else {
+                    [0.0; 2]
+                });
+            }
+            if let Some(i) = m.indices.iter().find(|&&i| i as usize >= count) {
+                return Err(Error::file(
+                    path,
+                    format!("face index {} out of range: the model has {count} vertices", i + 1),
+                ));
+            }
+            mesh.indices.extend(m.indices.iter().map(|i| i + base));
+            if !has_normals {
+                mesh.compute_normals(base as usize);
+            }
+        }
+        if mesh.indices.is_empty() {
+            return Err(Error::file(
+                path,
+                "the OBJ model has no faces: expected at least one 'f' line with three vertices",
+            ));
+        }
+        mesh.validate()
+            .map_err(|e| Error::file(path, e.to_string()))?;
+        Ok(mesh)
+    }
+
+    /// Area-weighted vertex normals for the vertices from `first` on.
+    fn compute_normals(&mut self, first: usize) {
+        let mut acc = vec![Vec3::ZERO; self.positions.len() - first];
+        for t in self.indices.chunks_exact(3) {
+            if (t[0] as usize) < first {
+                continue;
+            }
+            let p = |i: u32| Vec3::from(self.positions[i as usize]);
+            let n = (p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]));
+            for &i in t {
+                acc[i as usize - first] += n;
+            }
+        }
+        for (i, n) in acc.into_iter().enumerate() {
+            self.normals[first + i] = n.try_normalize().unwrap_or(Vec3::Y).to_array();
+        }
+    }
+}
+
+/// Finds the first line an OBJ reader would reject, to point the user at it.
+fn first_bad_obj_line(text: &str) -> Option<(usize, String)> {
+    let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let floats = |w: std::str::SplitWhitespace, min: usize| {
+            let vals: Vec<_> = w.map(str::parse::<f32>).collect();
+            vals.len() >= min && vals.iter().all(|x| x.is_ok())
+        };
+        let ok = match words.next() {
+            Some("v") => {
+                v += 1;
+                floats(words, 3).then_some(()).ok_or("expected 'v x y z' with numbers")
+            }
+            Some("vt") => {
+                vt += 1;
+                floats(words, 1).then_some(()).ok_or("expected 'vt u v' with numbers")
+            }
+            Some("vn") => {
+                vn += 1;
+                floats(words, 3).then_some(()).ok_or("expected 'vn x y z' with numbers")
+            }
+            Some("f") => check_face(words, v, vt, vn),
+            _ => Ok(()),
+        };
+        if let Err(why) = ok {
+            return Some((i + 1, why.to_string()));
+        }
+    }
+    None
+}
+
+fn check_face(words: std::str::SplitWhitespace, v: i64, vt: i64, vn: i64) -> std::result::Result<(), &'static str> {
+    let mut corners = 0;
+    for w in words {
+        corners += 1;
+        for (k, part) in w.split('/').enumerate() {
+            if part.is_empty() && k > 0 {
+                continue;
+            }
+            let idx: i64 = part.parse().map_err(|_| "expected face indices 'f a b c'")?;
+            let count = [v, vt, vn].get(k).copied().ok_or("too many '/' in a face corner")?;
+            let resolved = if idx < 0 { count + idx + 1 } else { idx };
+            if resolved < 1 || resolved > count {
+                return Err("face index out of range (indices start at 1 and must refer to an earlier v/vt/vn line)");
+            }
+        }
+    }
+    if corners < 3 {
+        return Err("a face needs at least three vertices");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_shapes_are_valid_and_wound_outward() {
+        for mesh in [MeshData::cube(), MeshData::plane(1.0)] {
+            mesh.validate().unwrap();
+            for (t, tri) in mesh.triangles().enumerate() {
+                let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize();
+                let i = mesh.indices[3 * t] as usize;
+                let stored = Vec3::from(mesh.normals[i]);
+                assert!(n.dot(stored) > 0.99, "{} triangle {t} winds inward", mesh.name);
+            }
+        }
+        let (lo, hi) = MeshData::cube().bounds();
+        assert_eq!((lo, hi), (Vec3::splat(-1.0), Vec3::splat(1.0)));
+    }
+
+    #[test]
+    fn obj_quad_is_triangulated_and_gets_normals() {
+        let obj = "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n";
+        let m = MeshData::parse_obj(Path::new("quad.obj"), obj).unwrap();
+        assert_eq!(m.indices.len(), 6);
+        assert!(m.normals.iter().all(|n| (n[1] - 1.0).abs() < 1e-6));
+    }
+
+    #[test]
+    fn obj_errors_name_file_and_line() {
+        let e = MeshData::parse_obj(Path::new("bad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("bad.obj: "), "{e}");
+        assert!(e.contains("line 4"), "{e}");
+    }
+}

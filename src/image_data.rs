@@ -1,0 +1,74 @@
+//! CPU-side RGBA images: PNG textures read with limits, and PNG output written with a
+//! clear error when the path is not writable.
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+
+/// The largest texture side we accept; a tiny corrupt file cannot claim gigabytes.
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+/// The most memory a texture's decoding may allocate.
+pub const MAX_TEXTURE_BYTES: u64 = 512 * 1024 * 1024;
+
+/// An RGBA8 image, rows top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImageData {
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+}
+
+impl ImageData {
+    /// Decodes a PNG file, rejecting absurd dimensions before allocating for them.
+    pub fn load_png(path: &Path) -> Result<ImageData> {
+        let bytes = std::fs::read(path)
+            .map_err(|e| Error::file(path, format!("cannot read texture: {e}")))?;
+        Self::decode_png(path, &bytes)
+    }
+
+    /// Decodes PNG bytes; `path` only names the source in errors.
+    pub fn decode_png(path: &Path, bytes: &[u8]) -> Result<ImageData> {
+        let mut reader = image::ImageReader::with_format(
+            std::io::Cursor::new(bytes),
+            image::ImageFormat::Png,
+        );
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+        limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+        limits.max_alloc = Some(MAX_TEXTURE_BYTES);
+        reader.limits(limits);
+        let image = reader.decode().map_err(|e| {
+            Error::file(
+                path,
+                format!(
+                    "not a readable PNG texture ({e}); expected a PNG of at most \
+                     {MAX_TEXTURE_SIDE}x{MAX_TEXTURE_SIDE} pixels"
+                ),
+            )
+        })?;
+        let rgba = image.to_rgba8();
+        Ok(ImageData {
+            width: rgba.width(),
+            height: rgba.height(),
+            rgba: rgba.into_raw(),
+        })
+    }
+
+    /// Writes the image as a PNG, creating no directories; the error names the path.
+    pub fn save_png(&self, path: &Path) -> Result<()> {
+        save_png(path, self.width, self.height, image::ColorType::Rgba8, &self.rgba)
+    }
+}
+
+/// Writes an 8-bit grey image as a PNG.
+pub fn save_grey_png(path: &Path, width: u32, height: u32, grey: &[u8]) -> Result<()> {
+    save_png(path, width, height, image::ColorType::L8, grey)
+}
+
+fn save_png(path: &Path, width: u32, height: u32, ty: image::ColorType, data: &[u8]) -> Result<()> {
+    let file = std::fs::File::create(path)
+        .map_err(|e| Error::file(path, format!("cannot write the image: {e}")))?;
+    let encoder = image::codecs::png::PngEncoder::new(std::io::BufWriter::new(file));
+    image::ImageEncoder::write_image(encoder, data, width, height, ty.into())
+        .map_err(|e| Error::file(path, format!("cannot write the image: {e}")))
+}

@@ -1,0 +1,23 @@
+//! The `shadowmap` program: the demo window and the headless commands.
+
+mod app;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let cli = app::cli::Cli::parse();
+    let result = match cli.command {
+        None => app::demo::run(&app::cli::DemoArgs::default()),
+        Some(app::cli::Command::Demo(args)) => app::demo::run(&args),
+        Some(app::cli::Command::Render(args)) => app::render::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,229 @@
+//! `Renderer`: the book's two-pass frame. `render_depth_map` draws the scene from the light
+//! into the shadow map; the main pass then draws it from the camera, sampling that map.
+
+use glam::Mat4;
+use glow::HasContext;
+
+use crate::engine::{check_gl, gl_limits, Gl, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
+use crate::error::Result;
+use crate::scene::Scene;
+use crate::settings::{Cull, ShadowSettings};
+use crate::shaders;
+
+/// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
+/// offscreen [`RenderTarget`].
+#[derive(Clone, Copy)]
+pub enum Target<'a> {
+    Window { width: u32, height: u32 },
+    Offscreen(&'a RenderTarget),
+}
+
+impl Target<'_> {
+    pub fn size(&self) -> (u32, u32) {
+        match self {
+            Target::Window { width, height } => (*width, *height),
+            Target::Offscreen(t) => (t.width(), t.height()),
+        }
+    }
+}
+
+/// Owns the GL side of one scene: its meshes and textures, the two programs and the shadow
+/// map. Create it after the context and drop it before.
+pub struct Renderer {
+    gl: Gl,
+    settings: ShadowSettings,
+    depth_program: ShaderProgram,
+    scene_program: ShaderProgram,
+    shadow_map: ShadowMap,
+    meshes: Vec<Mesh>,
+    textures: Vec<Texture>,
+    /// The light's view and projection used by the last depth pass.
+    light_view: Mat4,
+    light_projection: Mat4,
+}
+
+impl Renderer {
+    /// Uploads the scene's meshes and textures and builds the pipeline for `settings`.
+    pub fn new(gl: &Gl, scene: &Scene, settings: &ShadowSettings) -> Result<Renderer> {
+        settings.validate(gl_limits(gl).max_texture_size)?;
+        let meshes = scene
+            .meshes
+            .iter()
+            .map(|m| Mesh::new(gl, m))
+            .collect::<Result<Vec<_>>>()?;
+        let textures = scene
+            .textures
+            .iter()
+            .map(|t| Texture::from_image(gl, t))
+            .collect::<Result<Vec<_>>>()?;
+        let depth_program =
+            ShaderProgram::new(gl, &shaders::depth_vert(), &shaders::depth_frag(), &[])?;
+        let scene_program = ShaderProgram::new(
+            gl,
+            &shaders::scene_vert(),
+            &shaders::scene_frag(),
+            &settings.shader_defines(),
+        )?;
+        let shadow_map = ShadowMap::new(gl, settings.map_size, settings.depth_format)?;
+        shadow_map.depth_map_texture().set_wrap(settings.wrap);
+        unsafe { gl.enable(glow::DEPTH_TEST) };
+        check_gl(gl, "renderer setup")?;
+        Ok(Renderer {
+            gl: gl.clone(),
+            settings: *settings,
+            depth_program,
+            scene_program,
+            shadow_map,
+            meshes,
+            textures,
+            light_view: Mat4::IDENTITY,
+            light_projection: Mat4::IDENTITY,
+        })
+    }
+
+    pub fn settings(&self) -> &ShadowSettings {
+        &self.settings
+    }
+
+    /// Switches settings, rebuilding only what they change (the program for shader
+    /// variants, the shadow map for its size or format).
+    pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
+        settings.validate(gl_limits(&self.gl).max_texture_size)?;
+        if settings.shader_defines() != self.settings.shader_defines() {
+            self.scene_program = ShaderProgram::new(
+                &self.gl,
+                &shaders::scene_vert(),
+                &shaders::scene_frag(),
+                &settings.shader_defines(),
+            )?;
+        }
+        if settings.map_size != self.settings.map_size
+            || settings.depth_format != self.settings.depth_format
+        {
+            self.shadow_map = ShadowMap::new(&self.gl, settings.map_size, settings.depth_format)?;
+        }
+        self.shadow_map.depth_map_texture().set_wrap(settings.wrap);
+        self.settings = *settings;
+        check_gl(&self.gl, "changing settings")
+    }
+
+    pub fn shadow_map(&self) -> &ShadowMap {
+        &self.shadow_map
+    }
+
+    /// The light's projection * view from the last depth pass.
+    pub fn light_space_matrix(&self) -> Mat4 {
+        self.light_projection * self.light_view
+    }
+
+    /// One frame: the depth map first, then the scene into `target`.
+    pub fn render(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        self.render_depth_map(scene)?;
+        self.render_scene(scene, target)
+    }
+
+    /// The shadow pass: bind the map's FBO, viewport to its size, clear depth, and draw every
+    /// caster with light view x ortho.
+    pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
+        let gl = &self.gl;
+        self.shadow_map.bind_for_writing();
+        self.light_view = scene.light.view_matrix(self.settings.light_view);
+        self.light_projection = scene.light.projection_matrix();
+        unsafe {
+            gl.depth_mask(true);
+            gl.clear(glow::DEPTH_BUFFER_BIT);
+            match self.settings.cull {
+                Cull::None => gl.disable(glow::CULL_FACE),
+                Cull::Back => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::BACK);
+                }
+                Cull::Front => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::FRONT);
+                }
+            }
+        }
+        let program = &self.depth_program;
+        program.bind();
+        program.set_mat4("orthoProjectionMatrix", &self.light_projection);
+        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+            let items = scene
+                .items
+                .iter()
+                .filter(|i| i.mesh == mesh_id && i.casts_shadows);
+            mesh.render_list(items, |item| {
+                let mlv = self.light_view * item.model_matrix();
+                program.set_mat4("modelLightViewMatrix", &mlv);
+            });
+        }
+        program.unbind();
+        unsafe {
+            gl.disable(glow::CULL_FACE);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+        check_gl(gl, "the depth-map pass")
+    }
+
+    /// The main pass: restores the viewport to the target's size in pixels (not the window's
+    /// logical size) and draws the scene with the shadow map on texture unit 1.
+    fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
+        let gl = &self.gl;
+        let (width, height) = target.size();
+        let c = scene.clear_colour;
+        match target {
+            Target::Offscreen(t) => t.bind_and_clear(c.to_array()),
+            Target::Window { .. } => unsafe {
+                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+                gl.viewport(0, 0, width as i32, height as i32);
+                gl.clear_color(c.x, c.y, c.z, c.w);
+                gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            },
+        }
+        let view = scene.camera.view_matrix();
+        let p = &self.scene_program;
+        p.bind();
+        p.set_mat4("projectionMatrix", &scene.camera.projection_matrix(width, height));
+        p.set_mat4("orthoProjectionMatrix", &self.light_projection);
+        p.set_vec3("ambientLight", scene.ambient);
+        p.set_f32("specularPower", scene.specular_power);
+        p.set_f32("bias", self.settings.bias);
+        p.set_f32("biasMin", self.settings.bias_min);
+        let light = &scene.light;
+        p.set_vec3("directionalLight.colour", light.colour);
+        p.set_vec3(
+            "directionalLight.direction",
+            view.transform_vector3(light.direction.normalize()),
+        );
+        p.set_f32("directionalLight.intensity", light.intensity);
+        p.set_i32("textureSampler", 0);
+        p.set_i32("shadowMap", 1);
+        self.shadow_map.depth_map_texture().bind(1);
+        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+            let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
+            mesh.render_list(items, |item| {
+                let model = item.model_matrix();
+                p.set_mat4("modelMatrix", &model);
+                p.set_mat4("modelViewMatrix", &(view * model));
+                p.set_mat4("modelLightViewMatrix", &(self.light_view * model));
+                let m = &item.material;
+                p.set_vec4("material.colour", m.colour);
+                p.set_f32("material.reflectance", m.reflectance);
+                match m.texture.and_then(|t| self.textures.get(t)) {
+                    Some(tex) => {
+                        tex.bind(0);
+                        p.set_i32("material.hasTexture", 1);
+                    }
+                    None => p.set_i32("material.hasTexture", 0),
+                }
+            });
+        }
+        p.unbind();
+        check_gl(gl, "the scene pass")
+    }
+
+    /// Blocks until the GPU has finished (for wall-time measurements).
+    pub fn finish(&self) {
+        unsafe { self.gl.finish() };
+    }
+}

@@ -1,0 +1,51 @@
+//! `GameItem` and `Material`: an instance of a mesh placed in the world (the book's
+//! `GameItem`), and how it is coloured.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use crate::transformation::Transformation;
+
+/// Colour or texture, and how shiny (the book's `Material`, with one colour for ambient,
+/// diffuse and specular as its constructor does).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub colour: Vec4,
+    /// Index into [`Scene::textures`](super::Scene::textures); replaces the colour.
+    pub texture: Option<usize>,
+    pub reflectance: f32,
+}
+
+/// An item: a mesh, where it is, how it is turned and scaled, and its material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GameItem {
+    pub name: String,
+    /// Index into [`Scene::meshes`](super::Scene::meshes).
+    pub mesh: usize,
+    pub position: Vec3,
+    /// Degrees, applied as the book does: see [`Transformation::model`].
+    pub rotation: Vec3,
+    /// Uniform scale.
+    pub scale: f32,
+    pub material: Material,
+    /// Degrees added to `rotation` per update (the DummyGame's cube turns 0.5 about Y).
+    pub spin: Vec3,
+    /// Whether the item is drawn into the shadow map.
+    pub casts_shadows: bool,
+}
+
+impl GameItem {
+    pub fn model_matrix(&self) -> Mat4 {
+        Transformation::model(self.position, self.rotation, self.scale)
+    }
+
+    /// One fixed update of the animation (the book runs 30 per second).
+    pub fn update(&mut self) {
+        self.rotation += self.spin;
+        // Keep angles small so long runs keep their precision.
+        self.rotation = Vec3::new(
+            self.rotation.x % 360.0,
+            self.rotation.y % 360.0,
+            self.rotation.z % 360.0,
+        );
+    }
+}

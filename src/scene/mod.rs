@@ -1,0 +1,89 @@
+//! The scene side of the book: `Camera`, `GameItem`, `DirectionalLight` and `Scene`, plus the
+//! TOML scene files they load from.
+
+pub mod camera;
+pub mod file;
+pub mod game_item;
+pub mod light;
+
+use glam::{Vec3, Vec4};
+
+pub use camera::Camera;
+pub use game_item::{GameItem, Material};
+pub use light::{DirectionalLight, OrthoCoords};
+
+use crate::error::{Error, Result};
+use crate::geometry::MeshData;
+use crate::image_data::ImageData;
+use crate::settings::ShadowSettings;
+
+/// The built-in scenes, each also a file under `assets/scenes/`.
+pub const BUILTIN_SCENES: &[(&str, &str)] = &[(
+    "dummy",
+    include_str!("../../assets/scenes/dummy.toml"),
+)];
+
+/// Everything drawn in a frame, on the CPU side. The renderer uploads `meshes` and `textures`
+/// once; items refer to them by index so one mesh can be drawn for many items.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub name: String,
+    pub camera: Camera,
+    pub light: DirectionalLight,
+    pub ambient: Vec3,
+    pub specular_power: f32,
+    pub clear_colour: Vec4,
+    /// The frame size the scene was made for (the window's initial size, `render`'s default).
+    pub size: [u32; 2],
+    pub items: Vec<GameItem>,
+    pub meshes: Vec<MeshData>,
+    pub textures: Vec<ImageData>,
+    /// The scene's own shadow settings (the chapter's configuration); flags override them.
+    pub shadow: ShadowSettings,
+}
+
+impl Scene {
+    /// A built-in scene by name, or a TOML file when `name` ends in `.toml`.
+    pub fn load(name: &str) -> Result<Scene> {
+        if name.ends_with(".toml") {
+            return file::load_file(std::path::Path::new(name));
+        }
+        match BUILTIN_SCENES.iter().find(|(n, _)| *n == name) {
+            Some((n, text)) => file::parse(text, std::path::Path::new(&format!("<built-in {n}>")), None),
+            None => Err(Error::Invalid(format!(
+                "unknown scene '{name}': expected one of {} or a path to a .toml scene file",
+                Self::builtin_names().join(", ")
+            ))),
+        }
+    }
+
+    pub fn builtin_names() -> Vec<&'static str> {
+        BUILTIN_SCENES.iter().map(|(n, _)| *n).collect()
+    }
+
+    /// One fixed update (the book's `update`, 30 per second): items spin.
+    pub fn update(&mut self) {
+        for item in &mut self.items {
+            item.update();
+        }
+    }
+
+    /// Sets the DummyGame's light angle in degrees, clamped to [0, 180] as the book does.
+    pub fn set_light_angle(&mut self, angle_deg: f32) {
+        self.light.direction = DirectionalLight::direction_from_angle(angle_deg.clamp(0.0, 180.0));
+    }
+
+    /// All triangles of the items that cast shadows, in world space (for the reference).
+    pub fn world_triangles(&self) -> Vec<[Vec3; 3]> {
+        let mut out = Vec::new();
+        for item in self.items.iter().filter(|i| i.casts_shadows) {
+            let m = item.model_matrix();
+            out.extend(
+                self.meshes[item.mesh]
+                    .triangles()
+                    .map(|t| t.map(|p| m.transform_point3(p))),
+            );
+        }
+        out
+    }
+}

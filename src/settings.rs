@@ -1,0 +1,197 @@
+//! The shadow settings: every knob the chapters turn, as data. A chapter step is a preset of
+//! these, never a copy of the renderer.
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::engine::{DepthFormat, Wrap};
+
+/// How the shadow map is sampled ("Shadow Mapping improvements": 3x3 PCF).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Filter {
+    /// One depth comparison per fragment: hard, blocky edges.
+    Single,
+    /// The book's and LearnOpenGL's 3 x 3 average of comparisons, one texel apart.
+    #[default]
+    Pcf3x3,
+    /// A 5 x 5 average.
+    Pcf5x5,
+}
+
+impl Filter {
+    pub const ALL: [Filter; 3] = [Filter::Single, Filter::Pcf3x3, Filter::Pcf5x5];
+
+    /// Half the kernel width in texels.
+    pub fn radius(self) -> u32 {
+        match self {
+            Filter::Single => 0,
+            Filter::Pcf3x3 => 1,
+            Filter::Pcf5x5 => 2,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Filter::Single => "single",
+            Filter::Pcf3x3 => "pcf3x3",
+            Filter::Pcf5x5 => "pcf5x5",
+        }
+    }
+}
+
+/// How the depth comparison is offset against acne.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum BiasMode {
+    /// The plain comparison: acne everywhere a surface faces the light.
+    None,
+    /// `depth - bias` (the book's 0.05, LearnOpenGL's 0.005).
+    #[default]
+    Constant,
+    /// LearnOpenGL's `max(bias * (1 - n.l), bias_min)`.
+    Slope,
+}
+
+impl BiasMode {
+    pub fn name(self) -> &'static str {
+        match self {
+            BiasMode::None => "none",
+            BiasMode::Constant => "constant",
+            BiasMode::Slope => "slope",
+        }
+    }
+}
+
+/// Which faces the depth pass culls.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Cull {
+    /// The book's depth pass draws every face.
+    #[default]
+    None,
+    Back,
+    /// LearnOpenGL's peter-panning fix.
+    Front,
+}
+
+impl Cull {
+    pub fn name(self) -> &'static str {
+        match self {
+            Cull::None => "none",
+            Cull::Back => "back",
+            Cull::Front => "front",
+        }
+    }
+}
+
+/// What a fragment beyond the light's far plane (z > 1) gets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum BeyondFar {
+    /// The book: the comparison runs anyway and says "shadowed".
+    #[default]
+    Shadowed,
+    /// LearnOpenGL: treated as lit.
+    Lit,
+}
+
+/// How the directional light's view matrix is built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum LightView {
+    /// The book: Euler angles from the direction (acos z, asin x). Right only while the
+    /// direction has no x component.
+    #[default]
+    BookAngles,
+    /// A look-at from `direction * shadow_pos_mult` towards the origin.
+    LookAt,
+}
+
+/// Every setting of the shadow pipeline. The defaults are the book's final configuration.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ShadowSettings {
+    /// Side of the square shadow map in texels (the book: 1024).
+    pub map_size: u32,
+    pub depth_format: DepthFormat,
+    pub filter: Filter,
+    pub bias_mode: BiasMode,
+    /// Constant bias, or the slope bias' maximum, in [0, 1] depth units.
+    pub bias: f32,
+    /// The slope bias' floor (LearnOpenGL: 0.005).
+    pub bias_min: f32,
+    pub cull: Cull,
+    pub wrap: Wrap,
+    pub beyond_far: BeyondFar,
+    pub light_view: LightView,
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        ShadowSettings {
+            map_size: 1024,
+            depth_format: DepthFormat::D24,
+            filter: Filter::Pcf3x3,
+            bias_mode: BiasMode::Constant,
+            bias: 0.05,
+            bias_min: 0.005,
+            cull: Cull::None,
+            wrap: Wrap::ClampToEdge,
+            beyond_far: BeyondFar::Shadowed,
+            light_view: LightView::BookAngles,
+        }
+    }
+}
+
+impl ShadowSettings {
+    /// A short human summary, for window titles and reports.
+    pub fn summary(&self) -> String {
+        let bias = match self.bias_mode {
+            BiasMode::None => "no bias".to_string(),
+            BiasMode::Constant => format!("bias {}", self.bias),
+            BiasMode::Slope => format!("slope bias {}..{}", self.bias_min, self.bias),
+        };
+        format!(
+            "{}^2 {} {}, {}, cull {}",
+            self.map_size,
+            self.depth_format.name(),
+            self.filter.name(),
+            bias,
+            self.cull.name()
+        )
+    }
+
+    /// Checks values against each other and the driver's maximum texture size.
+    pub fn validate(&self, max_texture_size: u32) -> crate::Result<()> {
+        let bad = |m: String| Err(crate::Error::Invalid(m));
+        if self.map_size == 0 || self.map_size > max_texture_size {
+            return bad(format!(
+                "shadow.map_size = {}: expected 1 to {max_texture_size} (the driver's maximum texture size)",
+                self.map_size
+            ));
+        }
+        for (name, v) in [("bias", self.bias), ("bias_min", self.bias_min)] {
+            if !v.is_finite() || v < 0.0 {
+                return bad(format!("shadow.{name} = {v}: expected a finite number >= 0"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The `#define`s the scene shader is compiled with for these settings.
+    pub fn shader_defines(&self) -> Vec<(String, String)> {
+        let bias_mode = match self.bias_mode {
+            BiasMode::None => 0,
+            BiasMode::Constant => 1,
+            BiasMode::Slope => 2,
+        };
+        vec![
+            ("PCF_RADIUS".into(), self.filter.radius().to_string()),
+            ("BIAS_MODE".into(), bias_mode.to_string()),
+            (
+                "BEYOND_FAR_LIT".into(),
+                u32::from(self.beyond_far == BeyondFar::Lit).to_string(),
+            ),
+        ]
+    }
+}

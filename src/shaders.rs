@@ -1,0 +1,20 @@
+//! The GLSL sources, embedded at build time so the binary runs from any directory.
+
+use crate::engine::ShaderSource;
+
+macro_rules! shader {
+    ($name:ident, $file:literal) => {
+        /// The embedded text of `shaders/` + the file name.
+        pub fn $name() -> ShaderSource {
+            ShaderSource::new(
+                concat!("shaders/", $file),
+                include_str!(concat!("../shaders/", $file)),
+            )
+        }
+    };
+}
+
+shader!(depth_vert, "depth.vert");
+shader!(depth_frag, "depth.frag");
+shader!(scene_vert, "scene.vert");
+shader!(scene_frag, "scene.frag");
