@@ -20,7 +20,13 @@ impl ShadowMap {
     /// Creates a `size` x `size` depth-only framebuffer. Like the book, it has no colour
     /// buffer (draw and read buffer NONE) and its completeness is checked.
     pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<ShadowMap> {
-        let depth_map = Texture::depth(gl, size, size, format)?;
+        Self::from_texture(gl, Texture::depth(gl, size, size, format)?, format)
+    }
+
+    /// Builds the framebuffer around an existing texture. A texture that cannot be a depth
+    /// attachment gives [`Error::IncompleteFramebuffer`], never a silently black map.
+    pub fn from_texture(gl: &Gl, depth_map: Texture, format: DepthFormat) -> Result<ShadowMap> {
+        let size = depth_map.width();
         let fbo = unsafe { gl.create_framebuffer() }
             .map_err(|e| Error::Create(format!("shadow-map framebuffer: {e}")))?;
         // Build the struct first so Drop frees the FBO if the completeness check fails.

@@ -146,6 +146,11 @@ impl Texture {
         Ok(texture)
     }
 
+    /// An empty RGBA8 colour texture.
+    pub fn colour(gl: &Gl, width: u32, height: u32) -> Result<Texture> {
+        Texture::attachment(gl, width, height, glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE)
+    }
+
     /// An empty colour texture used as a render-target attachment.
     pub(crate) fn attachment(
         gl: &Gl,

@@ -1,0 +1,53 @@
+//! Helpers shared by the integration tests: a headless context and scene shortcuts.
+#![allow(dead_code)]
+
+use glam::Vec3;
+use shadowmap::engine::{HeadlessContext, Outputs};
+use shadowmap::frame::{render_frames, Frame};
+use shadowmap::{Scene, ShadowSettings};
+
+/// A headless EGL context; every test that draws makes its own (contexts are per thread).
+pub fn context() -> HeadlessContext {
+    HeadlessContext::new().unwrap_or_else(|e| panic!("headless EGL context: {e}"))
+}
+
+/// The DummyGame with its cube frozen, the light at `angle` degrees.
+pub fn dummy(angle: f32) -> Scene {
+    let mut scene = Scene::load("dummy").unwrap();
+    for item in &mut scene.items {
+        item.spin = Vec3::ZERO;
+    }
+    scene.set_light_angle(angle);
+    scene
+}
+
+/// Renders one frame with visibility and G-buffer outputs.
+pub fn render(
+    ctx: &HeadlessContext,
+    scene: &mut Scene,
+    settings: &ShadowSettings,
+    width: u32,
+    height: u32,
+) -> Frame {
+    let outputs = Outputs {
+        visibility: true,
+        gbuffer: true,
+    };
+    render_frames(ctx.gl(), scene, settings, width, height, 1, outputs)
+        .unwrap_or_else(|e| panic!("render: {e}"))
+}
+
+/// Pixels that show the DummyGame's plane (y = -1, facing up): (world position, visibility).
+pub fn plane_pixels(frame: &Frame) -> Vec<(Vec3, f32)> {
+    let pos = frame.positions.as_ref().unwrap();
+    let nrm = frame.normals.as_ref().unwrap();
+    let vis = frame.visibility.as_ref().unwrap();
+    (0..pos.len())
+        .filter_map(|i| {
+            let p = Vec3::from(pos[i]);
+            let n = Vec3::from(nrm[i]);
+            let v = vis[i]?;
+            ((p.y + 1.0).abs() < 1e-3 && n.y > 0.99).then_some((p, v))
+        })
+        .collect()
+}
