@@ -72,7 +72,7 @@ fn scene_file_errors_name_the_line_or_field() {
     let e = load_err("near_far.toml");
     assert!(e.contains("light.ortho") && e.contains("near < far"), "{e}");
     let e = load_err("missing_mesh.toml");
-    assert!(e.contains("does_not_exist.obj") && e.contains("cannot read OBJ model"), "{e}");
+    assert!(e.contains("item[0].mesh: ") && e.contains("models/does_not_exist.obj: cannot read OBJ model"), "{e}");
     let e = load_err("map_size_zero.toml");
     assert!(e.contains("shadow.map_size = 0: expected 1 to"), "{e}");
 }

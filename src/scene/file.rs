@@ -226,7 +226,8 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                         let base = base.ok_or_else(|| {
                             bad(&field("mesh"), format!("'{path}': built-in scenes only use the meshes cube and plane"))
                         })?;
-                        MeshData::load_obj(&base.join(path))?
+                        MeshData::load_obj(&base.join(path))
+                            .map_err(|e| bad(&field("mesh"), e.to_string()))?
                     }
                 };
                 meshes.push(data);
@@ -242,7 +243,10 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                 Some(match texture_ids.get(&path) {
                     Some(&id) => id,
                     None => {
-                        textures.push(ImageData::load_png(&path)?);
+                        textures.push(
+                            ImageData::load_png(&path)
+                                .map_err(|e| bad(&field("texture"), e.to_string()))?,
+                        );
                         texture_ids.insert(path, textures.len() - 1);
                         textures.len() - 1
                     }
