@@ -66,7 +66,10 @@ pub fn render_frames(
     outputs: Outputs,
 ) -> Result<Frame> {
     let limits = crate::engine::gl_limits(gl);
-    let max = limits.max_renderbuffer_size.min(limits.max_viewport[0]).min(limits.max_viewport[1]);
+    let max = limits
+        .max_renderbuffer_size
+        .min(limits.max_viewport[0])
+        .min(limits.max_viewport[1]);
     if width == 0 || height == 0 || width > max || height > max {
         return Err(Error::Invalid(format!(
             "frame size {width}x{height}: expected each side from 1 to {max} (the driver's maximum)"
@@ -85,7 +88,10 @@ pub fn render_frames(
         height,
         rgba: target.read_colour(),
     };
-    let visibility = outputs.visibility.then(|| target.read_visibility()).transpose()?;
+    let visibility = outputs
+        .visibility
+        .then(|| target.read_visibility())
+        .transpose()?;
     let (positions, normals) = match outputs.gbuffer {
         true => {
             let (p, n) = target.read_gbuffer()?;

@@ -33,7 +33,7 @@ impl MeshData {
                 self.normals.len()
             ));
         }
-        if self.indices.is_empty() || self.indices.len() % 3 != 0 {
+        if self.indices.is_empty() || !self.indices.len().is_multiple_of(3) {
             return bad(format!(
                 "{} indices: expected a non-zero multiple of 3 (triangles)",
                 self.indices.len()
@@ -113,10 +113,8 @@ impl MeshData {
         let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
         for (a, b) in corners {
             self.positions.push((centre + u * a + v * b).to_array());
-            self.tex_coords.push([
-                (a + 1.0) * 0.5 * uv_scale[0],
-                (b + 1.0) * 0.5 * uv_scale[1],
-            ]);
+            self.tex_coords
+                .push([(a + 1.0) * 0.5 * uv_scale[0], (b + 1.0) * 0.5 * uv_scale[1]]);
             self.normals.push(normal.to_array());
         }
         self.indices
@@ -168,8 +166,11 @@ impl MeshData {
             let has_normals = m.normals.len() == m.positions.len();
             let has_uv = m.texcoords.len() / 2 == count;
             for i in 0..count {
-                mesh.positions
-                    .push([m.positions[3 * i], m.positions[3 * i + 1], m.positions[3 * i + 2]]);
+                mesh.positions.push([
+                    m.positions[3 * i],
+                    m.positions[3 * i + 1],
+                    m.positions[3 * i + 2],
+                ]);
                 mesh.normals.push(if has_normals {
                     [m.normals[3 * i], m.normals[3 * i + 1], m.normals[3 * i + 2]]
                 } else {
@@ -184,7 +185,10 @@ impl MeshData {
             if let Some(i) = m.indices.iter().find(|&&i| i as usize >= count) {
                 return Err(Error::file(
                     path,
-                    format!("face index {} out of range: the model has {count} vertices", i + 1),
+                    format!(
+                        "face index {} out of range: the model has {count} vertices",
+                        i + 1
+                    ),
                 ));
             }
             mesh.indices.extend(m.indices.iter().map(|i| i + base));
@@ -234,15 +238,21 @@ fn first_bad_obj_line(text: &str) -> Option<(usize, String)> {
         let ok = match words.next() {
             Some("v") => {
                 v += 1;
-                floats(words, 3).then_some(()).ok_or("expected 'v x y z' with numbers")
+                floats(words, 3)
+                    .then_some(())
+                    .ok_or("expected 'v x y z' with numbers")
             }
             Some("vt") => {
                 vt += 1;
-                floats(words, 1).then_some(()).ok_or("expected 'vt u v' with numbers")
+                floats(words, 1)
+                    .then_some(())
+                    .ok_or("expected 'vt u v' with numbers")
             }
             Some("vn") => {
                 vn += 1;
-                floats(words, 3).then_some(()).ok_or("expected 'vn x y z' with numbers")
+                floats(words, 3)
+                    .then_some(())
+                    .ok_or("expected 'vn x y z' with numbers")
             }
             Some("f") => check_face(words, v, vt, vn),
             _ => Ok(()),
@@ -254,7 +264,12 @@ fn first_bad_obj_line(text: &str) -> Option<(usize, String)> {
     None
 }
 
-fn check_face(words: std::str::SplitWhitespace, v: i64, vt: i64, vn: i64) -> std::result::Result<(), &'static str> {
+fn check_face(
+    words: std::str::SplitWhitespace,
+    v: i64,
+    vt: i64,
+    vn: i64,
+) -> std::result::Result<(), &'static str> {
     let mut corners = 0;
     for w in words {
         corners += 1;
@@ -262,8 +277,13 @@ fn check_face(words: std::str::SplitWhitespace, v: i64, vt: i64, vn: i64) -> std
             if part.is_empty() && k > 0 {
                 continue;
             }
-            let idx: i64 = part.parse().map_err(|_| "expected face indices 'f a b c'")?;
-            let count = [v, vt, vn].get(k).copied().ok_or("too many '/' in a face corner")?;
+            let idx: i64 = part
+                .parse()
+                .map_err(|_| "expected face indices 'f a b c'")?;
+            let count = [v, vt, vn]
+                .get(k)
+                .copied()
+                .ok_or("too many '/' in a face corner")?;
             let resolved = if idx < 0 { count + idx + 1 } else { idx };
             if resolved < 1 || resolved > count {
                 return Err("face index out of range (indices start at 1 and must refer to an earlier v/vt/vn line)");
@@ -288,7 +308,11 @@ mod tests {
                 let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize();
                 let i = mesh.indices[3 * t] as usize;
                 let stored = Vec3::from(mesh.normals[i]);
-                assert!(n.dot(stored) > 0.99, "{} triangle {t} winds inward", mesh.name);
+                assert!(
+                    n.dot(stored) > 0.99,
+                    "{} triangle {t} winds inward",
+                    mesh.name
+                );
             }
         }
         let (lo, hi) = MeshData::cube().bounds();

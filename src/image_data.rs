@@ -28,10 +28,8 @@ impl ImageData {
 
     /// Decodes PNG bytes; `path` only names the source in errors.
     pub fn decode_png(path: &Path, bytes: &[u8]) -> Result<ImageData> {
-        let mut reader = image::ImageReader::with_format(
-            std::io::Cursor::new(bytes),
-            image::ImageFormat::Png,
-        );
+        let mut reader =
+            image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
         let mut limits = image::Limits::default();
         limits.max_image_width = Some(MAX_TEXTURE_SIDE);
         limits.max_image_height = Some(MAX_TEXTURE_SIDE);
@@ -56,7 +54,13 @@ impl ImageData {
 
     /// Writes the image as a PNG, creating no directories; the error names the path.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        save_png(path, self.width, self.height, image::ColorType::Rgba8, &self.rgba)
+        save_png(
+            path,
+            self.width,
+            self.height,
+            image::ColorType::Rgba8,
+            &self.rgba,
+        )
     }
 }
 

@@ -4,7 +4,9 @@
 use glam::Mat4;
 use glow::HasContext;
 
-use crate::engine::{check_gl, gl_limits, Gl, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
+use crate::engine::{
+    check_gl, gl_limits, Gl, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture,
+};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::{Cull, ShadowSettings};
@@ -183,7 +185,10 @@ impl Renderer {
         let view = scene.camera.view_matrix();
         let p = &self.scene_program;
         p.bind();
-        p.set_mat4("projectionMatrix", &scene.camera.projection_matrix(width, height));
+        p.set_mat4(
+            "projectionMatrix",
+            &scene.camera.projection_matrix(width, height),
+        );
         p.set_mat4("orthoProjectionMatrix", &self.light_projection);
         p.set_vec3("ambientLight", scene.ambient);
         p.set_f32("specularPower", scene.specular_power);

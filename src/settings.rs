@@ -6,7 +6,9 @@ use serde::{Deserialize, Serialize};
 pub use crate::engine::{DepthFormat, Wrap};
 
 /// How the shadow map is sampled ("Shadow Mapping improvements": 3x3 PCF).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Filter {
     /// One depth comparison per fragment: hard, blocky edges.
@@ -40,7 +42,9 @@ impl Filter {
 }
 
 /// How the depth comparison is offset against acne.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum BiasMode {
     /// The plain comparison: acne everywhere a surface faces the light.
@@ -63,7 +67,9 @@ impl BiasMode {
 }
 
 /// Which faces the depth pass culls.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Cull {
     /// The book's depth pass draws every face.
@@ -85,7 +91,9 @@ impl Cull {
 }
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum BeyondFar {
     /// The book: the comparison runs anyway and says "shadowed".
@@ -96,7 +104,9 @@ pub enum BeyondFar {
 }
 
 /// How the directional light's view matrix is built.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum LightView {
     /// The book: Euler angles from the direction (acos z, asin x). Right only while the
@@ -172,7 +182,9 @@ impl ShadowSettings {
         }
         for (name, v) in [("bias", self.bias), ("bias_min", self.bias_min)] {
             if !v.is_finite() || v < 0.0 {
-                return bad(format!("shadow.{name} = {v}: expected a finite number >= 0"));
+                return bad(format!(
+                    "shadow.{name} = {v}: expected a finite number >= 0"
+                ));
             }
         }
         Ok(())

@@ -34,7 +34,10 @@ fn shader_syntax_error_names_file_and_line() {
     )
     .err()
     .expect("still broken");
-    assert!(err.to_string().contains("shaders/broken.frag:5:1:"), "{err}");
+    assert!(
+        err.to_string().contains("shaders/broken.frag:5:1:"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -47,15 +50,26 @@ fn incomplete_framebuffer_is_an_error_not_a_black_image() {
         .expect("a colour texture as depth must be rejected");
     let text = err.to_string();
     assert!(matches!(err, Error::IncompleteFramebuffer { .. }), "{text}");
-    assert!(text.contains("GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT"), "{text}");
-    assert!(text.starts_with("could not create framebuffer 'shadow map 64x64'"), "{text}");
+    assert!(
+        text.contains("GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT"),
+        "{text}"
+    );
+    assert!(
+        text.starts_with("could not create framebuffer 'shadow map 64x64'"),
+        "{text}"
+    );
 }
 
 fn load_err(name: &str) -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/bad")
+        .join(name);
     let err = Scene::load(path.to_str().unwrap()).expect_err("bad scene must not load");
     let text = err.to_string();
-    assert!(text.contains(name), "the message must name the file: {text}");
+    assert!(
+        text.contains(name),
+        "the message must name the file: {text}"
+    );
     text
 }
 
@@ -64,15 +78,28 @@ fn scene_file_errors_name_the_line_or_field() {
     let e = load_err("syntax.toml");
     assert!(e.contains("line 4, column 1: invalid array"), "{e}");
     let e = load_err("unknown_key.toml");
-    assert!(e.contains("line 4") && e.contains("shadow_pos_multi"), "{e}");
+    assert!(
+        e.contains("line 4") && e.contains("shadow_pos_multi"),
+        "{e}"
+    );
     let e = load_err("negative_scale.toml");
-    assert!(e.contains("item[0].scale: -0.5: expected a finite number > 0"), "{e}");
+    assert!(
+        e.contains("item[0].scale: -0.5: expected a finite number > 0"),
+        "{e}"
+    );
     let e = load_err("nan_position.toml");
-    assert!(e.contains("item[0].position: NaN is not a finite number"), "{e}");
+    assert!(
+        e.contains("item[0].position: NaN is not a finite number"),
+        "{e}"
+    );
     let e = load_err("near_far.toml");
     assert!(e.contains("light.ortho") && e.contains("near < far"), "{e}");
     let e = load_err("missing_mesh.toml");
-    assert!(e.contains("item[0].mesh: ") && e.contains("models/does_not_exist.obj: cannot read OBJ model"), "{e}");
+    assert!(
+        e.contains("item[0].mesh: ")
+            && e.contains("models/does_not_exist.obj: cannot read OBJ model"),
+        "{e}"
+    );
     let e = load_err("map_size_zero.toml");
     assert!(e.contains("shadow.map_size = 0: expected 1 to"), "{e}");
 }
@@ -98,13 +125,25 @@ fn cli_rejects_bad_values_with_a_clear_message() {
     assert!(!ok && err.contains("'abc': expected WIDTHxHEIGHT"), "{err}");
     let (ok, _, err) = run(&["render", "--scene", "nosuch"]);
     assert!(!ok);
-    assert!(err.contains("unknown scene 'nosuch': expected one of dummy"), "{err}");
+    assert!(
+        err.contains("unknown scene 'nosuch': expected one of dummy"),
+        "{err}"
+    );
     let (ok, _, err) = run(&["render", "--filter", "blurry"]);
-    assert!(!ok && err.contains("pcf3x3"), "the valid filters are listed: {err}");
+    assert!(
+        !ok && err.contains("pcf3x3"),
+        "the valid filters are listed: {err}"
+    );
     let (ok, _, err) = run(&["render", "--out", "/nonexistent-dir/x.png"]);
     assert!(!ok);
-    assert!(err.contains("/nonexistent-dir/x.png: cannot write the image"), "{err}");
+    assert!(
+        err.contains("/nonexistent-dir/x.png: cannot write the image"),
+        "{err}"
+    );
     let (ok, _, err) = run(&["render", "--map-size", "100000"]);
-    assert!(!ok && err.contains("shadow.map_size = 100000: expected 1 to"), "{err}");
+    assert!(
+        !ok && err.contains("shadow.map_size = 100000: expected 1 to"),
+        "{err}"
+    );
     assert!(!err.contains("panicked"), "{err}");
 }

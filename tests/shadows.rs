@@ -68,7 +68,10 @@ fn overhead_light_shadows_exactly_the_cube_footprint() {
     let (shadowed, lit, wrong) = classify(&scene, &scene.shadow.clone(), 0.05);
     assert!(shadowed > 2000, "too few footprint pixels seen: {shadowed}");
     assert!(lit > 20000, "too few lit plane pixels: {lit}");
-    assert_eq!(wrong, 0, "misclassified plane pixels away from the footprint's edge");
+    assert_eq!(
+        wrong, 0,
+        "misclassified plane pixels away from the footprint's edge"
+    );
 }
 
 #[test]
@@ -78,7 +81,11 @@ fn without_the_cube_nothing_on_the_plane_is_shadowed() {
     let ctx = context();
     let frame = render(&ctx, &mut scene.clone(), &scene.shadow, 640, 360);
     let plane = plane_pixels(&frame);
-    assert!(plane.len() > 50000, "plane not in view: {} pixels", plane.len());
+    assert!(
+        plane.len() > 50000,
+        "plane not in view: {} pixels",
+        plane.len()
+    );
     let dark = plane.iter().filter(|(_, v)| *v < 1.0).count();
     assert_eq!(dark, 0, "{dark} plane pixels shadowed with no caster");
 }
@@ -96,7 +103,10 @@ fn moving_the_light_moves_the_shadow_where_rays_say() {
     for angle in [60.0, 75.0, 105.0, 120.0] {
         let scene = dummy(angle);
         let (shadowed, lit, wrong) = classify(&scene, &settings, 0.04);
-        assert!(shadowed > 500, "angle {angle}: only {shadowed} shadow pixels seen");
+        assert!(
+            shadowed > 500,
+            "angle {angle}: only {shadowed} shadow pixels seen"
+        );
         assert!(lit > 20000, "angle {angle}: only {lit} lit pixels");
         let total = shadowed + wrong;
         assert!(
@@ -107,7 +117,10 @@ fn moving_the_light_moves_the_shadow_where_rays_say() {
         let ctx = context();
         let mut s = scene.clone();
         let frame = render(&ctx, &mut s, &settings, 640, 360);
-        let dark: Vec<_> = plane_pixels(&frame).into_iter().filter(|(_, v)| *v < 0.5).collect();
+        let dark: Vec<_> = plane_pixels(&frame)
+            .into_iter()
+            .filter(|(_, v)| *v < 0.5)
+            .collect();
         let mean_z = dark.iter().map(|(p, _)| p.z).sum::<f32>() / dark.len() as f32;
         centres.push((angle, mean_z));
     }

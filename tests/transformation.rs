@@ -91,7 +91,10 @@ fn assert_close(what: &str, got: &Mat4, want: &M) {
 
 #[test]
 fn projection_matches_glu_perspective() {
-    for (fov, w, h, n, f) in [(60.0, 1280.0, 720.0, 0.01, 1000.0), (45.0, 800.0, 600.0, 0.1, 100.0)] {
+    for (fov, w, h, n, f) in [
+        (60.0, 1280.0, 720.0, 0.01, 1000.0),
+        (45.0, 800.0, 600.0, 0.1, 100.0),
+    ] {
         let got = Transformation::projection(fov as f32, w as f32, h as f32, n as f32, f as f32);
         assert_close("projection", &got, &perspective(fov, w / h, n, f));
     }
@@ -113,7 +116,10 @@ fn view_and_model_match_the_book_formulas() {
         Vec3::new(pos[0] as f32, pos[1] as f32, pos[2] as f32),
         Vec3::new(rotation[0] as f32, rotation[1] as f32, 0.0),
     );
-    let want = mul(&mul(&rot(0, rotation[0]), &rot(1, rotation[1])), &translate(pos.map(|v| -v)));
+    let want = mul(
+        &mul(&rot(0, rotation[0]), &rot(1, rotation[1])),
+        &translate(pos.map(|v| -v)),
+    );
     assert_close("view", &got, &want);
 
     let r = [15.0, 40.0, -70.0];
@@ -123,7 +129,13 @@ fn view_and_model_match_the_book_formulas() {
         2.5,
     );
     let want = mul(
-        &mul(&mul(&mul(&translate([1.0, -1.0, 0.5]), &rot(0, -r[0])), &rot(1, -r[1])), &rot(2, -r[2])),
+        &mul(
+            &mul(
+                &mul(&translate([1.0, -1.0, 0.5]), &rot(0, -r[0])),
+                &rot(1, -r[1]),
+            ),
+            &rot(2, -r[2]),
+        ),
         &scale(2.5),
     );
     assert_close("model", &got, &want);
@@ -140,14 +152,26 @@ fn book_light_view_looks_along_the_light_in_the_yz_plane() {
         };
         let book = light.view_matrix(LightView::BookAngles);
         let d = book.transform_vector3(light.direction);
-        assert!((d - Vec3::Z).length() < 1e-5, "angle {a}: direction maps to {d}");
+        assert!(
+            (d - Vec3::Z).length() < 1e-5,
+            "angle {a}: direction maps to {d}"
+        );
         // Against a look-at view: the same depth for every point and the same distance from
         // the view axis; only the roll about the axis may differ (past 90 degrees the book's
         // rotation turns the map upside down, which changes no shadow).
         let look = light.view_matrix(LightView::LookAt);
-        for p in [Vec3::new(1.0, -1.0, 0.5), Vec3::new(-2.0, 0.3, -1.5), Vec3::new(0.2, 3.0, 2.0)] {
+        for p in [
+            Vec3::new(1.0, -1.0, 0.5),
+            Vec3::new(-2.0, 0.3, -1.5),
+            Vec3::new(0.2, 3.0, 2.0),
+        ] {
             let (b, l) = (book.transform_point3(p), look.transform_point3(p));
-            assert!((b.z - l.z).abs() < 1e-5, "angle {a}: depth {} vs {}", b.z, l.z);
+            assert!(
+                (b.z - l.z).abs() < 1e-5,
+                "angle {a}: depth {} vs {}",
+                b.z,
+                l.z
+            );
             let (rb, rl) = (b.truncate().length(), l.truncate().length());
             assert!((rb - rl).abs() < 1e-5, "angle {a}: radius {rb} vs {rl}");
         }
@@ -162,11 +186,18 @@ fn book_light_view_breaks_with_an_x_component() {
         direction: Vec3::new(0.5, 0.7, 0.5).normalize(),
         ..dummy_light()
     };
-    let book = light.view_matrix(LightView::BookAngles).transform_vector3(light.direction);
-    let look = light.view_matrix(LightView::LookAt).transform_vector3(light.direction);
+    let book = light
+        .view_matrix(LightView::BookAngles)
+        .transform_vector3(light.direction);
+    let look = light
+        .view_matrix(LightView::LookAt)
+        .transform_vector3(light.direction);
     assert!((look - Vec3::Z).length() < 1e-5);
     let off = book.angle_between(Vec3::Z).to_degrees();
-    assert!(off > 10.0, "the book's view should look {off} degrees away from the light");
+    assert!(
+        off > 10.0,
+        "the book's view should look {off} degrees away from the light"
+    );
 }
 
 fn dummy_light() -> DirectionalLight {

@@ -173,7 +173,18 @@ impl SettingsArgs {
         macro_rules! set {
             ($($f:ident),*) => { $( if let Some(v) = self.$f { s.$f = v; } )* };
         }
-        set!(map_size, depth_format, filter, bias_mode, bias, bias_min, cull, wrap, beyond_far, light_view);
+        set!(
+            map_size,
+            depth_format,
+            filter,
+            bias_mode,
+            bias,
+            bias_min,
+            cull,
+            wrap,
+            beyond_far,
+            light_view
+        );
         s
     }
 }

@@ -90,7 +90,15 @@ fn headless_fallback(
 ) -> Result<()> {
     let (w, h) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
-    let frame = render_frames(context.gl(), &mut scene, settings, w, h, 1, Outputs::default())?;
+    let frame = render_frames(
+        context.gl(),
+        &mut scene,
+        settings,
+        w,
+        h,
+        1,
+        Outputs::default(),
+    )?;
     let path = Path::new(FALLBACK_IMAGE);
     frame.colour.save_png(path)?;
     let shown = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
@@ -194,11 +202,20 @@ impl Demo {
         if w == 0 || h == 0 {
             return; // minimised: nothing to draw into
         }
-        if let Err(e) = running.renderer.render(&self.scene, Target::Window { width: w, height: h }) {
+        if let Err(e) = running.renderer.render(
+            &self.scene,
+            Target::Window {
+                width: w,
+                height: h,
+            },
+        ) {
             return self.fail(event_loop, e);
         }
         self.frames += 1;
-        let last = self.args.exit_after_frames.is_some_and(|n| self.frames >= n);
+        let last = self
+            .args
+            .exit_after_frames
+            .is_some_and(|n| self.frames >= n);
         let shot = if last {
             self.args.screenshot.clone()
         } else if std::mem::take(&mut self.screenshot_requested) {

@@ -94,7 +94,11 @@ impl Mesh {
 
     /// Draws the mesh once per item, calling `before_each` to set that item's uniforms
     /// (the book's `renderList`): the VAO is bound once for the whole list.
-    pub fn render_list<T>(&self, items: impl IntoIterator<Item = T>, mut before_each: impl FnMut(T)) {
+    pub fn render_list<T>(
+        &self,
+        items: impl IntoIterator<Item = T>,
+        mut before_each: impl FnMut(T),
+    ) {
         unsafe {
             self.gl.bind_vertex_array(Some(self.vao));
             for item in items {

@@ -18,6 +18,9 @@ pub struct Outputs {
     pub gbuffer: bool,
 }
 
+/// World positions and world normals read back from the G-buffer outputs.
+pub type GBufferData = (Vec<[f32; 3]>, Vec<[f32; 3]>);
+
 /// An owned framebuffer with a colour texture, a depth renderbuffer and the chosen outputs.
 pub struct RenderTarget {
     gl: Gl,
@@ -43,7 +46,9 @@ impl RenderTarget {
         )?;
         let visibility = outputs
             .visibility
-            .then(|| Texture::attachment(gl, width, height, glow::RG8, glow::RG, glow::UNSIGNED_BYTE))
+            .then(|| {
+                Texture::attachment(gl, width, height, glow::RG8, glow::RG, glow::UNSIGNED_BYTE)
+            })
             .transpose()?;
         let float_target =
             || Texture::attachment(gl, width, height, glow::RGBA32F, glow::RGBA, glow::FLOAT);
@@ -173,9 +178,11 @@ impl RenderTarget {
     }
 
     /// World positions and normals, rows top to bottom; NaN where no geometry was drawn.
-    pub fn read_gbuffer(&self) -> Result<(Vec<[f32; 3]>, Vec<[f32; 3]>)> {
+    pub fn read_gbuffer(&self) -> Result<GBufferData> {
         if self.positions.is_none() {
-            return Err(Error::Invalid("render target has no G-buffer outputs".into()));
+            return Err(Error::Invalid(
+                "render target has no G-buffer outputs".into(),
+            ));
         }
         let unpack = |raw: Vec<u8>| -> Vec<[f32; 3]> {
             raw.chunks_exact(16)
@@ -199,7 +206,8 @@ impl RenderTarget {
         let h = self.height as usize;
         let mut data = vec![0u8; w * h * bytes_per_pixel];
         unsafe {
-            self.gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo));
+            self.gl
+                .bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo));
             self.gl.read_buffer(glow::COLOR_ATTACHMENT0 + attachment);
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
             self.gl.read_pixels(

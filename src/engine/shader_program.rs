@@ -97,7 +97,11 @@ fn annotate_line(file: &str, line: &str) -> Option<String> {
     } else if let Some(rest) = rest.strip_prefix('(') {
         // NVIDIA: <string>(<line>) : message
         let (ln, n) = digits(rest)?;
-        let msg = rest[n..].strip_prefix(')')?.trim().trim_start_matches(':').trim();
+        let msg = rest[n..]
+            .strip_prefix(')')?
+            .trim()
+            .trim_start_matches(':')
+            .trim();
         Some(format!("{file}:{ln}: {msg}"))
     } else {
         None
@@ -165,10 +169,9 @@ impl ShaderProgram {
     /// Uniforms the compiler removed as unused resolve to `None` and are skipped.
     fn location(&self, name: &'static str) -> Option<glow::UniformLocation> {
         let mut cache = self.uniforms.borrow_mut();
-        cache
+        *cache
             .entry(name)
             .or_insert_with(|| unsafe { self.gl.get_uniform_location(self.program, name) })
-            .clone()
     }
 
     pub fn set_mat4(&self, name: &'static str, m: &Mat4) {

@@ -12,7 +12,9 @@ use crate::image_data::ImageData;
 
 /// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
 /// stores as 24 bits; we name the size so the choice is explicit and measurable.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 pub enum DepthFormat {
     #[serde(rename = "16")]
     #[value(name = "16")]
@@ -49,7 +51,9 @@ impl DepthFormat {
 
 /// How lookups outside [0, 1] behave. The book clamps to the edge; LearnOpenGL's first steps
 /// REPEAT (showing over-sampling) and its final step clamps to a border of depth 1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Wrap {
     #[default]
@@ -148,7 +152,14 @@ impl Texture {
 
     /// An empty RGBA8 colour texture.
     pub fn colour(gl: &Gl, width: u32, height: u32) -> Result<Texture> {
-        Texture::attachment(gl, width, height, glow::RGBA8, glow::RGBA, glow::UNSIGNED_BYTE)
+        Texture::attachment(
+            gl,
+            width,
+            height,
+            glow::RGBA8,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+        )
     }
 
     /// An empty colour texture used as a render-target attachment.
@@ -188,7 +199,8 @@ impl Texture {
                 "{what}: size {width}x{height}: expected both sides at least 1"
             )));
         }
-        let id = unsafe { gl.create_texture() }.map_err(|e| Error::Create(format!("{what}: {e}")))?;
+        let id =
+            unsafe { gl.create_texture() }.map_err(|e| Error::Create(format!("{what}: {e}")))?;
         Ok(Texture {
             gl: gl.clone(),
             id,

@@ -31,7 +31,10 @@ pub struct WindowContext {
 
 impl WindowContext {
     /// Opens a window and makes a GL 3.3 core context current on it.
-    pub fn new(event_loop: &ActiveEventLoop, attributes: WindowAttributes) -> Result<WindowContext> {
+    pub fn new(
+        event_loop: &ActiveEventLoop,
+        attributes: WindowAttributes,
+    ) -> Result<WindowContext> {
         let no_gl = |e: &dyn std::fmt::Display| {
             Error::Context(format!("could not open a window with OpenGL: {e}"))
         };
@@ -55,8 +58,9 @@ impl WindowContext {
             .with_profile(GlProfile::Core)
             .build(Some(raw));
         // SAFETY: the config and the window handle come from the same display and live on.
-        let not_current = unsafe { display.create_context(&config, &attributes) }
-            .map_err(|e| Error::Context(format!("could not create an OpenGL 3.3 core context: {e}")))?;
+        let not_current = unsafe { display.create_context(&config, &attributes) }.map_err(|e| {
+            Error::Context(format!("could not create an OpenGL 3.3 core context: {e}"))
+        })?;
         let surface_attributes = window
             .build_surface_attributes(Default::default())
             .map_err(|e| Error::Context(format!("window surface: {e}")))?;
@@ -69,9 +73,8 @@ impl WindowContext {
         // Measure frames, not the monitor: do not wait for vertical sync.
         let _ = surface.set_swap_interval(&context, SwapInterval::DontWait);
         // SAFETY: the context is current on this thread.
-        let gl = unsafe {
-            glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s))
-        };
+        let gl =
+            unsafe { glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s)) };
         Ok(WindowContext {
             gl: Rc::new(gl),
             surface,

@@ -117,10 +117,7 @@ pub fn load_file(path: &Path) -> Result<Scene> {
 /// (`None` for built-in scenes, which may only use built-in meshes).
 pub fn parse(text: &str, source: &Path, base: Option<&Path>) -> Result<Scene> {
     let file: SceneFile = toml::from_str(text).map_err(|e| {
-        let (line, col) = e
-            .span()
-            .map(|s| line_col(text, s.start))
-            .unwrap_or((0, 0));
+        let (line, col) = e.span().map(|s| line_col(text, s.start)).unwrap_or((0, 0));
         Error::file(
             source,
             format!("line {line}, column {col}: {}", e.message()),
@@ -146,19 +143,43 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
     };
 
     if file.size[0] == 0 || file.size[1] == 0 {
-        return Err(bad("size", format!("{:?}: expected both sides at least 1", file.size)));
+        return Err(bad(
+            "size",
+            format!("{:?}: expected both sides at least 1", file.size),
+        ));
     }
     finite("clear_colour", &file.clear_colour)?;
     finite("ambient", &file.ambient)?;
     finite("specular_power", &[file.specular_power])?;
 
     let c = &file.camera;
-    finite("camera", &[c.position.x, c.position.y, c.position.z, c.rotation.x, c.rotation.y, c.fov, c.near, c.far])?;
+    finite(
+        "camera",
+        &[
+            c.position.x,
+            c.position.y,
+            c.position.z,
+            c.rotation.x,
+            c.rotation.y,
+            c.fov,
+            c.near,
+            c.far,
+        ],
+    )?;
     if !(c.near > 0.0 && c.near < c.far) {
-        return Err(bad("camera", format!("near = {}, far = {}: expected 0 < near < far", c.near, c.far)));
+        return Err(bad(
+            "camera",
+            format!(
+                "near = {}, far = {}: expected 0 < near < far",
+                c.near, c.far
+            ),
+        ));
     }
     if !(c.fov > 0.0 && c.fov < 180.0) {
-        return Err(bad("camera.fov", format!("{}: expected degrees between 0 and 180", c.fov)));
+        return Err(bad(
+            "camera.fov",
+            format!("{}: expected degrees between 0 and 180", c.fov),
+        ));
     }
 
     let l = &file.light;
@@ -170,21 +191,33 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         (None, Some(d)) => {
             finite("light.direction", &d)?;
             Vec3::from(d).try_normalize().ok_or_else(|| {
-                bad("light.direction", format!("{d:?}: expected a non-zero vector pointing towards the light"))
+                bad(
+                    "light.direction",
+                    format!("{d:?}: expected a non-zero vector pointing towards the light"),
+                )
             })?
         }
         (Some(_), Some(_)) => {
-            return Err(bad("light", "both `angle` and `direction` given: expected one of them".into()))
+            return Err(bad(
+                "light",
+                "both `angle` and `direction` given: expected one of them".into(),
+            ))
         }
         (None, None) => {
-            return Err(bad("light", "expected `angle` (degrees) or `direction` ([x, y, z] towards the light)".into()))
+            return Err(bad(
+                "light",
+                "expected `angle` (degrees) or `direction` ([x, y, z] towards the light)".into(),
+            ))
         }
     };
     finite("light.colour", &l.colour)?;
     finite("light.intensity", &[l.intensity])?;
     finite("light.shadow_pos_mult", &[l.shadow_pos_mult])?;
     let o = &l.ortho;
-    finite("light.ortho", &[o.left, o.right, o.bottom, o.top, o.near, o.far])?;
+    finite(
+        "light.ortho",
+        &[o.left, o.right, o.bottom, o.top, o.near, o.far],
+    )?;
     if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
         return Err(bad(
             "light.ortho",
@@ -195,7 +228,8 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
     let s = &file.shadow;
     finite("shadow", &[s.bias, s.bias_min])?;
     // The driver's maximum is checked when the renderer is made; 65536 bounds a sane file.
-    s.validate(65536).map_err(|e| Error::file(source, e.to_string()))?;
+    s.validate(65536)
+        .map_err(|e| Error::file(source, e.to_string()))?;
 
     let mut meshes: Vec<MeshData> = Vec::new();
     let mut mesh_ids: HashMap<(String, u32), usize> = HashMap::new();
@@ -210,10 +244,16 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         finite(&field("spin"), &item.spin)?;
         finite(&field("reflectance"), &[item.reflectance])?;
         if !(item.scale.is_finite() && item.scale > 0.0) {
-            return Err(bad(&field("scale"), format!("{}: expected a finite number > 0", item.scale)));
+            return Err(bad(
+                &field("scale"),
+                format!("{}: expected a finite number > 0", item.scale),
+            ));
         }
         if !(item.tiles.is_finite() && item.tiles > 0.0) {
-            return Err(bad(&field("tiles"), format!("{}: expected a finite number > 0", item.tiles)));
+            return Err(bad(
+                &field("tiles"),
+                format!("{}: expected a finite number > 0", item.tiles),
+            ));
         }
         let key = (item.mesh.clone(), item.tiles.to_bits());
         let mesh = match mesh_ids.get(&key) {
@@ -224,7 +264,12 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                     "plane" => MeshData::plane(item.tiles),
                     path => {
                         let base = base.ok_or_else(|| {
-                            bad(&field("mesh"), format!("'{path}': built-in scenes only use the meshes cube and plane"))
+                            bad(
+                                &field("mesh"),
+                                format!(
+                                    "'{path}': built-in scenes only use the meshes cube and plane"
+                                ),
+                            )
                         })?;
                         MeshData::load_obj(&base.join(path))
                             .map_err(|e| bad(&field("mesh"), e.to_string()))?
@@ -238,7 +283,12 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         let texture = match &item.texture {
             None => None,
             Some(t) => {
-                let base = base.ok_or_else(|| bad(&field("texture"), "built-in scenes have no texture files".into()))?;
+                let base = base.ok_or_else(|| {
+                    bad(
+                        &field("texture"),
+                        "built-in scenes have no texture files".into(),
+                    )
+                })?;
                 let path = base.join(t);
                 Some(match texture_ids.get(&path) {
                     Some(&id) => id,

@@ -18,10 +18,8 @@ use crate::image_data::ImageData;
 use crate::settings::ShadowSettings;
 
 /// The built-in scenes, each also a file under `assets/scenes/`.
-pub const BUILTIN_SCENES: &[(&str, &str)] = &[(
-    "dummy",
-    include_str!("../../assets/scenes/dummy.toml"),
-)];
+pub const BUILTIN_SCENES: &[(&str, &str)] =
+    &[("dummy", include_str!("../../assets/scenes/dummy.toml"))];
 
 /// Everything drawn in a frame, on the CPU side. The renderer uploads `meshes` and `textures`
 /// once; items refer to them by index so one mesh can be drawn for many items.
@@ -49,7 +47,9 @@ impl Scene {
             return file::load_file(std::path::Path::new(name));
         }
         match BUILTIN_SCENES.iter().find(|(n, _)| *n == name) {
-            Some((n, text)) => file::parse(text, std::path::Path::new(&format!("<built-in {n}>")), None),
+            Some((n, text)) => {
+                file::parse(text, std::path::Path::new(&format!("<built-in {n}>")), None)
+            }
             None => Err(Error::Invalid(format!(
                 "unknown scene '{name}': expected one of {} or a path to a .toml scene file",
                 Self::builtin_names().join(", ")

@@ -1,0 +1,87 @@
+//! The demo in a real window. Needs an X display, so it is `#[ignore]`d here and run
+//! explicitly under Xvfb by `.ci/run` (`cargo test --test window -- --ignored`).
+
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+}
+
+fn load(path: &std::path::Path) -> image::RgbaImage {
+    image::open(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .to_rgba8()
+}
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_shows_the_scene_and_its_shadow() {
+    assert!(
+        std::env::var_os("DISPLAY").is_some(),
+        "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
+    );
+    let dir = std::env::temp_dir().join(format!("shadowmap-window-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.join("window.png");
+    let headless = dir.join("headless.png");
+
+    let out = bin()
+        .args([
+            "demo",
+            "--no-animation",
+            "--size",
+            "640x360",
+            "--exit-after-frames",
+            "5",
+        ])
+        .arg("--screenshot")
+        .arg(&shot)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "demo failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = bin()
+        .args(["render", "--size", "640x360", "--out"])
+        .arg(&headless)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    let win = load(&shot);
+    let head = load(&headless);
+    assert_eq!(
+        win.dimensions(),
+        (640, 360),
+        "the window's framebuffer size"
+    );
+
+    // The scene: green cube, blue plane, and the plane's shadow (blue at ambient level only).
+    let count = |f: &dyn Fn(&image::Rgba<u8>) -> bool| win.pixels().filter(|p| f(p)).count();
+    let green = count(&|p| p[1] > 200 && p[0] < 50 && p[2] < 50);
+    let lit_blue = count(&|p| p[2] > 200 && p[0] < 50 && p[1] < 50);
+    let shadow = count(&|p| (50..110).contains(&p[2]) && p[0] < 30 && p[1] < 30);
+    assert!(green > 20000, "cube pixels: {green}");
+    assert!(lit_blue > 20000, "lit plane pixels: {lit_blue}");
+    assert!(shadow > 2000, "shadow pixels: {shadow}");
+
+    // The window draws the same frame as the headless path (same driver, same settings).
+    let diff: u64 = win
+        .as_raw()
+        .iter()
+        .zip(head.as_raw())
+        .map(|(a, b)| u64::from(a.abs_diff(*b)))
+        .sum();
+    let mean = diff as f64 / win.as_raw().len() as f64;
+    assert!(
+        mean < 1.0,
+        "window and headless frames differ by {mean} per channel"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
