@@ -21,6 +21,8 @@ pub struct Frame {
     pub normals: Option<Vec<[f32; 3]>>,
     /// The shadow map's size and its depth values (rows top to bottom).
     pub depth_map: (u32, Vec<f32>),
+    /// Wall time of each frame in milliseconds, measured to glFinish.
+    pub frame_ms: Vec<f64>,
 }
 
 impl Frame {
@@ -42,6 +44,17 @@ impl Frame {
             height: self.height,
             rgba,
         })
+    }
+
+    /// Median and 95th percentile of the frame times after the first (warm-up) frame.
+    pub fn frame_time_stats(&self) -> Option<(f64, f64)> {
+        let mut t: Vec<f64> = self.frame_ms.iter().skip(1).copied().collect();
+        if t.is_empty() {
+            return None;
+        }
+        t.sort_by(f64::total_cmp);
+        let at = |q: f64| t[((t.len() - 1) as f64 * q).round() as usize];
+        Some((at(0.5), at(0.95)))
     }
 
     /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane).
@@ -77,11 +90,15 @@ pub fn render_frames(
     }
     let mut renderer = Renderer::new(gl, scene, settings)?;
     let target = RenderTarget::new(gl, width, height, outputs)?;
+    let mut frame_ms = Vec::with_capacity(frames as usize);
     for i in 0..frames.max(1) {
         if i > 0 {
             scene.update();
         }
+        let start = std::time::Instant::now();
         renderer.render(scene, Target::Offscreen(&target))?;
+        renderer.finish();
+        frame_ms.push(start.elapsed().as_secs_f64() * 1000.0);
     }
     let colour = ImageData {
         width,
@@ -116,5 +133,6 @@ pub fn render_frames(
         positions,
         normals,
         depth_map: (size, depth),
+        frame_ms,
     })
 }

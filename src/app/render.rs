@@ -46,5 +46,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         settings.summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );
+    if let Some((median, p95)) = frame.frame_time_stats() {
+        println!(
+            "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",
+            frame.frame_ms.len() - 1
+        );
+    }
     Ok(())
 }
