@@ -1,7 +1,8 @@
 #version 330 core
 // Scene pass fragment shader ("Shadows": scene_fragment.fs with calcShadow).
 // Compiled with defines from the shadow settings:
-//   PCF_RADIUS      0 = one comparison, 1 = the chapters' 3x3 PCF, 2 = 5x5
+//   PCF_RADIUS      0 = one lookup, 1 = a 3x3 grid (the chapters' PCF), 2 = 5x5
+//   HW_PCF          1 = lookups through sampler2DShadow with LINEAR (hardware 2x2 PCF each)
 //   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
 
@@ -32,7 +33,11 @@ struct DirectionalLight
 };
 
 uniform sampler2D textureSampler;  // unit 0
+#if HW_PCF
+uniform sampler2DShadow shadowMap; // unit 1, compare mode on
+#else
 uniform sampler2D shadowMap;       // unit 1
+#endif
 uniform Material material;
 uniform DirectionalLight directionalLight;
 uniform vec3 ambientLight;
@@ -73,6 +78,17 @@ float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
     float b = max(bias * (1.0 - dot(normal, toLightDir)), biasMin);
 #endif
     float current = projCoords.z - b;
+#if HW_PCF
+    // The hardware returns the lit fraction (reference <= stored depth), bilinearly blended.
+    float lit = 0.0;
+    vec2 inc = 1.0 / vec2(textureSize(shadowMap, 0));
+    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
+        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
+            lit += texture(shadowMap, vec3(projCoords.xy + vec2(row, col) * inc, current));
+        }
+    }
+    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
+#else
     float shadowFactor = 0.0;
 #if PCF_RADIUS == 0
     shadowFactor = current > texture(shadowMap, projCoords.xy).r ? 1.0 : 0.0;
@@ -87,6 +103,7 @@ float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
     shadowFactor /= float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
 #endif
     return 1.0 - shadowFactor;
+#endif
 }
 
 void main()

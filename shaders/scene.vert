@@ -1,5 +1,6 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
+// Compiled with NORMAL_OFFSET 0/1 (see scene.frag for the other defines).
 // Lighting happens in view space, as in the book; world position and normal are passed on
 // for the G-buffer outputs that tests and the exact reference read.
 
@@ -19,6 +20,7 @@ uniform mat4 modelViewMatrix;
 uniform mat4 projectionMatrix;
 uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
+uniform float normalOffset;  // world units along the normal (NORMAL_OFFSET builds only)
 
 void main()
 {
@@ -28,7 +30,13 @@ void main()
     mvVertexNormal = normalize(modelViewMatrix * vec4(vertexNormal, 0.0)).xyz;
     mvVertexPos = mvPos.xyz;
     // An orthographic light needs no divide by w (the book skips it too).
-    mlightviewVertexPos = orthoProjectionMatrix * modelLightViewMatrix * vec4(position, 1.0);
+    vec4 lightViewPos = modelLightViewMatrix * vec4(position, 1.0);
+#if NORMAL_OFFSET
+    // Normal-offset bias: look the map up from a point pushed off the surface. The light
+    // view is rigid, so the normalised normal keeps world lengths.
+    lightViewPos.xyz += normalize(mat3(modelLightViewMatrix) * vertexNormal) * normalOffset;
+#endif
+    mlightviewVertexPos = orthoProjectionMatrix * lightViewPos;
     worldPos = (modelMatrix * vec4(position, 1.0)).xyz;
     worldNormal = normalize(mat3(modelMatrix) * vertexNormal);
 }

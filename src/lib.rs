@@ -6,11 +6,13 @@
 //! `settings`) is plain data; `renderer` is the book's two-pass frame; `frame` renders
 //! headless frames and reads them back.
 
+pub mod compare;
 pub mod engine;
 pub mod error;
 pub mod frame;
 pub mod geometry;
 pub mod image_data;
+pub mod reference;
 pub mod renderer;
 pub mod scene;
 pub mod settings;

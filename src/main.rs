@@ -12,6 +12,7 @@ fn main() -> ExitCode {
         None => app::demo::run(&app::cli::DemoArgs::default()),
         Some(app::cli::Command::Demo(args)) => app::demo::run(&args),
         Some(app::cli::Command::Render(args)) => app::render::run(&args),
+        Some(app::cli::Command::Compare(args)) => app::compare::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

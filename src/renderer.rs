@@ -67,7 +67,7 @@ impl Renderer {
             &settings.shader_defines(),
         )?;
         let shadow_map = ShadowMap::new(gl, settings.map_size, settings.depth_format)?;
-        shadow_map.depth_map_texture().set_wrap(settings.wrap);
+        configure_sampling(&shadow_map, settings);
         unsafe { gl.enable(glow::DEPTH_TEST) };
         check_gl(gl, "renderer setup")?;
         Ok(Renderer {
@@ -104,7 +104,7 @@ impl Renderer {
         {
             self.shadow_map = ShadowMap::new(&self.gl, settings.map_size, settings.depth_format)?;
         }
-        self.shadow_map.depth_map_texture().set_wrap(settings.wrap);
+        configure_sampling(&self.shadow_map, settings);
         self.settings = *settings;
         check_gl(&self.gl, "changing settings")
     }
@@ -131,9 +131,14 @@ impl Renderer {
         self.shadow_map.bind_for_writing();
         self.light_view = scene.light.view_matrix(self.settings.light_view);
         self.light_projection = scene.light.projection_matrix();
+        let [factor, units] = self.settings.polygon_offset;
         unsafe {
             gl.depth_mask(true);
             gl.clear(glow::DEPTH_BUFFER_BIT);
+            if factor != 0.0 || units != 0.0 {
+                gl.enable(glow::POLYGON_OFFSET_FILL);
+                gl.polygon_offset(factor, units);
+            }
             match self.settings.cull {
                 Cull::None => gl.disable(glow::CULL_FACE),
                 Cull::Back => {
@@ -162,6 +167,7 @@ impl Renderer {
         program.unbind();
         unsafe {
             gl.disable(glow::CULL_FACE);
+            gl.disable(glow::POLYGON_OFFSET_FILL);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
         check_gl(gl, "the depth-map pass")
@@ -190,11 +196,13 @@ impl Renderer {
             &scene.camera.projection_matrix(width, height),
         );
         p.set_mat4("orthoProjectionMatrix", &self.light_projection);
+        let light = &scene.light;
         p.set_vec3("ambientLight", scene.ambient);
         p.set_f32("specularPower", scene.specular_power);
         p.set_f32("bias", self.settings.bias);
         p.set_f32("biasMin", self.settings.bias_min);
-        let light = &scene.light;
+        let texel = (light.ortho.right - light.ortho.left) / self.settings.map_size as f32;
+        p.set_f32("normalOffset", self.settings.normal_offset * texel);
         p.set_vec3("directionalLight.colour", light.colour);
         p.set_vec3(
             "directionalLight.direction",
@@ -231,4 +239,11 @@ impl Renderer {
     pub fn finish(&self) {
         unsafe { self.gl.finish() };
     }
+}
+
+/// Wrap mode and compare mode of the shadow map for the settings' filter.
+fn configure_sampling(shadow_map: &ShadowMap, settings: &ShadowSettings) {
+    let texture = shadow_map.depth_map_texture();
+    texture.set_wrap(settings.wrap);
+    texture.set_compare(settings.filter.hardware(), settings.filter.hardware());
 }

@@ -18,18 +18,38 @@ pub enum Filter {
     Pcf3x3,
     /// A 5 x 5 average.
     Pcf5x5,
+    /// One `sampler2DShadow` lookup with LINEAR filtering: the GPU compares the 4 nearest
+    /// texels and blends the results bilinearly (2 x 2 hardware PCF).
+    #[value(name = "hw2x2")]
+    #[serde(rename = "hw2x2")]
+    Hardware2x2,
+    /// A 3 x 3 grid of hardware 2 x 2 lookups, one texel apart.
+    #[value(name = "hw3x3")]
+    #[serde(rename = "hw3x3")]
+    Hardware3x3,
 }
 
 impl Filter {
-    pub const ALL: [Filter; 3] = [Filter::Single, Filter::Pcf3x3, Filter::Pcf5x5];
+    pub const ALL: [Filter; 5] = [
+        Filter::Single,
+        Filter::Pcf3x3,
+        Filter::Pcf5x5,
+        Filter::Hardware2x2,
+        Filter::Hardware3x3,
+    ];
 
-    /// Half the kernel width in texels.
+    /// Half the grid of lookups in texels (0 = one lookup).
     pub fn radius(self) -> u32 {
         match self {
-            Filter::Single => 0,
-            Filter::Pcf3x3 => 1,
+            Filter::Single | Filter::Hardware2x2 => 0,
+            Filter::Pcf3x3 | Filter::Hardware3x3 => 1,
             Filter::Pcf5x5 => 2,
         }
+    }
+
+    /// Whether lookups use the depth-compare hardware (`sampler2DShadow`, LINEAR).
+    pub fn hardware(self) -> bool {
+        matches!(self, Filter::Hardware2x2 | Filter::Hardware3x3)
     }
 
     pub fn name(self) -> &'static str {
@@ -37,6 +57,8 @@ impl Filter {
             Filter::Single => "single",
             Filter::Pcf3x3 => "pcf3x3",
             Filter::Pcf5x5 => "pcf5x5",
+            Filter::Hardware2x2 => "hw2x2",
+            Filter::Hardware3x3 => "hw3x3",
         }
     }
 }
@@ -130,6 +152,11 @@ pub struct ShadowSettings {
     pub bias: f32,
     /// The slope bias' floor (LearnOpenGL: 0.005).
     pub bias_min: f32,
+    /// Normal-offset bias: the lookup position moves this many shadow-map texels along the
+    /// surface normal (0 = off). Independent of `bias_mode`.
+    pub normal_offset: f32,
+    /// `glPolygonOffset(factor, units)` in the depth pass ([0, 0] = off).
+    pub polygon_offset: [f32; 2],
     pub cull: Cull,
     pub wrap: Wrap,
     pub beyond_far: BeyondFar,
@@ -145,6 +172,8 @@ impl Default for ShadowSettings {
             bias_mode: BiasMode::Constant,
             bias: 0.05,
             bias_min: 0.005,
+            normal_offset: 0.0,
+            polygon_offset: [0.0, 0.0],
             cull: Cull::None,
             wrap: Wrap::ClampToEdge,
             beyond_far: BeyondFar::Shadowed,
@@ -161,12 +190,23 @@ impl ShadowSettings {
             BiasMode::Constant => format!("bias {}", self.bias),
             BiasMode::Slope => format!("slope bias {}..{}", self.bias_min, self.bias),
         };
+        let mut extra = String::new();
+        if self.normal_offset != 0.0 {
+            extra.push_str(&format!(", normal offset {} texels", self.normal_offset));
+        }
+        if self.polygon_offset != [0.0, 0.0] {
+            extra.push_str(&format!(
+                ", polygon offset {}/{}",
+                self.polygon_offset[0], self.polygon_offset[1]
+            ));
+        }
         format!(
-            "{}^2 {} {}, {}, cull {}",
+            "{}^2 {} {}, {}{}, cull {}",
             self.map_size,
             self.depth_format.name(),
             self.filter.name(),
             bias,
+            extra,
             self.cull.name()
         )
     }
@@ -180,12 +220,22 @@ impl ShadowSettings {
                 self.map_size
             ));
         }
-        for (name, v) in [("bias", self.bias), ("bias_min", self.bias_min)] {
+        for (name, v) in [
+            ("bias", self.bias),
+            ("bias_min", self.bias_min),
+            ("normal_offset", self.normal_offset),
+        ] {
             if !v.is_finite() || v < 0.0 {
                 return bad(format!(
                     "shadow.{name} = {v}: expected a finite number >= 0"
                 ));
             }
+        }
+        if self.polygon_offset.iter().any(|v| !v.is_finite()) {
+            return bad(format!(
+                "shadow.polygon_offset = {:?}: expected two finite numbers [factor, units]",
+                self.polygon_offset
+            ));
         }
         Ok(())
     }
@@ -199,6 +249,14 @@ impl ShadowSettings {
         };
         vec![
             ("PCF_RADIUS".into(), self.filter.radius().to_string()),
+            (
+                "HW_PCF".into(),
+                u32::from(self.filter.hardware()).to_string(),
+            ),
+            (
+                "NORMAL_OFFSET".into(),
+                u32::from(self.normal_offset != 0.0).to_string(),
+            ),
             ("BIAS_MODE".into(), bias_mode.to_string()),
             (
                 "BEYOND_FAR_LIT".into(),

@@ -17,7 +17,8 @@ use shadowmap::{Scene, ShadowSettings};
         PNGs.\n\nScenes: a built-in name (dummy) or a path to a .toml scene file (see the README, \
         \"Scene files\").",
     after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
-        shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png"
+        shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
+        shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -30,6 +31,8 @@ pub enum Command {
     Demo(DemoArgs),
     /// Render frames headless (EGL, no display needed) and write PNG files.
     Render(RenderArgs),
+    /// Score a frame's shadows against an exact ray-traced reference.
+    Compare(CompareArgs),
 }
 
 /// Scene choice and the light angle, shared by every command.
@@ -67,6 +70,12 @@ pub struct SettingsArgs {
     /// The slope bias' floor.
     #[arg(long, value_name = "B")]
     pub bias_min: Option<f32>,
+    /// Normal-offset bias: move the lookup this many shadow-map texels along the normal.
+    #[arg(long, value_name = "TEXELS")]
+    pub normal_offset: Option<f32>,
+    /// glPolygonOffset in the depth pass, e.g. 1.1,4.
+    #[arg(long, value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_negative_numbers = true)]
+    pub polygon_offset: Option<[f32; 2]>,
     /// Faces culled in the depth pass.
     #[arg(long, value_enum)]
     pub cull: Option<Cull>,
@@ -134,6 +143,25 @@ pub struct RenderArgs {
     pub depth_out: Option<PathBuf>,
 }
 
+#[derive(Args, Debug, Clone)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
+    /// metrics.json (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+    /// Sub-pixel rays per side for the supersampled reference that judges filtered edges
+    /// (N x N per pixel; 1 = off).
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub supersample: u32,
+    /// Pixels around the reference's shadow edges left out of the "outside band" figures.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    pub band: usize,
+}
+
 /// Parses `WxH`, e.g. `1280x720`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
@@ -144,6 +172,15 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(err());
     }
     Ok((w, h))
+}
+
+/// Parses `A,B` into two numbers, e.g. `1.1,4`.
+pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
+    let err = || format!("'{s}': expected two numbers separated by a comma, like 1.1,4");
+    let (a, b) = s.split_once(',').ok_or_else(err)?;
+    let a: f32 = a.trim().parse().map_err(|_| err())?;
+    let b: f32 = b.trim().parse().map_err(|_| err())?;
+    Ok([a, b])
 }
 
 impl SceneArgs {
@@ -180,6 +217,8 @@ impl SettingsArgs {
             bias_mode,
             bias,
             bias_min,
+            normal_offset,
+            polygon_offset,
             cull,
             wrap,
             beyond_far,

@@ -1,5 +1,6 @@
 //! The program around the library: command line, demo window, headless commands.
 
 pub mod cli;
+pub mod compare;
 pub mod demo;
 pub mod render;

@@ -1,0 +1,23 @@
+//! Exact CPU reference for hard shadows.
+//!
+//! Shadow maps are approximations: they trade exactness for speed and show
+//! acne, peter-panning and aliased edges. To measure those errors we need the
+//! true answer, so this module traces one shadow ray per G-buffer pixel
+//! through a triangle BVH ([`bvh`]), turns the hits into per-pixel
+//! visibility ([`visibility`]), scores a rendered image against it
+//! ([`metrics`]) and dumps arrays for offline inspection ([`npy`]).
+//! Everything is std plus glam, so the reference builds and runs on machines
+//! without a GPU.
+
+pub mod bvh;
+pub mod metrics;
+pub mod npy;
+pub mod visibility;
+
+pub use bvh::{Bvh, Triangle};
+pub use metrics::{compute_metrics, error_image, Metrics};
+pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
+pub use visibility::{
+    reference_visibility, reference_visibility_supersampled, GBuffer, LightKind, RefPixel,
+    RAY_EPSILON,
+};
