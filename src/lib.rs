@@ -6,6 +6,7 @@
 //! `settings`) is plain data; `renderer` is the book's two-pass frame; `frame` renders
 //! headless frames and reads them back.
 
+pub mod bench;
 pub mod compare;
 pub mod engine;
 pub mod error;

@@ -13,6 +13,7 @@ fn main() -> ExitCode {
         Some(app::cli::Command::Demo(args)) => app::demo::run(&args),
         Some(app::cli::Command::Render(args)) => app::render::run(&args),
         Some(app::cli::Command::Compare(args)) => app::compare::run(&args),
+        Some(app::cli::Command::Bench(args)) => app::bench::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

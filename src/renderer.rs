@@ -5,7 +5,7 @@ use glam::Mat4;
 use glow::HasContext;
 
 use crate::engine::{
-    check_gl, gl_limits, Gl, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture,
+    check_gl, gl_limits, Gl, Mesh, PassTimer, RenderTarget, ShaderProgram, ShadowMap, Texture,
 };
 use crate::error::Result;
 use crate::scene::Scene;
@@ -42,7 +42,13 @@ pub struct Renderer {
     /// The light's view and projection used by the last depth pass.
     light_view: Mat4,
     light_projection: Mat4,
+    /// GPU timers for the depth pass (0) and the scene pass (1), when enabled.
+    timer: Option<PassTimer>,
 }
+
+/// Indices of the passes in [`Renderer::pass_times_ms`].
+pub const DEPTH_PASS: usize = 0;
+pub const SCENE_PASS: usize = 1;
 
 impl Renderer {
     /// Uploads the scene's meshes and textures and builds the pipeline for `settings`.
@@ -80,6 +86,7 @@ impl Renderer {
             textures,
             light_view: Mat4::IDENTITY,
             light_projection: Mat4::IDENTITY,
+            timer: None,
         })
     }
 
@@ -107,6 +114,18 @@ impl Renderer {
         configure_sampling(&self.shadow_map, settings);
         self.settings = *settings;
         check_gl(&self.gl, "changing settings")
+    }
+
+    /// Times each pass on the GPU from now on (see [`Renderer::pass_times_ms`]).
+    pub fn enable_timer(&mut self) -> Result<()> {
+        self.timer = Some(PassTimer::new(&self.gl, 2)?);
+        Ok(())
+    }
+
+    /// GPU milliseconds of the last frame's depth and scene passes (waits for them).
+    pub fn pass_times_ms(&self) -> Option<[f64; 2]> {
+        let t = self.timer.as_ref()?.read_ms();
+        Some([t[DEPTH_PASS], t[SCENE_PASS]])
     }
 
     pub fn shadow_map(&self) -> &ShadowMap {
@@ -151,6 +170,9 @@ impl Renderer {
                 }
             }
         }
+        if let Some(t) = &self.timer {
+            t.begin(DEPTH_PASS);
+        }
         let program = &self.depth_program;
         program.bind();
         program.set_mat4("orthoProjectionMatrix", &self.light_projection);
@@ -165,6 +187,9 @@ impl Renderer {
             });
         }
         program.unbind();
+        if let Some(t) = &self.timer {
+            t.end();
+        }
         unsafe {
             gl.disable(glow::CULL_FACE);
             gl.disable(glow::POLYGON_OFFSET_FILL);
@@ -175,7 +200,7 @@ impl Renderer {
 
     /// The main pass: restores the viewport to the target's size in pixels (not the window's
     /// logical size) and draws the scene with the shadow map on texture unit 1.
-    fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
+    pub fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
         let gl = &self.gl;
         let (width, height) = target.size();
         let c = scene.clear_colour;
@@ -187,6 +212,9 @@ impl Renderer {
                 gl.clear_color(c.x, c.y, c.z, c.w);
                 gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
             },
+        }
+        if let Some(t) = &self.timer {
+            t.begin(SCENE_PASS);
         }
         let view = scene.camera.view_matrix();
         let p = &self.scene_program;
@@ -232,6 +260,9 @@ impl Renderer {
             });
         }
         p.unbind();
+        if let Some(t) = &self.timer {
+            t.end();
+        }
         check_gl(gl, "the scene pass")
     }
 

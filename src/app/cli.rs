@@ -33,6 +33,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Score a frame's shadows against an exact ray-traced reference.
     Compare(CompareArgs),
+    /// Sweep shadow settings: time each one and score it against the reference.
+    Bench(BenchArgs),
 }
 
 /// Scene choice and the light angle, shared by every command.
@@ -160,6 +162,36 @@ pub struct CompareArgs {
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
     #[arg(long, value_name = "K", default_value_t = 1)]
     pub band: usize,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Settings the sweep does not vary (wrap, beyond-far, light view) come from here.
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Folder for bench.csv, bench.md and pareto.png (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+    /// A representative subset (27 configurations plus the tutorials') instead of the full sweep.
+    #[arg(long)]
+    pub quick: bool,
+    /// Timed frames per configuration.
+    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    pub frames: u32,
+    /// Untimed frames before them.
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub warmup: u32,
+    /// Sub-pixel rays per side for the MAE reference (1 = no MAE).
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub supersample: u32,
+    /// Pixels around the reference's shadow edges left out of the "outside band" figures.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    pub band: usize,
+    /// Print the cheapest configuration whose misclassified fraction is at most E (0.01 = 1%).
+    #[arg(long, value_name = "E")]
+    pub target_error: Option<f64>,
 }
 
 /// Parses `WxH`, e.g. `1280x720`.

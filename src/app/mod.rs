@@ -1,6 +1,8 @@
 //! The program around the library: command line, demo window, headless commands.
 
+pub mod bench;
 pub mod cli;
 pub mod compare;
 pub mod demo;
+pub mod plot;
 pub mod render;

@@ -11,6 +11,7 @@ pub mod render_target;
 pub mod shader_program;
 pub mod shadow_map;
 pub mod texture;
+pub mod timer;
 pub mod window_context;
 
 use std::rc::Rc;
@@ -25,3 +26,4 @@ pub use render_target::{Outputs, RenderTarget};
 pub use shader_program::{ShaderProgram, ShaderSource};
 pub use shadow_map::ShadowMap;
 pub use texture::{DepthFormat, Texture, Wrap};
+pub use timer::PassTimer;

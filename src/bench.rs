@@ -1,0 +1,486 @@
+//! The speed-versus-accuracy benchmark: sweep shadow settings over one view of a scene,
+//! time each configuration (GPU time per pass, wall time to glFinish) and score it against
+//! the exact reference, then find the Pareto front and the cheapest configuration that is
+//! accurate enough.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::compare::{compute_reference, CompareOptions, Reference};
+use crate::engine::{Gl, Outputs, RenderTarget};
+use crate::error::Result;
+use crate::reference::Metrics;
+use crate::renderer::{Renderer, Target};
+use crate::scene::Scene;
+use crate::settings::{BiasMode, Cull, DepthFormat, Filter, ShadowSettings};
+
+/// The bias configurations the sweep tries, by name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BiasPreset {
+    /// The plain comparison.
+    None,
+    /// The book's constant 0.05.
+    Book,
+    /// LearnOpenGL's constant 0.005.
+    LearnOpenGL,
+    /// LearnOpenGL's slope-scaled max(0.05 (1 - n.l), 0.005).
+    Slope,
+    /// One shadow-map texel along the normal, no depth bias.
+    NormalOffset,
+    /// glPolygonOffset(1.1, 4) in the depth pass, no shader bias.
+    PolygonOffset,
+}
+
+impl BiasPreset {
+    pub const ALL: [BiasPreset; 6] = [
+        BiasPreset::None,
+        BiasPreset::Book,
+        BiasPreset::LearnOpenGL,
+        BiasPreset::Slope,
+        BiasPreset::NormalOffset,
+        BiasPreset::PolygonOffset,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            BiasPreset::None => "none",
+            BiasPreset::Book => "book-0.05",
+            BiasPreset::LearnOpenGL => "learnopengl-0.005",
+            BiasPreset::Slope => "slope",
+            BiasPreset::NormalOffset => "normal-offset",
+            BiasPreset::PolygonOffset => "polygon-offset",
+        }
+    }
+
+    /// Sets every bias knob of `s` to this preset.
+    pub fn apply(self, s: &mut ShadowSettings) {
+        s.normal_offset = 0.0;
+        s.polygon_offset = [0.0, 0.0];
+        s.bias_min = 0.005;
+        match self {
+            BiasPreset::None => s.bias_mode = BiasMode::None,
+            BiasPreset::Book => {
+                s.bias_mode = BiasMode::Constant;
+                s.bias = 0.05;
+            }
+            BiasPreset::LearnOpenGL => {
+                s.bias_mode = BiasMode::Constant;
+                s.bias = 0.005;
+            }
+            BiasPreset::Slope => {
+                s.bias_mode = BiasMode::Slope;
+                s.bias = 0.05;
+            }
+            BiasPreset::NormalOffset => {
+                s.bias_mode = BiasMode::None;
+                s.normal_offset = 1.0;
+            }
+            BiasPreset::PolygonOffset => {
+                s.bias_mode = BiasMode::None;
+                s.polygon_offset = [1.1, 4.0];
+            }
+        }
+    }
+}
+
+/// One configuration of the sweep.
+#[derive(Debug, Clone, Serialize)]
+pub struct BenchConfig {
+    pub settings: ShadowSettings,
+    pub bias_preset: BiasPreset,
+    /// Set for the tutorials' own configurations ("book", "learnopengl").
+    pub tutorial: Option<&'static str>,
+}
+
+/// The tutorials' own final configurations, on top of the scene's settings.
+pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
+    let mut book = *base;
+    book.map_size = 1024;
+    book.filter = Filter::Pcf3x3;
+    book.cull = Cull::None;
+    book.depth_format = DepthFormat::D24;
+    BiasPreset::Book.apply(&mut book);
+    // LearnOpenGL 3.1.3: slope bias, 3x3 PCF, a border of depth 1, z > 1 lit.
+    let mut learn = book;
+    BiasPreset::Slope.apply(&mut learn);
+    learn.wrap = crate::settings::Wrap::ClampToBorder;
+    learn.beyond_far = crate::settings::BeyondFar::Lit;
+    vec![
+        BenchConfig {
+            settings: book,
+            bias_preset: BiasPreset::Book,
+            tutorial: Some("book"),
+        },
+        BenchConfig {
+            settings: learn,
+            bias_preset: BiasPreset::Slope,
+            tutorial: Some("learnopengl"),
+        },
+    ]
+}
+
+/// The configurations to try. The full sweep is the grid map size x filter x bias (no
+/// culling, 24-bit), then culling and depth format varied around 1024^2 with 3x3 PCF, and
+/// the driver's largest map; `quick` keeps a representative subset.
+pub fn sweep(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<BenchConfig> {
+    let mut out = tutorial_configs(base);
+    let mut push = |settings: ShadowSettings, bias_preset: BiasPreset| {
+        let dup = out.iter().any(|c| c.settings == settings);
+        if !dup {
+            out.push(BenchConfig {
+                settings,
+                bias_preset,
+                tutorial: None,
+            });
+        }
+    };
+    let grid = |sizes: &[u32], filters: &[Filter], biases: &[BiasPreset]| {
+        let mut v = Vec::new();
+        for &map_size in sizes {
+            for &filter in filters {
+                for &bias in biases {
+                    let mut s = *base;
+                    s.map_size = map_size;
+                    s.filter = filter;
+                    s.cull = Cull::None;
+                    s.depth_format = DepthFormat::D24;
+                    bias.apply(&mut s);
+                    v.push((s, bias));
+                }
+            }
+        }
+        v
+    };
+    if quick {
+        for (s, b) in grid(
+            &[512, 1024, 2048],
+            &[Filter::Single, Filter::Pcf3x3, Filter::Hardware2x2],
+            &[
+                BiasPreset::Book,
+                BiasPreset::Slope,
+                BiasPreset::NormalOffset,
+            ],
+        ) {
+            push(s, b);
+        }
+        return out;
+    }
+    let sizes: Vec<u32> = [256, 512, 1024, 2048, 4096, 8192]
+        .into_iter()
+        .filter(|&s| s <= max_texture_size)
+        .collect();
+    for (s, b) in grid(&sizes, &Filter::ALL, &BiasPreset::ALL) {
+        push(s, b);
+    }
+    for cull in [Cull::Back, Cull::Front] {
+        for format in DepthFormat::ALL {
+            for bias in BiasPreset::ALL {
+                let mut s = *base;
+                s.map_size = 1024;
+                s.filter = Filter::Pcf3x3;
+                s.cull = cull;
+                s.depth_format = format;
+                bias.apply(&mut s);
+                push(s, bias);
+            }
+        }
+    }
+    for format in [DepthFormat::D16, DepthFormat::D32F] {
+        for bias in BiasPreset::ALL {
+            let mut s = *base;
+            s.map_size = 1024;
+            s.filter = Filter::Pcf3x3;
+            s.cull = Cull::None;
+            s.depth_format = format;
+            bias.apply(&mut s);
+            push(s, bias);
+        }
+    }
+    if max_texture_size > 8192 {
+        let mut s = tutorial_configs(base)[0].settings;
+        s.map_size = max_texture_size;
+        push(s, BiasPreset::Book);
+    }
+    out
+}
+
+/// How each configuration is measured.
+#[derive(Debug, Clone, Copy)]
+pub struct BenchOptions {
+    pub width: u32,
+    pub height: u32,
+    pub warmup: u32,
+    pub frames: u32,
+    pub supersample: u32,
+    pub band: usize,
+}
+
+/// Median and 95th percentile.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Stat {
+    pub median: f64,
+    pub p95: f64,
+}
+
+impl Stat {
+    pub fn of(values: &[f64]) -> Stat {
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        let at = |q: f64| {
+            if v.is_empty() {
+                f64::NAN
+            } else {
+                v[((v.len() - 1) as f64 * q).round() as usize]
+            }
+        };
+        Stat {
+            median: at(0.5),
+            p95: at(0.95),
+        }
+    }
+}
+
+/// The measurements of one configuration.
+#[derive(Debug, Clone, Serialize)]
+pub struct BenchRow {
+    pub config: BenchConfig,
+    pub wall_ms: Stat,
+    /// Wall time of each pass, with glFinish between them.
+    pub depth_wall_ms: Stat,
+    pub scene_wall_ms: Stat,
+    /// GL timer queries per pass (see the note in [`run`] on software drivers).
+    pub depth_gpu_ms: Stat,
+    pub scene_gpu_ms: Stat,
+    pub metrics: Metrics,
+    /// On the Pareto front of (wall median, error).
+    pub pareto: bool,
+}
+
+impl BenchRow {
+    /// The error the sweep optimises: the misclassified fraction of receiver pixels.
+    pub fn error(&self) -> f64 {
+        self.metrics.misclassified_rate
+    }
+
+    /// A short name: "2048 hw2x2 slope cull-none 24".
+    pub fn label(&self) -> String {
+        let s = &self.config.settings;
+        format!(
+            "{} {} {} cull-{} {}",
+            s.map_size,
+            s.filter.name(),
+            self.config.bias_preset.name(),
+            s.cull.name(),
+            s.depth_format.name()
+        )
+    }
+}
+
+/// The reference for the benchmark's view (traced once, shared by every configuration).
+pub fn bench_reference(gl: &Gl, scene: &Scene, opts: &BenchOptions) -> Result<Reference> {
+    compute_reference(
+        gl,
+        scene,
+        &CompareOptions {
+            width: opts.width,
+            height: opts.height,
+            supersample: opts.supersample,
+            band: opts.band,
+        },
+    )
+}
+
+/// Times and scores every configuration; `progress` is told after each one.
+pub fn run(
+    gl: &Gl,
+    scene: &Scene,
+    configs: &[BenchConfig],
+    reference: &Reference,
+    opts: &BenchOptions,
+    mut progress: impl FnMut(&BenchRow),
+) -> Result<Vec<BenchRow>> {
+    let Some(first) = configs.first() else {
+        return Ok(Vec::new());
+    };
+    let mut renderer = Renderer::new(gl, scene, &first.settings)?;
+    renderer.enable_timer()?;
+    let target = RenderTarget::new(gl, opts.width, opts.height, Outputs::default())?;
+    let scored = RenderTarget::new(
+        gl,
+        opts.width,
+        opts.height,
+        Outputs {
+            visibility: true,
+            gbuffer: false,
+        },
+    )?;
+    let mut rows = Vec::with_capacity(configs.len());
+    for config in configs {
+        renderer.set_settings(&config.settings)?;
+        for _ in 0..opts.warmup {
+            renderer.render(scene, Target::Offscreen(&target))?;
+        }
+        renderer.finish();
+        let mut t = Timings::default();
+        for _ in 0..opts.frames {
+            // glFinish after each pass splits the wall time per pass. A software driver like
+            // llvmpipe rasterises the depth pass only when its result is needed, so its GPU
+            // timer queries charge that work to the scene pass; the split wall times do not.
+            let start = Instant::now();
+            renderer.render_depth_map(scene)?;
+            renderer.finish();
+            let mid = Instant::now();
+            renderer.render_scene(scene, Target::Offscreen(&target))?;
+            renderer.finish();
+            let end = Instant::now();
+            t.wall.push(ms(end - start));
+            t.depth_wall.push(ms(mid - start));
+            t.scene_wall.push(ms(end - mid));
+            if let Some([d, s]) = renderer.pass_times_ms() {
+                t.depth_gpu.push(d);
+                t.scene_gpu.push(s);
+            }
+        }
+        renderer.render(scene, Target::Offscreen(&scored))?;
+        let visibility = scored.read_visibility()?;
+        let row = BenchRow {
+            config: config.clone(),
+            wall_ms: Stat::of(&t.wall),
+            depth_wall_ms: Stat::of(&t.depth_wall),
+            scene_wall_ms: Stat::of(&t.scene_wall),
+            depth_gpu_ms: Stat::of(&t.depth_gpu),
+            scene_gpu_ms: Stat::of(&t.scene_gpu),
+            metrics: reference.score(&visibility, opts.band),
+            pareto: false,
+        };
+        progress(&row);
+        rows.push(row);
+    }
+    mark_pareto(&mut rows);
+    Ok(rows)
+}
+
+#[derive(Default)]
+struct Timings {
+    wall: Vec<f64>,
+    depth_wall: Vec<f64>,
+    scene_wall: Vec<f64>,
+    depth_gpu: Vec<f64>,
+    scene_gpu: Vec<f64>,
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// Marks the rows no other row beats on both time and error.
+pub fn mark_pareto(rows: &mut [BenchRow]) {
+    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.wall_ms.median, r.error())).collect();
+    for (i, row) in rows.iter_mut().enumerate() {
+        let (t, e) = points[i];
+        row.pareto = !points
+            .iter()
+            .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e));
+    }
+}
+
+/// The fastest configuration whose error is at most `target`.
+pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
+    rows.iter()
+        .filter(|r| r.error() <= target)
+        .min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median))
+}
+
+/// The CSV columns, in order.
+pub const CSV_HEADER: &str = "tutorial,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
+normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
+wall_ms_median,wall_ms_p95,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
+scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
+misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto";
+
+/// The rows as CSV (one header line).
+pub fn to_csv(rows: &[BenchRow]) -> String {
+    let mut out = String::from(CSV_HEADER);
+    out.push('\n');
+    for r in rows {
+        let s = &r.config.settings;
+        let m = &r.metrics;
+        let fields = [
+            r.config.tutorial.unwrap_or("-").to_string(),
+            s.map_size.to_string(),
+            s.filter.name().to_string(),
+            r.config.bias_preset.name().to_string(),
+            s.bias_mode.name().to_string(),
+            s.bias.to_string(),
+            s.bias_min.to_string(),
+            s.normal_offset.to_string(),
+            s.polygon_offset[0].to_string(),
+            s.polygon_offset[1].to_string(),
+            s.cull.name().to_string(),
+            s.depth_format.name().to_string(),
+            s.wrap.name().to_string(),
+            format!("{:?}", s.beyond_far).to_lowercase(),
+            format!("{:.4}", r.wall_ms.median),
+            format!("{:.4}", r.wall_ms.p95),
+            format!("{:.4}", r.depth_wall_ms.median),
+            format!("{:.4}", r.scene_wall_ms.median),
+            format!("{:.4}", r.depth_gpu_ms.median),
+            format!("{:.4}", r.depth_gpu_ms.p95),
+            format!("{:.4}", r.scene_gpu_ms.median),
+            format!("{:.4}", r.scene_gpu_ms.p95),
+            m.receivers.to_string(),
+            format!("{:.6}", m.misclassified_rate),
+            format!("{:.6}", m.false_shadow_rate),
+            format!("{:.6}", m.false_light_rate),
+            format!("{:.6}", m.misclassified_outside_band_rate),
+            m.false_shadow_outside_band.to_string(),
+            m.false_light_outside_band.to_string(),
+            m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
+            r.pareto.to_string(),
+        ];
+        out.push_str(&fields.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first.
+pub fn to_markdown(rows: &[BenchRow]) -> String {
+    let mut out = String::from(
+        "| configuration | wall ms (median / p95) | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut shown: Vec<&BenchRow> = rows
+        .iter()
+        .filter(|r| r.config.tutorial.is_some())
+        .collect();
+    let mut front: Vec<&BenchRow> = rows
+        .iter()
+        .filter(|r| r.pareto && r.config.tutorial.is_none())
+        .collect();
+    front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
+    shown.extend(front);
+    for r in shown {
+        let name = match r.config.tutorial {
+            Some(t) => format!("**{t}** ({})", r.label()),
+            None => format!("{} (Pareto)", r.label()),
+        };
+        let m = &r.metrics;
+        let pct = |x: f64| format!("{:.3}%", x * 100.0);
+        out.push_str(&format!(
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
+            r.wall_ms.median,
+            r.wall_ms.p95,
+            r.depth_wall_ms.median,
+            r.scene_wall_ms.median,
+            pct(m.misclassified_rate),
+            pct(m.false_shadow_rate),
+            pct(m.false_light_rate),
+            pct(m.misclassified_outside_band_rate),
+            m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
+        ));
+    }
+    out
+}

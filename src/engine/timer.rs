@@ -1,0 +1,65 @@
+//! GPU time per pass with `GL_TIME_ELAPSED` queries (core since GL 3.3).
+
+use glow::HasContext;
+
+use super::Gl;
+use crate::error::{Error, Result};
+
+/// One timer query per pass; owned, deleted on drop.
+pub struct PassTimer {
+    gl: Gl,
+    queries: Vec<glow::Query>,
+}
+
+impl PassTimer {
+    pub fn new(gl: &Gl, passes: usize) -> Result<PassTimer> {
+        let mut timer = PassTimer {
+            gl: gl.clone(),
+            queries: Vec::with_capacity(passes),
+        };
+        for _ in 0..passes {
+            let q = unsafe { gl.create_query() }
+                .map_err(|e| Error::Create(format!("timer query: {e}")))?;
+            timer.queries.push(q);
+        }
+        Ok(timer)
+    }
+
+    /// Starts timing pass `i`; only one pass can be timed at a time.
+    pub fn begin(&self, i: usize) {
+        if let Some(q) = self.queries.get(i) {
+            unsafe { self.gl.begin_query(glow::TIME_ELAPSED, *q) };
+        }
+    }
+
+    pub fn end(&self) {
+        unsafe { self.gl.end_query(glow::TIME_ELAPSED) };
+    }
+
+    /// The last measured time of every pass in milliseconds (waits for the results).
+    pub fn read_ms(&self) -> Vec<f64> {
+        self.queries
+            .iter()
+            .map(|q| {
+                let mut ns: u64 = 0;
+                // With no query buffer bound, the "offset" is the address to write to.
+                unsafe {
+                    self.gl.get_query_parameter_u64_with_offset(
+                        *q,
+                        glow::QUERY_RESULT,
+                        &mut ns as *mut u64 as usize,
+                    )
+                };
+                ns as f64 / 1.0e6
+            })
+            .collect()
+    }
+}
+
+impl Drop for PassTimer {
+    fn drop(&mut self) {
+        for q in &self.queries {
+            unsafe { self.gl.delete_query(*q) };
+        }
+    }
+}
