@@ -25,11 +25,17 @@ struct Material
     float reflectance;
 };
 
-struct DirectionalLight
+// The book's DirectionalLight, grown to cover positioned lights (LearnOpenGL shades from a
+// light position; spot lights add a cone). Directions and positions are in view space.
+struct Light
 {
     vec3 colour;
-    vec3 direction;  // view space, towards the light
     float intensity;
+    int positional;   // 0: use direction; 1: from the fragment to position
+    vec3 direction;   // towards the light
+    vec3 position;
+    float coneCos;    // cos of the cone's half angle; below -1 = no cone
+    vec3 coneAxis;    // the way the spot points
 };
 
 uniform sampler2D textureSampler;  // unit 0
@@ -39,9 +45,10 @@ uniform sampler2DShadow shadowMap; // unit 1, compare mode on
 uniform sampler2D shadowMap;       // unit 1
 #endif
 uniform Material material;
-uniform DirectionalLight directionalLight;
+uniform Light light;
 uniform vec3 ambientLight;
 uniform float specularPower;
+uniform int blinn;  // 0: the book's Phong, 1: LearnOpenGL's Blinn-Phong
 uniform float bias;
 uniform float biasMin;
 
@@ -53,8 +60,13 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, float intensity, vec3 po
     vec4 diffuse = baseColour * vec4(lightColour, 1.0) * intensity * diffuseFactor;
 
     vec3 cameraDirection = normalize(-position);
-    vec3 reflected = normalize(reflect(-toLightDir, normal));
-    float specularFactor = pow(max(dot(cameraDirection, reflected), 0.0), specularPower);
+    float specularAngle;
+    if (blinn == 1) {
+        specularAngle = dot(normal, normalize(toLightDir + cameraDirection));
+    } else {
+        specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
+    }
+    float specularFactor = pow(max(specularAngle, 0.0), specularPower);
     vec4 specular = baseColour * intensity * specularFactor * material.reflectance
                   * vec4(lightColour, 1.0);
     return diffuse + specular;
@@ -63,8 +75,9 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, float intensity, vec3 po
 // 1 = lit, 0 = in shadow (the book's calcShadow, returning 1 - shadowFactor).
 float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
 {
-    // Screen coordinates [-1, 1] to texture coordinates [0, 1].
-    vec3 projCoords = position.xyz * 0.5 + 0.5;
+    // Clip to normalised device coordinates (w = 1 for an orthographic light), then
+    // [-1, 1] to texture coordinates [0, 1].
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
 #if BEYOND_FAR_LIT
     if (projCoords.z > 1.0) {
         return 1.0;
@@ -111,10 +124,15 @@ void main()
     vec4 baseColour = material.hasTexture == 1 ? texture(textureSampler, outTexCoord)
                                                : material.colour;
     vec3 normal = normalize(mvVertexNormal);
-    vec3 toLight = normalize(directionalLight.direction);
-    vec4 diffuseSpecular = calcLightColour(baseColour, directionalLight.colour,
-                                           directionalLight.intensity, mvVertexPos, toLight,
-                                           normal);
+    vec3 toLight = light.positional == 1 ? normalize(light.position - mvVertexPos)
+                                         : normalize(light.direction);
+    vec4 diffuseSpecular = calcLightColour(baseColour, light.colour, light.intensity,
+                                           mvVertexPos, toLight, normal);
+    if (light.coneCos > -1.5) {
+        // A spot's cone, with a soft rim of about a degree.
+        float c = dot(-toLight, normalize(light.coneAxis));
+        diffuseSpecular *= smoothstep(light.coneCos, light.coneCos + 0.01, c);
+    }
     float shadow = calcShadow(mlightviewVertexPos, normal, toLight);
     // Ambient light is not shadowed.
     fragColor = clamp(baseColour * vec4(ambientLight, 1.0) + diffuseSpecular * shadow, 0.0, 1.0);

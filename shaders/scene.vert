@@ -17,6 +17,8 @@ out vec3 worldNormal;
 
 uniform mat4 modelMatrix;
 uniform mat4 modelViewMatrix;
+uniform mat3 normalMatrix;       // inverse transpose of modelViewMatrix, for normals
+uniform mat3 worldNormalMatrix;  // inverse transpose of modelMatrix
 uniform mat4 projectionMatrix;
 uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
@@ -27,9 +29,10 @@ void main()
     vec4 mvPos = modelViewMatrix * vec4(position, 1.0);
     gl_Position = projectionMatrix * mvPos;
     outTexCoord = texCoord;
-    mvVertexNormal = normalize(modelViewMatrix * vec4(vertexNormal, 0.0)).xyz;
+    // The book transforms normals by modelViewMatrix, right for its uniform scales; the
+    // inverse transpose keeps them right for any scale.
+    mvVertexNormal = normalize(normalMatrix * vertexNormal);
     mvVertexPos = mvPos.xyz;
-    // An orthographic light needs no divide by w (the book skips it too).
     vec4 lightViewPos = modelLightViewMatrix * vec4(position, 1.0);
 #if NORMAL_OFFSET
     // Normal-offset bias: look the map up from a point pushed off the surface. The light
@@ -38,5 +41,5 @@ void main()
 #endif
     mlightviewVertexPos = orthoProjectionMatrix * lightViewPos;
     worldPos = (modelMatrix * vec4(position, 1.0)).xyz;
-    worldNormal = normalize(mat3(modelMatrix) * vertexNormal);
+    worldNormal = normalize(worldNormalMatrix * vertexNormal);
 }

@@ -279,10 +279,16 @@ impl BenchRow {
 }
 
 /// The reference for the benchmark's view (traced once, shared by every configuration).
-pub fn bench_reference(gl: &Gl, scene: &Scene, opts: &BenchOptions) -> Result<Reference> {
+pub fn bench_reference(
+    gl: &Gl,
+    scene: &Scene,
+    base: &ShadowSettings,
+    opts: &BenchOptions,
+) -> Result<Reference> {
     compute_reference(
         gl,
         scene,
+        base,
         &CompareOptions {
             width: opts.width,
             height: opts.height,

@@ -38,11 +38,10 @@ pub struct Reference {
     pub triangles: usize,
 }
 
-/// The light as the reference sees it.
-pub fn light_kind(scene: &Scene) -> LightKind {
-    LightKind::Directional {
-        to_light: scene.light.direction,
-    }
+/// The light as the reference sees it: what the shadow map approximates (parallel rays for
+/// an orthographic map, rays to the light's eye for a perspective one).
+pub fn light_kind(scene: &Scene, settings: &ShadowSettings) -> LightKind {
+    scene.light.shadow_view(settings).reference
 }
 
 /// A BVH over the scene's shadow casters, in world space.
@@ -57,17 +56,25 @@ pub fn caster_bvh(scene: &Scene) -> Bvh {
 
 /// Renders the view's G-buffer (and, with supersampling, one at N times the resolution) and
 /// traces the exact visibility of every pixel.
-pub fn compute_reference(gl: &Gl, scene: &Scene, opts: &CompareOptions) -> Result<Reference> {
+pub fn compute_reference(
+    gl: &Gl,
+    scene: &Scene,
+    settings: &ShadowSettings,
+    opts: &CompareOptions,
+) -> Result<Reference> {
     let gbuffer_only = Outputs {
         visibility: false,
         gbuffer: true,
     };
-    // Any settings will do: the G-buffer does not depend on them.
-    let settings = ShadowSettings::default();
+    // The G-buffer does not depend on the shadow settings; draw the scene, not the map.
+    let settings = &ShadowSettings {
+        show_depth_map: false,
+        ..*settings
+    };
     let frame = render_frames(
         gl,
         &mut scene.clone(),
-        &settings,
+        settings,
         opts.width,
         opts.height,
         1,
@@ -79,7 +86,7 @@ pub fn compute_reference(gl: &Gl, scene: &Scene, opts: &CompareOptions) -> Resul
         let frame = render_frames(
             gl,
             &mut scene.clone(),
-            &settings,
+            settings,
             opts.width * n,
             opts.height * n,
             1,
@@ -92,7 +99,7 @@ pub fn compute_reference(gl: &Gl, scene: &Scene, opts: &CompareOptions) -> Resul
     };
     let start = Instant::now();
     let bvh = caster_bvh(scene);
-    let light = light_kind(scene);
+    let light = light_kind(scene, settings);
     let hard = reference_visibility(&bvh, &light, &gbuffer);
     let supersampled = hi
         .as_ref()
@@ -148,7 +155,7 @@ pub fn compare(
     settings: &ShadowSettings,
     opts: &CompareOptions,
 ) -> Result<Comparison> {
-    let reference = compute_reference(gl, scene, opts)?;
+    let reference = compute_reference(gl, scene, settings, opts)?;
     let frame = render_visibility(gl, scene, settings, opts.width, opts.height)?;
     let visibility = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(visibility, opts.band);

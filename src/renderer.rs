@@ -1,14 +1,15 @@
 //! `Renderer`: the book's two-pass frame. `render_depth_map` draws the scene from the light
 //! into the shadow map; the main pass then draws it from the camera, sampling that map.
 
-use glam::Mat4;
+use glam::{Mat3, Mat4, Vec3};
 use glow::HasContext;
 
+use crate::engine::mesh::FullScreenTriangle;
 use crate::engine::{
     check_gl, gl_limits, Gl, Mesh, PassTimer, RenderTarget, ShaderProgram, ShadowMap, Texture,
 };
-use crate::error::Result;
-use crate::scene::Scene;
+use crate::error::{Error, Result};
+use crate::scene::{Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::{Cull, ShadowSettings};
 use crate::shaders;
 
@@ -39,9 +40,10 @@ pub struct Renderer {
     shadow_map: ShadowMap,
     meshes: Vec<Mesh>,
     textures: Vec<Texture>,
-    /// The light's view and projection used by the last depth pass.
-    light_view: Mat4,
-    light_projection: Mat4,
+    depth_view_program: ShaderProgram,
+    full_screen: FullScreenTriangle,
+    /// The light's camera used by the last depth pass.
+    shadow_view: Option<ShadowView>,
     /// GPU timers for the depth pass (0) and the scene pass (1), when enabled.
     timer: Option<PassTimer>,
 }
@@ -72,6 +74,12 @@ impl Renderer {
             &shaders::scene_frag(),
             &settings.shader_defines(),
         )?;
+        let depth_view_program = ShaderProgram::new(
+            gl,
+            &shaders::depth_view_vert(),
+            &shaders::depth_view_frag(),
+            &[],
+        )?;
         let shadow_map = ShadowMap::new(gl, settings.map_size, settings.depth_format)?;
         configure_sampling(&shadow_map, settings);
         unsafe { gl.enable(glow::DEPTH_TEST) };
@@ -84,8 +92,9 @@ impl Renderer {
             shadow_map,
             meshes,
             textures,
-            light_view: Mat4::IDENTITY,
-            light_projection: Mat4::IDENTITY,
+            depth_view_program,
+            full_screen: FullScreenTriangle::new(gl)?,
+            shadow_view: None,
             timer: None,
         })
     }
@@ -132,24 +141,29 @@ impl Renderer {
         &self.shadow_map
     }
 
-    /// The light's projection * view from the last depth pass.
-    pub fn light_space_matrix(&self) -> Mat4 {
-        self.light_projection * self.light_view
+    /// The light's camera of the last depth pass.
+    pub fn shadow_view(&self) -> Option<&ShadowView> {
+        self.shadow_view.as_ref()
     }
 
-    /// One frame: the depth map first, then the scene into `target`.
+    /// One frame: the depth map first, then the scene (or, with `show_depth_map`, the map
+    /// itself) into `target`.
     pub fn render(&mut self, scene: &Scene, target: Target) -> Result<()> {
         self.render_depth_map(scene)?;
-        self.render_scene(scene, target)
+        if self.settings.show_depth_map {
+            self.render_depth_view(scene, target)
+        } else {
+            self.render_scene(scene, target)
+        }
     }
 
     /// The shadow pass: bind the map's FBO, viewport to its size, clear depth, and draw every
-    /// caster with light view x ortho.
+    /// caster with the light's view and projection (ortho for the book's light).
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         let gl = &self.gl;
         self.shadow_map.bind_for_writing();
-        self.light_view = scene.light.view_matrix(self.settings.light_view);
-        self.light_projection = scene.light.projection_matrix();
+        let sv = scene.light.shadow_view(&self.settings);
+        self.shadow_view = Some(sv);
         let [factor, units] = self.settings.polygon_offset;
         unsafe {
             gl.depth_mask(true);
@@ -175,14 +189,14 @@ impl Renderer {
         }
         let program = &self.depth_program;
         program.bind();
-        program.set_mat4("orthoProjectionMatrix", &self.light_projection);
+        program.set_mat4("orthoProjectionMatrix", &sv.projection);
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene
                 .items
                 .iter()
                 .filter(|i| i.mesh == mesh_id && i.casts_shadows);
             mesh.render_list(items, |item| {
-                let mlv = self.light_view * item.model_matrix();
+                let mlv = sv.view * item.model_matrix();
                 program.set_mat4("modelLightViewMatrix", &mlv);
             });
         }
@@ -198,21 +212,33 @@ impl Renderer {
         check_gl(gl, "the depth-map pass")
     }
 
-    /// The main pass: restores the viewport to the target's size in pixels (not the window's
-    /// logical size) and draws the scene with the shadow map on texture unit 1.
-    pub fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
-        let gl = &self.gl;
+    /// Binds the target, sets the viewport to its size in pixels (not the window's logical
+    /// size) and clears it.
+    fn begin_target(&self, scene: &Scene, target: Target) -> (u32, u32) {
         let (width, height) = target.size();
         let c = scene.clear_colour;
         match target {
             Target::Offscreen(t) => t.bind_and_clear(c.to_array()),
             Target::Window { .. } => unsafe {
-                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                gl.viewport(0, 0, width as i32, height as i32);
-                gl.clear_color(c.x, c.y, c.z, c.w);
-                gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+                self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+                self.gl.viewport(0, 0, width as i32, height as i32);
+                self.gl.clear_color(c.x, c.y, c.z, c.w);
+                self.gl
+                    .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
             },
         }
+        (width, height)
+    }
+
+    /// The main pass: draws the scene with the shadow map on texture unit 1. Call after
+    /// [`Renderer::render_depth_map`].
+    pub fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
+        let Some(sv) = self.shadow_view else {
+            return Err(Error::Invalid(
+                "render_scene before render_depth_map: there is no shadow map yet".into(),
+            ));
+        };
+        let (width, height) = self.begin_target(scene, target);
         if let Some(t) = &self.timer {
             t.begin(SCENE_PASS);
         }
@@ -223,20 +249,32 @@ impl Renderer {
             "projectionMatrix",
             &scene.camera.projection_matrix(width, height),
         );
-        p.set_mat4("orthoProjectionMatrix", &self.light_projection);
-        let light = &scene.light;
+        p.set_mat4("orthoProjectionMatrix", &sv.projection);
         p.set_vec3("ambientLight", scene.ambient);
         p.set_f32("specularPower", scene.specular_power);
+        p.set_i32(
+            "blinn",
+            i32::from(scene.shading == ShadingModel::BlinnPhong),
+        );
         p.set_f32("bias", self.settings.bias);
         p.set_f32("biasMin", self.settings.bias_min);
-        let texel = (light.ortho.right - light.ortho.left) / self.settings.map_size as f32;
-        p.set_f32("normalOffset", self.settings.normal_offset * texel);
-        p.set_vec3("directionalLight.colour", light.colour);
-        p.set_vec3(
-            "directionalLight.direction",
-            view.transform_vector3(light.direction.normalize()),
-        );
-        p.set_f32("directionalLight.intensity", light.intensity);
+        p.set_f32("normalOffset", self.settings.normal_offset * sv.texel_world);
+        let light = &scene.light;
+        p.set_vec3("light.colour", light.colour());
+        p.set_f32("light.intensity", light.intensity());
+        match light.shading() {
+            Shading::Direction(d) => {
+                p.set_i32("light.positional", 0);
+                p.set_vec3("light.direction", view.transform_vector3(d));
+            }
+            Shading::Position { position, cone } => {
+                p.set_i32("light.positional", 1);
+                p.set_vec3("light.position", view.transform_point3(position));
+                let (cos, axis) = cone.unwrap_or((-2.0, Vec3::Z));
+                p.set_f32("light.coneCos", cos);
+                p.set_vec3("light.coneAxis", view.transform_vector3(axis));
+            }
+        }
         p.set_i32("textureSampler", 0);
         p.set_i32("shadowMap", 1);
         self.shadow_map.depth_map_texture().bind(1);
@@ -244,9 +282,12 @@ impl Renderer {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
                 let model = item.model_matrix();
+                let model_view = view * model;
                 p.set_mat4("modelMatrix", &model);
-                p.set_mat4("modelViewMatrix", &(view * model));
-                p.set_mat4("modelLightViewMatrix", &(self.light_view * model));
+                p.set_mat4("modelViewMatrix", &model_view);
+                p.set_mat3("normalMatrix", &normal_matrix(&model_view));
+                p.set_mat3("worldNormalMatrix", &normal_matrix(&model));
+                p.set_mat4("modelLightViewMatrix", &(sv.view * model));
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
                 p.set_f32("material.reflectance", m.reflectance);
@@ -263,13 +304,46 @@ impl Renderer {
         if let Some(t) = &self.timer {
             t.end();
         }
-        check_gl(gl, "the scene pass")
+        check_gl(&self.gl, "the scene pass")
+    }
+
+    /// The chapters' debug quad: the shadow map on the whole target, linearised for a
+    /// perspective light (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one.
+    pub fn render_depth_view(&self, scene: &Scene, target: Target) -> Result<()> {
+        let Some(sv) = self.shadow_view else {
+            return Err(Error::Invalid(
+                "render_depth_view before render_depth_map: there is no shadow map yet".into(),
+            ));
+        };
+        self.begin_target(scene, target);
+        let texture = self.shadow_map.depth_map_texture();
+        // A plain sampler2D must not read a texture in compare mode.
+        texture.set_compare(false, false);
+        let p = &self.depth_view_program;
+        p.bind();
+        p.set_i32("depthMap", 0);
+        p.set_i32("linearize", i32::from(sv.perspective));
+        p.set_f32("nearPlane", sv.near);
+        p.set_f32("farPlane", sv.far);
+        texture.bind(0);
+        unsafe { self.gl.disable(glow::DEPTH_TEST) };
+        self.full_screen.draw();
+        unsafe { self.gl.enable(glow::DEPTH_TEST) };
+        p.unbind();
+        configure_sampling(&self.shadow_map, &self.settings);
+        check_gl(&self.gl, "the depth-map view")
     }
 
     /// Blocks until the GPU has finished (for wall-time measurements).
     pub fn finish(&self) {
         unsafe { self.gl.finish() };
     }
+}
+
+/// The matrix that carries normals: the inverse transpose of the upper 3 x 3, so normals
+/// stay perpendicular under non-uniform scale.
+fn normal_matrix(m: &Mat4) -> Mat3 {
+    Mat3::from_mat4(*m).inverse().transpose()
 }
 
 /// Wrap mode and compare mode of the shadow map for the settings' filter.

@@ -139,6 +139,20 @@ pub enum LightView {
     LookAt,
 }
 
+/// The projection of a directional light's shadow camera.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum LightProjection {
+    /// The book's: parallel rays, the `OrthoCoords` box.
+    #[default]
+    Ortho,
+    /// A frustum from the shadow position towards the origin (`perspective_fov`), as if the
+    /// light were a nearby point; spot lights always use their own frustum.
+    Perspective,
+}
+
 /// Every setting of the shadow pipeline. The defaults are the book's final configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -161,6 +175,12 @@ pub struct ShadowSettings {
     pub wrap: Wrap,
     pub beyond_far: BeyondFar,
     pub light_view: LightView,
+    pub light_projection: LightProjection,
+    /// Field of view of a perspective shadow camera for a directional light, degrees.
+    pub perspective_fov: f32,
+    /// Draw the shadow map on the whole frame instead of the scene (the chapters' debug
+    /// quad), linearised when the projection is perspective.
+    pub show_depth_map: bool,
 }
 
 impl Default for ShadowSettings {
@@ -178,6 +198,9 @@ impl Default for ShadowSettings {
             wrap: Wrap::ClampToEdge,
             beyond_far: BeyondFar::Shadowed,
             light_view: LightView::BookAngles,
+            light_projection: LightProjection::Ortho,
+            perspective_fov: 45.0,
+            show_depth_map: false,
         }
     }
 }
@@ -230,6 +253,12 @@ impl ShadowSettings {
                     "shadow.{name} = {v}: expected a finite number >= 0"
                 ));
             }
+        }
+        if !(self.perspective_fov > 0.0 && self.perspective_fov < 180.0) {
+            return bad(format!(
+                "shadow.perspective_fov = {}: expected degrees between 0 and 180",
+                self.perspective_fov
+            ));
         }
         if self.polygon_offset.iter().any(|v| !v.is_finite()) {
             return bad(format!(

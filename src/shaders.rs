@@ -18,3 +18,5 @@ shader!(depth_vert, "depth.vert");
 shader!(depth_frag, "depth.frag");
 shader!(scene_vert, "scene.vert");
 shader!(scene_frag, "scene.frag");
+shader!(depth_view_vert, "depth_view.vert");
+shader!(depth_view_frag, "depth_view.frag");

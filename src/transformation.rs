@@ -38,12 +38,12 @@ impl Transformation {
     /// The model matrix of an item (`buildModelViewMatrix` without the view):
     /// translate * rotateX(-rx) * rotateY(-ry) * rotateZ(-rz) * scale. The book negates the
     /// angles, so a positive angle turns the item clockwise seen from the axis' tip.
-    pub fn model(position: Vec3, rotation_deg: Vec3, scale: f32) -> Mat4 {
+    pub fn model(position: Vec3, rotation_deg: Vec3, scale: Vec3) -> Mat4 {
         Mat4::from_translation(position)
             * Mat4::from_rotation_x(-rotation_deg.x.to_radians())
             * Mat4::from_rotation_y(-rotation_deg.y.to_radians())
             * Mat4::from_rotation_z(-rotation_deg.z.to_radians())
-            * Mat4::from_scale(Vec3::splat(scale))
+            * Mat4::from_scale(scale)
     }
 
     /// Model-view matrix: view * model.

@@ -21,7 +21,7 @@ fn opts(supersample: u32) -> CompareOptions {
 fn overhead_light_reference_is_exactly_the_footprint() {
     let ctx = context();
     let scene = dummy(90.0);
-    let r = compute_reference(ctx.gl(), &scene, &opts(1)).unwrap();
+    let r = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
     let (mut inside, mut outside) = (0, 0);
     for (i, p) in r.gbuffer.positions.iter().enumerate() {
         let p = Vec3::from(*p);
@@ -55,8 +55,8 @@ fn overhead_light_reference_is_exactly_the_footprint() {
 fn light_from_below_shadows_nothing_on_top() {
     let ctx = context();
     let mut scene = dummy(90.0);
-    scene.light.direction = Vec3::new(0.0, -1.0, 0.3).normalize();
-    let r = compute_reference(ctx.gl(), &scene, &opts(1)).unwrap();
+    scene.light.as_directional_mut().unwrap().direction = Vec3::new(0.0, -1.0, 0.3).normalize();
+    let r = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
     let mut tops = 0;
     for (i, n) in r.gbuffer.normals.iter().enumerate() {
         if n[1] > 0.99 {
@@ -82,7 +82,7 @@ fn the_reference_has_no_acne() {
     for angle in [90.0, 45.0, 5.0, 1.0] {
         let mut scene = dummy(angle);
         scene.items.retain(|i| i.name != "cube");
-        let r = compute_reference(ctx.gl(), &scene, &opts(2)).unwrap();
+        let r = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts(2)).unwrap();
         let receivers: Vec<_> = r.hard.iter().filter(|p| p.receiver).collect();
         assert!(
             receivers.len() > 10000,

@@ -126,7 +126,7 @@ fn view_and_model_match_the_book_formulas() {
     let got = Transformation::model(
         Vec3::new(1.0, -1.0, 0.5),
         Vec3::new(r[0] as f32, r[1] as f32, r[2] as f32),
-        2.5,
+        Vec3::splat(2.5),
     );
     let want = mul(
         &mul(
@@ -201,5 +201,9 @@ fn book_light_view_breaks_with_an_x_component() {
 }
 
 fn dummy_light() -> DirectionalLight {
-    shadowmap::Scene::load("dummy").unwrap().light
+    *shadowmap::Scene::load("dummy")
+        .unwrap()
+        .light
+        .as_directional()
+        .unwrap()
 }

@@ -44,7 +44,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         opts.warmup,
         shadowmap::engine::check::renderer_name(gl),
     );
-    let reference = bench::bench_reference(gl, &scene, &opts)?;
+    let reference = bench::bench_reference(gl, &scene, &base, &opts)?;
     eprintln!(
         "reference: {} caster triangles traced in {:.0} ms ({}x{} supersampled)",
         reference.triangles, reference.trace_ms, opts.supersample, opts.supersample

@@ -225,7 +225,13 @@ impl SceneArgs {
                     "--light-angle {a}: expected degrees from 0 to 180"
                 )));
             }
-            scene.set_light_angle(a);
+            if !scene.set_light_angle(a) {
+                return Err(shadowmap::Error::Invalid(format!(
+                    "--light-angle: the {} scene's light is not directional; the angle turns \
+                     only a directional light",
+                    scene.name
+                )));
+            }
         }
         Ok(scene)
     }

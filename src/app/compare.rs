@@ -60,7 +60,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let json = serde_json::json!({
         "scene": scene.name,
         "size": [width, height],
-        "light_direction": scene.light.direction.to_array(),
+        "light": scene.light.describe(),
         "settings": settings,
         "supersample": args.supersample,
         "band": args.band,

@@ -166,8 +166,9 @@ impl Demo {
         } else {
             self.angle_inc = 0.0;
         }
-        if self.angle_inc != 0.0 {
-            let angle = (self.scene.light.angle_deg() + self.angle_inc).clamp(0.0, 180.0);
+        if let (true, Some(light)) = (self.angle_inc != 0.0, self.scene.light.as_directional_mut())
+        {
+            let angle = light.angle_deg() + self.angle_inc;
             self.scene.set_light_angle(angle);
         }
         let mut step = Vec3::ZERO;
@@ -246,9 +247,9 @@ impl Demo {
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
             running.context.window().set_title(&format!(
-                "shadowmap: {} | light {:.1} deg | {} | {:.2} ms ({}x{})",
+                "shadowmap: {} | {} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
-                self.scene.light.angle_deg(),
+                self.scene.light.describe(),
                 self.settings.summary(),
                 self.frame_ms,
                 w,

@@ -37,12 +37,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         save_grey_png(path, size, size, &frame.depth_grey())?;
     }
     println!(
-        "wrote {} ({}x{}, scene {}, light {:.1} deg, {}) in {:.0} ms",
+        "wrote {} ({}x{}, scene {}, {}, {}) in {:.0} ms",
         args.out.display(),
         width,
         height,
         scene.name,
-        scene.light.angle_deg(),
+        scene.light.describe(),
         settings.summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );

@@ -129,3 +129,35 @@ fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
     // f32 and u32 have no padding and any bit pattern is a valid byte sequence.
     unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
 }
+
+/// A triangle that covers the whole viewport, generated from `gl_VertexID` (the depth-map
+/// view's "quad"). Core profile needs a bound VAO even with no attributes.
+pub struct FullScreenTriangle {
+    gl: Gl,
+    vao: glow::VertexArray,
+}
+
+impl FullScreenTriangle {
+    pub fn new(gl: &Gl) -> Result<FullScreenTriangle> {
+        let vao = unsafe { gl.create_vertex_array() }
+            .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
+        Ok(FullScreenTriangle {
+            gl: gl.clone(),
+            vao,
+        })
+    }
+
+    pub fn draw(&self) {
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.draw_arrays(glow::TRIANGLES, 0, 3);
+            self.gl.bind_vertex_array(None);
+        }
+    }
+}
+
+impl Drop for FullScreenTriangle {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_vertex_array(self.vao) };
+    }
+}

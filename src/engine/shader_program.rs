@@ -4,7 +4,7 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat3, Mat4, Vec3, Vec4};
 use glow::HasContext;
 
 use super::Gl;
@@ -179,6 +179,15 @@ impl ShaderProgram {
             unsafe {
                 self.gl
                     .uniform_matrix_4_f32_slice(Some(&loc), false, &m.to_cols_array())
+            };
+        }
+    }
+
+    pub fn set_mat3(&self, name: &'static str, m: &Mat3) {
+        if let Some(loc) = self.location(name) {
+            unsafe {
+                self.gl
+                    .uniform_matrix_3_f32_slice(Some(&loc), false, &m.to_cols_array())
             };
         }
     }

@@ -7,7 +7,10 @@ use std::path::{Path, PathBuf};
 use glam::{Vec3, Vec4};
 use serde::Deserialize;
 
-use super::{Camera, DirectionalLight, GameItem, Material, OrthoCoords, Scene};
+use super::{
+    Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, Scene, ShadingModel,
+    SpotLight,
+};
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
@@ -25,6 +28,8 @@ struct SceneFile {
     ambient: [f32; 3],
     #[serde(default = "default_specular_power")]
     specular_power: f32,
+    #[serde(default)]
+    shading: ShadingModel,
     #[serde(default)]
     camera: Camera,
     light: LightFile,
@@ -44,21 +49,55 @@ fn default_specular_power() -> f32 {
     10.0
 }
 
+#[derive(Debug, Deserialize, Default, PartialEq)]
+#[serde(rename_all = "kebab-case")]
+enum LightKindFile {
+    #[default]
+    Directional,
+    Spot,
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightFile {
+    #[serde(default)]
+    kind: LightKindFile,
     #[serde(default = "one3")]
     colour: [f32; 3],
     #[serde(default = "one")]
     intensity: f32,
-    /// The DummyGame's angle in degrees: direction (0, sin a, cos a).
+    /// Directional: the DummyGame's angle in degrees, direction (0, sin a, cos a).
     angle: Option<f32>,
-    /// Towards the light; need not be normalised.
+    /// Directional: towards the light; need not be normalised.
     direction: Option<[f32; 3]>,
-    #[serde(default = "default_pos_mult")]
-    shadow_pos_mult: f32,
-    #[serde(default)]
-    ortho: OrthoCoords,
+    /// Directional: shade from this point and put the shadow camera there, looking at the
+    /// origin (LearnOpenGL). Spot: where the light is.
+    position: Option<[f32; 3]>,
+    shadow_pos_mult: Option<f32>,
+    ortho: Option<OrthoCoords>,
+    /// Spot: what it points at, the shadow camera's up vector, cone/frustum angle, depth range.
+    target: Option<[f32; 3]>,
+    up: Option<[f32; 3]>,
+    fov: Option<f32>,
+    near: Option<f32>,
+    far: Option<f32>,
+}
+
+/// A uniform scale or one per axis.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum ScaleFile {
+    Uniform(f32),
+    Axes([f32; 3]),
+}
+
+impl ScaleFile {
+    fn vec(&self) -> Vec3 {
+        match self {
+            ScaleFile::Uniform(s) => Vec3::splat(*s),
+            ScaleFile::Axes(a) => Vec3::from(*a),
+        }
+    }
 }
 
 fn one() -> f32 {
@@ -66,9 +105,6 @@ fn one() -> f32 {
 }
 fn one3() -> [f32; 3] {
     [1.0; 3]
-}
-fn default_pos_mult() -> f32 {
-    5.0
 }
 
 #[derive(Debug, Deserialize)]
@@ -81,8 +117,8 @@ struct ItemFile {
     position: [f32; 3],
     #[serde(default)]
     rotation: [f32; 3],
-    #[serde(default = "one")]
-    scale: f32,
+    #[serde(default = "unit_scale")]
+    scale: ScaleFile,
     #[serde(default = "white")]
     colour: [f32; 4],
     /// A PNG, relative to the scene file; replaces the colour.
@@ -98,6 +134,9 @@ struct ItemFile {
     casts_shadows: bool,
 }
 
+fn unit_scale() -> ScaleFile {
+    ScaleFile::Uniform(1.0)
+}
 fn white() -> [f32; 4] {
     [1.0; 4]
 }
@@ -182,48 +221,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         ));
     }
 
-    let l = &file.light;
-    let direction = match (l.angle, l.direction) {
-        (Some(a), None) => {
-            finite("light.angle", &[a])?;
-            DirectionalLight::direction_from_angle(a)
-        }
-        (None, Some(d)) => {
-            finite("light.direction", &d)?;
-            Vec3::from(d).try_normalize().ok_or_else(|| {
-                bad(
-                    "light.direction",
-                    format!("{d:?}: expected a non-zero vector pointing towards the light"),
-                )
-            })?
-        }
-        (Some(_), Some(_)) => {
-            return Err(bad(
-                "light",
-                "both `angle` and `direction` given: expected one of them".into(),
-            ))
-        }
-        (None, None) => {
-            return Err(bad(
-                "light",
-                "expected `angle` (degrees) or `direction` ([x, y, z] towards the light)".into(),
-            ))
-        }
-    };
-    finite("light.colour", &l.colour)?;
-    finite("light.intensity", &[l.intensity])?;
-    finite("light.shadow_pos_mult", &[l.shadow_pos_mult])?;
-    let o = &l.ortho;
-    finite(
-        "light.ortho",
-        &[o.left, o.right, o.bottom, o.top, o.near, o.far],
-    )?;
-    if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
-        return Err(bad(
-            "light.ortho",
-            format!("{o:?}: expected left < right, bottom < top and near < far"),
-        ));
-    }
+    let light = build_light(&file.light, &bad, &finite)?;
 
     let s = &file.shadow;
     finite("shadow", &[s.bias, s.bias_min])?;
@@ -243,10 +241,15 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         finite(&field("colour"), &item.colour)?;
         finite(&field("spin"), &item.spin)?;
         finite(&field("reflectance"), &[item.reflectance])?;
-        if !(item.scale.is_finite() && item.scale > 0.0) {
+        let scale = item.scale.vec();
+        if !scale.is_finite() || scale.min_element() <= 0.0 {
+            let shown = match item.scale {
+                ScaleFile::Uniform(s) => s.to_string(),
+                ScaleFile::Axes(a) => format!("{a:?}"),
+            };
             return Err(bad(
                 &field("scale"),
-                format!("{}: expected a finite number > 0", item.scale),
+                format!("{shown}: expected a finite number > 0 (or three of them)"),
             ));
         }
         if !(item.tiles.is_finite() && item.tiles > 0.0) {
@@ -308,7 +311,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             mesh,
             position: Vec3::from(item.position),
             rotation: Vec3::from(item.rotation),
-            scale: item.scale,
+            scale,
             material: Material {
                 colour: Vec4::from(item.colour),
                 texture,
@@ -328,13 +331,8 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
     Ok(Scene {
         name,
         camera: file.camera,
-        light: DirectionalLight {
-            colour: Vec3::from(l.colour),
-            direction,
-            intensity: l.intensity,
-            ortho: l.ortho,
-            shadow_pos_mult: l.shadow_pos_mult,
-        },
+        light,
+        shading: file.shading,
         ambient: Vec3::from(file.ambient),
         specular_power: file.specular_power,
         clear_colour: Vec3::from(file.clear_colour).extend(1.0),
@@ -344,4 +342,155 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         textures,
         shadow: file.shadow,
     })
+}
+
+type Bad<'a> = &'a dyn Fn(&str, String) -> Error;
+type Finite<'a> = &'a dyn Fn(&str, &[f32]) -> Result<()>;
+
+/// The `[light]` table: a directional light (the book's, or LearnOpenGL's positioned one)
+/// or a spot light.
+fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
+    finite("light.colour", &l.colour)?;
+    finite("light.intensity", &[l.intensity])?;
+    let vec = |name: &str, v: Option<[f32; 3]>| -> Result<Option<Vec3>> {
+        match v {
+            Some(v) => {
+                finite(&format!("light.{name}"), &v)?;
+                Ok(Some(Vec3::from(v)))
+            }
+            None => Ok(None),
+        }
+    };
+    let position = vec("position", l.position)?;
+    let target = vec("target", l.target)?;
+    let up = vec("up", l.up)?;
+    let only = |kind: &str, fields: &[(&str, bool)]| -> Result<()> {
+        match fields.iter().find(|(_, given)| *given) {
+            Some((name, _)) => Err(bad(
+                &format!("light.{name}"),
+                format!("not used by a {kind} light"),
+            )),
+            None => Ok(()),
+        }
+    };
+    match l.kind {
+        LightKindFile::Directional => {
+            only(
+                "directional",
+                &[
+                    ("target", l.target.is_some()),
+                    ("up", l.up.is_some()),
+                    ("fov", l.fov.is_some()),
+                    ("near", l.near.is_some()),
+                    ("far", l.far.is_some()),
+                ],
+            )?;
+            let given = [l.angle.is_some(), l.direction.is_some(), position.is_some()];
+            if given.iter().filter(|g| **g).count() != 1 {
+                return Err(bad(
+                    "light",
+                    "expected exactly one of `angle` (degrees), `direction` ([x, y, z] towards \
+                     the light) or `position` (a point the light shines from, towards the origin)"
+                        .into(),
+                ));
+            }
+            let non_zero = |name: &str, v: Vec3| {
+                v.try_normalize().ok_or_else(|| {
+                    bad(
+                        &format!("light.{name}"),
+                        format!("{v}: expected a non-zero vector"),
+                    )
+                })
+            };
+            let direction = match (l.angle, vec("direction", l.direction)?, position) {
+                (Some(a), _, _) => {
+                    finite("light.angle", &[a])?;
+                    DirectionalLight::direction_from_angle(a)
+                }
+                (_, Some(d), _) => non_zero("direction", d)?,
+                (_, _, Some(p)) => non_zero("position", p)?,
+                _ => unreachable!("exactly one was checked above"),
+            };
+            let shadow_pos_mult = match (l.shadow_pos_mult, position) {
+                (Some(_), Some(_)) => {
+                    return Err(bad(
+                        "light.shadow_pos_mult",
+                        "not used with `position` (the shadow camera sits at the position)".into(),
+                    ))
+                }
+                (Some(m), None) => m,
+                (None, Some(p)) => p.length(),
+                (None, None) => 5.0,
+            };
+            finite("light.shadow_pos_mult", &[shadow_pos_mult])?;
+            let ortho = l.ortho.unwrap_or_default();
+            let o = &ortho;
+            finite(
+                "light.ortho",
+                &[o.left, o.right, o.bottom, o.top, o.near, o.far],
+            )?;
+            if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
+                return Err(bad(
+                    "light.ortho",
+                    format!("{o:?}: expected left < right, bottom < top and near < far"),
+                ));
+            }
+            Ok(Light::Directional(DirectionalLight {
+                colour: Vec3::from(l.colour),
+                direction,
+                intensity: l.intensity,
+                ortho,
+                shadow_pos_mult,
+                shading_position: position,
+            }))
+        }
+        LightKindFile::Spot => {
+            only(
+                "spot",
+                &[
+                    ("angle", l.angle.is_some()),
+                    ("direction", l.direction.is_some()),
+                    ("shadow_pos_mult", l.shadow_pos_mult.is_some()),
+                    ("ortho", l.ortho.is_some()),
+                ],
+            )?;
+            let need = |name: &str| bad(&format!("light.{name}"), "a spot light needs it".into());
+            let position = position.ok_or_else(|| need("position"))?;
+            let target = target.ok_or_else(|| need("target"))?;
+            let (fov, near, far) = (
+                l.fov.ok_or_else(|| need("fov"))?,
+                l.near.ok_or_else(|| need("near"))?,
+                l.far.ok_or_else(|| need("far"))?,
+            );
+            finite("light.fov", &[fov, near, far])?;
+            if (target - position).length() < 1e-6 {
+                return Err(bad(
+                    "light.target",
+                    "must differ from light.position".into(),
+                ));
+            }
+            if !(fov > 0.0 && fov < 180.0) {
+                return Err(bad(
+                    "light.fov",
+                    format!("{fov}: expected degrees between 0 and 180"),
+                ));
+            }
+            if !(near > 0.0 && near < far) {
+                return Err(bad(
+                    "light",
+                    format!("near = {near}, far = {far}: expected 0 < near < far"),
+                ));
+            }
+            Ok(Light::Spot(SpotLight {
+                colour: Vec3::from(l.colour),
+                intensity: l.intensity,
+                position,
+                target,
+                up,
+                fov,
+                near,
+                far,
+            }))
+        }
+    }
 }

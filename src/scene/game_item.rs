@@ -24,8 +24,8 @@ pub struct GameItem {
     pub position: Vec3,
     /// Degrees, applied as the book does: see [`Transformation::model`].
     pub rotation: Vec3,
-    /// Uniform scale.
-    pub scale: f32,
+    /// Scale per axis (the book's items scale uniformly).
+    pub scale: Vec3,
     pub material: Material,
     /// Degrees added to `rotation` per update (the DummyGame's cube turns 0.5 about Y).
     pub spin: Vec3,

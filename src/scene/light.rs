@@ -1,10 +1,13 @@
-//! `DirectionalLight` and `OrthoCoords` ("Shadows": the light's ortho box and
-//! `shadowPosMult`), and the light's view and projection matrices.
+//! Lights and their shadow cameras. `DirectionalLight` and `OrthoCoords` are the book's
+//! ("Shadows": the light's ortho box and `shadowPosMult`); `SpotLight` is the positional
+//! light with a perspective shadow map of the slides, the blog and LearnOpenGL's
+//! "orthographic vs perspective" section.
 
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::LightView;
+use crate::reference::LightKind;
+use crate::settings::{LightProjection, LightView, ShadowSettings};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -45,6 +48,9 @@ pub struct DirectionalLight {
     pub ortho: OrthoCoords,
     /// Where the shadow "camera" sits: `direction * shadow_pos_mult`.
     pub shadow_pos_mult: f32,
+    /// LearnOpenGL shades with a light *position* while its shadow map is orthographic;
+    /// when set, shading uses the direction from each fragment to this point.
+    pub shading_position: Option<Vec3>,
 }
 
 impl DirectionalLight {
@@ -81,11 +87,7 @@ impl DirectionalLight {
                 );
                 Transformation::light_view(self.position(), rotation)
             }
-            LightView::LookAt => {
-                // Keep "up" away from the direction so the basis never degenerates.
-                let up = if d.y.abs() < 0.99 { Vec3::Y } else { Vec3::Z };
-                Mat4::look_at_rh(self.position(), self.position() - d, up)
-            }
+            LightView::LookAt => look_at(self.position(), self.position() - d, None),
         }
     }
 
@@ -94,4 +96,198 @@ impl DirectionalLight {
         let o = &self.ortho;
         Transformation::ortho(o.left, o.right, o.bottom, o.top, o.near, o.far)
     }
+}
+
+/// A light at a point shining towards a target, with a perspective shadow map whose field of
+/// view is the cone (the slides' and the blog's light "camera").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpotLight {
+    pub colour: Vec3,
+    pub intensity: f32,
+    pub position: Vec3,
+    pub target: Vec3,
+    /// The up vector of the shadow camera (the slides use +Z); `None` picks one.
+    pub up: Option<Vec3>,
+    /// Full cone angle and the shadow frustum's vertical field of view, degrees.
+    pub fov: f32,
+    pub near: f32,
+    pub far: f32,
+}
+
+/// A scene's light.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Light {
+    Directional(DirectionalLight),
+    Spot(SpotLight),
+}
+
+/// How the shading sees the light.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shading {
+    /// The same direction (towards the light) everywhere.
+    Direction(Vec3),
+    /// From each fragment to this point; `cone` = (cos of the half angle, axis) for spots.
+    Position {
+        position: Vec3,
+        cone: Option<(f32, Vec3)>,
+    },
+}
+
+/// The light's camera for the depth pass, as the settings ask for it.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadowView {
+    pub view: Mat4,
+    pub projection: Mat4,
+    /// Perspective projections need the divide by w (and linearising for display).
+    pub perspective: bool,
+    pub eye: Vec3,
+    pub near: f32,
+    pub far: f32,
+    /// The size of one shadow-map texel in world units, at the target for perspective maps.
+    pub texel_world: f32,
+    /// The same light for the exact reference: parallel rays for an orthographic map,
+    /// rays to the eye for a perspective one.
+    pub reference: LightKind,
+}
+
+impl Light {
+    pub fn colour(&self) -> Vec3 {
+        match self {
+            Light::Directional(l) => l.colour,
+            Light::Spot(l) => l.colour,
+        }
+    }
+
+    pub fn intensity(&self) -> f32 {
+        match self {
+            Light::Directional(l) => l.intensity,
+            Light::Spot(l) => l.intensity,
+        }
+    }
+
+    /// The directional light, if this is one.
+    pub fn as_directional(&self) -> Option<&DirectionalLight> {
+        match self {
+            Light::Directional(l) => Some(l),
+            Light::Spot(_) => None,
+        }
+    }
+
+    /// The directional light, if this is one (the DummyGame's angle keys need it).
+    pub fn as_directional_mut(&mut self) -> Option<&mut DirectionalLight> {
+        match self {
+            Light::Directional(l) => Some(l),
+            Light::Spot(_) => None,
+        }
+    }
+
+    /// A short description for titles and reports.
+    pub fn describe(&self) -> String {
+        match self {
+            Light::Directional(l) if l.direction.x == 0.0 => {
+                format!("light {:.1} deg", l.angle_deg())
+            }
+            Light::Directional(l) => format!("light towards {:.2}", l.direction),
+            Light::Spot(l) => format!("spot at {:.1}", l.position),
+        }
+    }
+
+    pub fn shading(&self) -> Shading {
+        match self {
+            Light::Directional(l) => match l.shading_position {
+                Some(position) => Shading::Position {
+                    position,
+                    cone: None,
+                },
+                None => Shading::Direction(l.direction.normalize()),
+            },
+            Light::Spot(l) => Shading::Position {
+                position: l.position,
+                cone: Some((
+                    (l.fov.to_radians() * 0.5).cos(),
+                    (l.target - l.position).normalize_or_zero(),
+                )),
+            },
+        }
+    }
+
+    /// The depth pass' camera. A directional light with `LightProjection::Perspective`
+    /// becomes a point-like light at its shadow position looking at the origin
+    /// (LearnOpenGL's "orthographic vs perspective" comparison).
+    pub fn shadow_view(&self, settings: &ShadowSettings) -> ShadowView {
+        match (self, settings.light_projection) {
+            (Light::Directional(l), LightProjection::Ortho) => {
+                let o = &l.ortho;
+                ShadowView {
+                    view: l.view_matrix(settings.light_view),
+                    projection: l.projection_matrix(),
+                    perspective: false,
+                    eye: l.position(),
+                    near: o.near,
+                    far: o.far,
+                    texel_world: (o.right - o.left).max(o.top - o.bottom)
+                        / settings.map_size as f32,
+                    reference: LightKind::Directional {
+                        to_light: l.direction.normalize(),
+                    },
+                }
+            }
+            (Light::Directional(l), LightProjection::Perspective) => {
+                let eye = l.position();
+                let near = l.ortho.near.max(0.1);
+                let far = l.ortho.far.max(near * 2.0);
+                perspective_view(
+                    eye,
+                    eye - l.direction.normalize() * l.shadow_pos_mult,
+                    None,
+                    settings.perspective_fov,
+                    near,
+                    far,
+                    settings.map_size,
+                )
+            }
+            (Light::Spot(s), _) => perspective_view(
+                s.position,
+                s.target,
+                s.up,
+                s.fov,
+                s.near,
+                s.far,
+                settings.map_size,
+            ),
+        }
+    }
+}
+
+fn perspective_view(
+    eye: Vec3,
+    target: Vec3,
+    up: Option<Vec3>,
+    fov: f32,
+    near: f32,
+    far: f32,
+    map_size: u32,
+) -> ShadowView {
+    let distance = (target - eye).length().max(near);
+    ShadowView {
+        view: look_at(eye, target, up),
+        projection: Mat4::perspective_rh_gl(fov.to_radians(), 1.0, near, far),
+        perspective: true,
+        eye,
+        near,
+        far,
+        texel_world: 2.0 * distance * (fov.to_radians() * 0.5).tan() / map_size as f32,
+        reference: LightKind::Point { position: eye },
+    }
+}
+
+/// A right-handed look-at whose up vector never lines up with the view direction.
+pub fn look_at(eye: Vec3, target: Vec3, up: Option<Vec3>) -> Mat4 {
+    let d = (target - eye).normalize_or_zero();
+    let up = match up {
+        Some(u) if u.cross(d).length_squared() > 1e-6 => u,
+        _ if d.y.abs() < 0.99 => Vec3::Y,
+        _ => Vec3::Z,
+    };
+    Mat4::look_at_rh(eye, target, up)
 }

@@ -7,10 +7,11 @@ pub mod game_item;
 pub mod light;
 
 use glam::{Vec3, Vec4};
+use serde::{Deserialize, Serialize};
 
 pub use camera::Camera;
 pub use game_item::{GameItem, Material};
-pub use light::{DirectionalLight, OrthoCoords};
+pub use light::{DirectionalLight, Light, OrthoCoords, Shading, ShadowView, SpotLight};
 
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -21,15 +22,27 @@ use crate::settings::ShadowSettings;
 pub const BUILTIN_SCENES: &[(&str, &str)] =
     &[("dummy", include_str!("../../assets/scenes/dummy.toml"))];
 
+/// The lighting equation of the scene pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShadingModel {
+    /// The book's Phong: reflect the light about the normal, compare with the view.
+    #[default]
+    Phong,
+    /// LearnOpenGL's Blinn-Phong: the half vector between light and view.
+    BlinnPhong,
+}
+
 /// Everything drawn in a frame, on the CPU side. The renderer uploads `meshes` and `textures`
 /// once; items refer to them by index so one mesh can be drawn for many items.
 #[derive(Debug, Clone)]
 pub struct Scene {
     pub name: String,
     pub camera: Camera,
-    pub light: DirectionalLight,
+    pub light: Light,
     pub ambient: Vec3,
     pub specular_power: f32,
+    pub shading: ShadingModel,
     pub clear_colour: Vec4,
     /// The frame size the scene was made for (the window's initial size, `render`'s default).
     pub size: [u32; 2],
@@ -69,8 +82,15 @@ impl Scene {
     }
 
     /// Sets the DummyGame's light angle in degrees, clamped to [0, 180] as the book does.
-    pub fn set_light_angle(&mut self, angle_deg: f32) {
-        self.light.direction = DirectionalLight::direction_from_angle(angle_deg.clamp(0.0, 180.0));
+    /// Only a directional light has an angle; returns false for other lights.
+    pub fn set_light_angle(&mut self, angle_deg: f32) -> bool {
+        match self.light.as_directional_mut() {
+            Some(l) => {
+                l.direction = DirectionalLight::direction_from_angle(angle_deg.clamp(0.0, 180.0));
+                true
+            }
+            None => false,
+        }
     }
 
     /// All triangles of the items that cast shadows, in world space (for the reference).
