@@ -97,6 +97,74 @@ impl MeshData {
         mesh
     }
 
+    /// A UV sphere of radius 1 (the slides' sphere), `segments` around and `rings` from pole
+    /// to pole.
+    pub fn sphere(segments: u32, rings: u32) -> MeshData {
+        let mut mesh = MeshData::empty("sphere");
+        for r in 0..=rings {
+            let v = r as f32 / rings as f32;
+            let theta = v * std::f32::consts::PI;
+            for s in 0..=segments {
+                let u = s as f32 / segments as f32;
+                let phi = u * std::f32::consts::TAU;
+                let n = Vec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    -theta.sin() * phi.sin(),
+                );
+                mesh.positions.push(n.to_array());
+                mesh.normals.push(n.to_array());
+                mesh.tex_coords.push([u, 1.0 - v]);
+            }
+        }
+        let row = segments + 1;
+        for r in 0..rings {
+            for s in 0..segments {
+                let (a, b) = (r * row + s, (r + 1) * row + s);
+                // Counter-clockwise seen from outside; skip the degenerate pole triangles.
+                if r != 0 {
+                    mesh.indices.extend_from_slice(&[a, b, a + 1]);
+                }
+                if r != rings - 1 {
+                    mesh.indices.extend_from_slice(&[a + 1, b, b + 1]);
+                }
+            }
+        }
+        mesh
+    }
+
+    /// A gently hilly height field over [-1, 1]^2 with heights in about [-0.1, 0.1] (the
+    /// slides' terrain patch), `cells` x `cells` quads, facing +Y.
+    pub fn terrain(cells: u32) -> MeshData {
+        let mut mesh = MeshData::empty("terrain");
+        let h = |x: f32, z: f32| {
+            0.06 * (3.1 * x).sin() * (2.3 * z).cos() + 0.04 * (5.7 * x + 1.3 * z).sin()
+        };
+        let n = cells + 1;
+        for j in 0..n {
+            for i in 0..n {
+                let (x, z) = (
+                    -1.0 + 2.0 * i as f32 / cells as f32,
+                    -1.0 + 2.0 * j as f32 / cells as f32,
+                );
+                mesh.positions.push([x, h(x, z), z]);
+                mesh.tex_coords
+                    .push([i as f32 / cells as f32, j as f32 / cells as f32]);
+                mesh.normals.push([0.0; 3]);
+            }
+        }
+        for j in 0..cells {
+            for i in 0..cells {
+                let a = j * n + i;
+                // z grows towards the viewer: (a, a+n, a+1) is counter-clockwise from above.
+                mesh.indices
+                    .extend_from_slice(&[a, a + n, a + 1, a + 1, a + n, a + n + 1]);
+            }
+        }
+        mesh.compute_normals(0);
+        mesh
+    }
+
     fn empty(name: &str) -> MeshData {
         MeshData {
             name: name.to_string(),
@@ -302,15 +370,21 @@ mod tests {
 
     #[test]
     fn builtin_shapes_are_valid_and_wound_outward() {
-        for mesh in [MeshData::cube(), MeshData::plane(1.0)] {
+        let shapes = [
+            MeshData::cube(),
+            MeshData::plane(1.0),
+            MeshData::sphere(24, 12),
+            MeshData::terrain(16),
+        ];
+        for mesh in shapes {
             mesh.validate().unwrap();
             for (t, tri) in mesh.triangles().enumerate() {
                 let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize();
                 let i = mesh.indices[3 * t] as usize;
                 let stored = Vec3::from(mesh.normals[i]);
                 assert!(
-                    n.dot(stored) > 0.99,
-                    "{} triangle {t} winds inward",
+                    n.dot(stored) > 0.9,
+                    "{} triangle {t} winds inward (face normal against the stored one)",
                     mesh.name
                 );
             }

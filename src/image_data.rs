@@ -64,6 +64,35 @@ impl ImageData {
     }
 }
 
+impl ImageData {
+    /// A procedural wood-like texture (LearnOpenGL's floor is wood; we draw ours rather than
+    /// download one): warm planks with rings and a dark seam between boards.
+    pub fn wood(size: u32) -> ImageData {
+        let mut rgba = Vec::with_capacity((size * size * 4) as usize);
+        for y in 0..size {
+            for x in 0..size {
+                let (u, v) = (x as f32 / size as f32, y as f32 / size as f32);
+                let plank = (u * 4.0).floor();
+                let along = v + plank * 0.37;
+                let rings = ((u * 4.0).fract() * 9.0 + (along * std::f32::consts::TAU).sin() * 1.7)
+                    .sin()
+                    * 0.5
+                    + 0.5;
+                let grain = ((along * 90.0 + plank * 13.0).sin() * 0.5 + 0.5) * 0.15;
+                let seam = if (u * 4.0).fract() < 0.03 { 0.55 } else { 1.0 };
+                let t = (0.65 + 0.25 * rings - grain) * seam;
+                let c = |base: f32| (base * t * 255.0).clamp(0.0, 255.0) as u8;
+                rgba.extend_from_slice(&[c(0.78), c(0.55), c(0.33), 255]);
+            }
+        }
+        ImageData {
+            width: size,
+            height: size,
+            rgba,
+        }
+    }
+}
+
 /// Writes an 8-bit grey image as a PNG.
 pub fn save_grey_png(path: &Path, width: u32, height: u32, grey: &[u8]) -> Result<()> {
     save_png(path, width, height, image::ColorType::L8, grey)

@@ -18,6 +18,7 @@ pub mod renderer;
 pub mod scene;
 pub mod settings;
 pub mod shaders;
+pub mod steps;
 pub mod transformation;
 
 pub use error::{Error, Result};

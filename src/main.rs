@@ -14,6 +14,7 @@ fn main() -> ExitCode {
         Some(app::cli::Command::Render(args)) => app::render::run(&args),
         Some(app::cli::Command::Compare(args)) => app::compare::run(&args),
         Some(app::cli::Command::Bench(args)) => app::bench::run(&args),
+        Some(app::cli::Command::Steps(args)) => app::gallery::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,7 +4,7 @@
 //! their -Z axis, clip-space depth in [-1, 1], angles in degrees, column vectors
 //! (`M * v`, so the rightmost matrix applies first).
 
-use glam::{Mat4, Vec3};
+use glam::{EulerRot, Mat4, Quat, Vec3};
 
 /// The book's `Transformation`, without its cached members: every matrix is a pure function.
 pub struct Transformation;
@@ -44,6 +44,13 @@ impl Transformation {
             * Mat4::from_rotation_y(-rotation_deg.y.to_radians())
             * Mat4::from_rotation_z(-rotation_deg.z.to_radians())
             * Mat4::from_scale(scale)
+    }
+
+    /// The book's angles (for [`Transformation::model`]) of a rotation given as a quaternion:
+    /// (rx, ry, rz) with rotateX(-rx) * rotateY(-ry) * rotateZ(-rz) equal to it.
+    pub fn book_angles(q: Quat) -> Vec3 {
+        let (a, b, c) = q.to_euler(EulerRot::XYZ);
+        -Vec3::new(a, b, c).map(f32::to_degrees)
     }
 
     /// Model-view matrix: view * model.

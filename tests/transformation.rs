@@ -207,3 +207,18 @@ fn dummy_light() -> DirectionalLight {
         .as_directional()
         .unwrap()
 }
+
+#[test]
+fn axis_angle_converts_to_the_book_angles() {
+    // LearnOpenGL's third cube: 60 degrees about normalize(1, 0, 1).
+    let q = glam::Quat::from_axis_angle(Vec3::new(1.0, 0.0, 1.0).normalize(), 60f32.to_radians());
+    let angles = Transformation::book_angles(q);
+    let got = Transformation::model(Vec3::ZERO, angles, Vec3::ONE);
+    let want = Mat4::from_quat(q);
+    let diff = (got - want)
+        .abs()
+        .to_cols_array()
+        .into_iter()
+        .fold(0.0f32, f32::max);
+    assert!(diff < 1e-5, "angles {angles} give a matrix off by {diff}");
+}

@@ -18,7 +18,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         .items
         .iter_mut()
         .for_each(|i| i.spin = glam::Vec3::ZERO);
-    let base = args.settings.apply(&scene.shadow);
+    let base = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
     std::fs::create_dir_all(dir)

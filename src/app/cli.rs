@@ -3,7 +3,10 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shadowmap::settings::{BeyondFar, BiasMode, Cull, DepthFormat, Filter, LightView, Wrap};
+use shadowmap::settings::{
+    BeyondFar, BiasMode, Cull, DepthFormat, Filter, LightProjection, LightView, Wrap,
+};
+use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
 
 #[derive(Parser, Debug)]
@@ -35,6 +38,8 @@ pub enum Command {
     Compare(CompareArgs),
     /// Sweep shadow settings: time each one and score it against the reference.
     Bench(BenchArgs),
+    /// Render every chapter step with its measured errors: PNGs and index.html.
+    Steps(StepsArgs),
 }
 
 /// Scene choice and the light angle, shared by every command.
@@ -49,11 +54,20 @@ pub struct SceneArgs {
     /// Frame size in pixels; default: the scene's size.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
+    /// Move the camera: world position X,Y,Z.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_negative_numbers = true)]
+    pub camera_position: Option<[f32; 3]>,
+    /// Turn the camera: PITCH,YAW,ROLL in degrees (positive pitch looks down).
+    #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_negative_numbers = true)]
+    pub camera_rotation: Option<[f32; 3]>,
 }
 
-/// Every shadow setting; unset flags keep the scene's values.
+/// Every shadow setting; unset flags keep the scene's (or the step's) values.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SettingsArgs {
+    /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
+    #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
+    pub step: Option<String>,
     /// Shadow-map side in texels (1 to the driver's maximum texture size).
     #[arg(long, value_name = "N")]
     pub map_size: Option<u32>,
@@ -90,6 +104,12 @@ pub struct SettingsArgs {
     /// How the light's view matrix is built.
     #[arg(long, value_enum)]
     pub light_view: Option<LightView>,
+    /// A directional light's shadow projection.
+    #[arg(long, value_enum)]
+    pub light_projection: Option<LightProjection>,
+    /// Field of view of a perspective shadow camera for a directional light (degrees).
+    #[arg(long, value_name = "DEG")]
+    pub perspective_fov: Option<f32>,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -116,6 +136,8 @@ impl Default for DemoArgs {
                 scene: "dummy".into(),
                 light_angle: None,
                 size: None,
+                camera_position: None,
+                camera_rotation: None,
             },
             settings: SettingsArgs::default(),
             exit_after_frames: None,
@@ -194,6 +216,18 @@ pub struct BenchArgs {
     pub target_error: Option<f64>,
 }
 
+#[derive(Args, Debug, Clone)]
+pub struct StepsArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Folder for the images and index.html (created if missing).
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+    /// Sub-pixel rays per side for the MAE reference.
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub supersample: u32,
+}
+
 /// Parses `WxH`, e.g. `1280x720`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
@@ -204,6 +238,19 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(err());
     }
     Ok((w, h))
+}
+
+/// Parses `A,B,C` into three finite numbers.
+pub fn parse_triple(s: &str) -> Result<[f32; 3], String> {
+    let err = || format!("'{s}': expected three numbers separated by commas, like 0,10,14");
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| err()))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [a, b, c] if v.iter().all(|x| x.is_finite()) => Ok([a, b, c]),
+        _ => Err(err()),
+    }
 }
 
 /// Parses `A,B` into two numbers, e.g. `1.1,4`.
@@ -219,6 +266,12 @@ impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
         let mut scene = Scene::load(&self.scene)?;
+        if let Some(p) = self.camera_position {
+            scene.camera.position = p.into();
+        }
+        if let Some(r) = self.camera_rotation {
+            scene.camera.rotation = r.into();
+        }
         if let Some(a) = self.light_angle {
             if !a.is_finite() {
                 return Err(shadowmap::Error::Invalid(format!(
@@ -243,8 +296,12 @@ impl SceneArgs {
 
 impl SettingsArgs {
     /// The scene's settings with the given flags applied.
-    pub fn apply(&self, base: &ShadowSettings) -> ShadowSettings {
-        let mut s = *base;
+    /// The scene's settings, then the step's preset, then the flags.
+    pub fn apply(&self, scene: &Scene) -> shadowmap::Result<ShadowSettings> {
+        let mut s = match &self.step {
+            Some(step) => steps::settings_for(scene, step)?,
+            None => scene.shadow,
+        };
         macro_rules! set {
             ($($f:ident),*) => { $( if let Some(v) = self.$f { s.$f = v; } )* };
         }
@@ -260,8 +317,10 @@ impl SettingsArgs {
             cull,
             wrap,
             beyond_far,
-            light_view
+            light_view,
+            light_projection,
+            perspective_fov
         );
-        s
+        Ok(s)
     }
 }

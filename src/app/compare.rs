@@ -12,7 +12,7 @@ use super::cli::CompareArgs;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene.shadow);
+    let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
     std::fs::create_dir_all(dir)

@@ -10,7 +10,7 @@ use shadowmap::engine::window_context::WindowContext;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
-use shadowmap::{Error, Renderer, Result, Scene, ShadowSettings, Target};
+use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, WindowEvent};
@@ -34,7 +34,7 @@ const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 
 pub fn run(args: &DemoArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene.shadow);
+    let settings = args.settings.apply(&scene)?;
     if args.no_animation {
         scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
     }
@@ -71,6 +71,12 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         last_title: Instant::now() - Duration::from_secs(1),
         screenshot_requested: false,
         screenshots: 0,
+        step: args
+            .settings
+            .step
+            .as_deref()
+            .and_then(steps::get)
+            .map(|s| s.name),
     };
     event_loop
         .run_app(&mut demo)
@@ -137,9 +143,61 @@ struct Demo {
     last_title: Instant,
     screenshot_requested: bool,
     screenshots: u32,
+    /// The chapter step shown (`None` = the scene's own settings).
+    step: Option<&'static str>,
 }
 
+/// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
+const STEP_KEYS: [KeyCode; 12] = [
+    KeyCode::Digit1,
+    KeyCode::Digit2,
+    KeyCode::Digit3,
+    KeyCode::Digit4,
+    KeyCode::Digit5,
+    KeyCode::Digit6,
+    KeyCode::Digit7,
+    KeyCode::Digit8,
+    KeyCode::Digit9,
+    KeyCode::Digit0,
+    KeyCode::Minus,
+    KeyCode::Equal,
+];
+
 impl Demo {
+    /// Switches to a chapter step (or back to the scene's settings with `None`).
+    fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
+        let settings = match step {
+            Some(name) => steps::settings_for(&self.scene, name),
+            None => self.args.settings.apply(&self.scene),
+        };
+        let result = settings.and_then(|s| {
+            if let Some(r) = &mut self.running {
+                r.renderer.set_settings(&s)?;
+            }
+            self.settings = s;
+            Ok(())
+        });
+        match result {
+            Ok(()) => {
+                self.step = step;
+                self.last_title = Instant::now() - Duration::from_secs(1);
+            }
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    /// Shows the shadow map instead of the scene, or the scene again.
+    fn toggle_depth_map(&mut self, event_loop: &ActiveEventLoop) {
+        let mut s = self.settings;
+        s.show_depth_map = !s.show_depth_map;
+        if let Some(r) = &mut self.running {
+            if let Err(e) = r.renderer.set_settings(&s) {
+                return self.fail(event_loop, e);
+            }
+        }
+        self.settings = s;
+    }
+
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
         self.error.get_or_insert(e);
         self.running = None;
@@ -247,8 +305,9 @@ impl Demo {
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
             running.context.window().set_title(&format!(
-                "shadowmap: {} | {} | {} | {:.2} ms ({}x{})",
+                "shadowmap: {} | step {} | {} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
+                self.step.unwrap_or("(scene)"),
                 self.scene.light.describe(),
                 self.settings.summary(),
                 self.frame_ms,
@@ -302,6 +361,16 @@ impl ApplicationHandler for Demo {
                         match code {
                             KeyCode::Escape => event_loop.exit(),
                             KeyCode::F12 if !event.repeat => self.screenshot_requested = true,
+                            KeyCode::Backspace if !event.repeat => {
+                                self.select_step(event_loop, None)
+                            }
+                            KeyCode::KeyM if !event.repeat => self.toggle_depth_map(event_loop),
+                            _ if !event.repeat => {
+                                if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
+                                    let name = steps::STEPS.get(i).map(|s| s.name);
+                                    self.select_step(event_loop, name);
+                                }
+                            }
                             _ => {}
                         }
                         self.keys.insert(code);

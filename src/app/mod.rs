@@ -4,5 +4,6 @@ pub mod bench;
 pub mod cli;
 pub mod compare;
 pub mod demo;
+pub mod gallery;
 pub mod plot;
 pub mod render;

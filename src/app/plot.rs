@@ -34,12 +34,12 @@ pub fn pareto_png(path: &Path, title: &str, rows: &[BenchRow]) -> Result<()> {
             .margin(15)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            .build_cartesian_2d(x_min..x_max, (y_min..y_max).log_scale())
+            .build_cartesian_2d((x_min..x_max).log_scale(), (y_min..y_max).log_scale())
             .map_err(|e| err(&e))?;
         chart
             .configure_mesh()
-            .x_desc("wall time per frame, median (ms, glFinish)")
-            .y_desc("misclassified receiver pixels (%), log")
+            .x_desc("wall time per frame, median (ms, glFinish), log")
+            .y_desc("misclassified receiver pixels (%), log; 0 drawn at the bottom")
             .label_style(("sans-serif", 14))
             .draw()
             .map_err(|e| err(&e))?;

@@ -12,7 +12,7 @@ use super::cli::RenderArgs;
 pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene.shadow);
+    let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
     let outputs = Outputs {

@@ -9,12 +9,13 @@ use serde::Deserialize;
 
 use super::{
     Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, Scene, ShadingModel,
-    SpotLight,
+    SpotLight, StepContext,
 };
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
-use crate::settings::ShadowSettings;
+use crate::settings::{ShadowSettings, Wrap};
+use crate::transformation::Transformation;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -35,8 +36,29 @@ struct SceneFile {
     light: LightFile,
     #[serde(default)]
     shadow: ShadowSettings,
+    #[serde(default)]
+    steps: StepsFile,
     #[serde(default, rename = "item")]
     items: Vec<ItemFile>,
+}
+
+/// What the chapter steps need from the tutorial behind the scene.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct StepsFile {
+    /// The tutorial's constant bias (the book 0.05, LearnOpenGL 0.005).
+    bias: f32,
+    /// The wrap mode the chapter starts with (LearnOpenGL starts with REPEAT).
+    start_wrap: Wrap,
+}
+
+impl Default for StepsFile {
+    fn default() -> Self {
+        StepsFile {
+            bias: 0.05,
+            start_wrap: Wrap::ClampToEdge,
+        }
+    }
 }
 
 fn default_size() -> [u32; 2] {
@@ -83,6 +105,14 @@ struct LightFile {
     far: Option<f32>,
 }
 
+#[derive(Debug, Deserialize, Default, Clone, Copy, PartialEq, Eq, Hash)]
+#[serde(rename_all = "kebab-case")]
+enum Winding {
+    #[default]
+    Ccw,
+    Cw,
+}
+
 /// A uniform scale or one per axis.
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
@@ -117,6 +147,13 @@ struct ItemFile {
     position: [f32; 3],
     #[serde(default)]
     rotation: [f32; 3],
+    /// Instead of `rotation`: turn `rotation_angle` degrees about this axis (LearnOpenGL's
+    /// third cube), converted to the book's angles.
+    rotation_axis: Option<[f32; 3]>,
+    rotation_angle: Option<f32>,
+    /// "ccw" (default) or "cw": LearnOpenGL's floor is wound clockwise on purpose.
+    #[serde(default)]
+    winding: Winding,
     #[serde(default = "unit_scale")]
     scale: ScaleFile,
     #[serde(default = "white")]
@@ -230,7 +267,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         .map_err(|e| Error::file(source, e.to_string()))?;
 
     let mut meshes: Vec<MeshData> = Vec::new();
-    let mut mesh_ids: HashMap<(String, u32), usize> = HashMap::new();
+    let mut mesh_ids: HashMap<(String, u32, Winding), usize> = HashMap::new();
     let mut textures: Vec<ImageData> = Vec::new();
     let mut texture_ids: HashMap<PathBuf, usize> = HashMap::new();
     let mut items = Vec::new();
@@ -241,6 +278,32 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         finite(&field("colour"), &item.colour)?;
         finite(&field("spin"), &item.spin)?;
         finite(&field("reflectance"), &[item.reflectance])?;
+        let rotation = match (item.rotation_axis, item.rotation_angle) {
+            (None, None) => Vec3::from(item.rotation),
+            (Some(axis), Some(angle)) => {
+                finite(&field("rotation_axis"), &axis)?;
+                finite(&field("rotation_angle"), &[angle])?;
+                if item.rotation != [0.0; 3] {
+                    return Err(bad(
+                        &field("rotation"),
+                        "give either `rotation` or `rotation_axis` with `rotation_angle`".into(),
+                    ));
+                }
+                let axis = Vec3::from(axis).try_normalize().ok_or_else(|| {
+                    bad(
+                        &field("rotation_axis"),
+                        format!("{axis:?}: expected a non-zero vector"),
+                    )
+                })?;
+                Transformation::book_angles(glam::Quat::from_axis_angle(axis, angle.to_radians()))
+            }
+            _ => {
+                return Err(bad(
+                    &field("rotation_axis"),
+                    "`rotation_axis` and `rotation_angle` go together".into(),
+                ))
+            }
+        };
         let scale = item.scale.vec();
         if !scale.is_finite() || scale.min_element() <= 0.0 {
             let shown = match item.scale {
@@ -258,19 +321,21 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                 format!("{}: expected a finite number > 0", item.tiles),
             ));
         }
-        let key = (item.mesh.clone(), item.tiles.to_bits());
+        let key = (item.mesh.clone(), item.tiles.to_bits(), item.winding);
         let mesh = match mesh_ids.get(&key) {
             Some(&id) => id,
             None => {
                 let data = match item.mesh.as_str() {
                     "cube" => MeshData::cube(),
                     "plane" => MeshData::plane(item.tiles),
+                    "sphere" => MeshData::sphere(48, 24),
+                    "terrain" => MeshData::terrain(64),
                     path => {
                         let base = base.ok_or_else(|| {
                             bad(
                                 &field("mesh"),
                                 format!(
-                                    "'{path}': built-in scenes only use the meshes cube and plane"
+                                    "'{path}': built-in scenes only use the built-in meshes (cube, plane, sphere, terrain)"
                                 ),
                             )
                         })?;
@@ -278,18 +343,30 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                             .map_err(|e| bad(&field("mesh"), e.to_string()))?
                     }
                 };
-                meshes.push(data);
+                meshes.push(match item.winding {
+                    Winding::Ccw => data,
+                    Winding::Cw => data.flip_winding(),
+                });
                 mesh_ids.insert(key, meshes.len() - 1);
                 meshes.len() - 1
             }
         };
         let texture = match &item.texture {
             None => None,
+            Some(t) if t == "wood" => Some(match texture_ids.get(Path::new("<wood>")) {
+                Some(&id) => id,
+                None => {
+                    textures.push(ImageData::wood(256));
+                    texture_ids.insert(PathBuf::from("<wood>"), textures.len() - 1);
+                    textures.len() - 1
+                }
+            }),
             Some(t) => {
                 let base = base.ok_or_else(|| {
                     bad(
                         &field("texture"),
-                        "built-in scenes have no texture files".into(),
+                        "built-in scenes have no texture files (the built-in texture is \"wood\")"
+                            .into(),
                     )
                 })?;
                 let path = base.join(t);
@@ -310,7 +387,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             name: item.name.unwrap_or_else(|| format!("item{i}")),
             mesh,
             position: Vec3::from(item.position),
-            rotation: Vec3::from(item.rotation),
+            rotation,
             scale,
             material: Material {
                 colour: Vec4::from(item.colour),
@@ -333,6 +410,10 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         camera: file.camera,
         light,
         shading: file.shading,
+        steps: StepContext {
+            bias: file.steps.bias,
+            start_wrap: file.steps.start_wrap,
+        },
         ambient: Vec3::from(file.ambient),
         specular_power: file.specular_power,
         clear_colour: Vec3::from(file.clear_colour).extend(1.0),

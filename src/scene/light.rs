@@ -234,7 +234,10 @@ impl Light {
             }
             (Light::Directional(l), LightProjection::Perspective) => {
                 let eye = l.position();
-                let near = l.ortho.near.max(0.1);
+                // The ortho box may start behind the light (the book's near is -1); a
+                // perspective frustum needs a positive near, and at least 1 unit keeps its
+                // depth precision usable (LearnOpenGL's comparison uses near 1).
+                let near = l.ortho.near.max(1.0);
                 let far = l.ortho.far.max(near * 2.0);
                 perspective_view(
                     eye,

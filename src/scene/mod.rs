@@ -19,8 +19,18 @@ use crate::image_data::ImageData;
 use crate::settings::ShadowSettings;
 
 /// The built-in scenes, each also a file under `assets/scenes/`.
-pub const BUILTIN_SCENES: &[(&str, &str)] =
-    &[("dummy", include_str!("../../assets/scenes/dummy.toml"))];
+pub const BUILTIN_SCENES: &[(&str, &str)] = &[
+    ("dummy", include_str!("../../assets/scenes/dummy.toml")),
+    (
+        "learnopengl",
+        include_str!("../../assets/scenes/learnopengl.toml"),
+    ),
+    ("slides", include_str!("../../assets/scenes/slides.toml")),
+    (
+        "playground",
+        include_str!("../../assets/scenes/playground.toml"),
+    ),
+];
 
 /// The lighting equation of the scene pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -51,6 +61,17 @@ pub struct Scene {
     pub textures: Vec<ImageData>,
     /// The scene's own shadow settings (the chapter's configuration); flags override them.
     pub shadow: ShadowSettings,
+    /// What the chapter steps take from the scene's tutorial.
+    pub steps: StepContext,
+}
+
+/// The tutorial-specific numbers the chapter steps use ([`crate::steps`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepContext {
+    /// The tutorial's constant bias (the book 0.05, LearnOpenGL 0.005).
+    pub bias: f32,
+    /// The wrap mode its chapter starts with.
+    pub start_wrap: crate::settings::Wrap,
 }
 
 impl Scene {

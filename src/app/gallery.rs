@@ -1,0 +1,157 @@
+//! `shadowmap steps`: every chapter step rendered and measured, as PNGs and an HTML page.
+
+use std::collections::hash_map::Entry;
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use shadowmap::compare::render_visibility;
+use shadowmap::compare::{compute_reference, CompareOptions, Reference};
+use shadowmap::engine::HeadlessContext;
+use shadowmap::image_data::ImageData;
+use shadowmap::reference::{error_image, Metrics};
+use shadowmap::settings::LightProjection;
+use shadowmap::{steps, Error, Result};
+
+use super::cli::StepsArgs;
+
+pub fn run(args: &StepsArgs) -> Result<()> {
+    let mut scene = args.scene.load()?;
+    scene
+        .items
+        .iter_mut()
+        .for_each(|i| i.spin = glam::Vec3::ZERO);
+    let (width, height) = args.scene.size(&scene);
+    let dir = &args.out_dir;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
+    let context = HeadlessContext::new()?;
+    let gl = context.gl();
+    let opts = CompareOptions {
+        width,
+        height,
+        supersample: args.supersample,
+        band: 1,
+    };
+    // One reference per kind of light projection (orthographic: parallel rays; perspective:
+    // rays to a point).
+    let mut references: HashMap<LightProjection, Reference> = HashMap::new();
+    let mut rows = Vec::new();
+    for (i, step) in steps::STEPS.iter().enumerate() {
+        let settings = steps::settings_for(&scene, step.name)?;
+        let frame = render_visibility(gl, &scene, &settings, width, height)?;
+        let image = format!("{:02}-{}.png", i + 1, step.name);
+        frame.colour.save_png(&dir.join(&image))?;
+        let mut metrics: Option<Metrics> = None;
+        let mut error_file = None;
+        if !settings.show_depth_map {
+            let reference = match references.entry(settings.light_projection) {
+                Entry::Occupied(e) => e.into_mut(),
+                Entry::Vacant(e) => e.insert(compute_reference(gl, &scene, &settings, &opts)?),
+            };
+            let vis = frame.visibility.as_deref().unwrap_or_default();
+            metrics = Some(reference.score(vis, 1));
+            let grey: Vec<u8> = frame
+                .colour
+                .rgba
+                .chunks_exact(4)
+                .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
+                .collect();
+            let err = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+            let name = format!("{:02}-{}-error.png", i + 1, step.name);
+            ImageData {
+                width,
+                height,
+                rgba: err.concat(),
+            }
+            .save_png(&dir.join(&name))?;
+            error_file = Some(name);
+        }
+        println!(
+            "{:>2} {:<22} {}",
+            i + 1,
+            step.name,
+            metrics
+                .as_ref()
+                .map(|m| format!(
+                    "false shadow {:.3}%, false light {:.3}%, MAE {}",
+                    m.false_shadow_rate * 100.0,
+                    m.false_light_rate * 100.0,
+                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
+                ))
+                .unwrap_or_else(|| "(depth map)".into())
+        );
+        rows.push((step, settings, image, error_file, metrics));
+    }
+    let mut html = String::new();
+    let _ = write!(
+        html,
+        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadowmap: the steps on {0}</title>\n\
+         <style>body{{font-family:sans-serif;margin:2em;max-width:1400px}} figure{{display:inline-block;\
+         vertical-align:top;width:620px;margin:0 1em 2em 0}} img{{width:300px;border:1px solid #ccc}}\
+         figcaption{{font-size:14px}} td,th{{padding:2px 8px;text-align:right}} .n{{text-align:left}}</style>\n\
+         </head><body>\n<h1>The chapter steps on the <code>{0}</code> scene</h1>\n\
+         <p>Each step adds one change to the one before (variants, marked, do not carry over). Left: the \
+         frame; right: its errors against the exact ray-traced reference (red = false shadow, blue = \
+         false light). Figures are fractions of the receiver pixels (geometry facing the light); MAE \
+         is against a {1}x{1} supersampled reference.</p>\n",
+        scene.name, args.supersample
+    );
+    html.push_str("<table><tr><th class=n>step</th><th>false shadow</th><th>false light</th><th>outside 1-px edge band</th><th>MAE</th></tr>\n");
+    for (step, _, _, _, m) in &rows {
+        match m {
+            Some(m) => {
+                let _ = writeln!(
+                    html,
+                    "<tr><td class=n>{}</td><td>{:.3}%</td><td>{:.3}%</td><td>{:.3}%</td><td>{}</td></tr>",
+                    step.name,
+                    m.false_shadow_rate * 100.0,
+                    m.false_light_rate * 100.0,
+                    m.misclassified_outside_band_rate * 100.0,
+                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    html,
+                    "<tr><td class=n>{}</td><td colspan=4>depth map</td></tr>",
+                    step.name
+                );
+            }
+        }
+    }
+    html.push_str("</table>\n");
+    for (i, (step, settings, image, error_file, m)) in rows.iter().enumerate() {
+        let figures = m
+            .as_ref()
+            .map(|m| {
+                format!(
+                    "false shadow {:.3}%, false light {:.3}%, MAE {}",
+                    m.false_shadow_rate * 100.0,
+                    m.false_light_rate * 100.0,
+                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
+                )
+            })
+            .unwrap_or_else(|| "no shadow test in this view".into());
+        let err = error_file
+            .as_ref()
+            .map(|f| format!("<img src=\"{f}\" alt=\"errors of {}\">", step.name))
+            .unwrap_or_default();
+        let _ = writeln!(
+            html,
+            "<figure><img src=\"{image}\" alt=\"{name}\">{err}<figcaption><b>{n}. {name}</b>{variant}<br>\
+             <i>Changed:</i> {change}<br><i>Look for:</i> {look}<br><i>Measured:</i> {figures}<br>\
+             <small>{summary}</small></figcaption></figure>",
+            n = i + 1,
+            name = step.name,
+            variant = if step.cumulative { "" } else { " (variant)" },
+            change = step.change,
+            look = step.look_for,
+            summary = settings.summary(),
+        );
+    }
+    html.push_str("</body></html>\n");
+    let path = dir.join("index.html");
+    std::fs::write(&path, html).map_err(|e| Error::file(&path, format!("cannot write: {e}")))?;
+    println!("wrote {} and {} images", path.display(), rows.len());
+    Ok(())
+}

@@ -1,0 +1,175 @@
+//! The chapters' steps as data: each step is a named preset of [`ShadowSettings`], built by
+//! applying every earlier step's change to the chapter's starting point. Nothing here draws;
+//! the renderer is the same for every step.
+
+use crate::error::{Error, Result};
+use crate::scene::{Scene, StepContext};
+use crate::settings::{BeyondFar, BiasMode, Cull, Filter, LightProjection, ShadowSettings, Wrap};
+
+/// One step of the chapters.
+pub struct Step {
+    pub name: &'static str,
+    /// What changed from the previous step.
+    pub change: &'static str,
+    /// What to look for in the picture.
+    pub look_for: &'static str,
+    /// Whether the step carries over into the following ones (variants do not).
+    pub cumulative: bool,
+    apply: fn(&mut ShadowSettings, &StepContext),
+}
+
+/// The steps in the chapters' order (LWJGL "Shadows", LearnOpenGL "Shadow Mapping", the
+/// slides' larger maps and perspective light).
+pub const STEPS: &[Step] = &[
+    Step {
+        name: "depth-map",
+        change: "The first pass only: the scene as the light sees it, stored as depth.",
+        look_for: "Dark is near the light. An orthographic map is shown raw; a perspective one \
+                   is linearised first.",
+        cumulative: false,
+        apply: |s, _| s.show_depth_map = true,
+    },
+    Step {
+        name: "no-bias",
+        change: "The plain comparison: a fragment is in shadow when it is farther from the \
+                 light than the depth stored for its texel.",
+        look_for: "Shadow acne: stripes of false shadow on every lit surface.",
+        cumulative: true,
+        apply: |s, _| s.bias_mode = BiasMode::None,
+    },
+    Step {
+        name: "bias",
+        change: "A constant bias is subtracted from the fragment's depth (the book 0.05, \
+                 LearnOpenGL 0.005).",
+        look_for: "The acne is gone; a large bias detaches shadows from their casters.",
+        cumulative: true,
+        apply: |s, c| {
+            s.bias_mode = BiasMode::Constant;
+            s.bias = c.bias;
+        },
+    },
+    Step {
+        name: "slope-bias",
+        change: "LearnOpenGL's slope-scaled bias: max(0.05 (1 - n.l), 0.005).",
+        look_for: "Surfaces facing the light get a small bias, grazing ones a larger one.",
+        cumulative: true,
+        apply: |s, _| {
+            s.bias_mode = BiasMode::Slope;
+            s.bias = 0.05;
+            s.bias_min = 0.005;
+        },
+    },
+    Step {
+        name: "cull-front",
+        change: "Front faces are culled in the depth pass, so closed objects store their back \
+                 faces.",
+        look_for: "Less peter panning at contacts; single-sided geometry still casts only if \
+                   wound to face away from the light.",
+        cumulative: true,
+        apply: |s, _| s.cull = Cull::Front,
+    },
+    Step {
+        name: "over-sampling-repeat",
+        change: "The shadow map wraps with REPEAT (LearnOpenGL's first steps).",
+        look_for: "False shadows outside the light's box: the map repeats across the floor.",
+        cumulative: false,
+        apply: |s, _| {
+            s.wrap = Wrap::Repeat;
+            s.beyond_far = BeyondFar::Shadowed;
+        },
+    },
+    Step {
+        name: "over-sampling-book",
+        change: "The book's choice: CLAMP_TO_EDGE and no test past the far plane.",
+        look_for: "Outside the box the edge texels repeat; beyond the far plane everything is \
+                   shadowed.",
+        cumulative: false,
+        apply: |s, _| {
+            s.wrap = Wrap::ClampToEdge;
+            s.beyond_far = BeyondFar::Shadowed;
+        },
+    },
+    Step {
+        name: "over-sampling",
+        change: "LearnOpenGL's fix: clamp to a border of depth 1 and treat z > 1 as lit.",
+        look_for: "Everything outside the light's box is lit.",
+        cumulative: true,
+        apply: |s, _| {
+            s.wrap = Wrap::ClampToBorder;
+            s.beyond_far = BeyondFar::Lit;
+        },
+    },
+    Step {
+        name: "pcf",
+        change: "Percentage-closer filtering: the average of a 3 x 3 block of comparisons.",
+        look_for: "Softer, less blocky shadow edges with intermediate values.",
+        cumulative: true,
+        apply: |s, _| s.filter = Filter::Pcf3x3,
+    },
+    Step {
+        name: "hi-res",
+        change: "A 4096 x 4096 shadow map (the slides go 2K, 4K, 8K).",
+        look_for: "Sharper edges: each texel covers a sixteenth of the area.",
+        cumulative: true,
+        apply: |s, _| s.map_size = s.map_size.max(4096),
+    },
+    Step {
+        name: "perspective",
+        change: "A perspective light projection from the shadow position (the slides and the \
+                 blog): a point-like light.",
+        look_for: "Shadows spread out with distance from the light.",
+        cumulative: false,
+        apply: |s, _| s.light_projection = LightProjection::Perspective,
+    },
+    Step {
+        name: "perspective-depth-map",
+        change: "The perspective light's depth map, linearised for display.",
+        look_for: "Without linearising, everything past the nearest surfaces would be white.",
+        cumulative: false,
+        apply: |s, _| {
+            s.light_projection = LightProjection::Perspective;
+            s.show_depth_map = true;
+        },
+    },
+];
+
+/// The chapter's starting point for a scene: its own settings with one lookup, no bias, no
+/// culling, an orthographic light and the wrap its tutorial starts with.
+pub fn start(scene: &Scene) -> ShadowSettings {
+    ShadowSettings {
+        filter: Filter::Single,
+        bias_mode: BiasMode::None,
+        cull: Cull::None,
+        wrap: scene.steps.start_wrap,
+        beyond_far: BeyondFar::Shadowed,
+        light_projection: LightProjection::Ortho,
+        show_depth_map: false,
+        normal_offset: 0.0,
+        polygon_offset: [0.0, 0.0],
+        ..scene.shadow
+    }
+}
+
+/// The settings of step `name` for `scene`: every earlier cumulative step, then this one.
+pub fn settings_for(scene: &Scene, name: &str) -> Result<ShadowSettings> {
+    let index = STEPS.iter().position(|s| s.name == name).ok_or_else(|| {
+        Error::Invalid(format!(
+            "unknown step '{name}': expected one of {}",
+            names().join(", ")
+        ))
+    })?;
+    let mut s = start(scene);
+    for step in STEPS[..index].iter().filter(|s| s.cumulative) {
+        (step.apply)(&mut s, &scene.steps);
+    }
+    (STEPS[index].apply)(&mut s, &scene.steps);
+    Ok(s)
+}
+
+pub fn names() -> Vec<&'static str> {
+    STEPS.iter().map(|s| s.name).collect()
+}
+
+pub fn get(name: &str) -> Option<&'static Step> {
+    STEPS.iter().find(|s| s.name == name)
+}
