@@ -5,6 +5,10 @@
 //   HW_PCF          1 = lookups through sampler2DShadow with LINEAR (hardware 2x2 PCF each)
 //   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
+// and with the scene's lighting (branches on uniforms would run for every pixel):
+//   LIGHT_POSITIONAL 0 = one direction for all fragments, 1 = from each fragment to a point
+//   SPOT_CONE        1 = a spot light's cone limits the light
+//   BLINN            0 = the book's Phong specular, 1 = LearnOpenGL's Blinn-Phong
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -31,10 +35,9 @@ struct Light
 {
     vec3 colour;
     float intensity;
-    int positional;   // 0: use direction; 1: from the fragment to position
     vec3 direction;   // towards the light
     vec3 position;
-    float coneCos;    // cos of the cone's half angle; below -1 = no cone
+    float coneCos;    // cos of the cone's half angle
     vec3 coneAxis;    // the way the spot points
 };
 
@@ -48,7 +51,6 @@ uniform Material material;
 uniform Light light;
 uniform vec3 ambientLight;
 uniform float specularPower;
-uniform int blinn;  // 0: the book's Phong, 1: LearnOpenGL's Blinn-Phong
 uniform float bias;
 uniform float biasMin;
 
@@ -60,12 +62,11 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, float intensity, vec3 po
     vec4 diffuse = baseColour * vec4(lightColour, 1.0) * intensity * diffuseFactor;
 
     vec3 cameraDirection = normalize(-position);
-    float specularAngle;
-    if (blinn == 1) {
-        specularAngle = dot(normal, normalize(toLightDir + cameraDirection));
-    } else {
-        specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
-    }
+#if BLINN
+    float specularAngle = dot(normal, normalize(toLightDir + cameraDirection));
+#else
+    float specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
+#endif
     float specularFactor = pow(max(specularAngle, 0.0), specularPower);
     vec4 specular = baseColour * intensity * specularFactor * material.reflectance
                   * vec4(lightColour, 1.0);
@@ -124,15 +125,18 @@ void main()
     vec4 baseColour = material.hasTexture == 1 ? texture(textureSampler, outTexCoord)
                                                : material.colour;
     vec3 normal = normalize(mvVertexNormal);
-    vec3 toLight = light.positional == 1 ? normalize(light.position - mvVertexPos)
-                                         : normalize(light.direction);
+#if LIGHT_POSITIONAL
+    vec3 toLight = normalize(light.position - mvVertexPos);
+#else
+    vec3 toLight = normalize(light.direction);
+#endif
     vec4 diffuseSpecular = calcLightColour(baseColour, light.colour, light.intensity,
                                            mvVertexPos, toLight, normal);
-    if (light.coneCos > -1.5) {
-        // A spot's cone, with a soft rim of about a degree.
-        float c = dot(-toLight, normalize(light.coneAxis));
-        diffuseSpecular *= smoothstep(light.coneCos, light.coneCos + 0.01, c);
-    }
+#if SPOT_CONE
+    // A spot's cone, with a soft rim of about a degree.
+    float c = dot(-toLight, normalize(light.coneAxis));
+    diffuseSpecular *= smoothstep(light.coneCos, light.coneCos + 0.01, c);
+#endif
     float shadow = calcShadow(mlightviewVertexPos, normal, toLight);
     // Ambient light is not shadowed.
     fragColor = clamp(baseColour * vec4(ambientLight, 1.0) + diffuseSpecular * shadow, 0.0, 1.0);

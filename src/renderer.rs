@@ -37,6 +37,8 @@ pub struct Renderer {
     settings: ShadowSettings,
     depth_program: ShaderProgram,
     scene_program: ShaderProgram,
+    /// The lighting the scene program was compiled for.
+    lighting: LightingKey,
     shadow_map: ShadowMap,
     meshes: Vec<Mesh>,
     textures: Vec<Texture>,
@@ -68,12 +70,8 @@ impl Renderer {
             .collect::<Result<Vec<_>>>()?;
         let depth_program =
             ShaderProgram::new(gl, &shaders::depth_vert(), &shaders::depth_frag(), &[])?;
-        let scene_program = ShaderProgram::new(
-            gl,
-            &shaders::scene_vert(),
-            &shaders::scene_frag(),
-            &settings.shader_defines(),
-        )?;
+        let lighting = LightingKey::of(scene);
+        let scene_program = scene_program(gl, settings, lighting)?;
         let depth_view_program = ShaderProgram::new(
             gl,
             &shaders::depth_view_vert(),
@@ -89,6 +87,7 @@ impl Renderer {
             settings: *settings,
             depth_program,
             scene_program,
+            lighting,
             shadow_map,
             meshes,
             textures,
@@ -108,12 +107,7 @@ impl Renderer {
     pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
         settings.validate(gl_limits(&self.gl).max_texture_size)?;
         if settings.shader_defines() != self.settings.shader_defines() {
-            self.scene_program = ShaderProgram::new(
-                &self.gl,
-                &shaders::scene_vert(),
-                &shaders::scene_frag(),
-                &settings.shader_defines(),
-            )?;
+            self.scene_program = scene_program(&self.gl, settings, self.lighting)?;
         }
         if settings.map_size != self.settings.map_size
             || settings.depth_format != self.settings.depth_format
@@ -232,7 +226,12 @@ impl Renderer {
 
     /// The main pass: draws the scene with the shadow map on texture unit 1. Call after
     /// [`Renderer::render_depth_map`].
-    pub fn render_scene(&self, scene: &Scene, target: Target) -> Result<()> {
+    pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        let lighting = LightingKey::of(scene);
+        if lighting != self.lighting {
+            self.scene_program = scene_program(&self.gl, &self.settings, lighting)?;
+            self.lighting = lighting;
+        }
         let Some(sv) = self.shadow_view else {
             return Err(Error::Invalid(
                 "render_scene before render_depth_map: there is no shadow map yet".into(),
@@ -263,12 +262,8 @@ impl Renderer {
         p.set_vec3("light.colour", light.colour());
         p.set_f32("light.intensity", light.intensity());
         match light.shading() {
-            Shading::Direction(d) => {
-                p.set_i32("light.positional", 0);
-                p.set_vec3("light.direction", view.transform_vector3(d));
-            }
+            Shading::Direction(d) => p.set_vec3("light.direction", view.transform_vector3(d)),
             Shading::Position { position, cone } => {
-                p.set_i32("light.positional", 1);
                 p.set_vec3("light.position", view.transform_point3(position));
                 let (cos, axis) = cone.unwrap_or((-2.0, Vec3::Z));
                 p.set_f32("light.coneCos", cos);
@@ -338,6 +333,41 @@ impl Renderer {
     pub fn finish(&self) {
         unsafe { self.gl.finish() };
     }
+}
+
+/// What the scene program is specialised for besides the shadow settings: branches on these
+/// would run for every pixel on a software rasteriser, so they are `#define`s.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct LightingKey {
+    positional: bool,
+    cone: bool,
+    blinn: bool,
+}
+
+impl LightingKey {
+    fn of(scene: &Scene) -> LightingKey {
+        let (positional, cone) = match scene.light.shading() {
+            Shading::Direction(_) => (false, false),
+            Shading::Position { cone, .. } => (true, cone.is_some()),
+        };
+        LightingKey {
+            positional,
+            cone,
+            blinn: scene.shading == ShadingModel::BlinnPhong,
+        }
+    }
+}
+
+fn scene_program(gl: &Gl, settings: &ShadowSettings, key: LightingKey) -> Result<ShaderProgram> {
+    let mut defines = settings.shader_defines();
+    for (name, on) in [
+        ("LIGHT_POSITIONAL", key.positional),
+        ("SPOT_CONE", key.cone),
+        ("BLINN", key.blinn),
+    ] {
+        defines.push((name.into(), u32::from(on).to_string()));
+    }
+    ShaderProgram::new(gl, &shaders::scene_vert(), &shaders::scene_frag(), &defines)
 }
 
 /// The matrix that carries normals: the inverse transpose of the upper 3 x 3, so normals
