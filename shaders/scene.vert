@@ -1,8 +1,9 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
 // Compiled with NORMAL_OFFSET 0/1 (see scene.frag for the other defines).
-// Lighting happens in view space, as in the book; world position and normal are passed on
-// for the G-buffer outputs that tests and the exact reference read.
+// Lighting happens in view space, as in the book; world position (relative to the camera,
+// so it keeps its precision far from the origin) and normal are passed on for the G-buffer
+// outputs that tests and the exact reference read.
 
 layout (location = 0) in vec3 position;
 layout (location = 1) in vec2 texCoord;
@@ -15,7 +16,7 @@ out vec4 mlightviewVertexPos;
 out vec3 worldPos;
 out vec3 worldNormal;
 
-uniform mat4 modelMatrix;
+uniform mat4 modelOriginMatrix;  // model, then minus the camera position (G-buffer outputs)
 uniform mat4 modelViewMatrix;
 uniform mat3 normalMatrix;       // inverse transpose of modelViewMatrix, for normals
 uniform mat3 worldNormalMatrix;  // inverse transpose of modelMatrix
@@ -40,6 +41,6 @@ void main()
     lightViewPos.xyz += normalize(mat3(modelLightViewMatrix) * vertexNormal) * normalOffset;
 #endif
     mlightviewVertexPos = orthoProjectionMatrix * lightViewPos;
-    worldPos = (modelMatrix * vec4(position, 1.0)).xyz;
+    worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
     worldNormal = normalize(worldNormalMatrix * vertexNormal);
 }

@@ -4,6 +4,8 @@
 
 use std::time::Instant;
 
+use glam::{DMat4, DVec3};
+
 use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
 use crate::frame::{render_frames, Frame};
@@ -36,21 +38,34 @@ pub struct Reference {
     /// CPU time to build the BVH and trace both references.
     pub trace_ms: f64,
     pub triangles: usize,
+    /// The G-buffer's positions and the traced triangles are relative to this point (the
+    /// camera), so the reference keeps its precision far from the world's origin.
+    pub origin: DVec3,
 }
 
-/// The light as the reference sees it: what the shadow map approximates (parallel rays for
-/// an orthographic map, rays to the light's eye for a perspective one).
-pub fn light_kind(scene: &Scene, settings: &ShadowSettings) -> LightKind {
-    scene.light.shadow_view(settings).reference
+/// The light as the reference sees it, relative to `origin`: what the shadow map
+/// approximates (parallel rays for an orthographic map, rays to the light's eye for a
+/// perspective one).
+pub fn light_kind(scene: &Scene, settings: &ShadowSettings, origin: DVec3) -> LightKind {
+    match scene.shadow_view(settings).reference {
+        LightKind::Point { position } => LightKind::Point {
+            position: (position.as_dvec3() - origin).as_vec3(),
+        },
+        directional => directional,
+    }
 }
 
-/// A BVH over the scene's shadow casters, in world space.
-pub fn caster_bvh(scene: &Scene) -> Bvh {
-    let triangles = scene
-        .world_triangles()
-        .into_iter()
-        .map(|[a, b, c]| Triangle { a, b, c })
-        .collect();
+/// A BVH over the scene's shadow casters, in world space minus `origin` (computed in double
+/// precision).
+pub fn caster_bvh(scene: &Scene, origin: DVec3) -> Bvh {
+    let mut triangles = Vec::new();
+    for item in scene.items.iter().filter(|i| i.casts_shadows) {
+        let m = DMat4::from_translation(-origin) * item.model_matrix64();
+        triangles.extend(scene.meshes[item.mesh].triangles().map(|t| {
+            let [a, b, c] = t.map(|p| m.transform_point3(p.as_dvec3()).as_vec3());
+            Triangle { a, b, c }
+        }));
+    }
     Bvh::build(triangles)
 }
 
@@ -98,8 +113,9 @@ pub fn compute_reference(
         None
     };
     let start = Instant::now();
-    let bvh = caster_bvh(scene);
-    let light = light_kind(scene, settings);
+    let origin = frame.origin;
+    let bvh = caster_bvh(scene, origin);
+    let light = light_kind(scene, settings, origin);
     let hard = reference_visibility(&bvh, &light, &gbuffer);
     let supersampled = hi
         .as_ref()
@@ -112,6 +128,7 @@ pub fn compute_reference(
         supersampled,
         trace_ms: start.elapsed().as_secs_f64() * 1000.0,
         triangles: bvh.triangle_count(),
+        origin,
     })
 }
 
@@ -128,6 +145,12 @@ fn gbuffer_of(frame: &Frame) -> Result<GBuffer> {
 }
 
 impl Reference {
+    /// The absolute world position of pixel `i` (NaN where no geometry).
+    pub fn world_position(&self, i: usize) -> DVec3 {
+        let p = self.gbuffer.positions[i];
+        DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) + self.origin
+    }
+
     /// Scores a rendered visibility image against this reference.
     pub fn score(&self, rendered: &[Option<f32>], band: usize) -> Metrics {
         compute_metrics(

@@ -1,6 +1,8 @@
 //! Headless frames: render a scene into an offscreen target and read back what was asked
 //! for (colour, shadow-test visibility, world positions and normals, the depth map).
 
+use glam::DVec3;
+
 use crate::engine::render_target::Outputs;
 use crate::engine::{Gl, RenderTarget};
 use crate::error::{Error, Result};
@@ -16,16 +18,33 @@ pub struct Frame {
     pub colour: ImageData,
     /// Per pixel: the shadow test's visibility where geometry was drawn.
     pub visibility: Option<Vec<Option<f32>>>,
-    /// World positions and normals (NaN where no geometry).
+    /// World positions relative to `origin`, and world normals (NaN where no geometry).
     pub positions: Option<Vec<[f32; 3]>>,
     pub normals: Option<Vec<[f32; 3]>>,
     /// The shadow map's size and its depth values (rows top to bottom).
     pub depth_map: (u32, Vec<f32>),
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
+    /// The camera position the G-buffer positions are relative to.
+    pub origin: DVec3,
 }
 
 impl Frame {
+    /// Absolute world positions (single precision; use `positions` + `origin` far from the
+    /// world's origin).
+    pub fn world_positions(&self) -> Option<Vec<[f32; 3]>> {
+        let o = self.origin;
+        self.positions.as_ref().map(|ps| {
+            ps.iter()
+                .map(|p| {
+                    (DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) + o)
+                        .as_vec3()
+                        .to_array()
+                })
+                .collect()
+        })
+    }
+
     /// The visibility as an RGBA image: grey 255 lit, 0 shadowed, alpha 0 where no geometry.
     pub fn visibility_image(&self) -> Option<ImageData> {
         let vis = self.visibility.as_ref()?;
@@ -134,5 +153,6 @@ pub fn render_frames(
         normals,
         depth_map: (size, depth),
         frame_ms,
+        origin: scene.camera.position.as_dvec3(),
     })
 }

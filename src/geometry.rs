@@ -62,6 +62,21 @@ impl MeshData {
         })
     }
 
+    /// The plane every vertex lies in, as (a point on it, its normal), if there is one:
+    /// such a mesh cannot shadow itself, nor anything on its lit side.
+    pub fn flat_plane(&self) -> Option<(Vec3, Vec3)> {
+        let first = self.triangles().next()?;
+        let n = (first[1] - first[0])
+            .cross(first[2] - first[0])
+            .try_normalize()?;
+        let (lo, hi) = self.bounds();
+        let scale = lo.abs().max(hi.abs()).max_element().max(1.0);
+        self.positions
+            .iter()
+            .all(|p| n.dot(Vec3::from(*p) - first[0]).abs() <= 1e-5 * scale)
+            .then_some((first[0], n))
+    }
+
     /// Axis-aligned bounds in model space.
     pub fn bounds(&self) -> (Vec3, Vec3) {
         self.positions.iter().fold(

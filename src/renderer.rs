@@ -1,7 +1,7 @@
 //! `Renderer`: the book's two-pass frame. `render_depth_map` draws the scene from the light
 //! into the shadow map; the main pass then draws it from the camera, sampling that map.
 
-use glam::{Mat3, Mat4, Vec3};
+use glam::{DMat4, Mat3, Mat4, Vec3};
 use glow::HasContext;
 
 use crate::engine::mesh::FullScreenTriangle;
@@ -156,7 +156,7 @@ impl Renderer {
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         let gl = &self.gl;
         self.shadow_map.bind_for_writing();
-        let sv = scene.light.shadow_view(&self.settings);
+        let sv = scene.shadow_view(&self.settings);
         self.shadow_view = Some(sv);
         let [factor, units] = self.settings.polygon_offset;
         unsafe {
@@ -190,7 +190,7 @@ impl Renderer {
                 .iter()
                 .filter(|i| i.mesh == mesh_id && i.casts_shadows);
             mesh.render_list(items, |item| {
-                let mlv = sv.view * item.model_matrix();
+                let mlv = (sv.view64 * item.model_matrix64()).as_mat4();
                 program.set_mat4("modelLightViewMatrix", &mlv);
             });
         }
@@ -241,7 +241,12 @@ impl Renderer {
         if let Some(t) = &self.timer {
             t.begin(SCENE_PASS);
         }
-        let view = scene.camera.view_matrix();
+        // View x model in double precision: far from the origin the two translations cancel,
+        // and in single precision their difference would lose its digits.
+        let view64 = scene.camera.view_matrix64();
+        let view = view64.as_mat4();
+        // World outputs are written relative to the camera for the same reason.
+        let origin = DMat4::from_translation(-scene.camera.position.as_dvec3());
         let p = &self.scene_program;
         p.bind();
         p.set_mat4(
@@ -264,7 +269,8 @@ impl Renderer {
         match light.shading() {
             Shading::Direction(d) => p.set_vec3("light.direction", view.transform_vector3(d)),
             Shading::Position { position, cone } => {
-                p.set_vec3("light.position", view.transform_point3(position));
+                let position = view64.transform_point3(position.as_dvec3()).as_vec3();
+                p.set_vec3("light.position", position);
                 let (cos, axis) = cone.unwrap_or((-2.0, Vec3::Z));
                 p.set_f32("light.coneCos", cos);
                 p.set_vec3("light.coneAxis", view.transform_vector3(axis));
@@ -276,13 +282,13 @@ impl Renderer {
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
-                let model = item.model_matrix();
-                let model_view = view * model;
-                p.set_mat4("modelMatrix", &model);
+                let model = item.model_matrix64();
+                let model_view = (view64 * model).as_mat4();
+                p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
                 p.set_mat4("modelViewMatrix", &model_view);
                 p.set_mat3("normalMatrix", &normal_matrix(&model_view));
-                p.set_mat3("worldNormalMatrix", &normal_matrix(&model));
-                p.set_mat4("modelLightViewMatrix", &(sv.view * model));
+                p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
+                p.set_mat4("modelLightViewMatrix", &(sv.view64 * model).as_mat4());
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
                 p.set_f32("material.reflectance", m.reflectance);
@@ -378,6 +384,7 @@ fn normal_matrix(m: &Mat4) -> Mat3 {
 
 /// Wrap mode and compare mode of the shadow map for the settings' filter.
 fn configure_sampling(shadow_map: &ShadowMap, settings: &ShadowSettings) {
+    let settings = settings.effective();
     let texture = shadow_map.depth_map_texture();
     texture.set_wrap(settings.wrap);
     texture.set_compare(settings.filter.hardware(), settings.filter.hardware());

@@ -153,6 +153,19 @@ pub enum LightProjection {
     Perspective,
 }
 
+/// Where a directional light's orthographic box comes from.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Fit {
+    /// The light's `OrthoCoords`, as the book sets them by hand.
+    #[default]
+    Manual,
+    /// Computed each frame from the casters and the receivers the camera can see.
+    Scene,
+}
+
 /// Every setting of the shadow pipeline. The defaults are the book's final configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -181,6 +194,11 @@ pub struct ShadowSettings {
     /// Draw the shadow map on the whole frame instead of the scene (the chapters' debug
     /// quad), linearised when the projection is perspective.
     pub show_depth_map: bool,
+    /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene.
+    pub fit: Fit,
+    /// With `fit = "scene"`: snap the box to whole texels so shadows hold still as the
+    /// camera moves.
+    pub snap: bool,
 }
 
 impl Default for ShadowSettings {
@@ -201,6 +219,8 @@ impl Default for ShadowSettings {
             light_projection: LightProjection::Ortho,
             perspective_fov: 45.0,
             show_depth_map: false,
+            fit: Fit::Manual,
+            snap: true,
         }
     }
 }
@@ -236,13 +256,18 @@ impl ShadowSettings {
 
     /// Checks values against each other and the driver's maximum texture size.
     pub fn validate(&self, max_texture_size: u32) -> crate::Result<()> {
-        let bad = |m: String| Err(crate::Error::Invalid(m));
         if self.map_size == 0 || self.map_size > max_texture_size {
-            return bad(format!(
+            return Err(crate::Error::Invalid(format!(
                 "shadow.map_size = {}: expected 1 to {max_texture_size} (the driver's maximum texture size)",
                 self.map_size
-            ));
+            )));
         }
+        self.validate_values()
+    }
+
+    /// Checks everything that needs no driver: finite biases, a sane field of view.
+    pub fn validate_values(&self) -> crate::Result<()> {
+        let bad = |m: String| Err(crate::Error::Invalid(m));
         for (name, v) in [
             ("bias", self.bias),
             ("bias_min", self.bias_min),
@@ -269,27 +294,38 @@ impl ShadowSettings {
         Ok(())
     }
 
+    /// The settings as the renderer applies them: a fitted box covers exactly what can be
+    /// shadowed, so lookups outside it (a border of depth 1) and beyond its far plane are lit.
+    pub fn effective(&self) -> ShadowSettings {
+        match self.fit {
+            Fit::Manual => *self,
+            Fit::Scene => ShadowSettings {
+                wrap: Wrap::ClampToBorder,
+                beyond_far: BeyondFar::Lit,
+                ..*self
+            },
+        }
+    }
+
     /// The `#define`s the scene shader is compiled with for these settings.
     pub fn shader_defines(&self) -> Vec<(String, String)> {
-        let bias_mode = match self.bias_mode {
+        let s = self.effective();
+        let bias_mode = match s.bias_mode {
             BiasMode::None => 0,
             BiasMode::Constant => 1,
             BiasMode::Slope => 2,
         };
         vec![
-            ("PCF_RADIUS".into(), self.filter.radius().to_string()),
-            (
-                "HW_PCF".into(),
-                u32::from(self.filter.hardware()).to_string(),
-            ),
+            ("PCF_RADIUS".into(), s.filter.radius().to_string()),
+            ("HW_PCF".into(), u32::from(s.filter.hardware()).to_string()),
             (
                 "NORMAL_OFFSET".into(),
-                u32::from(self.normal_offset != 0.0).to_string(),
+                u32::from(s.normal_offset != 0.0).to_string(),
             ),
             ("BIAS_MODE".into(), bias_mode.to_string()),
             (
                 "BEYOND_FAR_LIT".into(),
-                u32::from(self.beyond_far == BeyondFar::Lit).to_string(),
+                u32::from(s.beyond_far == BeyondFar::Lit).to_string(),
             ),
         ]
     }

@@ -100,8 +100,6 @@ fn scene_file_errors_name_the_line_or_field() {
             && e.contains("models/does_not_exist.obj: cannot read OBJ model"),
         "{e}"
     );
-    let e = load_err("map_size_zero.toml");
-    assert!(e.contains("shadow.map_size = 0: expected 1 to"), "{e}");
 }
 
 fn run(args: &[&str]) -> (bool, String, String) {

@@ -23,8 +23,8 @@ fn overhead_light_reference_is_exactly_the_footprint() {
     let scene = dummy(90.0);
     let r = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
     let (mut inside, mut outside) = (0, 0);
-    for (i, p) in r.gbuffer.positions.iter().enumerate() {
-        let p = Vec3::from(*p);
+    for i in 0..r.gbuffer.positions.len() {
+        let p = r.world_position(i).as_vec3();
         if p.y.is_nan() || (p.y + 1.0).abs() >= 1e-4 {
             continue; // not the plane
         }

@@ -24,6 +24,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     std::fs::create_dir_all(dir)
         .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
     let context = HeadlessContext::new()?;
+    args.settings.check(context.gl(), &scene, &base)?;
     let gl = context.gl();
     let max = gl_limits(gl).max_texture_size;
     let configs = bench::sweep(&base, args.quick, max);

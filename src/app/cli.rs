@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use shadowmap::settings::{
-    BeyondFar, BiasMode, Cull, DepthFormat, Filter, LightProjection, LightView, Wrap,
+    BeyondFar, BiasMode, Cull, DepthFormat, Filter, Fit, LightProjection, LightView, Wrap,
 };
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
@@ -110,6 +110,12 @@ pub struct SettingsArgs {
     /// Field of view of a perspective shadow camera for a directional light (degrees).
     #[arg(long, value_name = "DEG")]
     pub perspective_fov: Option<f32>,
+    /// A directional light's box: the scene file's by hand, or fitted to the scene each frame.
+    #[arg(long, value_enum)]
+    pub fit: Option<Fit>,
+    /// With --fit scene: snap the box to whole texels (true) or let it slide (false).
+    #[arg(long, value_name = "BOOL")]
+    pub snap: Option<bool>,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -295,6 +301,21 @@ impl SceneArgs {
 }
 
 impl SettingsArgs {
+    /// Checks the settings against the driver, naming where a bad value came from: the
+    /// flag, or the scene file.
+    pub fn check(
+        &self,
+        gl: &shadowmap::engine::Gl,
+        scene: &Scene,
+        settings: &ShadowSettings,
+    ) -> shadowmap::Result<()> {
+        let max = shadowmap::engine::gl_limits(gl).max_texture_size;
+        settings.validate(max).map_err(|e| match self.map_size {
+            Some(_) => shadowmap::Error::Invalid(format!("--map-size: {e}")),
+            None => shadowmap::Error::file(&scene.source, e.to_string()),
+        })
+    }
+
     /// The scene's settings with the given flags applied.
     /// The scene's settings, then the step's preset, then the flags.
     pub fn apply(&self, scene: &Scene) -> shadowmap::Result<ShadowSettings> {
@@ -319,7 +340,9 @@ impl SettingsArgs {
             beyond_far,
             light_view,
             light_projection,
-            perspective_fov
+            perspective_fov,
+            fit,
+            snap
         );
         Ok(s)
     }

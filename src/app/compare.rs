@@ -18,6 +18,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     std::fs::create_dir_all(dir)
         .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
     let context = HeadlessContext::new()?;
+    args.settings.check(context.gl(), &scene, &settings)?;
     let opts = CompareOptions {
         width,
         height,
@@ -52,7 +53,10 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     }
     .save_png(&dir.join("error.png"))?;
     let g = &c.reference.gbuffer;
-    for (name, data) in [("positions.npy", &g.positions), ("normals.npy", &g.normals)] {
+    let world: Vec<[f32; 3]> = (0..g.positions.len())
+        .map(|i| c.reference.world_position(i).as_vec3().to_array())
+        .collect();
+    for (name, data) in [("positions.npy", &world), ("normals.npy", &g.normals)] {
         let path = dir.join(name);
         write_npy_f32_hw3(&path, g.width, g.height, data)
             .map_err(|e| Error::file(&path, format!("cannot write: {e}")))?;

@@ -96,6 +96,7 @@ fn headless_fallback(
 ) -> Result<()> {
     let (w, h) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
+    args.settings.check(context.gl(), &scene, settings)?;
     let frame = render_frames(
         context.gl(),
         &mut scene,
@@ -209,6 +210,9 @@ impl Demo {
             .with_title("shadowmap")
             .with_inner_size(PhysicalSize::new(self.size.0.max(1), self.size.1.max(1)));
         let context = WindowContext::new(event_loop, attributes)?;
+        self.args
+            .settings
+            .check(context.gl(), &self.scene, &self.settings)?;
         let renderer = Renderer::new(context.gl(), &self.scene, &self.settings)?;
         Ok(Running { renderer, context })
     }

@@ -15,6 +15,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
+    args.settings.check(context.gl(), &scene, &settings)?;
     let outputs = Outputs {
         visibility: args.shadow_out.is_some(),
         gbuffer: false,

@@ -1,6 +1,6 @@
 //! `Camera`: the book's first-person camera (position plus pitch and yaw in degrees).
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::transformation::Transformation;
@@ -56,6 +56,15 @@ impl Camera {
 
     pub fn view_matrix(&self) -> Mat4 {
         Transformation::view(self.position, self.rotation)
+    }
+
+    /// The view matrix in double precision, so that view x model keeps its digits when the
+    /// scene sits far from the origin.
+    pub fn view_matrix64(&self) -> DMat4 {
+        let r = self.rotation.as_dvec3();
+        DMat4::from_rotation_x(r.x.to_radians())
+            * DMat4::from_rotation_y(r.y.to_radians())
+            * DMat4::from_translation(-self.position.as_dvec3())
     }
 
     pub fn projection_matrix(&self, width: u32, height: u32) -> Mat4 {

@@ -229,19 +229,11 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
     finite("specular_power", &[file.specular_power])?;
 
     let c = &file.camera;
-    finite(
-        "camera",
-        &[
-            c.position.x,
-            c.position.y,
-            c.position.z,
-            c.rotation.x,
-            c.rotation.y,
-            c.fov,
-            c.near,
-            c.far,
-        ],
-    )?;
+    finite("camera.position", &c.position.to_array())?;
+    finite("camera.rotation", &c.rotation.to_array())?;
+    finite("camera.fov", &[c.fov])?;
+    finite("camera.near", &[c.near])?;
+    finite("camera.far", &[c.far])?;
     if !(c.near > 0.0 && c.near < c.far) {
         return Err(bad(
             "camera",
@@ -262,8 +254,8 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
 
     let s = &file.shadow;
     finite("shadow", &[s.bias, s.bias_min])?;
-    // The driver's maximum is checked when the renderer is made; 65536 bounds a sane file.
-    s.validate(65536)
+    // map_size is checked against the driver's maximum once there is a driver.
+    s.validate_values()
         .map_err(|e| Error::file(source, e.to_string()))?;
 
     let mut meshes: Vec<MeshData> = Vec::new();
@@ -326,6 +318,12 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             Some(&id) => id,
             None => {
                 let data = match item.mesh.as_str() {
+                    "" => return Err(bad(
+                        &field("mesh"),
+                        "empty: expected a built-in mesh (cube, plane, sphere, terrain) or a path \
+                             to an OBJ file"
+                            .into(),
+                    )),
                     "cube" => MeshData::cube(),
                     "plane" => MeshData::plane(item.tiles),
                     "sphere" => MeshData::sphere(48, 24),
@@ -353,6 +351,12 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         };
         let texture = match &item.texture {
             None => None,
+            Some(t) if t.trim().is_empty() => {
+                return Err(bad(
+                    &field("texture"),
+                    "empty: expected a path to a PNG file (or the built-in \"wood\")".into(),
+                ))
+            }
             Some(t) if t == "wood" => Some(match texture_ids.get(Path::new("<wood>")) {
                 Some(&id) => id,
                 None => {
@@ -406,6 +410,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             .unwrap_or_else(|| "scene".into())
     });
     Ok(Scene {
+        source: source.to_path_buf(),
         name,
         camera: file.camera,
         light,
@@ -414,6 +419,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             bias: file.steps.bias,
             start_wrap: file.steps.start_wrap,
         },
+        fit_camera: None,
         ambient: Vec3::from(file.ambient),
         specular_power: file.specular_power,
         clear_colour: Vec3::from(file.clear_colour).extend(1.0),

@@ -1,7 +1,7 @@
 //! `GameItem` and `Material`: an instance of a mesh placed in the world (the book's
 //! `GameItem`), and how it is coloured.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{DMat4, Mat4, Vec3, Vec4};
 
 use crate::transformation::Transformation;
 
@@ -36,6 +36,16 @@ pub struct GameItem {
 impl GameItem {
     pub fn model_matrix(&self) -> Mat4 {
         Transformation::model(self.position, self.rotation, self.scale)
+    }
+
+    /// The model matrix in double precision (see `Camera::view_matrix64`).
+    pub fn model_matrix64(&self) -> DMat4 {
+        let r = self.rotation.as_dvec3();
+        DMat4::from_translation(self.position.as_dvec3())
+            * DMat4::from_rotation_x(-r.x.to_radians())
+            * DMat4::from_rotation_y(-r.y.to_radians())
+            * DMat4::from_rotation_z(-r.z.to_radians())
+            * DMat4::from_scale(self.scale.as_dvec3())
     }
 
     /// One fixed update of the animation (the book runs 30 per second).

@@ -3,7 +3,7 @@
 //! light with a perspective shadow map of the slides, the blog and LearnOpenGL's
 //! "orthographic vs perspective" section.
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::reference::LightKind;
@@ -87,7 +87,12 @@ impl DirectionalLight {
                 );
                 Transformation::light_view(self.position(), rotation)
             }
-            LightView::LookAt => look_at(self.position(), self.position() - d, None),
+            // A basis that stays finite and smooth for every direction, poles included.
+            LightView::LookAt => super::fit::light_view(
+                self.position().as_dvec3(),
+                super::fit::light_basis(d.as_dvec3()),
+            )
+            .as_mat4(),
         }
     }
 
@@ -137,6 +142,8 @@ pub enum Shading {
 #[derive(Debug, Clone, Copy)]
 pub struct ShadowView {
     pub view: Mat4,
+    /// The same view in double precision, for view x model far from the origin.
+    pub view64: DMat4,
     pub projection: Mat4,
     /// Perspective projections need the divide by w (and linearising for display).
     pub perspective: bool,
@@ -218,8 +225,10 @@ impl Light {
         match (self, settings.light_projection) {
             (Light::Directional(l), LightProjection::Ortho) => {
                 let o = &l.ortho;
+                let view = l.view_matrix(settings.light_view);
                 ShadowView {
-                    view: l.view_matrix(settings.light_view),
+                    view,
+                    view64: view.as_dmat4(),
                     projection: l.projection_matrix(),
                     perspective: false,
                     eye: l.position(),
@@ -272,8 +281,10 @@ fn perspective_view(
     map_size: u32,
 ) -> ShadowView {
     let distance = (target - eye).length().max(near);
+    let view = look_at(eye, target, up);
     ShadowView {
-        view: look_at(eye, target, up),
+        view,
+        view64: view.as_dmat4(),
         projection: Mat4::perspective_rh_gl(fov.to_radians(), 1.0, near, far),
         perspective: true,
         eye,
@@ -284,13 +295,17 @@ fn perspective_view(
     }
 }
 
-/// A right-handed look-at whose up vector never lines up with the view direction.
+/// A right-handed look-at. With an up vector (the slides' +Z) it is the usual look-at; when
+/// there is none, or it lines up with the view direction (where the usual look-at gives
+/// NaN), the basis comes from [`super::fit::light_basis`] and is finite everywhere.
 pub fn look_at(eye: Vec3, target: Vec3, up: Option<Vec3>) -> Mat4 {
     let d = (target - eye).normalize_or_zero();
-    let up = match up {
-        Some(u) if u.cross(d).length_squared() > 1e-6 => u,
-        _ if d.y.abs() < 0.99 => Vec3::Y,
-        _ => Vec3::Z,
-    };
-    Mat4::look_at_rh(eye, target, up)
+    match up {
+        Some(u) if u.normalize_or_zero().cross(d).length_squared() > 1e-6 => {
+            Mat4::look_at_rh(eye, target, u)
+        }
+        _ => {
+            super::fit::light_view(eye.as_dvec3(), super::fit::light_basis(-d.as_dvec3())).as_mat4()
+        }
+    }
 }

@@ -3,6 +3,7 @@
 
 pub mod camera;
 pub mod file;
+pub mod fit;
 pub mod game_item;
 pub mod light;
 
@@ -16,7 +17,7 @@ pub use light::{DirectionalLight, Light, OrthoCoords, Shading, ShadowView, SpotL
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
-use crate::settings::ShadowSettings;
+use crate::settings::{Fit, LightProjection, ShadowSettings};
 
 /// The built-in scenes, each also a file under `assets/scenes/`.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
@@ -48,6 +49,8 @@ pub enum ShadingModel {
 #[derive(Debug, Clone)]
 pub struct Scene {
     pub name: String,
+    /// The file the scene came from (`<built-in NAME>` for built-in scenes), for messages.
+    pub source: std::path::PathBuf,
     pub camera: Camera,
     pub light: Light,
     pub ambient: Vec3,
@@ -63,6 +66,9 @@ pub struct Scene {
     pub shadow: ShadowSettings,
     /// What the chapter steps take from the scene's tutorial.
     pub steps: StepContext,
+    /// The camera a fitted light box follows, when it should not be the viewing camera
+    /// (to watch or measure the fit from elsewhere).
+    pub fit_camera: Option<Camera>,
 }
 
 /// The tutorial-specific numbers the chapter steps use ([`crate::steps`]).
@@ -111,6 +117,51 @@ impl Scene {
                 true
             }
             None => false,
+        }
+    }
+
+    /// The light's camera for the depth pass under `settings`: the light's own, or with
+    /// `fit = "scene"` an orthographic box fitted to this scene (see [`fit::fit_ortho`]).
+    pub fn shadow_view(&self, settings: &ShadowSettings) -> ShadowView {
+        let fitted = match (&self.light, settings.light_projection, settings.fit) {
+            (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => Some(l),
+            _ => None,
+        };
+        let Some(l) = fitted else {
+            return self.light.shadow_view(settings);
+        };
+        let fit_scene;
+        let scene = match self.fit_camera {
+            Some(camera) => {
+                fit_scene = Scene {
+                    camera,
+                    fit_camera: None,
+                    ..self.clone()
+                };
+                &fit_scene
+            }
+            None => self,
+        };
+        let b = fit::fit_ortho(scene, l.direction, settings.map_size, settings.snap);
+        let [left, right, bottom, top, near, far] = b.bounds;
+        let projection =
+            glam::DMat4::orthographic_rh_gl(left, right, bottom, top, near, far).as_mat4();
+        ShadowView {
+            view: b.view.as_mat4(),
+            view64: b.view,
+            projection,
+            perspective: false,
+            eye: b
+                .view
+                .inverse()
+                .transform_point3(glam::DVec3::ZERO)
+                .as_vec3(),
+            near: near as f32,
+            far: far as f32,
+            texel_world: b.texel as f32,
+            reference: crate::reference::LightKind::Directional {
+                to_light: l.direction.normalize(),
+            },
         }
     }
 

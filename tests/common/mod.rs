@@ -39,7 +39,7 @@ pub fn render(
 
 /// Pixels that show the DummyGame's plane (y = -1, facing up): (world position, visibility).
 pub fn plane_pixels(frame: &Frame) -> Vec<(Vec3, f32)> {
-    let pos = frame.positions.as_ref().unwrap();
+    let pos = frame.world_positions().unwrap();
     let nrm = frame.normals.as_ref().unwrap();
     let vis = frame.visibility.as_ref().unwrap();
     (0..pos.len())

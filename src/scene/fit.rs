@@ -1,0 +1,332 @@
+//! The light's camera fitted to what the scene needs (past the chapters: the book suggests
+//! it and leaves it): an orthographic box around the receivers the camera can see and every
+//! caster that can shadow them, snapped to whole texels so it does not shimmer as the
+//! camera moves. Also the light basis that stays finite at the poles.
+
+use glam::{DMat3, DMat4, DVec3, Vec3};
+
+use super::Scene;
+
+/// The direction whose basis is not continuous (every continuous choice of basis on the
+/// sphere has one): well below the horizon and off every axis, where no chapter's light
+/// goes. The basis is finite there too.
+const SINGULAR: DVec3 = DVec3::new(
+    0.301_511_344_577_763_6,
+    -0.904_534_033_733_291,
+    0.301_511_344_577_763_6,
+);
+
+/// An orthonormal light basis: columns x, y and z = `to_light` (the light's view looks down
+/// -z). Finite for every non-zero direction, and continuous everywhere but [`SINGULAR`], so
+/// a sun passing overhead (the usual look-at's NaN, +-Y) turns its map smoothly.
+pub fn light_basis(to_light: DVec3) -> DMat3 {
+    let d = to_light.normalize();
+    // The reference frame, for d = -SINGULAR: any orthonormal pair around it.
+    let r = -SINGULAR;
+    let x0 = r.any_orthonormal_vector();
+    let y0 = r.cross(x0);
+    // The shortest rotation from r to d; only d = -r = SINGULAR has no unique one.
+    let q = glam::DQuat::from_rotation_arc(r, d);
+    DMat3::from_cols(q * x0, q * y0, d)
+}
+
+/// World to light view for a light at `eye` with basis `basis` (a rigid transform).
+pub fn light_view(eye: DVec3, basis: DMat3) -> DMat4 {
+    DMat4::from_mat3(basis.transpose()) * DMat4::from_translation(-eye)
+}
+
+/// A fitted orthographic light camera.
+#[derive(Debug, Clone, Copy)]
+pub struct FittedBox {
+    pub view: DMat4,
+    /// left, right, bottom, top, near, far in the light's view space.
+    pub bounds: [f64; 6],
+    /// One texel in world units.
+    pub texel: f64,
+}
+
+/// Fits the light's box to `scene` for a light shining from `to_light`, with a
+/// `map_size`-texel map; `snap` quantises its size and snaps its position to whole texels.
+pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> FittedBox {
+    let basis = light_basis(to_light.as_dvec3());
+    let to_light_space = |p: DVec3| basis.transpose() * p;
+
+    // Every item receives; casters can also shadow. Boxes in world space, then in light space.
+    let world_box = |i: &super::GameItem| {
+        let (lo, hi) = scene.meshes[i.mesh].bounds();
+        let m = i.model_matrix64();
+        aabb(
+            corners(lo.as_dvec3(), hi.as_dvec3())
+                .map(|c| m.transform_point3(c))
+                .into_iter(),
+        )
+    };
+    let boxes: Vec<(DVec3, DVec3)> = scene.items.iter().map(world_box).collect();
+    let (rlo, rhi) = union(&boxes);
+
+    // The part of the receivers the camera can see: their box cut by the view frustum's box.
+    let cam = &scene.camera;
+    let eye = cam.position.as_dvec3();
+    let reach = corners(rlo, rhi)
+        .iter()
+        .map(|c| (*c - eye).length())
+        .fold(0.0, f64::max)
+        .min(cam.far as f64);
+    let (flo, fhi) = aabb(frustum_corners(scene, reach).into_iter());
+    let (vlo, vhi) = (rlo.max(flo), rhi.min(fhi));
+    let (vlo, vhi) = if vlo.cmple(vhi).all() {
+        (vlo, vhi)
+    } else {
+        (rlo, rhi)
+    };
+    let (vl_lo, vl_hi) = aabb(corners(vlo, vhi).map(to_light_space).into_iter());
+    let light_boxes: Vec<(DVec3, DVec3)> = boxes
+        .iter()
+        .map(|(lo, hi)| aabb(corners(*lo, *hi).map(to_light_space).into_iter()))
+        .collect();
+    let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
+        a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
+    };
+    let visible = (vl_lo, vl_hi);
+    // Along parallel rays only a caster with the same light-space x, y can shadow a point,
+    // and only one above it (towards the light). A flat caster (a floor) cannot shadow
+    // itself, nor anything on its side facing the light: it matters only if some visible
+    // receiver reaches behind its plane.
+    let to_light = to_light.as_dvec3().normalize();
+    let behind_plane = |c: usize, r: usize| -> bool {
+        let item = &scene.items[c];
+        let Some((point, normal)) = scene.meshes[item.mesh].flat_plane() else {
+            return true;
+        };
+        let m = item.model_matrix64();
+        let p = m.transform_point3(point.as_dvec3());
+        let mut n = m
+            .inverse()
+            .transpose()
+            .transform_vector3(normal.as_dvec3())
+            .normalize();
+        if n.dot(to_light) < 0.0 {
+            n = -n;
+        }
+        let eps = 1e-6 * p.abs().max_element().max(1.0);
+        corners(boxes[r].0, boxes[r].1)
+            .iter()
+            .any(|q| n.dot(*q - p) < -eps)
+    };
+    let relevant: Vec<usize> = (0..scene.items.len())
+        .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
+        .filter(|&c| {
+            scene.meshes[scene.items[c].mesh].flat_plane().is_none()
+                || (0..scene.items.len()).any(|r| {
+                    r != c
+                        && overlaps_xy(&light_boxes[r], &visible)
+                        && overlaps_xy(&light_boxes[r], &light_boxes[c])
+                        && light_boxes[r].0.z < light_boxes[c].1.z
+                        && behind_plane(c, r)
+                })
+        })
+        .collect();
+    let (mut llo, mut lhi) = visible;
+    let mut z_top = lhi.z;
+    if relevant.is_empty() {
+        // Nothing can cast here: a minimal box; everything reads as lit.
+        let c = (llo + lhi) * 0.5;
+        (llo, lhi) = (c - DVec3::splat(1e-3), c + DVec3::splat(1e-3));
+    } else {
+        let (clo, chi) = union(&relevant.iter().map(|&c| light_boxes[c]).collect::<Vec<_>>());
+        llo = DVec3::new(llo.x.max(clo.x), llo.y.max(clo.y), llo.z);
+        lhi = DVec3::new(lhi.x.min(chi.x), lhi.y.min(chi.y), lhi.z);
+        z_top = chi.z;
+        // The deepest receiver point inside the box's x, y: whole items when they fit in
+        // it, their triangles clipped to it when they reach past it (a floor).
+        let mut z_deep = f64::INFINITY;
+        for (i, lb) in light_boxes.iter().enumerate() {
+            if !overlaps_xy(lb, &(llo, lhi)) {
+                continue;
+            }
+            let inside = lb.0.x >= llo.x && lb.1.x <= lhi.x && lb.0.y >= llo.y && lb.1.y <= lhi.y;
+            if inside {
+                z_deep = z_deep.min(lb.0.z);
+                continue;
+            }
+            let item = &scene.items[i];
+            let m = item.model_matrix64();
+            for t in scene.meshes[item.mesh].triangles() {
+                let t = t.map(|p| to_light_space(m.transform_point3(p.as_dvec3())));
+                if let Some(z) = clipped_min_z(&t, llo, lhi) {
+                    z_deep = z_deep.min(z);
+                }
+            }
+        }
+        if z_deep.is_finite() {
+            llo.z = z_deep;
+        }
+    }
+    let mut size = (lhi.x - llo.x).max(lhi.y - llo.y).max(1e-6);
+    let mut centre = DVec3::new((llo.x + lhi.x) * 0.5, (llo.y + lhi.y) * 0.5, 0.0);
+    // Two texels of room for filters that reach beside the looked-up texel.
+    size *= 1.0 + 4.0 / map_size as f64;
+    let (mut z_lo, mut z_hi) = (llo.z, z_top);
+    if snap {
+        // Size to the next 1/8 of its power of two, so small camera moves keep it.
+        let step = 2f64.powf(size.log2().floor()) / 8.0;
+        size = (size / step).ceil() * step;
+        let texel = size / map_size as f64;
+        centre.x = (centre.x / texel).floor() * texel;
+        centre.y = (centre.y / texel).floor() * texel;
+        let zstep = step;
+        z_lo = (z_lo / zstep).floor() * zstep;
+        z_hi = (z_hi / zstep).ceil() * zstep;
+    }
+    // Depth room: a little beyond both ends so nothing sits exactly on a plane.
+    let pad = (z_hi - z_lo).max(size) * 0.01;
+    z_lo -= pad;
+    z_hi += pad;
+    // The eye sits on the box's top face, so view coordinates stay small wherever the scene is.
+    let eye = basis * DVec3::new(centre.x, centre.y, z_hi);
+    let half = size * 0.5;
+    FittedBox {
+        view: light_view(eye, basis),
+        bounds: [-half, half, -half, half, 0.0, z_hi - z_lo],
+        texel: size / map_size as f64,
+    }
+}
+
+/// The lowest z of a light-space triangle clipped to the x, y box [lo, hi], if any of it
+/// lies inside (Sutherland-Hodgman against the four sides).
+fn clipped_min_z(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> Option<f64> {
+    let mut poly: Vec<DVec3> = t.to_vec();
+    let sides: [(usize, f64, f64); 4] = [
+        (0, lo.x, 1.0),
+        (0, hi.x, -1.0),
+        (1, lo.y, 1.0),
+        (1, hi.y, -1.0),
+    ];
+    for (axis, bound, sign) in sides {
+        let inside = |p: &DVec3| (p[axis] - bound) * sign >= 0.0;
+        let mut out = Vec::with_capacity(poly.len() + 2);
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            if inside(&a) {
+                out.push(a);
+            }
+            if inside(&a) != inside(&b) {
+                let s = (bound - a[axis]) / (b[axis] - a[axis]);
+                out.push(a + (b - a) * s);
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            return None;
+        }
+    }
+    poly.iter().map(|p| p.z).reduce(f64::min)
+}
+
+fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
+    std::array::from_fn(|i| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+fn aabb(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    points.fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    )
+}
+
+fn union(boxes: &[(DVec3, DVec3)]) -> (DVec3, DVec3) {
+    if boxes.is_empty() {
+        return (DVec3::splat(-1.0), DVec3::splat(1.0));
+    }
+    aabb(boxes.iter().flat_map(|(a, b)| [*a, *b]))
+}
+
+/// The camera frustum's corners, its far plane pulled in to `reach`.
+fn frustum_corners(scene: &Scene, reach: f64) -> [DVec3; 8] {
+    let cam = &scene.camera;
+    let [w, h] = scene.size;
+    let aspect = w as f64 / h.max(1) as f64;
+    let t = (cam.fov as f64).to_radians() * 0.5;
+    let inv_view = cam.view_matrix64().inverse();
+    let near = cam.near as f64;
+    let far = reach.max(near * 2.0);
+    std::array::from_fn(|i| {
+        let d = if i & 4 == 0 { near } else { far };
+        let x = if i & 1 == 0 { -1.0 } else { 1.0 } * d * t.tan() * aspect;
+        let y = if i & 2 == 0 { -1.0 } else { 1.0 } * d * t.tan();
+        inv_view.transform_point3(DVec3::new(x, y, -d))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(d: DVec3) {
+        let b = light_basis(d);
+        assert!(
+            b.to_cols_array().iter().all(|v| v.is_finite()),
+            "{d}: not finite"
+        );
+        let e = b.transpose() * b - DMat3::IDENTITY;
+        let worst = e.to_cols_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(worst < 1e-5, "{d}: not orthonormal ({worst:e})");
+        assert!(
+            (b.z_axis - d.normalize()).length() < 1e-9,
+            "{d}: z is not the direction"
+        );
+        assert!(
+            (b.x_axis.cross(b.y_axis) - b.z_axis).length() < 1e-9,
+            "{d}: left-handed"
+        );
+    }
+
+    #[test]
+    fn basis_is_finite_and_orthonormal_everywhere() {
+        // 10,000 directions spread over the sphere (a Fibonacci lattice) ...
+        let n = 10_000;
+        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+        for i in 0..n {
+            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+            let r = (1.0 - y * y).sqrt();
+            let a = golden * i as f64;
+            check(DVec3::new(r * a.cos(), y, r * a.sin()));
+        }
+        // ... the poles, within 1e-7 of them, and the one singular direction itself.
+        for d in [
+            DVec3::Y,
+            -DVec3::Y,
+            DVec3::new(1e-7, 1.0, 0.0),
+            DVec3::new(0.0, -1.0, 1e-7),
+            SINGULAR,
+            -SINGULAR,
+        ] {
+            check(d);
+        }
+    }
+
+    #[test]
+    fn basis_is_continuous_across_the_poles() {
+        for pole in [DVec3::Y, -DVec3::Y] {
+            for k in 0..64 {
+                let a = k as f64 * std::f64::consts::TAU / 64.0;
+                let off = DVec3::new(a.cos(), 0.0, a.sin()) * 1e-7;
+                let (b0, b1) = (light_basis(pole), light_basis(pole + off));
+                let diff = (b1 - b0)
+                    .to_cols_array()
+                    .iter()
+                    .fold(0.0f64, |m, v| m.max(v.abs()));
+                assert!(
+                    diff < 1e-5,
+                    "a step of 1e-7 from {pole} moves the basis by {diff}"
+                );
+            }
+        }
+    }
+}

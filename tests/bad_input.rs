@@ -1,0 +1,648 @@
+//! Bad input, through the real binary: one clear error and a non-zero exit, never a panic, a
+//! hang, a GL error or a black image. Every message must start with "error: ", name the file
+//! (or the flag) and say what was expected; no output image may be written.
+//!
+//! Committed inputs live in tests/data/bad/ (each scene there can be tried by hand with
+//! `shadowmap render --scene tests/data/bad/<case>.toml`); binary ones (PNGs, a binary OBJ) are
+//! made here, in a folder under CARGO_TARGET_TMPDIR.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// No case may take longer than this (a hang is a failure).
+const TIMEOUT: Duration = Duration::from_secs(120);
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/bad")
+        .join(name)
+}
+
+/// A fresh, empty folder for one case's generated files and output.
+fn case_dir(case: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("bad_input")
+        .join(case.replace(|c: char| !c.is_ascii_alphanumeric(), "_"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+struct Run {
+    success: bool,
+    stdout: String,
+    stderr: String,
+}
+
+/// Runs the binary in `cwd` with a time limit; a hang kills it and fails the case.
+fn run_in(case: &str, cwd: &Path, args: &[&str]) -> Run {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut s = Vec::new();
+            let _ = r.read_to_end(&mut s);
+            String::from_utf8_lossy(&s).into_owned()
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().unwrap()));
+    let err = drain(Box::new(child.stderr.take().unwrap()));
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("[{case}] hangs: no exit after {TIMEOUT:?} (shadowmap {args:?})");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    Run {
+        success: status.success(),
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
+    }
+}
+
+/// `shadowmap render --scene <scene> --out <dir>/x.png --size 64x36 <extra>`.
+fn render(case: &str, cwd: &Path, scene: &str, extra: &[&str]) -> (Run, PathBuf) {
+    let dir = case_dir(case);
+    let out = dir.join("x.png");
+    let mut args = vec![
+        "render",
+        "--scene",
+        scene,
+        "--out",
+        out.to_str().unwrap(),
+        "--size",
+        "64x36",
+    ];
+    args.extend_from_slice(extra);
+    (run_in(case, cwd, &args), out)
+}
+
+/// Checks one bad-input run; returns a description of what is wrong, or None.
+/// `needles`: everything stderr must contain (the file or flag, the line or field, and what
+/// was expected).
+fn check_error(case: &str, run: &Run, out: &Path, needles: &[&str]) -> Option<String> {
+    let e = &run.stderr;
+    // Shown with --nocapture: what the user sees for each case.
+    println!("[{case}] {}", e.trim_end().replace('\n', " | "));
+    let mut wrong = Vec::new();
+    if run.success {
+        wrong.push("exit status 0".to_string());
+    }
+    if e.contains("panicked") {
+        wrong.push("panicked".to_string());
+    }
+    if !e.starts_with("error: ") {
+        wrong.push("stderr does not start with \"error: \"".to_string());
+    }
+    for n in needles {
+        if !e.contains(n) {
+            wrong.push(format!("stderr lacks {n:?}"));
+        }
+    }
+    if out.exists() {
+        wrong.push(format!("{} was written", out.display()));
+    }
+    (!wrong.is_empty()).then(|| {
+        format!(
+            "[{case}] {}\n    stderr: {}\n    stdout: {}",
+            wrong.join("; "),
+            e.trim_end().replace('\n', "\n            "),
+            run.stdout.trim_end()
+        )
+    })
+}
+
+/// A bad committed scene: stderr must name the scene file and contain every needle.
+fn bad_scene(case: &str, scene: &str, needles: &[&str]) -> Option<String> {
+    let path = data(scene);
+    let (run, out) = render(case, Path::new("."), path.to_str().unwrap(), &[]);
+    let mut all = vec![scene];
+    all.extend_from_slice(needles);
+    check_error(case, &run, &out, &all)
+}
+
+/// A bad scene written to a temporary folder with its generated files.
+fn bad_generated(case: &str, files: &[(&str, &[u8])], needles: &[&str]) -> Option<String> {
+    let dir = case_dir(&format!("{case}-input"));
+    for (name, bytes) in files {
+        std::fs::write(dir.join(name), bytes).unwrap();
+    }
+    let scene = dir.join("scene.toml");
+    let (run, out) = render(case, Path::new("."), scene.to_str().unwrap(), &[]);
+    let mut all = vec!["scene.toml"];
+    all.extend_from_slice(needles);
+    check_error(case, &run, &out, &all)
+}
+
+/// Fails with every broken case listed, so one run shows them all.
+fn report(failures: Vec<Option<String>>) {
+    let failures: Vec<String> = failures.into_iter().flatten().collect();
+    assert!(
+        failures.is_empty(),
+        "{} case(s) failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// A successful render: exit 0, the image written, and something other than the clear colour
+/// drawn at each of `pixels` (x, y from the top left of the 64 x 36 frame).
+fn check_success(case: &str, run: &Run, out: &Path, pixels: &[(u32, u32)]) -> Option<String> {
+    println!(
+        "[{case}] exit {}: {}",
+        if run.success { "0" } else { "non-zero" },
+        run.stdout.trim_end()
+    );
+    if !run.success || run.stderr.contains("panicked") {
+        return Some(format!(
+            "[{case}] must succeed but failed\n    stderr: {}",
+            run.stderr.trim_end()
+        ));
+    }
+    let image = match image::open(out) {
+        Ok(i) => i.to_rgba8(),
+        Err(e) => return Some(format!("[{case}] {} not readable: {e}", out.display())),
+    };
+    if image.dimensions() != (64, 36) {
+        return Some(format!(
+            "[{case}] image is {:?}, not 64x36",
+            image.dimensions()
+        ));
+    }
+    for &(x, y) in pixels {
+        let p = image.get_pixel(x, y).0;
+        if p[0].max(p[1]).max(p[2]) < 40 {
+            return Some(format!(
+                "[{case}] pixel ({x}, {y}) is {p:?}: the model is not drawn there (black image?)"
+            ));
+        }
+    }
+    None
+}
+
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = 0xffff_ffffu32;
+    for &b in bytes {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+fn png_chunk(kind: &[u8; 4], body: &[u8]) -> Vec<u8> {
+    let mut c = (body.len() as u32).to_be_bytes().to_vec();
+    c.extend_from_slice(kind);
+    c.extend_from_slice(body);
+    let crc = crc32(&c[4..]);
+    c.extend_from_slice(&crc.to_be_bytes());
+    c
+}
+
+/// Deterministic noise bytes.
+fn noise(n: usize, seed: u32) -> Vec<u8> {
+    let mut x = seed;
+    (0..n)
+        .map(|_| {
+            x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (x >> 24) as u8
+        })
+        .collect()
+}
+
+/// A valid 32 x 32 RGBA PNG of noise (so the compressed data is not tiny).
+fn valid_png() -> Vec<u8> {
+    let pixels = noise(32 * 32 * 4, 7);
+    let mut bytes = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut bytes),
+        &pixels,
+        32,
+        32,
+        image::ExtendedColorType::Rgba8,
+    )
+    .unwrap();
+    bytes
+}
+
+/// A PNG whose header claims 100000 x 100000 RGBA pixels (40 GB), with a correct CRC, and a
+/// few bytes of image data.
+fn absurd_png() -> Vec<u8> {
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 6, 0, 0, 0]); // 8 bits, RGBA, deflate, no filter, no interlace
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend(png_chunk(b"IHDR", &ihdr));
+    // zlib stream of a few zero bytes (far too short for the claimed size)
+    png.extend(png_chunk(
+        b"IDAT",
+        &[
+            0x78, 0x9c, 0x63, 0x60, 0x00, 0x02, 0x00, 0x00, 0x05, 0x00, 0x01,
+        ],
+    ));
+    png.extend(png_chunk(b"IEND", &[]));
+    png
+}
+
+const TEXTURED_SCENE: &[u8] =
+    b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"cube\"\ntexture = \"tex.png\"\n";
+
+/// The driver's largest texture side (what `map_size` may be).
+fn driver_max_texture_size() -> u32 {
+    let ctx = shadowmap::engine::HeadlessContext::new()
+        .unwrap_or_else(|e| panic!("headless EGL context: {e}"));
+    shadowmap::engine::gl_limits(ctx.gl()).max_texture_size
+}
+
+#[test]
+fn crc32_matches_the_png_reference() {
+    // The IEND chunk's CRC is fixed: AE 42 60 82.
+    assert_eq!(crc32(b"IEND"), 0xae42_6082);
+    assert_eq!(crc32(b"123456789"), 0xcbf4_3926);
+}
+
+#[test]
+fn bad_obj_models_give_one_clear_error() {
+    let binary: Vec<u8> = [b"\x7fELF\x02\x01\x01\x00".to_vec(), noise(120, 3)].concat();
+    let obj = "item[0].mesh: ";
+    report(vec![
+        bad_scene(
+            "obj missing",
+            "obj_missing.toml",
+            &[
+                obj,
+                "does_not_exist.obj: cannot read OBJ model: No such file",
+            ],
+        ),
+        bad_scene(
+            "obj is plain text",
+            "obj_text.toml",
+            &[
+                obj,
+                "obj_text.obj: the OBJ model has no faces: expected at least one 'f' line",
+            ],
+        ),
+        bad_generated(
+            "obj is binary",
+            &[
+                (
+                    "scene.toml",
+                    b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"model.obj\"\n",
+                ),
+                ("model.obj", &binary),
+            ],
+            &[obj, "model.obj: cannot read OBJ model", "UTF-8"],
+        ),
+        bad_scene(
+            "obj truncated mid-number",
+            "obj_truncated_number.toml",
+            &[
+                obj,
+                "obj_truncated_number.obj: ",
+                "at line 3: expected 'v x y z' with numbers",
+            ],
+        ),
+        bad_scene(
+            "obj truncated: face before its vertices",
+            "obj_truncated_face.toml",
+            &[
+                obj,
+                "obj_truncated_face.obj: ",
+                "at line 3: face index out of range",
+            ],
+        ),
+        bad_scene(
+            "obj face index out of range",
+            "obj_index_range.toml",
+            &[
+                obj,
+                "obj_index_range.obj: ",
+                "at line 4: face index out of range",
+            ],
+        ),
+        bad_scene(
+            "obj without faces",
+            "obj_empty.toml",
+            &[
+                obj,
+                "obj_empty.obj: the OBJ model has no faces: expected at least one 'f' line",
+            ],
+        ),
+        bad_scene(
+            "obj NaN coordinate",
+            "obj_nan.toml",
+            &[
+                obj,
+                "obj_nan.obj: ",
+                "[NaN, 0.0, 0.0]: expected finite coordinates",
+            ],
+        ),
+        bad_scene(
+            "obj huge coordinate",
+            "obj_huge.toml",
+            &[
+                obj,
+                "obj_huge.obj: ",
+                "[1e30, 0.0, 0.0]: expected finite coordinates within",
+            ],
+        ),
+    ]);
+}
+
+#[test]
+fn obj_models_without_normals_or_with_polygons_render() {
+    let mut failures = Vec::new();
+    let scene = data("obj_no_normals.toml");
+    let (run, out) = render(
+        "obj without normals",
+        Path::new("."),
+        scene.to_str().unwrap(),
+        &[],
+    );
+    // The triangle's centroid, (0, -0.17) in the model, is near pixel (32, 20).
+    failures.push(check_success(
+        "obj without normals",
+        &run,
+        &out,
+        &[(32, 20)],
+    ));
+    let scene = data("obj_polygons.toml");
+    let (run, out) = render("obj polygons", Path::new("."), scene.to_str().unwrap(), &[]);
+    // The quad's centre (-0.5, 0) and the pentagon's (0.5, 0.05): pixels (24, 18) and (40, 17).
+    failures.push(check_success(
+        "obj polygons",
+        &run,
+        &out,
+        &[(24, 18), (40, 17)],
+    ));
+    report(failures);
+}
+
+#[test]
+fn bad_png_textures_give_one_clear_error() {
+    let tex = "item[0].texture: ";
+    let png = valid_png();
+    assert!(
+        image::load_from_memory(&png).is_ok(),
+        "the uncut PNG must be valid"
+    );
+    report(vec![
+        bad_scene(
+            "png missing",
+            "tex_missing.toml",
+            &[
+                tex,
+                "tex_does_not_exist.png: cannot read texture: No such file",
+            ],
+        ),
+        bad_generated(
+            "png is random bytes",
+            &[("scene.toml", TEXTURED_SCENE), ("tex.png", &noise(200, 11))],
+            &[tex, "tex.png: not a readable PNG texture"],
+        ),
+        bad_generated(
+            "png truncated",
+            &[
+                ("scene.toml", TEXTURED_SCENE),
+                ("tex.png", &png[..png.len() / 2]),
+            ],
+            &[tex, "tex.png: not a readable PNG texture"],
+        ),
+        bad_generated(
+            "png claims 100000x100000",
+            &[("scene.toml", TEXTURED_SCENE), ("tex.png", &absurd_png())],
+            &[
+                tex,
+                "tex.png: not a readable PNG texture",
+                "expected a PNG of at most 16384x16384 pixels",
+            ],
+        ),
+    ]);
+}
+
+#[test]
+fn bad_scene_files_give_one_clear_error() {
+    let max = driver_max_texture_size();
+    let expected_max = format!("expected 1 to {max} (the driver's maximum texture size)");
+    // Above the driver's maximum but below the file loader's own bound of 65536.
+    let above_driver = (max + 1).to_string();
+    let above_scene = format!("[light]\nangle = 45.0\n\n[shadow]\nmap_size = {above_driver}\n");
+    let above_needle = format!("shadow.map_size = {above_driver}: {expected_max}");
+    report(vec![
+        bad_scene(
+            "toml syntax error",
+            "toml_syntax.toml",
+            &["line 6, column 22: invalid array", "expected `]`"],
+        ),
+        bad_scene(
+            "toml unknown key",
+            "toml_unknown_key.toml",
+            &["line 7, column 1: unknown field `shininess`, expected one of"],
+        ),
+        bad_scene(
+            "toml wrong type",
+            "toml_wrong_type.toml",
+            &["line 3, column 13: invalid type: string \"bright\", expected"],
+        ),
+        bad_scene(
+            "toml NaN",
+            "toml_nan.toml",
+            &["light.intensity: NaN is not a finite number"],
+        ),
+        // The message must name the field, camera.far, not just the table.
+        bad_scene(
+            "toml inf",
+            "toml_inf.toml",
+            &["camera.far: inf is not a finite number"],
+        ),
+        bad_scene(
+            "toml negative scale",
+            "toml_negative_scale.toml",
+            &["item[0].scale: [1.0, -1.0, 1.0]: expected a finite number > 0"],
+        ),
+        bad_scene(
+            "toml zero scale",
+            "toml_zero_scale.toml",
+            &["item[0].scale: 0: expected a finite number > 0"],
+        ),
+        bad_scene(
+            "toml map_size 0",
+            "toml_map_size_zero.toml",
+            &[&format!("shadow.map_size = 0: {expected_max}")],
+        ),
+        bad_scene(
+            "toml map_size 1000000",
+            "toml_map_size_huge.toml",
+            &[&format!("shadow.map_size = 1000000: {expected_max}")],
+        ),
+        bad_generated(
+            "toml map_size just above the driver's maximum",
+            &[("scene.toml", above_scene.as_bytes())],
+            &[&above_needle],
+        ),
+        bad_scene(
+            "toml ortho near >= far",
+            "toml_ortho_near_far.toml",
+            &[
+                "light.ortho: ",
+                "near: 5.0, far: 5.0",
+                "expected",
+                "near < far",
+            ],
+        ),
+        bad_scene(
+            "toml spot near >= far",
+            "toml_spot_near_far.toml",
+            &["light: near = 10, far = 1: expected 0 < near < far"],
+        ),
+        bad_scene(
+            "toml item without mesh",
+            "toml_no_mesh.toml",
+            &["line 4, column 1: missing field `mesh`"],
+        ),
+        // mesh = "" and texture = "": the message should say a path is needed, not
+        // ".../tests/data/bad/: ... Is a directory".
+        bad_scene(
+            "toml blank mesh path",
+            "toml_blank_mesh.toml",
+            &[
+                "item[0].mesh: ",
+                "expected a built-in mesh",
+                "or a path to an OBJ",
+            ],
+        ),
+        bad_scene(
+            "toml blank texture path",
+            "tex_blank_path.toml",
+            &["item[0].texture: ", "expected a path to a PNG"],
+        ),
+        bad_scene(
+            "toml scene file missing",
+            "does_not_exist.toml",
+            &["does_not_exist.toml: cannot read scene file: No such file"],
+        ),
+    ]);
+}
+
+#[test]
+fn relative_paths_resolve_from_the_scene_folder() {
+    let tests = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let scene = data("relative/scene.toml");
+    let elsewhere = case_dir("relative-cwd");
+    let mut failures = Vec::new();
+    // A relative scene path from tests/, and an absolute one from an unrelated folder.
+    for (case, cwd, scene) in [
+        (
+            "relative scene path",
+            tests.as_path(),
+            "data/bad/relative/scene.toml",
+        ),
+        (
+            "absolute scene path",
+            elsewhere.as_path(),
+            scene.to_str().unwrap(),
+        ),
+    ] {
+        let (run, out) = render(case, cwd, scene, &[]);
+        // The textured triangle (yellow texture) covers pixel (32, 20).
+        failures.push(check_success(case, &run, &out, &[(32, 20)]).or_else(|| {
+            let p = image::open(&out).unwrap().to_rgba8().get_pixel(32, 20).0;
+            (p[0] < p[2].saturating_add(40)).then(|| {
+                format!("[{case}] pixel (32, 20) is {p:?}: the yellow texture is not used")
+            })
+        }));
+    }
+    report(failures);
+}
+
+#[test]
+fn bad_cli_values_give_one_clear_error() {
+    let here = Path::new(".");
+    // `shadowmap render --out <tmp>/x.png <extra>` (the built-in scene unless `extra` names one).
+    let cli = |case: &str, extra: &[&str], needles: &[&str]| {
+        let out = case_dir(case).join("x.png");
+        let mut args = vec!["render", "--out", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let run = run_in(case, here, &args);
+        check_error(case, &run, &out, needles)
+    };
+    let unwritable_dir = case_dir("unwritable-folder").join("no/such/folder/x.png");
+    let unwritable_dir = unwritable_dir.to_str().unwrap();
+    let unwritable = |case: &str, path: &str| {
+        let run = run_in(
+            case,
+            here,
+            &[
+                "render", "--scene", "dummy", "--size", "64x36", "--out", path,
+            ],
+        );
+        check_error(
+            case,
+            &run,
+            Path::new(path),
+            &[&format!("{path}: cannot write the image")],
+        )
+    };
+    report(vec![
+        cli(
+            "--size 0x0",
+            &["--size", "0x0"],
+            &[
+                "--size",
+                "'0x0': expected WIDTHxHEIGHT with both at least 1",
+            ],
+        ),
+        cli(
+            "--size abc",
+            &["--size", "abc"],
+            &["--size", "'abc': expected WIDTHxHEIGHT"],
+        ),
+        cli(
+            "--size 100000x100000",
+            &["--size", "100000x100000"],
+            &["100000x100000: expected each side from 1 to"],
+        ),
+        cli(
+            "--scene nosuch",
+            &["--size", "64x36", "--scene", "nosuch"],
+            &["unknown scene 'nosuch': expected one of dummy"],
+        ),
+        cli(
+            "--step nosuch",
+            &["--size", "64x36", "--step", "nosuch"],
+            &["'nosuch' for '--step", "depth-map", "pcf"],
+        ),
+        unwritable("--out /proc/x.png", "/proc/x.png"),
+        unwritable("--out in a missing folder", unwritable_dir),
+        cli(
+            "--frames 0",
+            &["--size", "64x36", "--frames", "0"],
+            &["'0' for '--frames", "0 is not in 1.."],
+        ),
+        cli(
+            "--light-angle nan",
+            &["--size", "64x36", "--light-angle", "nan"],
+            &["--light-angle NaN: expected degrees from 0 to 180"],
+        ),
+    ]);
+}
