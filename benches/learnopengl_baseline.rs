@@ -124,7 +124,10 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
     let mut sides: Vec<(String, LearnOpenGlBaseline)> =
         vec![("plain".into(), LearnOpenGlBaseline::new(gl)?)];
     for n in names.split(',') {
-        let (vs, fs) = if n == "ourglsl" {
+        let (vs, fs) = if n.starts_with("churn") || n.starts_with("unif") || n.starts_with("idx") {
+            let s = std::fs::read_to_string("/tmp/exp/plain2.vert").unwrap();
+            (s, std::fs::read_to_string("/tmp/exp/plain2.frag").unwrap())
+        } else if n == "ourglsl" {
             our_glsl(&settings)
         } else {
             (
@@ -150,8 +153,18 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
             let frames = if b == 0 { WARM_UP } else { BLOCK };
             let t = if i < sides.len() {
                 let base = &sides[i].1;
+                let name = sides[i].0.clone();
+                let (churn, unif, idx) = (
+                    name.contains("churn"),
+                    name.contains("unif"),
+                    name.contains("idx"),
+                );
                 time_block(frames, || {
-                    base.render_frame();
+                    if churn || unif || idx {
+                        base.render_variant(churn, unif, idx)
+                    } else {
+                        base.render_frame()
+                    };
                     base.finish();
                 })
             } else {
@@ -169,6 +182,47 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
             for i in 0..n {
                 ratios[i].push(med[i] / med[0]);
             }
+        }
+    }
+    if std::env::var("SHADOWMAP_EXP_CPU").is_ok() {
+        let ticks = || {
+            let st = std::fs::read_to_string("/proc/self/stat").unwrap();
+            let f: Vec<&str> = st.rsplit_once(')').unwrap().1.split_whitespace().collect();
+            f[11].parse::<f64>().unwrap() + f[12].parse::<f64>().unwrap()
+        };
+        let mut cpu = vec![0.0; n];
+        for round in 0..8 {
+            for k in 0..n {
+                let i = (k + round) % n;
+                let t0 = ticks();
+                for _ in 0..100 {
+                    if i < sides.len() {
+                        let b = &sides[i].1;
+                        let name = &sides[i].0;
+                        if name.contains("churn") || name.contains("unif") || name.contains("idx") {
+                            b.render_variant(
+                                name.contains("churn"),
+                                name.contains("unif"),
+                                name.contains("idx"),
+                            )
+                        } else {
+                            b.render_frame()
+                        };
+                        b.finish();
+                    } else {
+                        renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+                        renderer.finish();
+                    }
+                }
+                cpu[i] += (ticks() - t0) * 10.0 / 800.0;
+            }
+        }
+        for i in 0..n {
+            println!(
+                "cpu {:8} {:.3} ms/frame (all threads)",
+                sides.get(i).map(|s| s.0.as_str()).unwrap_or("ours"),
+                cpu[i]
+            );
         }
     }
     let mut sub = [Vec::new(), Vec::new()];

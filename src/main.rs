@@ -15,6 +15,7 @@ fn main() -> ExitCode {
         Some(app::cli::Command::Compare(args)) => app::compare::run(&args),
         Some(app::cli::Command::Bench(args)) => app::bench::run(&args),
         Some(app::cli::Command::Steps(args)) => app::gallery::run(&args),
+        Some(app::cli::Command::Soak(args)) => app::soak::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

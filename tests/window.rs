@@ -85,3 +85,46 @@ fn window_shows_the_scene_and_its_shadow() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_survives_a_resize_storm_and_a_minimise() {
+    assert!(
+        std::env::var_os("DISPLAY").is_some(),
+        "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
+    );
+    let dir = std::env::temp_dir().join(format!("shadowmap-storm-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = dir.join("after-storm.png");
+    let out = bin()
+        .args([
+            "demo",
+            "--no-animation",
+            "--size",
+            "640x360",
+            "--stress-window",
+        ])
+        .args(["--exit-after-frames", "40", "--screenshot"])
+        .arg(&shot)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "demo failed: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    // Nothing was drawn while the window was 0 x 0, and drawing resumed after.
+    assert!(
+        stdout.contains("stress: 40 frames drawn, 5 redraws skipped while minimised"),
+        "{stdout}"
+    );
+    let img = load(&shot);
+    assert_eq!(img.dimensions(), (640, 360), "restored to its size");
+    let count = |f: &dyn Fn(&image::Rgba<u8>) -> bool| img.pixels().filter(|p| f(p)).count();
+    let green = count(&|p| p[1] > 200 && p[0] < 50 && p[2] < 50);
+    let shadow = count(&|p| (50..110).contains(&p[2]) && p[0] < 30 && p[1] < 30);
+    assert!(
+        green > 20000 && shadow > 2000,
+        "the scene after the storm: {green} cube, {shadow} shadow pixels"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -40,6 +40,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// Render every chapter step with its measured errors: PNGs and index.html.
     Steps(StepsArgs),
+    /// Render many frames headless while the light, map size and step change; report memory.
+    Soak(SoakArgs),
 }
 
 /// Scene choice and the light angle, shared by every command.
@@ -133,6 +135,10 @@ pub struct DemoArgs {
     /// Freeze the scene's animation (the cube stops turning).
     #[arg(long)]
     pub no_animation: bool,
+    /// For testing the window: resize it many times, minimise it and restore it while
+    /// running (use with --exit-after-frames 40 or more).
+    #[arg(long)]
+    pub stress_window: bool,
 }
 
 impl Default for DemoArgs {
@@ -149,6 +155,7 @@ impl Default for DemoArgs {
             exit_after_frames: None,
             screenshot: None,
             no_animation: false,
+            stress_window: false,
         }
     }
 }
@@ -232,6 +239,17 @@ pub struct StepsArgs {
     /// Sub-pixel rays per side for the MAE reference.
     #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
     pub supersample: u32,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct SoakArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Frames to render.
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub frames: u64,
 }
 
 /// Parses `WxH`, e.g. `1280x720`.

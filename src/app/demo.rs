@@ -77,10 +77,18 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             .as_deref()
             .and_then(steps::get)
             .map(|s| s.name),
+        minimised: false,
+        skipped: 0,
     };
     event_loop
         .run_app(&mut demo)
         .map_err(|e| Error::Context(format!("window event loop: {e}")))?;
+    if args.stress_window {
+        println!(
+            "stress: {} frames drawn, {} redraws skipped while minimised",
+            demo.frames, demo.skipped
+        );
+    }
     match demo.error {
         Some(e) => Err(e),
         None => Ok(()),
@@ -146,6 +154,9 @@ struct Demo {
     screenshots: u32,
     /// The chapter step shown (`None` = the scene's own settings).
     step: Option<&'static str>,
+    minimised: bool,
+    /// Redraws skipped while minimised.
+    skipped: u64,
 }
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
@@ -165,6 +176,47 @@ const STEP_KEYS: [KeyCode; 12] = [
 ];
 
 impl Demo {
+    /// A new framebuffer size; 0 x 0 means minimised, and then nothing is drawn.
+    fn on_resized(&mut self, width: u32, height: u32) {
+        self.minimised = width == 0 || height == 0;
+        if let Some(r) = &self.running {
+            if !self.minimised {
+                r.context.resize(width, height);
+            }
+            r.context.window().request_redraw();
+        }
+    }
+
+    /// `--stress-window`: a storm of resizes, then a minimise to 0 x 0 and a restore (the
+    /// 0 x 0 event is also delivered by hand, as a window manager would, since a bare X
+    /// server may not send one).
+    fn stress_step(&mut self) {
+        let Some(r) = &self.running else { return };
+        let window = r.context.window();
+        let sizes = [
+            (320, 200),
+            (1024, 700),
+            (17, 9),
+            (800, 600),
+            (1, 1),
+            (640, 480),
+        ];
+        match self.frames {
+            1..=18 => {
+                let (w, h) = sizes[self.frames as usize % sizes.len()];
+                let _ = window.request_inner_size(PhysicalSize::new(w, h));
+            }
+            19 => {
+                let _ = window.request_inner_size(PhysicalSize::new(self.size.0, self.size.1));
+            }
+            22 => {
+                window.set_minimized(true);
+                self.on_resized(0, 0);
+            }
+            _ => {}
+        }
+    }
+
     /// Switches to a chapter step (or back to the scene's settings with `None`).
     fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
         let settings = match step {
@@ -258,13 +310,25 @@ impl Demo {
             self.update_debt -= 1.0;
             self.update();
         }
+        let Some((w, h)) = self.running.as_ref().map(|r| r.context.framebuffer_size()) else {
+            return;
+        };
+        if self.minimised || w == 0 || h == 0 {
+            // Minimised: nothing to draw into, and nothing is drawn.
+            self.skipped += 1;
+            if self.args.stress_window && self.skipped >= 5 {
+                if let Some(r) = &self.running {
+                    r.context.window().set_minimized(false);
+                    let size = PhysicalSize::new(self.size.0, self.size.1);
+                    let _ = r.context.window().request_inner_size(size);
+                }
+                self.on_resized(self.size.0, self.size.1);
+            }
+            return;
+        }
         let Some(running) = &mut self.running else {
             return;
         };
-        let (w, h) = running.context.framebuffer_size();
-        if w == 0 || h == 0 {
-            return; // minimised: nothing to draw into
-        }
         if let Err(e) = running.renderer.render(
             &self.scene,
             Target::Window {
@@ -306,6 +370,10 @@ impl Demo {
         } else {
             0.9 * self.frame_ms + 0.1 * dt * 1000.0
         };
+        if self.args.stress_window {
+            // Let the storm's sizes arrive between frames.
+            std::thread::sleep(Duration::from_millis(5));
+        }
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
             running.context.window().set_title(&format!(
@@ -321,6 +389,8 @@ impl Demo {
         }
         if last {
             event_loop.exit();
+        } else if self.args.stress_window {
+            self.stress_step();
         }
     }
 }
@@ -350,12 +420,7 @@ impl ApplicationHandler for Demo {
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
-            WindowEvent::Resized(size) => {
-                if let Some(r) = &self.running {
-                    r.context.resize(size.width, size.height);
-                    r.context.window().request_redraw();
-                }
-            }
+            WindowEvent::Resized(size) => self.on_resized(size.width, size.height),
             WindowEvent::KeyboardInput { event, .. } => {
                 let PhysicalKey::Code(code) = event.physical_key else {
                     return;

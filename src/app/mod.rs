@@ -7,3 +7,4 @@ pub mod demo;
 pub mod gallery;
 pub mod plot;
 pub mod render;
+pub mod soak;

@@ -227,6 +227,11 @@ impl Objects {
                 gl.enable_vertex_attrib_array(index);
                 gl.vertex_attrib_pointer_f32(index, size, glow::FLOAT, false, 32, offset * 4);
             }
+            let ebo = self.keep(gl.create_buffer(), Name::Buffer)?;
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+            let idx: Vec<u32> = (0..vertices.len() as u32).collect();
+            let ib = std::slice::from_raw_parts(idx.as_ptr().cast::<u8>(), idx.len() * 4);
+            gl.buffer_data_u8_slice(glow::ELEMENT_ARRAY_BUFFER, ib, glow::STATIC_DRAW);
             gl.bind_vertex_array(None);
             Ok((vao, vertices.len() as i32))
         }
@@ -487,6 +492,82 @@ impl LearnOpenGlBaseline {
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
+    pub fn render_variant(&self, churn: bool, extra_uniforms: bool, indexed: bool) {
+        let gl = &self.gl;
+        let m4 = |loc: &Option<glow::UniformLocation>, m: &Mat4| unsafe {
+            gl.uniform_matrix_4_f32_slice(loc.as_ref(), false, &m.to_cols_array())
+        };
+        unsafe {
+            gl.enable(glow::DEPTH_TEST);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.shadow_fbo));
+            gl.viewport(0, 0, MAP_SIZE, MAP_SIZE);
+            if churn {
+                gl.depth_mask(true);
+            }
+            gl.clear(glow::DEPTH_BUFFER_BIT);
+            if churn {
+                gl.disable(glow::CULL_FACE);
+            }
+            gl.use_program(Some(self.depth_program));
+            m4(&self.depth_light_space, &self.light_space);
+            self.draw_scene(self.depth_model.as_ref());
+            if churn {
+                gl.use_program(None);
+                gl.disable(glow::CULL_FACE);
+                gl.disable(glow::POLYGON_OFFSET_FILL);
+                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+                gl.get_error();
+            }
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.scene_fbo));
+            gl.viewport(0, 0, WIDTH, HEIGHT);
+            if churn {
+                gl.depth_mask(true);
+                gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.1, 0.1, 0.1, 1.0]);
+                gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            } else {
+                gl.clear_color(0.1, 0.1, 0.1, 1.0);
+                gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            }
+            gl.use_program(Some(self.scene_program));
+            let [projection, view, light_space, light_pos, view_pos] = &self.scene_frame;
+            m4(projection, &self.projection);
+            m4(view, &self.view);
+            m4(light_space, &self.light_space);
+            gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
+            gl.uniform_3_f32_slice(view_pos.as_ref(), &CAMERA_POS.to_array());
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
+            gl.active_texture(glow::TEXTURE1);
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.depth_map));
+            for (i, m) in self.models.iter().enumerate() {
+                let (vao, count) = if i == 0 { self.floor } else { self.cube };
+                if extra_uniforms {
+                    for _ in 0..4 {
+                        m4(&self.scene_model, m);
+                    }
+                    gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
+                    gl.uniform_3_f32_slice(view_pos.as_ref(), &CAMERA_POS.to_array());
+                    gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
+                    gl.active_texture(glow::TEXTURE0);
+                    gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
+                }
+                m4(&self.scene_model, m);
+                gl.bind_vertex_array(Some(vao));
+                if indexed {
+                    gl.draw_elements(glow::TRIANGLES, count, glow::UNSIGNED_INT, 0);
+                } else {
+                    gl.draw_arrays(glow::TRIANGLES, 0, count);
+                }
+            }
+            gl.bind_vertex_array(None);
+            if churn {
+                gl.use_program(None);
+                gl.get_error();
+            }
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+
     /// Blocks until the GPU has finished (for wall-time measurements).
     pub fn finish(&self) {
         unsafe { self.gl.finish() };

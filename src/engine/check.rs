@@ -19,8 +19,36 @@ pub fn gl_error_name(code: u32) -> &'static str {
     }
 }
 
-/// Drains glGetError and reports the first error, naming the pass it happened in.
+/// Error reports from the driver's KHR_debug output, waiting for the next [`check_gl`].
+static DEBUG_ERRORS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+
+/// In debug builds (and so in tests), or with `SHADOWMAP_GL_DEBUG=1`, asks the driver to
+/// report errors through KHR_debug where it has it; [`check_gl`] then fails on them too,
+/// with the driver's own explanation.
+pub(crate) fn install_debug_output(gl: &mut glow::Context) {
+    let wanted = cfg!(debug_assertions) || std::env::var_os("SHADOWMAP_GL_DEBUG").is_some();
+    if !wanted || !gl.supported_extensions().contains("GL_KHR_debug") {
+        return;
+    }
+    unsafe {
+        gl.enable(glow::DEBUG_OUTPUT_SYNCHRONOUS);
+        gl.debug_message_callback(|_source, kind, _id, severity, message| {
+            if kind == glow::DEBUG_TYPE_ERROR || severity == glow::DEBUG_SEVERITY_HIGH {
+                if let Ok(mut errors) = DEBUG_ERRORS.lock() {
+                    errors.push(message.to_string());
+                }
+            }
+        });
+    }
+}
+
+/// Drains glGetError (and the KHR_debug errors) and reports the first error, naming the
+/// pass it happened in.
 pub fn check_gl(gl: &Gl, during: &str) -> Result<()> {
+    let debug: Vec<String> = DEBUG_ERRORS
+        .lock()
+        .map(|mut e| std::mem::take(&mut *e))
+        .unwrap_or_default();
     let mut first = None;
     // glGetError keeps one flag per error kind; drain them all so the next check starts clean.
     for _ in 0..16 {
@@ -30,12 +58,23 @@ pub fn check_gl(gl: &Gl, during: &str) -> Result<()> {
         }
         first.get_or_insert(code);
     }
-    match first {
-        None => Ok(()),
-        Some(code) => Err(Error::Gl {
+    match (first, debug.first()) {
+        (None, None) => Ok(()),
+        (Some(code), _) => Err(Error::Gl {
             code,
             name: gl_error_name(code),
-            during: during.to_string(),
+            during: format!(
+                "{during}{}",
+                debug
+                    .first()
+                    .map(|m| format!(" (driver: {m})"))
+                    .unwrap_or_default()
+            ),
+        }),
+        (None, Some(m)) => Err(Error::Gl {
+            code: 0,
+            name: "KHR_debug error",
+            during: format!("{during} (driver: {m})"),
         }),
     }
 }
@@ -101,4 +140,9 @@ pub fn renderer_name(gl: &Gl) -> String {
             gl.get_parameter_string(glow::VERSION)
         )
     }
+}
+
+/// Whether a texture name still names a texture (for tests that owners delete theirs).
+pub fn object_exists(gl: &Gl, texture: glow::Texture) -> bool {
+    unsafe { gl.is_texture(texture) }
 }

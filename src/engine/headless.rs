@@ -48,9 +48,10 @@ impl HeadlessContext {
                 Ok((display, context)) => {
                     // SAFETY: the context is current on this thread; the loader returns its
                     // function pointers.
-                    let gl = unsafe {
+                    let mut gl = unsafe {
                         glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s))
                     };
+                    super::check::install_debug_output(&mut gl);
                     return Ok(HeadlessContext {
                         gl: Rc::new(gl),
                         _context: context,

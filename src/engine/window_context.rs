@@ -73,8 +73,9 @@ impl WindowContext {
         // Measure frames, not the monitor: do not wait for vertical sync.
         let _ = surface.set_swap_interval(&context, SwapInterval::DontWait);
         // SAFETY: the context is current on this thread.
-        let gl =
+        let mut gl =
             unsafe { glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s)) };
+        super::check::install_debug_output(&mut gl);
         Ok(WindowContext {
             gl: Rc::new(gl),
             surface,

@@ -1,0 +1,88 @@
+//! `shadowmap soak`: many frames while the light angle, the map size and the chapter step
+//! change, reporting resident memory at the start and the end, and the first error.
+
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use shadowmap::engine::{HeadlessContext, Outputs, RenderTarget};
+use shadowmap::{steps, Renderer, Result, Target};
+
+use super::cli::SoakArgs;
+
+/// Resident memory of this process in KiB (Linux `/proc/self/statm`), if readable.
+pub fn resident_kib() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4)
+}
+
+/// Frames in one full cycle of steps and map sizes.
+const WARM_FRAMES: u64 = 600;
+
+pub fn run(args: &SoakArgs) -> Result<()> {
+    let mut scene = args.scene.load()?;
+    let base = args.settings.apply(&scene)?;
+    let (width, height) = args.scene.size(&scene);
+    let context = HeadlessContext::new()?;
+    let gl = context.gl();
+    args.settings.check(gl, &scene, &base)?;
+    let target = RenderTarget::new(gl, width, height, Outputs::default())?;
+    let mut renderer = Renderer::new(gl, &scene, &base)?;
+    let sizes = [256, 512, 1024, 2048];
+    let start = Instant::now();
+    let (mut rss_start, mut rss_peak) = (None, 0);
+    let bar = ProgressBar::new(args.frames);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} frames [{elapsed} < {eta}] {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    for frame in 0..args.frames {
+        if frame % 50 == 0 {
+            // Every 50 frames: the next step and the next map size.
+            let k = (frame / 50) as usize;
+            let step = steps::STEPS[k % steps::STEPS.len()].name;
+            let mut s = steps::settings_for(&scene, step)?;
+            s.map_size = sizes[k % sizes.len()];
+            renderer.set_settings(&s)?;
+        }
+        let angle = 10.0 + (frame as f32 * 0.7) % 160.0;
+        scene.set_light_angle(angle);
+        scene.update();
+        renderer
+            .render(&scene, Target::Offscreen(&target))
+            .map_err(|e| shadowmap::Error::Invalid(format!("frame {frame}: {e}")))?;
+        if frame % 100 == 0 {
+            renderer.finish();
+            let rss = resident_kib().unwrap_or(0);
+            // The first cycle (12 steps x 4 map sizes, 50 frames each) fills the driver's and
+            // the allocator's caches; count from the end of it.
+            if frame == WARM_FRAMES || (frame == 100 && args.frames <= WARM_FRAMES) {
+                rss_start = Some(rss);
+            }
+            rss_peak = rss_peak.max(rss);
+            bar.set_message(format!("{} MiB resident", rss / 1024));
+        }
+        bar.inc(1);
+    }
+    renderer.finish();
+    bar.finish_and_clear();
+    let rss_end = resident_kib().unwrap_or(0);
+    let first = rss_start.unwrap_or(rss_end);
+    println!(
+        "soak: {} frames of the {} scene in {:.1} s, no error; resident memory {} MiB after frame \
+         {}, {} MiB at the end (peak {} MiB, growth {:+} KiB)",
+        args.frames,
+        scene.name,
+        start.elapsed().as_secs_f64(),
+        first / 1024,
+        if args.frames > WARM_FRAMES {
+            WARM_FRAMES
+        } else {
+            100
+        },
+        rss_end / 1024,
+        rss_peak.max(rss_end) / 1024,
+        rss_end as i64 - first as i64
+    );
+    Ok(())
+}

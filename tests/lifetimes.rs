@@ -1,0 +1,99 @@
+//! GL objects are freed by their owners: creating and dropping them many times leaves the
+//! process's memory flat and their names deleted.
+
+mod common;
+
+use shadowmap::engine::check::object_exists;
+use shadowmap::engine::{DepthFormat, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
+use shadowmap::geometry::MeshData;
+use shadowmap::image_data::ImageData;
+use shadowmap::shaders;
+
+fn resident_kib() -> u64 {
+    let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
+    statm
+        .split_whitespace()
+        .nth(1)
+        .unwrap()
+        .parse::<u64>()
+        .unwrap()
+        * 4
+}
+
+/// Runs `make` `n` times after a warm-up, and returns the resident-memory growth in KiB
+/// between the end of the warm-up and the end.
+fn growth(n: usize, mut make: impl FnMut()) -> i64 {
+    for _ in 0..n / 10 {
+        make();
+    }
+    let before = resident_kib() as i64;
+    for _ in 0..n {
+        make();
+    }
+    resident_kib() as i64 - before
+}
+
+/// A name, how many to make, and how to make (and drop) one.
+type Case<'a> = (&'static str, usize, Box<dyn FnMut() + 'a>);
+
+#[test]
+fn ten_thousand_objects_leave_memory_flat_and_names_deleted() {
+    let ctx = common::context();
+    let gl = ctx.gl();
+    let cube = MeshData::cube();
+    let image = ImageData::wood(64);
+    let mut last = None;
+    let cases: Vec<Case> = vec![
+        (
+            "shadow map 64^2",
+            10_000,
+            Box::new(|| {
+                let m = ShadowMap::new(gl, 64, DepthFormat::D24).unwrap();
+                last = Some(m.depth_map_texture().id());
+            }),
+        ),
+        (
+            "texture 64^2",
+            10_000,
+            Box::new(|| drop(Texture::from_image(gl, &image).unwrap())),
+        ),
+        (
+            "mesh (cube)",
+            10_000,
+            Box::new(|| drop(Mesh::new(gl, &cube).unwrap())),
+        ),
+        (
+            "render target 64x64",
+            10_000,
+            Box::new(|| drop(RenderTarget::new(gl, 64, 64, Default::default()).unwrap())),
+        ),
+        // Compiling is slow on a software driver; a tenth as many programs.
+        (
+            "program",
+            1_000,
+            Box::new(|| {
+                drop(
+                    ShaderProgram::new(gl, &shaders::depth_vert(), &shaders::depth_frag(), &[])
+                        .unwrap(),
+                )
+            }),
+        ),
+    ];
+    for (name, n, make) in cases {
+        let kib = growth(n, make);
+        eprintln!("{name}: {n} created and dropped, resident memory {kib:+} KiB");
+        assert!(
+            kib < 4096,
+            "{name}: memory grew by {kib} KiB over {n} objects"
+        );
+    }
+    shadowmap::engine::check_gl(gl, "creating and dropping objects").unwrap();
+    // The last shadow map's texture name is gone with it.
+    let id = last.expect("made at least one");
+    assert!(
+        !object_exists(gl, id),
+        "a dropped texture is still a texture"
+    );
+    let kept = Texture::colour(gl, 4, 4).unwrap();
+    assert!(object_exists(gl, kept.id()), "a live texture must exist");
+}
