@@ -124,7 +124,55 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
     let mut sides: Vec<(String, LearnOpenGlBaseline)> =
         vec![("plain".into(), LearnOpenGlBaseline::new(gl)?)];
     for n in names.split(',') {
-        let (vs, fs) = if n.starts_with("churn") || n.starts_with("unif") || n.starts_with("idx") {
+        let (vs, fs) = if n.starts_with("real") {
+            let mut defines = settings.shader_defines();
+            for (k, v) in [
+                ("LIGHT_POSITIONAL", "1"),
+                ("SPOT_CONE", "0"),
+                ("BLINN", "1"),
+            ] {
+                defines.push((k.into(), v.into()));
+            }
+            let with = |text: &str| {
+                let (first, rest) = text.split_once('\n').unwrap();
+                let mut out = format!("{first}\n");
+                for (k, v) in &defines {
+                    out.push_str(&format!("#define {k} {v}\n"));
+                }
+                out + rest
+            };
+            let vs = with(&shadowmap::shaders::scene_vert().text)
+                .replace(
+                    "layout (location = 1) in vec2 texCoord;",
+                    "layout (location = 2) in vec2 texCoord;",
+                )
+                .replace(
+                    "layout (location = 2) in vec3 vertexNormal;",
+                    "layout (location = 1) in vec3 vertexNormal;",
+                );
+            let mut fs = with(&shadowmap::shaders::scene_frag().text);
+            if n.contains("notex") {
+                fs = fs.replace(
+                    "material.hasTexture == 1 ? texture(textureSampler, outTexCoord)",
+                    "true ? texture(textureSampler, outTexCoord)",
+                );
+            }
+            if n.contains("pow") {
+                fs = fs.replace(
+                    "pow(max(specularAngle, 0.0), specularPower)",
+                    "pow(max(specularAngle, 0.0), 64.0)",
+                );
+            }
+            if n.contains("cbias") {
+                fs = fs.replace(
+                    "max(bias * (1.0 - dot(normal, toLightDir)), biasMin)",
+                    "max(0.05 * (1.0 - dot(normal, toLightDir)), 0.005)",
+                );
+            }
+            (vs, fs)
+        } else if n.contains("ourglsl") {
+            our_glsl(&settings)
+        } else if n.starts_with("churn") || n.starts_with("unif") || n.starts_with("idx") {
             let s = std::fs::read_to_string("/tmp/exp/plain2.vert").unwrap();
             (s, std::fs::read_to_string("/tmp/exp/plain2.frag").unwrap())
         } else if n == "ourglsl" {
@@ -159,8 +207,11 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
                     name.contains("unif"),
                     name.contains("idx"),
                 );
+                let real = name.starts_with("real");
                 time_block(frames, || {
-                    if churn || unif || idx {
+                    if real {
+                        base.render_real_uniforms()
+                    } else if churn || unif || idx {
                         base.render_variant(churn, unif, idx)
                     } else {
                         base.render_frame()
@@ -184,6 +235,31 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
             }
         }
     }
+    if let Ok(solo) = std::env::var("SHADOWMAP_EXP_SOLO") {
+        let i: usize = solo.parse().unwrap();
+        for _ in 0..600 {
+            if i < sides.len() {
+                let b = &sides[i].1;
+                let name = &sides[i].0;
+                if name.starts_with("real") {
+                    b.render_real_uniforms()
+                } else if name.contains("churn") || name.contains("unif") || name.contains("idx") {
+                    b.render_variant(
+                        name.contains("churn"),
+                        name.contains("unif"),
+                        name.contains("idx"),
+                    )
+                } else {
+                    b.render_frame()
+                };
+                b.finish();
+            } else {
+                renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+                renderer.finish();
+            }
+        }
+        return Ok(());
+    }
     if std::env::var("SHADOWMAP_EXP_CPU").is_ok() {
         let ticks = || {
             let st = std::fs::read_to_string("/proc/self/stat").unwrap();
@@ -199,7 +275,12 @@ fn experiment(names: &str) -> shadowmap::Result<()> {
                     if i < sides.len() {
                         let b = &sides[i].1;
                         let name = &sides[i].0;
-                        if name.contains("churn") || name.contains("unif") || name.contains("idx") {
+                        if name.starts_with("real") {
+                            b.render_real_uniforms()
+                        } else if name.contains("churn")
+                            || name.contains("unif")
+                            || name.contains("idx")
+                        {
                             b.render_variant(
                                 name.contains("churn"),
                                 name.contains("unif"),

@@ -51,6 +51,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         reference.triangles, reference.trace_ms, opts.supersample, opts.supersample
     );
     let bar = ProgressBar::new(configs.len() as u64);
+    eprintln!("timing runs in two passes over the sweep (the second in reverse); the bar counts the second");
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} [{elapsed} < {eta}] {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),

@@ -212,7 +212,8 @@ pub struct BenchArgs {
     /// A representative subset (27 configurations plus the tutorials') instead of the full sweep.
     #[arg(long)]
     pub quick: bool,
-    /// Timed frames per configuration.
+    /// Timed frames per block; each configuration gets two blocks (one per pass over the
+    /// sweep) and the quieter block's median and p95 are reported.
     #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     pub frames: u32,
     /// Untimed frames before them.

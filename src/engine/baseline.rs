@@ -568,6 +568,79 @@ impl LearnOpenGlBaseline {
         }
     }
 
+    pub fn render_real_uniforms(&self) {
+        let gl = &self.gl;
+        let p = self.scene_program;
+        let u = |n: &str| unsafe { gl.get_uniform_location(p, n) };
+        let m4 = |n: &str, m: &Mat4| unsafe {
+            gl.uniform_matrix_4_f32_slice(u(n).as_ref(), false, &m.to_cols_array())
+        };
+        let m3 = |n: &str, m: &glam::Mat3| unsafe {
+            gl.uniform_matrix_3_f32_slice(u(n).as_ref(), false, &m.to_cols_array())
+        };
+        let light_view = Mat4::look_at_rh(LIGHT_POS, Vec3::ZERO, Vec3::Y);
+        let ortho = Mat4::orthographic_rh_gl(-10.0, 10.0, -10.0, 10.0, 1.0, 7.5);
+        unsafe {
+            gl.enable(glow::DEPTH_TEST);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.shadow_fbo));
+            gl.viewport(0, 0, MAP_SIZE, MAP_SIZE);
+            gl.clear(glow::DEPTH_BUFFER_BIT);
+            gl.use_program(Some(self.depth_program));
+            gl.uniform_matrix_4_f32_slice(
+                self.depth_light_space.as_ref(),
+                false,
+                &self.light_space.to_cols_array(),
+            );
+            self.draw_scene(self.depth_model.as_ref());
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.scene_fbo));
+            gl.viewport(0, 0, WIDTH, HEIGHT);
+            gl.clear_color(0.1, 0.1, 0.1, 1.0);
+            gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            gl.use_program(Some(p));
+            m4("projectionMatrix", &self.projection);
+            m4("orthoProjectionMatrix", &ortho);
+            gl.uniform_3_f32(u("ambientLight").as_ref(), 0.09, 0.09, 0.09);
+            gl.uniform_1_f32(u("specularPower").as_ref(), 64.0);
+            gl.uniform_1_f32(u("bias").as_ref(), 0.05);
+            gl.uniform_1_f32(u("biasMin").as_ref(), 0.005);
+            gl.uniform_3_f32(u("light.colour").as_ref(), 0.3, 0.3, 0.3);
+            gl.uniform_1_f32(u("light.intensity").as_ref(), 1.0);
+            let lp = self.view.transform_point3(LIGHT_POS);
+            gl.uniform_3_f32(u("light.position").as_ref(), lp.x, lp.y, lp.z);
+            gl.uniform_1_i32(u("textureSampler").as_ref(), 0);
+            gl.uniform_1_i32(u("shadowMap").as_ref(), 1);
+            gl.active_texture(glow::TEXTURE0);
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
+            gl.active_texture(glow::TEXTURE1);
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.depth_map));
+            for (i, m) in self.models.iter().enumerate() {
+                let (vao, count) = if i == 0 { self.floor } else { self.cube };
+                let mv = self.view * *m;
+                m4(
+                    "modelOriginMatrix",
+                    &(Mat4::from_translation(-CAMERA_POS) * *m),
+                );
+                m4("modelViewMatrix", &mv);
+                m3(
+                    "normalMatrix",
+                    &glam::Mat3::from_mat4(mv).inverse().transpose(),
+                );
+                m3(
+                    "worldNormalMatrix",
+                    &glam::Mat3::from_mat4(*m).inverse().transpose(),
+                );
+                m4("modelLightViewMatrix", &(light_view * *m));
+                gl.uniform_4_f32(u("material.colour").as_ref(), 1.0, 1.0, 1.0, 1.0);
+                gl.uniform_1_f32(u("material.reflectance").as_ref(), 1.0);
+                gl.uniform_1_i32(u("material.hasTexture").as_ref(), 1);
+                gl.bind_vertex_array(Some(vao));
+                gl.draw_arrays(glow::TRIANGLES, 0, count);
+            }
+            gl.bind_vertex_array(None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+
     /// Blocks until the GPU has finished (for wall-time measurements).
     pub fn finish(&self) {
         unsafe { self.gl.finish() };
