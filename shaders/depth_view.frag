@@ -6,7 +6,11 @@
 in vec2 texCoords;
 out vec4 fragColor;
 
+#if CUBE
+uniform samplerCube depthMap;  // a point light's distances / far, shown as a panorama
+#else
 uniform sampler2D depthMap;
+#endif
 uniform int linearize;
 uniform float nearPlane;
 uniform float farPlane;
@@ -21,7 +25,15 @@ float linearDepth(float depth)
 
 void main()
 {
+#if CUBE
+    // Longitude across, latitude down: every direction from the light once.
+    float phi = texCoords.x * 6.2831853;
+    float theta = (1.0 - texCoords.y) * 3.1415927;
+    vec3 dir = vec3(sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi));
+    float shown = texture(depthMap, dir).r;
+#else
     float d = texture(depthMap, texCoords).r;
     float shown = linearize == 1 ? linearDepth(d) : d;
+#endif
     fragColor = vec4(vec3(shown), 1.0);
 }

@@ -5,6 +5,7 @@
 //   HW_PCF          1 = lookups through sampler2DShadow with LINEAR (hardware 2x2 PCF each)
 //   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
+//   POINT_SHADOW    1 = a point light's depth cube map (distances in world units)
 // and with the scene's lighting (branches on uniforms would run for every pixel):
 //   LIGHT_POSITIONAL 0 = one direction for all fragments, 1 = from each fragment to a point
 //   SPOT_CONE        1 = a spot light's cone limits the light
@@ -42,7 +43,10 @@ struct Light
 };
 
 uniform sampler2D textureSampler;  // unit 0
-#if HW_PCF
+#if POINT_SHADOW
+uniform samplerCube shadowMap;     // unit 1, linear distance / farPlane
+uniform float farPlane;
+#elif HW_PCF
 uniform sampler2DShadow shadowMap; // unit 1, compare mode on
 #else
 uniform sampler2D shadowMap;       // unit 1
@@ -73,6 +77,47 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, float intensity, vec3 po
     return diffuse + specular;
 }
 
+#if POINT_SHADOW
+// A point light's omnidirectional test (LearnOpenGL's ShadowCalculation for cube maps):
+// `position` holds the fragment relative to the light; distances are world units, and so
+// is the bias. PCF_RADIUS > 0 selects its soft variant: 20 samples on a grid disk whose
+// radius grows with the distance from the viewer.
+float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
+{
+    vec3 fragToLight = position.xyz;
+    float current = length(fragToLight);
+#if BEYOND_FAR_LIT
+    if (current > farPlane) {
+        return 1.0;
+    }
+#endif
+#if BIAS_MODE == 0
+    float b = 0.0;
+#elif BIAS_MODE == 1
+    float b = bias;
+#else
+    float b = max(bias * (1.0 - dot(normal, toLightDir)), biasMin);
+#endif
+#if PCF_RADIUS == 0
+    float closest = texture(shadowMap, fragToLight).r * farPlane;
+    return current - b > closest ? 0.0 : 1.0;
+#else
+    const vec3 offsets[20] = vec3[](
+        vec3(1, 1, 1), vec3(1, -1, 1), vec3(-1, -1, 1), vec3(-1, 1, 1),
+        vec3(1, 1, -1), vec3(1, -1, -1), vec3(-1, -1, -1), vec3(-1, 1, -1),
+        vec3(1, 1, 0), vec3(1, -1, 0), vec3(-1, -1, 0), vec3(-1, 1, 0),
+        vec3(1, 0, 1), vec3(-1, 0, 1), vec3(1, 0, -1), vec3(-1, 0, -1),
+        vec3(0, 1, 1), vec3(0, -1, 1), vec3(0, -1, -1), vec3(0, 1, -1));
+    float radius = (1.0 + length(mvVertexPos) / farPlane) / 25.0;
+    float shadowed = 0.0;
+    for (int i = 0; i < 20; ++i) {
+        float closest = texture(shadowMap, fragToLight + offsets[i] * radius).r * farPlane;
+        shadowed += current - b > closest ? 1.0 : 0.0;
+    }
+    return 1.0 - shadowed / 20.0;
+#endif
+}
+#else
 // 1 = lit, 0 = in shadow (the book's calcShadow, returning 1 - shadowFactor).
 float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
 {
@@ -119,6 +164,7 @@ float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
     return 1.0 - shadowFactor;
 #endif
 }
+#endif
 
 void main()
 {

@@ -204,6 +204,15 @@ impl MeshData {
             .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
     }
 
+    /// Turns the mesh inside out: reversed winding and normals, to be seen from within.
+    pub fn inside_out(self) -> MeshData {
+        let mut m = self.flip_winding();
+        for n in &mut m.normals {
+            *n = n.map(|c| -c);
+        }
+        m
+    }
+
     /// Reverses every triangle's winding (LearnOpenGL's floor is wound clockwise on purpose).
     pub fn flip_winding(mut self) -> MeshData {
         for t in self.indices.chunks_exact_mut(3) {

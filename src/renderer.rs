@@ -6,10 +6,12 @@ use glow::HasContext;
 
 use crate::engine::mesh::FullScreenTriangle;
 use crate::engine::{
-    check_gl, gl_limits, Gl, Mesh, PassTimer, RenderTarget, ShaderProgram, ShadowMap, Texture,
+    check_gl, gl_limits, CubeShadowMap, Gl, Mesh, PassTimer, RenderTarget, ShaderProgram,
+    ShadowMap, Texture,
 };
 use crate::error::{Error, Result};
-use crate::scene::{Scene, Shading, ShadingModel, ShadowView};
+use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
+use crate::settings::DepthFormat;
 use crate::settings::{Cull, ShadowSettings};
 use crate::shaders;
 
@@ -46,6 +48,11 @@ pub struct Renderer {
     full_screen: FullScreenTriangle,
     /// The light's camera used by the last depth pass.
     shadow_view: Option<ShadowView>,
+    /// A point light's cube map and depth program, made when a point light first casts.
+    cube_map: Option<CubeShadowMap>,
+    cube_format: DepthFormat,
+    point_depth_program: Option<ShaderProgram>,
+    depth_view_cube: Option<ShaderProgram>,
     /// GPU timers for the depth pass (0) and the scene pass (1), when enabled.
     timer: Option<PassTimer>,
 }
@@ -76,7 +83,7 @@ impl Renderer {
             gl,
             &shaders::depth_view_vert(),
             &shaders::depth_view_frag(),
-            &[],
+            &[("CUBE".into(), "0".into())],
         )?;
         let shadow_map = ShadowMap::new(gl, settings.map_size, settings.depth_format)?;
         configure_sampling(&shadow_map, settings);
@@ -94,6 +101,10 @@ impl Renderer {
             depth_view_program,
             full_screen: FullScreenTriangle::new(gl)?,
             shadow_view: None,
+            cube_map: None,
+            cube_format: settings.depth_format,
+            point_depth_program: None,
+            depth_view_cube: None,
             timer: None,
         })
     }
@@ -154,29 +165,16 @@ impl Renderer {
     /// The shadow pass: bind the map's FBO, viewport to its size, clear depth, and draw every
     /// caster with the light's view and projection (ortho for the book's light).
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
-        let gl = &self.gl;
-        self.shadow_map.bind_for_writing();
         let sv = scene.shadow_view(&self.settings);
         self.shadow_view = Some(sv);
-        let [factor, units] = self.settings.polygon_offset;
+        if let Light::Point(p) = &scene.light {
+            return self.render_cube_depth_map(scene, p);
+        }
+        let gl = &self.gl;
+        self.shadow_map.bind_for_writing();
+        self.begin_depth_state();
         unsafe {
-            gl.depth_mask(true);
             gl.clear(glow::DEPTH_BUFFER_BIT);
-            if factor != 0.0 || units != 0.0 {
-                gl.enable(glow::POLYGON_OFFSET_FILL);
-                gl.polygon_offset(factor, units);
-            }
-            match self.settings.cull {
-                Cull::None => gl.disable(glow::CULL_FACE),
-                Cull::Back => {
-                    gl.enable(glow::CULL_FACE);
-                    gl.cull_face(glow::BACK);
-                }
-                Cull::Front => {
-                    gl.enable(glow::CULL_FACE);
-                    gl.cull_face(glow::FRONT);
-                }
-            }
         }
         if let Some(t) = &self.timer {
             t.begin(DEPTH_PASS);
@@ -198,12 +196,96 @@ impl Renderer {
         if let Some(t) = &self.timer {
             t.end();
         }
-        unsafe {
-            gl.disable(glow::CULL_FACE);
-            gl.disable(glow::POLYGON_OFFSET_FILL);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
+        self.end_depth_state();
         check_gl(gl, "the depth-map pass")
+    }
+
+    /// A point light's depth pass: six faces of a cube map, each a 90-degree view from the
+    /// light storing distance over `far` (LearnOpenGL's "Point Shadows").
+    fn render_cube_depth_map(&mut self, scene: &Scene, light: &PointLight) -> Result<()> {
+        let (size, format) = (self.settings.map_size, self.settings.depth_format);
+        let stale = self
+            .cube_map
+            .as_ref()
+            .is_none_or(|c| c.size() != size || self.cube_format != format);
+        if stale {
+            self.cube_map = Some(CubeShadowMap::new(&self.gl, size, format)?);
+            self.cube_format = format;
+        }
+        if self.point_depth_program.is_none() {
+            self.point_depth_program = Some(ShaderProgram::new(
+                &self.gl,
+                &shaders::depth_point_vert(),
+                &shaders::depth_point_frag(),
+                &[],
+            )?);
+        }
+        let (Some(cube), Some(program)) = (&self.cube_map, &self.point_depth_program) else {
+            return Err(Error::Invalid(
+                "the point light's cube map is missing".into(),
+            ));
+        };
+        let projection = Mat4::perspective_rh_gl(90f32.to_radians(), 1.0, light.near, light.far);
+        let to_light = DMat4::from_translation(-light.position.as_dvec3());
+        self.begin_depth_state();
+        if let Some(t) = &self.timer {
+            t.begin(DEPTH_PASS);
+        }
+        program.bind();
+        program.set_f32("farPlane", light.far);
+        for (face, view) in PointLight::face_views().iter().enumerate() {
+            cube.bind_face(face as u32);
+            unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
+            program.set_mat4("faceProjection", &(projection * *view));
+            for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+                let items = scene
+                    .items
+                    .iter()
+                    .filter(|i| i.mesh == mesh_id && i.casts_shadows);
+                mesh.render_list(items, |item| {
+                    let m = (to_light * item.model_matrix64()).as_mat4();
+                    program.set_mat4("modelLightMatrix", &m);
+                });
+            }
+        }
+        program.unbind();
+        if let Some(t) = &self.timer {
+            t.end();
+        }
+        self.end_depth_state();
+        check_gl(&self.gl, "the point light's depth pass")
+    }
+
+    /// Depth writes, polygon offset and culling as the settings ask, for a depth pass.
+    fn begin_depth_state(&self) {
+        let gl = &self.gl;
+        let [factor, units] = self.settings.polygon_offset;
+        unsafe {
+            gl.depth_mask(true);
+            if factor != 0.0 || units != 0.0 {
+                gl.enable(glow::POLYGON_OFFSET_FILL);
+                gl.polygon_offset(factor, units);
+            }
+            match self.settings.cull {
+                Cull::None => gl.disable(glow::CULL_FACE),
+                Cull::Back => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::BACK);
+                }
+                Cull::Front => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::FRONT);
+                }
+            }
+        }
+    }
+
+    fn end_depth_state(&self) {
+        unsafe {
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::POLYGON_OFFSET_FILL);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
     }
 
     /// Binds the target, sets the viewport to its size in pixels (not the window's logical
@@ -253,7 +335,22 @@ impl Renderer {
             "projectionMatrix",
             &scene.camera.projection_matrix(width, height),
         );
-        p.set_mat4("orthoProjectionMatrix", &sv.projection);
+        // A point light's test works on the fragment relative to the light (no projection).
+        let point = match &scene.light {
+            Light::Point(l) => Some(l),
+            _ => None,
+        };
+        let light_from = match point {
+            Some(l) => DMat4::from_translation(-l.position.as_dvec3()),
+            None => sv.view64,
+        };
+        p.set_mat4(
+            "orthoProjectionMatrix",
+            &point.map_or(sv.projection, |_| Mat4::IDENTITY),
+        );
+        if let Some(l) = point {
+            p.set_f32("farPlane", l.far);
+        }
         p.set_vec3("ambientLight", scene.ambient);
         p.set_f32("specularPower", scene.specular_power);
         p.set_i32(
@@ -278,7 +375,10 @@ impl Renderer {
         }
         p.set_i32("textureSampler", 0);
         p.set_i32("shadowMap", 1);
-        self.shadow_map.depth_map_texture().bind(1);
+        match (&self.cube_map, point) {
+            (Some(cube), Some(_)) => cube.texture().bind_cube(1),
+            _ => self.shadow_map.depth_map_texture().bind(1),
+        }
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
@@ -288,7 +388,7 @@ impl Renderer {
                 p.set_mat4("modelViewMatrix", &model_view);
                 p.set_mat3("normalMatrix", &normal_matrix(&model_view));
                 p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
-                p.set_mat4("modelLightViewMatrix", &(sv.view64 * model).as_mat4());
+                p.set_mat4("modelLightViewMatrix", &(light_from * model).as_mat4());
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
                 p.set_f32("material.reflectance", m.reflectance);
@@ -310,13 +410,34 @@ impl Renderer {
 
     /// The chapters' debug quad: the shadow map on the whole target, linearised for a
     /// perspective light (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one.
-    pub fn render_depth_view(&self, scene: &Scene, target: Target) -> Result<()> {
+    pub fn render_depth_view(&mut self, scene: &Scene, target: Target) -> Result<()> {
         let Some(sv) = self.shadow_view else {
             return Err(Error::Invalid(
                 "render_depth_view before render_depth_map: there is no shadow map yet".into(),
             ));
         };
         self.begin_target(scene, target);
+        if let (Light::Point(_), Some(cube)) = (&scene.light, &self.cube_map) {
+            // A point light's six faces as one panorama of directions from the light.
+            if self.depth_view_cube.is_none() {
+                self.depth_view_cube = Some(ShaderProgram::new(
+                    &self.gl,
+                    &shaders::depth_view_vert(),
+                    &shaders::depth_view_frag(),
+                    &[("CUBE".into(), "1".into())],
+                )?);
+            }
+            if let Some(p) = &self.depth_view_cube {
+                p.bind();
+                p.set_i32("depthMap", 0);
+                cube.texture().bind_cube(0);
+                unsafe { self.gl.disable(glow::DEPTH_TEST) };
+                self.full_screen.draw();
+                unsafe { self.gl.enable(glow::DEPTH_TEST) };
+                p.unbind();
+            }
+            return check_gl(&self.gl, "the cube depth-map view");
+        }
         let texture = self.shadow_map.depth_map_texture();
         // A plain sampler2D must not read a texture in compare mode.
         texture.set_compare(false, false);
@@ -348,6 +469,7 @@ struct LightingKey {
     positional: bool,
     cone: bool,
     blinn: bool,
+    point: bool,
 }
 
 impl LightingKey {
@@ -360,6 +482,7 @@ impl LightingKey {
             positional,
             cone,
             blinn: scene.shading == ShadingModel::BlinnPhong,
+            point: matches!(scene.light, Light::Point(_)),
         }
     }
 }
@@ -370,6 +493,7 @@ fn scene_program(gl: &Gl, settings: &ShadowSettings, key: LightingKey) -> Result
         ("LIGHT_POSITIONAL", key.positional),
         ("SPOT_CONE", key.cone),
         ("BLINN", key.blinn),
+        ("POINT_SHADOW", key.point),
     ] {
         defines.push((name.into(), u32::from(on).to_string()));
     }

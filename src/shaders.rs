@@ -20,3 +20,5 @@ shader!(scene_vert, "scene.vert");
 shader!(scene_frag, "scene.frag");
 shader!(depth_view_vert, "depth_view.vert");
 shader!(depth_view_frag, "depth_view.frag");
+shader!(depth_point_vert, "depth_point.vert");
+shader!(depth_point_frag, "depth_point.frag");

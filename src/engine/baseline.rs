@@ -227,11 +227,6 @@ impl Objects {
                 gl.enable_vertex_attrib_array(index);
                 gl.vertex_attrib_pointer_f32(index, size, glow::FLOAT, false, 32, offset * 4);
             }
-            let ebo = self.keep(gl.create_buffer(), Name::Buffer)?;
-            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
-            let idx: Vec<u32> = (0..vertices.len() as u32).collect();
-            let ib = std::slice::from_raw_parts(idx.as_ptr().cast::<u8>(), idx.len() * 4);
-            gl.buffer_data_u8_slice(glow::ELEMENT_ARRAY_BUFFER, ib, glow::STATIC_DRAW);
             gl.bind_vertex_array(None);
             Ok((vao, vertices.len() as i32))
         }
@@ -308,15 +303,12 @@ pub struct LearnOpenGlBaseline {
 
 impl LearnOpenGlBaseline {
     pub fn new(gl: &Gl) -> Result<Self> {
-        Self::with_shaders(gl, SCENE_VS, SCENE_FS)
-    }
-    pub fn with_shaders(gl: &Gl, scene_vs: &str, scene_fs: &str) -> Result<Self> {
         let mut o = Objects {
             gl: gl.clone(),
             names: Vec::new(),
         };
         let depth_program = o.program("depth", DEPTH_VS, DEPTH_FS)?;
-        let scene_program = o.program("scene", scene_vs, scene_fs)?;
+        let scene_program = o.program("scene", SCENE_VS, SCENE_FS)?;
         let floor = o.shape(&floor_vertices())?;
         let cube = o.shape(&cube_vertices())?;
         use glow::{LINEAR, NEAREST, TEXTURE_MAG_FILTER as MAG, TEXTURE_MIN_FILTER as MIN};
@@ -471,172 +463,6 @@ impl LearnOpenGlBaseline {
             gl.active_texture(glow::TEXTURE1);
             gl.bind_texture(glow::TEXTURE_2D, Some(self.depth_map));
             self.draw_scene(self.scene_model.as_ref());
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
-    }
-
-    pub fn depth_only(&self) {
-        let gl = &self.gl;
-        unsafe {
-            gl.enable(glow::DEPTH_TEST);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.shadow_fbo));
-            gl.viewport(0, 0, MAP_SIZE, MAP_SIZE);
-            gl.clear(glow::DEPTH_BUFFER_BIT);
-            gl.use_program(Some(self.depth_program));
-            gl.uniform_matrix_4_f32_slice(
-                self.depth_light_space.as_ref(),
-                false,
-                &self.light_space.to_cols_array(),
-            );
-            self.draw_scene(self.depth_model.as_ref());
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
-    }
-    pub fn render_variant(&self, churn: bool, extra_uniforms: bool, indexed: bool) {
-        let gl = &self.gl;
-        let m4 = |loc: &Option<glow::UniformLocation>, m: &Mat4| unsafe {
-            gl.uniform_matrix_4_f32_slice(loc.as_ref(), false, &m.to_cols_array())
-        };
-        unsafe {
-            gl.enable(glow::DEPTH_TEST);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.shadow_fbo));
-            gl.viewport(0, 0, MAP_SIZE, MAP_SIZE);
-            if churn {
-                gl.depth_mask(true);
-            }
-            gl.clear(glow::DEPTH_BUFFER_BIT);
-            if churn {
-                gl.disable(glow::CULL_FACE);
-            }
-            gl.use_program(Some(self.depth_program));
-            m4(&self.depth_light_space, &self.light_space);
-            self.draw_scene(self.depth_model.as_ref());
-            if churn {
-                gl.use_program(None);
-                gl.disable(glow::CULL_FACE);
-                gl.disable(glow::POLYGON_OFFSET_FILL);
-                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                gl.get_error();
-            }
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.scene_fbo));
-            gl.viewport(0, 0, WIDTH, HEIGHT);
-            if churn {
-                gl.depth_mask(true);
-                gl.clear_buffer_f32_slice(glow::COLOR, 0, &[0.1, 0.1, 0.1, 1.0]);
-                gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-            } else {
-                gl.clear_color(0.1, 0.1, 0.1, 1.0);
-                gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
-            }
-            gl.use_program(Some(self.scene_program));
-            let [projection, view, light_space, light_pos, view_pos] = &self.scene_frame;
-            m4(projection, &self.projection);
-            m4(view, &self.view);
-            m4(light_space, &self.light_space);
-            gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
-            gl.uniform_3_f32_slice(view_pos.as_ref(), &CAMERA_POS.to_array());
-            gl.active_texture(glow::TEXTURE0);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
-            gl.active_texture(glow::TEXTURE1);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.depth_map));
-            for (i, m) in self.models.iter().enumerate() {
-                let (vao, count) = if i == 0 { self.floor } else { self.cube };
-                if extra_uniforms {
-                    for _ in 0..4 {
-                        m4(&self.scene_model, m);
-                    }
-                    gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
-                    gl.uniform_3_f32_slice(view_pos.as_ref(), &CAMERA_POS.to_array());
-                    gl.uniform_3_f32_slice(light_pos.as_ref(), &LIGHT_POS.to_array());
-                    gl.active_texture(glow::TEXTURE0);
-                    gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
-                }
-                m4(&self.scene_model, m);
-                gl.bind_vertex_array(Some(vao));
-                if indexed {
-                    gl.draw_elements(glow::TRIANGLES, count, glow::UNSIGNED_INT, 0);
-                } else {
-                    gl.draw_arrays(glow::TRIANGLES, 0, count);
-                }
-            }
-            gl.bind_vertex_array(None);
-            if churn {
-                gl.use_program(None);
-                gl.get_error();
-            }
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
-    }
-
-    pub fn render_real_uniforms(&self) {
-        let gl = &self.gl;
-        let p = self.scene_program;
-        let u = |n: &str| unsafe { gl.get_uniform_location(p, n) };
-        let m4 = |n: &str, m: &Mat4| unsafe {
-            gl.uniform_matrix_4_f32_slice(u(n).as_ref(), false, &m.to_cols_array())
-        };
-        let m3 = |n: &str, m: &glam::Mat3| unsafe {
-            gl.uniform_matrix_3_f32_slice(u(n).as_ref(), false, &m.to_cols_array())
-        };
-        let light_view = Mat4::look_at_rh(LIGHT_POS, Vec3::ZERO, Vec3::Y);
-        let ortho = Mat4::orthographic_rh_gl(-10.0, 10.0, -10.0, 10.0, 1.0, 7.5);
-        unsafe {
-            gl.enable(glow::DEPTH_TEST);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.shadow_fbo));
-            gl.viewport(0, 0, MAP_SIZE, MAP_SIZE);
-            gl.clear(glow::DEPTH_BUFFER_BIT);
-            gl.use_program(Some(self.depth_program));
-            gl.uniform_matrix_4_f32_slice(
-                self.depth_light_space.as_ref(),
-                false,
-                &self.light_space.to_cols_array(),
-            );
-            self.draw_scene(self.depth_model.as_ref());
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.scene_fbo));
-            gl.viewport(0, 0, WIDTH, HEIGHT);
-            gl.clear_color(0.1, 0.1, 0.1, 1.0);
-            gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
-            gl.use_program(Some(p));
-            m4("projectionMatrix", &self.projection);
-            m4("orthoProjectionMatrix", &ortho);
-            gl.uniform_3_f32(u("ambientLight").as_ref(), 0.09, 0.09, 0.09);
-            gl.uniform_1_f32(u("specularPower").as_ref(), 64.0);
-            gl.uniform_1_f32(u("bias").as_ref(), 0.05);
-            gl.uniform_1_f32(u("biasMin").as_ref(), 0.005);
-            gl.uniform_3_f32(u("light.colour").as_ref(), 0.3, 0.3, 0.3);
-            gl.uniform_1_f32(u("light.intensity").as_ref(), 1.0);
-            let lp = self.view.transform_point3(LIGHT_POS);
-            gl.uniform_3_f32(u("light.position").as_ref(), lp.x, lp.y, lp.z);
-            gl.uniform_1_i32(u("textureSampler").as_ref(), 0);
-            gl.uniform_1_i32(u("shadowMap").as_ref(), 1);
-            gl.active_texture(glow::TEXTURE0);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.wood));
-            gl.active_texture(glow::TEXTURE1);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.depth_map));
-            for (i, m) in self.models.iter().enumerate() {
-                let (vao, count) = if i == 0 { self.floor } else { self.cube };
-                let mv = self.view * *m;
-                m4(
-                    "modelOriginMatrix",
-                    &(Mat4::from_translation(-CAMERA_POS) * *m),
-                );
-                m4("modelViewMatrix", &mv);
-                m3(
-                    "normalMatrix",
-                    &glam::Mat3::from_mat4(mv).inverse().transpose(),
-                );
-                m3(
-                    "worldNormalMatrix",
-                    &glam::Mat3::from_mat4(*m).inverse().transpose(),
-                );
-                m4("modelLightViewMatrix", &(light_view * *m));
-                gl.uniform_4_f32(u("material.colour").as_ref(), 1.0, 1.0, 1.0, 1.0);
-                gl.uniform_1_f32(u("material.reflectance").as_ref(), 1.0);
-                gl.uniform_1_i32(u("material.hasTexture").as_ref(), 1);
-                gl.bind_vertex_array(Some(vao));
-                gl.draw_arrays(glow::TRIANGLES, 0, count);
-            }
-            gl.bind_vertex_array(None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }

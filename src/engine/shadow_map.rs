@@ -109,3 +109,65 @@ impl Drop for ShadowMap {
         unsafe { self.gl.delete_framebuffer(self.fbo) };
     }
 }
+
+/// The omnidirectional shadow map of a point light: a depth cube map and the framebuffer its
+/// faces are drawn into, one pass per face (LearnOpenGL's "Point Shadows" on GL 3.3 without a
+/// geometry shader).
+pub struct CubeShadowMap {
+    gl: Gl,
+    fbo: glow::Framebuffer,
+    cube: Texture,
+}
+
+impl CubeShadowMap {
+    pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<CubeShadowMap> {
+        let cube = Texture::depth_cube(gl, size, format)?;
+        let fbo = unsafe { gl.create_framebuffer() }
+            .map_err(|e| Error::Create(format!("cube shadow-map framebuffer: {e}")))?;
+        let map = CubeShadowMap {
+            gl: gl.clone(),
+            fbo,
+            cube,
+        };
+        map.bind_face(0);
+        unsafe {
+            gl.draw_buffer(glow::NONE);
+            gl.read_buffer(glow::NONE);
+        }
+        let status = check_framebuffer(gl, &format!("cube shadow map {size}x{size}"));
+        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
+        status?;
+        Ok(map)
+    }
+
+    /// Binds the framebuffer with face `face` (0..6: +X, -X, +Y, -Y, +Z, -Z) as its depth
+    /// attachment, and the viewport to the face's size.
+    pub fn bind_face(&self, face: u32) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl.framebuffer_texture_2d(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                glow::TEXTURE_CUBE_MAP_POSITIVE_X + face,
+                Some(self.cube.id()),
+                0,
+            );
+            let size = self.cube.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+    }
+
+    pub fn texture(&self) -> &Texture {
+        &self.cube
+    }
+
+    pub fn size(&self) -> u32 {
+        self.cube.width()
+    }
+}
+
+impl Drop for CubeShadowMap {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_framebuffer(self.fbo) };
+    }
+}

@@ -162,6 +162,44 @@ impl Texture {
         )
     }
 
+    /// An empty depth cube map, `size` texels a side per face (LearnOpenGL's point shadows):
+    /// NEAREST, clamped on all three axes.
+    pub fn depth_cube(gl: &Gl, size: u32, format: DepthFormat) -> Result<Texture> {
+        let texture = Texture::create(gl, size, size, "depth cube map")?;
+        unsafe {
+            gl.bind_texture(glow::TEXTURE_CUBE_MAP, Some(texture.id));
+            for face in 0..6 {
+                gl.tex_image_2d(
+                    glow::TEXTURE_CUBE_MAP_POSITIVE_X + face,
+                    0,
+                    format.internal_format() as i32,
+                    size as i32,
+                    size as i32,
+                    0,
+                    glow::DEPTH_COMPONENT,
+                    glow::FLOAT,
+                    glow::PixelUnpackData::Slice(None),
+                );
+            }
+            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_CUBE_MAP, k, v as i32);
+            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
+            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
+            p(glow::TEXTURE_WRAP_R, glow::CLAMP_TO_EDGE);
+            gl.bind_texture(glow::TEXTURE_CUBE_MAP, None);
+        }
+        Ok(texture)
+    }
+
+    /// Binds a cube map to a texture unit.
+    pub fn bind_cube(&self, unit: u32) {
+        unsafe {
+            self.gl.active_texture(glow::TEXTURE0 + unit);
+            self.gl.bind_texture(glow::TEXTURE_CUBE_MAP, Some(self.id));
+        }
+    }
+
     /// An empty colour texture used as a render-target attachment.
     pub(crate) fn attachment(
         gl: &Gl,

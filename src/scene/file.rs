@@ -8,8 +8,8 @@ use glam::{Vec3, Vec4};
 use serde::Deserialize;
 
 use super::{
-    Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, Scene, ShadingModel,
-    SpotLight, StepContext,
+    Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, PointLight, Scene,
+    ShadingModel, SpotLight, StepContext,
 };
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -77,6 +77,7 @@ enum LightKindFile {
     #[default]
     Directional,
     Spot,
+    Point,
 }
 
 #[derive(Debug, Deserialize)]
@@ -103,6 +104,8 @@ struct LightFile {
     fov: Option<f32>,
     near: Option<f32>,
     far: Option<f32>,
+    /// Point: the light moves to position + oscillate * sin(0.5 t) (LearnOpenGL's moving light).
+    oscillate: Option<[f32; 3]>,
 }
 
 #[derive(Debug, Deserialize, Default, Clone, Copy, PartialEq, Eq, Hash)]
@@ -154,6 +157,9 @@ struct ItemFile {
     /// "ccw" (default) or "cw": LearnOpenGL's floor is wound clockwise on purpose.
     #[serde(default)]
     winding: Winding,
+    /// Seen from inside (LearnOpenGL's room): faces and normals turned inwards.
+    #[serde(default)]
+    inside_out: bool,
     #[serde(default = "unit_scale")]
     scale: ScaleFile,
     #[serde(default = "white")]
@@ -259,7 +265,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         .map_err(|e| Error::file(source, e.to_string()))?;
 
     let mut meshes: Vec<MeshData> = Vec::new();
-    let mut mesh_ids: HashMap<(String, u32, Winding), usize> = HashMap::new();
+    let mut mesh_ids: HashMap<(String, u32, Winding, bool), usize> = HashMap::new();
     let mut textures: Vec<ImageData> = Vec::new();
     let mut texture_ids: HashMap<PathBuf, usize> = HashMap::new();
     let mut items = Vec::new();
@@ -313,7 +319,12 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                 format!("{}: expected a finite number > 0", item.tiles),
             ));
         }
-        let key = (item.mesh.clone(), item.tiles.to_bits(), item.winding);
+        let key = (
+            item.mesh.clone(),
+            item.tiles.to_bits(),
+            item.winding,
+            item.inside_out,
+        );
         let mesh = match mesh_ids.get(&key) {
             Some(&id) => id,
             None => {
@@ -341,9 +352,14 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                             .map_err(|e| bad(&field("mesh"), e.to_string()))?
                     }
                 };
-                meshes.push(match item.winding {
+                let data = match item.winding {
                     Winding::Ccw => data,
                     Winding::Cw => data.flip_winding(),
+                };
+                meshes.push(if item.inside_out {
+                    data.inside_out()
+                } else {
+                    data
                 });
                 mesh_ids.insert(key, meshes.len() - 1);
                 meshes.len() - 1
@@ -420,6 +436,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             start_wrap: file.steps.start_wrap,
         },
         fit_camera: None,
+        time: 0.0,
         ambient: Vec3::from(file.ambient),
         specular_power: file.specular_power,
         clear_colour: Vec3::from(file.clear_colour).extend(1.0),
@@ -470,6 +487,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                     ("fov", l.fov.is_some()),
                     ("near", l.near.is_some()),
                     ("far", l.far.is_some()),
+                    ("oscillate", l.oscillate.is_some()),
                 ],
             )?;
             let given = [l.angle.is_some(), l.direction.is_some(), position.is_some()];
@@ -531,6 +549,40 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 shading_position: position,
             }))
         }
+        LightKindFile::Point => {
+            only(
+                "point",
+                &[
+                    ("angle", l.angle.is_some()),
+                    ("direction", l.direction.is_some()),
+                    ("shadow_pos_mult", l.shadow_pos_mult.is_some()),
+                    ("ortho", l.ortho.is_some()),
+                    ("target", l.target.is_some()),
+                    ("up", l.up.is_some()),
+                    ("fov", l.fov.is_some()),
+                ],
+            )?;
+            let position =
+                position.ok_or_else(|| bad("light.position", "a point light needs it".into()))?;
+            let (near, far) = (l.near.unwrap_or(1.0), l.far.unwrap_or(25.0));
+            finite("light.near", &[near, far])?;
+            if !(near > 0.0 && near < far) {
+                return Err(bad(
+                    "light",
+                    format!("near = {near}, far = {far}: expected 0 < near < far"),
+                ));
+            }
+            let oscillate = vec("oscillate", l.oscillate)?.unwrap_or(Vec3::ZERO);
+            Ok(Light::Point(PointLight {
+                colour: Vec3::from(l.colour),
+                intensity: l.intensity,
+                position,
+                near,
+                far,
+                oscillate,
+                centre: position,
+            }))
+        }
         LightKindFile::Spot => {
             only(
                 "spot",
@@ -539,6 +591,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                     ("direction", l.direction.is_some()),
                     ("shadow_pos_mult", l.shadow_pos_mult.is_some()),
                     ("ortho", l.ortho.is_some()),
+                    ("oscillate", l.oscillate.is_some()),
                 ],
             )?;
             let need = |name: &str| bad(&format!("light.{name}"), "a spot light needs it".into());

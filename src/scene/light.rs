@@ -119,11 +119,44 @@ pub struct SpotLight {
     pub far: f32,
 }
 
+/// A light shining every way from a point, with an omnidirectional shadow in a depth cube
+/// map (LearnOpenGL's "Point Shadows": 90-degree faces, linear distance stored).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLight {
+    pub colour: Vec3,
+    pub intensity: f32,
+    pub position: Vec3,
+    pub near: f32,
+    pub far: f32,
+    /// The light moves to `position + oscillate * sin(0.5 t)` (t in seconds), as
+    /// LearnOpenGL's does along z.
+    pub oscillate: Vec3,
+    /// The resting position the oscillation is about.
+    pub centre: Vec3,
+}
+
+impl PointLight {
+    /// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,
+    /// with GL's cube-map orientation.
+    pub fn face_views() -> [Mat4; 6] {
+        let faces = [
+            (Vec3::X, -Vec3::Y),
+            (-Vec3::X, -Vec3::Y),
+            (Vec3::Y, Vec3::Z),
+            (-Vec3::Y, -Vec3::Z),
+            (Vec3::Z, -Vec3::Y),
+            (-Vec3::Z, -Vec3::Y),
+        ];
+        faces.map(|(d, up)| Mat4::look_at_rh(Vec3::ZERO, d, up))
+    }
+}
+
 /// A scene's light.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Light {
     Directional(DirectionalLight),
     Spot(SpotLight),
+    Point(PointLight),
 }
 
 /// How the shading sees the light.
@@ -162,6 +195,7 @@ impl Light {
         match self {
             Light::Directional(l) => l.colour,
             Light::Spot(l) => l.colour,
+            Light::Point(l) => l.colour,
         }
     }
 
@@ -169,6 +203,7 @@ impl Light {
         match self {
             Light::Directional(l) => l.intensity,
             Light::Spot(l) => l.intensity,
+            Light::Point(l) => l.intensity,
         }
     }
 
@@ -176,7 +211,7 @@ impl Light {
     pub fn as_directional(&self) -> Option<&DirectionalLight> {
         match self {
             Light::Directional(l) => Some(l),
-            Light::Spot(_) => None,
+            Light::Spot(_) | Light::Point(_) => None,
         }
     }
 
@@ -184,7 +219,7 @@ impl Light {
     pub fn as_directional_mut(&mut self) -> Option<&mut DirectionalLight> {
         match self {
             Light::Directional(l) => Some(l),
-            Light::Spot(_) => None,
+            Light::Spot(_) | Light::Point(_) => None,
         }
     }
 
@@ -196,6 +231,7 @@ impl Light {
             }
             Light::Directional(l) => format!("light towards {:.2}", l.direction),
             Light::Spot(l) => format!("spot at {:.1}", l.position),
+            Light::Point(l) => format!("point light at {:.1}", l.position),
         }
     }
 
@@ -207,6 +243,10 @@ impl Light {
                     cone: None,
                 },
                 None => Shading::Direction(l.direction.normalize()),
+            },
+            Light::Point(l) => Shading::Position {
+                position: l.position,
+                cone: None,
             },
             Light::Spot(l) => Shading::Position {
                 position: l.position,
@@ -257,6 +297,21 @@ impl Light {
                     far,
                     settings.map_size,
                 )
+            }
+            (Light::Point(p), _) => {
+                // The cube map's faces are drawn from the light's position; this view is the
+                // +Z face, and the reference casts rays to the point.
+                let mut v = perspective_view(
+                    p.position,
+                    p.position + Vec3::Z,
+                    Some(-Vec3::Y),
+                    90.0,
+                    p.near,
+                    p.far,
+                    settings.map_size,
+                );
+                v.texel_world = 2.0 * p.far / settings.map_size as f32;
+                v
             }
             (Light::Spot(s), _) => perspective_view(
                 s.position,

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 pub use camera::Camera;
 pub use game_item::{GameItem, Material};
-pub use light::{DirectionalLight, Light, OrthoCoords, Shading, ShadowView, SpotLight};
+pub use light::{DirectionalLight, Light, OrthoCoords, PointLight, Shading, ShadowView, SpotLight};
 
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -30,6 +30,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
     (
         "playground",
         include_str!("../../assets/scenes/playground.toml"),
+    ),
+    (
+        "point-shadows",
+        include_str!("../../assets/scenes/point-shadows.toml"),
     ),
 ];
 
@@ -69,6 +73,8 @@ pub struct Scene {
     /// The camera a fitted light box follows, when it should not be the viewing camera
     /// (to watch or measure the fit from elsewhere).
     pub fit_camera: Option<Camera>,
+    /// Seconds of animation so far (30 updates a second).
+    pub time: f32,
 }
 
 /// The tutorial-specific numbers the chapter steps use ([`crate::steps`]).
@@ -101,10 +107,15 @@ impl Scene {
         BUILTIN_SCENES.iter().map(|(n, _)| *n).collect()
     }
 
-    /// One fixed update (the book's `update`, 30 per second): items spin.
+    /// One fixed update (the book's `update`, 30 per second): items spin, a point light
+    /// with `oscillate` moves.
     pub fn update(&mut self) {
         for item in &mut self.items {
             item.update();
+        }
+        self.time += 1.0 / 30.0;
+        if let Light::Point(p) = &mut self.light {
+            p.position = p.centre + p.oscillate * (0.5 * self.time).sin();
         }
     }
 
