@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use glam::Vec3;
+use shadowmap::geometry::MeshData;
 use shadowmap::reference::{
     reference_visibility, reference_visibility_supersampled, Bvh, GBuffer, LightKind, Triangle,
 };
@@ -85,57 +86,12 @@ fn scene() -> Vec<Triangle> {
         let z = (rng.unit() - 0.5) * SIZE * 0.95;
         let h = Vec3::new(0.2 + rng.unit(), 0.2 + 1.5 * rng.unit(), 0.2 + rng.unit());
         let c = Vec3::new(x, height(x, z) + h.y, z);
-        let v = |sx: f32, sy: f32, sz: f32| c + h * Vec3::new(sx, sy, sz);
-        let faces = [
-            [
-                v(-1., -1., -1.),
-                v(1., -1., -1.),
-                v(1., -1., 1.),
-                v(-1., -1., 1.),
-            ],
-            [
-                v(-1., 1., -1.),
-                v(-1., 1., 1.),
-                v(1., 1., 1.),
-                v(1., 1., -1.),
-            ],
-            [
-                v(-1., -1., -1.),
-                v(-1., 1., -1.),
-                v(1., 1., -1.),
-                v(1., -1., -1.),
-            ],
-            [
-                v(-1., -1., 1.),
-                v(1., -1., 1.),
-                v(1., 1., 1.),
-                v(-1., 1., 1.),
-            ],
-            [
-                v(-1., -1., -1.),
-                v(-1., -1., 1.),
-                v(-1., 1., 1.),
-                v(-1., 1., -1.),
-            ],
-            [
-                v(1., -1., -1.),
-                v(1., 1., -1.),
-                v(1., 1., 1.),
-                v(1., -1., 1.),
-            ],
-        ];
-        for f in faces {
-            tris.push(Triangle {
-                a: f[0],
-                b: f[1],
-                c: f[2],
-            });
-            tris.push(Triangle {
-                a: f[0],
-                b: f[2],
-                c: f[3],
-            });
-        }
+        // The project's own unit cube, scaled and placed.
+        tris.extend(MeshData::cube().triangles().map(|[a, b, cc]| Triangle {
+            a: c + h * a,
+            b: c + h * b,
+            c: c + h * cc,
+        }));
     }
     tris
 }

@@ -10,6 +10,7 @@ use crate::engine::{
     ShadowMap, Texture,
 };
 use crate::error::{Error, Result};
+use crate::image_data::ImageData;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::DepthFormat;
 use crate::settings::{Cull, ShadowSettings};
@@ -50,6 +51,8 @@ pub struct Renderer {
     shadow_view: Option<ShadowView>,
     /// A point light's cube map and depth program, made when a point light first casts.
     cube_map: Option<CubeShadowMap>,
+    /// 1 x 1 white, for items without a texture.
+    white: Texture,
     cube_format: DepthFormat,
     point_depth_program: Option<ShaderProgram>,
     depth_view_cube: Option<ShaderProgram>,
@@ -102,6 +105,14 @@ impl Renderer {
             full_screen: FullScreenTriangle::new(gl)?,
             shadow_view: None,
             cube_map: None,
+            white: Texture::from_image(
+                gl,
+                &ImageData {
+                    width: 1,
+                    height: 1,
+                    rgba: vec![255; 4],
+                },
+            )?,
             cube_format: settings.depth_format,
             point_depth_program: None,
             depth_view_cube: None,
@@ -352,17 +363,14 @@ impl Renderer {
             p.set_f32("farPlane", l.far);
         }
         p.set_vec3("ambientLight", scene.ambient);
-        p.set_f32("specularPower", scene.specular_power);
         p.set_i32(
             "blinn",
             i32::from(scene.shading == ShadingModel::BlinnPhong),
         );
-        p.set_f32("bias", self.settings.bias);
-        p.set_f32("biasMin", self.settings.bias_min);
         p.set_f32("normalOffset", self.settings.normal_offset * sv.texel_world);
         let light = &scene.light;
-        p.set_vec3("light.colour", light.colour());
-        p.set_f32("light.intensity", light.intensity());
+        let light_colour = light.colour() * light.intensity();
+        p.set_vec3("light.colour", light_colour);
         match light.shading() {
             Shading::Direction(d) => p.set_vec3("light.direction", view.transform_vector3(d)),
             Shading::Position { position, cone } => {
@@ -391,14 +399,11 @@ impl Renderer {
                 p.set_mat4("modelLightViewMatrix", &(light_from * model).as_mat4());
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
-                p.set_f32("material.reflectance", m.reflectance);
-                match m.texture.and_then(|t| self.textures.get(t)) {
-                    Some(tex) => {
-                        tex.bind(0);
-                        p.set_i32("material.hasTexture", 1);
-                    }
-                    None => p.set_i32("material.hasTexture", 0),
-                }
+                p.set_vec3("material.specular", light_colour * m.reflectance);
+                m.texture
+                    .and_then(|t| self.textures.get(t))
+                    .unwrap_or(&self.white)
+                    .bind(0);
             });
         }
         p.unbind();
@@ -470,6 +475,7 @@ struct LightingKey {
     cone: bool,
     blinn: bool,
     point: bool,
+    specular_power_bits: u32,
 }
 
 impl LightingKey {
@@ -483,6 +489,7 @@ impl LightingKey {
             cone,
             blinn: scene.shading == ShadingModel::BlinnPhong,
             point: matches!(scene.light, Light::Point(_)),
+            specular_power_bits: scene.specular_power.to_bits(),
         }
     }
 }
@@ -497,6 +504,10 @@ fn scene_program(gl: &Gl, settings: &ShadowSettings, key: LightingKey) -> Result
     ] {
         defines.push((name.into(), u32::from(on).to_string()));
     }
+    defines.push((
+        "SPECULAR_POWER".into(),
+        crate::settings::glsl_float(f32::from_bits(key.specular_power_bits)),
+    ));
     ShaderProgram::new(gl, &shaders::scene_vert(), &shaders::scene_frag(), &defines)
 }
 

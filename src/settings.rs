@@ -323,10 +323,22 @@ impl ShadowSettings {
                 u32::from(s.normal_offset != 0.0).to_string(),
             ),
             ("BIAS_MODE".into(), bias_mode.to_string()),
+            ("BIAS".into(), glsl_float(s.bias)),
+            ("BIAS_MIN".into(), glsl_float(s.bias_min)),
             (
                 "BEYOND_FAR_LIT".into(),
                 u32::from(s.beyond_far == BeyondFar::Lit).to_string(),
             ),
         ]
+    }
+}
+
+/// A float as a GLSL literal that keeps every bit (`{:?}` prints the shortest exact form).
+pub fn glsl_float(v: f32) -> String {
+    let t = format!("{v:?}");
+    if t.contains(['.', 'e', 'E']) {
+        t
+    } else {
+        format!("{t}.0")
     }
 }

@@ -10,6 +10,8 @@
 
 use glam::{Mat4, Vec3};
 use glow::HasContext;
+use glow::{TEXTURE_MAG_FILTER as MAG, TEXTURE_MIN_FILTER as MIN};
+use glow::{TEXTURE_WRAP_S as WRAP_S, TEXTURE_WRAP_T as WRAP_T};
 
 use super::render_target::read_rgba8;
 use super::{check_gl, Gl};
@@ -232,14 +234,14 @@ impl Objects {
         }
     }
 
-    /// A 2D texture (RGBA8 from `pixels` with mipmaps, or empty) and its parameters.
+    /// A 2D texture (RGBA8 from `pixels` with mipmaps, or empty): filters and wrap mode.
     fn texture(
         &mut self,
         internal: u32,
         size: i32,
         height: i32,
         pixels: Option<&[u8]>,
-        params: &[(u32, u32)],
+        (min, mag, wrap): (u32, u32, u32),
     ) -> Result<glow::Texture> {
         let gl = self.gl.clone();
         let (format, ty) = match internal {
@@ -266,7 +268,8 @@ impl Objects {
             if pixels.is_some() {
                 gl.generate_mipmap(target);
             }
-            for &(k, v) in params {
+            let params = [(MIN, min), (MAG, mag), (WRAP_S, wrap), (WRAP_T, wrap)];
+            for (k, v) in params {
                 gl.tex_parameter_i32(target, k, v as i32);
             }
             gl.bind_texture(target, None);
@@ -311,32 +314,14 @@ impl LearnOpenGlBaseline {
         let scene_program = o.program("scene", SCENE_VS, SCENE_FS)?;
         let floor = o.shape(&floor_vertices())?;
         let cube = o.shape(&cube_vertices())?;
-        use glow::{LINEAR, NEAREST, TEXTURE_MAG_FILTER as MAG, TEXTURE_MIN_FILTER as MIN};
-        use glow::{TEXTURE_WRAP_S as WRAP_S, TEXTURE_WRAP_T as WRAP_T};
         let wood = ImageData::wood(256);
-        let (mipmapped, repeat) = (glow::LINEAR_MIPMAP_LINEAR, glow::REPEAT);
-        let wood_params = [
-            (MIN, mipmapped),
-            (MAG, LINEAR),
-            (WRAP_S, repeat),
-            (WRAP_T, repeat),
-        ];
-        let wood = o.texture(glow::RGBA8, 256, 256, Some(&wood.rgba), &wood_params)?;
-        let border = glow::CLAMP_TO_BORDER;
-        let map_params = [
-            (MIN, NEAREST),
-            (MAG, NEAREST),
-            (WRAP_S, border),
-            (WRAP_T, border),
-        ];
-        let depth_map = o.texture(
-            glow::DEPTH_COMPONENT24,
-            MAP_SIZE,
-            MAP_SIZE,
-            None,
-            &map_params,
-        )?;
-        let colour = o.texture(glow::RGBA8, WIDTH, HEIGHT, None, &map_params[..2])?;
+        let wood_params = (glow::LINEAR_MIPMAP_LINEAR, glow::LINEAR, glow::REPEAT);
+        let wood = o.texture(glow::RGBA8, 256, 256, Some(&wood.rgba), wood_params)?;
+        let (depth24, nearest) = (glow::DEPTH_COMPONENT24, glow::NEAREST);
+        let map_params = (nearest, nearest, glow::CLAMP_TO_BORDER);
+        let depth_map = o.texture(depth24, MAP_SIZE, MAP_SIZE, None, map_params)?;
+        let target_params = (nearest, nearest, glow::CLAMP_TO_EDGE);
+        let colour = o.texture(glow::RGBA8, WIDTH, HEIGHT, None, target_params)?;
         unsafe {
             let uniform = |p, name| gl.get_uniform_location(p, name);
             let scene_frame = ["projection", "view", "lightSpace", "lightPos", "viewPos"]
