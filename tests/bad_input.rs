@@ -646,3 +646,79 @@ fn bad_cli_values_give_one_clear_error() {
         ),
     ]);
 }
+
+#[test]
+fn missing_egl_driver_names_the_packages_to_install() {
+    // Point the EGL loader at a vendor file that does not exist: no driver can load.
+    let dir = case_dir("no-egl");
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(["render", "--size", "16x16", "--out"])
+        .arg(dir.join("x.png"))
+        .env("__EGL_VENDOR_LIBRARY_FILENAMES", dir.join("none.json"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success(),
+        "rendering without a driver must fail"
+    );
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(
+        stderr.contains("apt-get install libegl1 libegl-mesa0 libgl1-mesa-dri"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!dir.join("x.png").exists());
+}
+
+#[test]
+fn no_display_falls_back_to_a_headless_picture() {
+    let dir = case_dir("no-display");
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("No display for a window"), "{stdout}");
+    assert!(
+        stdout.contains("shadowmap-demo.png") && stdout.contains("Xvfb"),
+        "{stdout}"
+    );
+    let png = std::fs::read(dir.join("shadowmap-demo.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    // A scripted window run without a display is an error, not a quiet headless run.
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(["demo", "--exit-after-frames", "3"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("A window needs an X11 display"));
+}
+
+#[test]
+fn a_short_soak_reports_memory_and_no_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(["soak", "--frames", "300", "--size", "64x36"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.starts_with("soak: 300 frames of the dummy scene"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("no error; resident memory"), "{stdout}");
+}

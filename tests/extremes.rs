@@ -579,3 +579,32 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
         "without snapping the box moves with the camera"
     );
 }
+
+#[test]
+fn faces_turned_from_the_light_are_dark_from_shading_not_from_the_test() {
+    let ctx = common::context();
+    // The light behind the cube (150 degrees: up and towards -Z): the face the camera sees
+    // turns away from it. Its colour is the ambient term alone, whatever the shadow test said.
+    let mut scene = common::dummy(150.0);
+    scene.camera.position = Vec3::new(0.0, 0.0, 2.0);
+    let frame =
+        shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, SIZE.0, SIZE.1)
+            .unwrap();
+    let normals = frame.normals.as_ref().unwrap();
+    let mut front = 0;
+    for (i, n) in normals.iter().enumerate() {
+        if n[2] > 0.99 {
+            front += 1;
+            let p = &frame.colour.rgba[i * 4..i * 4 + 4];
+            // Ambient 0.3 of pure green: (0, 77, 0).
+            assert!(
+                p[0] == 0 && p[1].abs_diff(77) <= 1 && p[2] == 0,
+                "front face pixel {i}: {p:?}"
+            );
+        }
+    }
+    assert!(
+        front > 5000,
+        "the cube's front face must be in view: {front}"
+    );
+}
