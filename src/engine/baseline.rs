@@ -93,34 +93,24 @@ void main() {
 }
 ";
 
-/// The two triangles of a square, as (a, b) corners of centre + a u + b v.
-const QUAD: [f32; 12] = [-1., -1., 1., -1., 1., 1., -1., -1., 1., 1., -1., 1.];
-
 /// Interleaved vertex: position, normal, texture coordinate.
 type Vertex = [f32; 8];
 
-/// The unit cube [-1, 1]^3, 36 vertices, counter-clockwise outside; each face's uv spans [0, 1].
+/// The unit cube [-1, 1]^3 as 36 unindexed vertices, counter-clockwise outside: the
+/// project's own cube (`MeshData::cube`), laid out the way the tutorial's arrays are.
 fn cube_vertices() -> Vec<Vertex> {
-    // Outward normal and the face's u and v axes (u x v = normal).
-    let faces: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
-        ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
-        ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
-        ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
-        ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-        ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
-        ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
-    ];
-    let mut out = Vec::with_capacity(36);
-    for (n, u, v) in faces {
-        let (n, u, v) = (Vec3::from(n), Vec3::from(u), Vec3::from(v));
-        for c in QUAD.chunks_exact(2) {
-            let (a, b) = (c[0], c[1]);
-            let p = n + u * a + v * b;
-            let uv = [(a + 1.0) * 0.5, (b + 1.0) * 0.5];
-            out.push([p.x, p.y, p.z, n.x, n.y, n.z, uv[0], uv[1]]);
-        }
-    }
-    out
+    let cube = crate::geometry::MeshData::cube();
+    cube.indices
+        .iter()
+        .map(|&i| {
+            let (p, n, t) = (
+                cube.positions[i as usize],
+                cube.normals[i as usize],
+                cube.tex_coords[i as usize],
+            );
+            [p[0], p[1], p[2], n[0], n[1], n[2], t[0], t[1]]
+        })
+        .collect()
 }
 
 /// The 25 x 25 floor at y = -0.5, the texture tiled 25 times, wound clockwise from above as
