@@ -36,12 +36,16 @@ impl ImageData {
         limits.max_alloc = Some(MAX_TEXTURE_BYTES);
         reader.limits(limits);
         let image = reader.decode().map_err(|e| {
+            let expected = match e {
+                // Only a size problem gets the size limit in its message.
+                image::ImageError::Limits(_) => format!(
+                    "expected a PNG of at most {MAX_TEXTURE_SIDE}x{MAX_TEXTURE_SIDE} pixels"
+                ),
+                _ => "expected a complete PNG file".to_string(),
+            };
             Error::file(
                 path,
-                format!(
-                    "not a readable PNG texture ({e}); expected a PNG of at most \
-                     {MAX_TEXTURE_SIDE}x{MAX_TEXTURE_SIDE} pixels"
-                ),
+                format!("not a readable PNG texture ({e}); {expected}"),
             )
         })?;
         let rgba = image.to_rgba8();

@@ -418,7 +418,11 @@ fn bad_png_textures_give_one_clear_error() {
         bad_generated(
             "png is random bytes",
             &[("scene.toml", TEXTURED_SCENE), ("tex.png", &noise(200, 11))],
-            &[tex, "tex.png: not a readable PNG texture"],
+            &[
+                tex,
+                "tex.png: not a readable PNG texture",
+                "expected a complete PNG file",
+            ],
         ),
         bad_generated(
             "png truncated",
@@ -426,7 +430,11 @@ fn bad_png_textures_give_one_clear_error() {
                 ("scene.toml", TEXTURED_SCENE),
                 ("tex.png", &png[..png.len() / 2]),
             ],
-            &[tex, "tex.png: not a readable PNG texture"],
+            &[
+                tex,
+                "tex.png: not a readable PNG texture",
+                "expected a complete PNG file",
+            ],
         ),
         bad_generated(
             "png claims 100000x100000",
