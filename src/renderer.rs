@@ -12,8 +12,8 @@ use crate::engine::{
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
-use crate::settings::DepthFormat;
 use crate::settings::{Cull, ShadowSettings};
+use crate::settings::{DepthFormat, PointPass};
 use crate::shaders;
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
@@ -55,6 +55,7 @@ pub struct Renderer {
     white: Texture,
     cube_format: DepthFormat,
     point_depth_program: Option<ShaderProgram>,
+    point_program_layered: bool,
     depth_view_cube: Option<ShaderProgram>,
     /// GPU timers for the depth pass (0) and the scene pass (1), when enabled.
     timer: Option<PassTimer>,
@@ -115,6 +116,7 @@ impl Renderer {
             )?,
             cube_format: settings.depth_format,
             point_depth_program: None,
+            point_program_layered: false,
             depth_view_cube: None,
             timer: None,
         })
@@ -223,13 +225,27 @@ impl Renderer {
             self.cube_map = Some(CubeShadowMap::new(&self.gl, size, format)?);
             self.cube_format = format;
         }
-        if self.point_depth_program.is_none() {
-            self.point_depth_program = Some(ShaderProgram::new(
-                &self.gl,
-                &shaders::depth_point_vert(),
-                &shaders::depth_point_frag(),
-                &[],
-            )?);
+        let layered = self.settings.point_pass == PointPass::Layered;
+        if self.point_depth_program.is_none() || self.point_program_layered != layered {
+            self.point_depth_program = Some(if layered {
+                ShaderProgram::from_stages(
+                    &self.gl,
+                    &[
+                        (glow::VERTEX_SHADER, &shaders::depth_point_layered_vert()),
+                        (glow::GEOMETRY_SHADER, &shaders::depth_point_layered_geom()),
+                        (glow::FRAGMENT_SHADER, &shaders::depth_point_frag()),
+                    ],
+                    &[],
+                )?
+            } else {
+                ShaderProgram::new(
+                    &self.gl,
+                    &shaders::depth_point_vert(),
+                    &shaders::depth_point_frag(),
+                    &[],
+                )?
+            });
+            self.point_program_layered = layered;
         }
         let (Some(cube), Some(program)) = (&self.cube_map, &self.point_depth_program) else {
             return Err(Error::Invalid(
@@ -244,7 +260,28 @@ impl Renderer {
         }
         program.bind();
         program.set_f32("farPlane", light.far);
-        for (face, view) in PointLight::face_views().iter().enumerate() {
+        if layered {
+            // One pass: the geometry shader draws every triangle into all six faces.
+            cube.bind_layered()?;
+            unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
+            let faces = PointLight::face_views().map(|v| projection * v);
+            program.set_mat4_array("faceProjections", &faces);
+            for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+                let items = scene
+                    .items
+                    .iter()
+                    .filter(|i| i.mesh == mesh_id && i.casts_shadows);
+                mesh.render_list(items, |item| {
+                    let m = (to_light * item.model_matrix64()).as_mat4();
+                    program.set_mat4("modelLightMatrix", &m);
+                });
+            }
+        }
+        for (face, view) in PointLight::face_views()
+            .iter()
+            .enumerate()
+            .filter(|_| !layered)
+        {
             cube.bind_face(face as u32);
             unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
             program.set_mat4("faceProjection", &(projection * *view));

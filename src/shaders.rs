@@ -22,3 +22,5 @@ shader!(depth_view_vert, "depth_view.vert");
 shader!(depth_view_frag, "depth_view.frag");
 shader!(depth_point_vert, "depth_point.vert");
 shader!(depth_point_frag, "depth_point.frag");
+shader!(depth_point_layered_vert, "depth_point_layered.vert");
+shader!(depth_point_layered_geom, "depth_point_layered.geom");

@@ -110,3 +110,23 @@ fn spot_light_shadows_match_the_reference_inside_its_cone() {
         "{m:?}"
     );
 }
+
+#[test]
+fn layered_and_six_pass_cube_maps_agree() {
+    use shadowmap::settings::PointPass;
+    let ctx = common::context();
+    let scene = Scene::load("point-shadows").unwrap();
+    let render = |pass| {
+        let s = ShadowSettings {
+            point_pass: pass,
+            ..scene.shadow
+        };
+        shadowmap::compare::render_visibility(ctx.gl(), &scene, &s, 200, 150).unwrap()
+    };
+    let (a, b) = (render(PointPass::SixPasses), render(PointPass::Layered));
+    assert_eq!(
+        a.visibility, b.visibility,
+        "the two ways of drawing the faces disagree"
+    );
+    assert_eq!(a.colour, b.colour);
+}

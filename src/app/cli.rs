@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use shadowmap::settings::{
-    BeyondFar, BiasMode, Cull, DepthFormat, Filter, Fit, LightProjection, LightView, Wrap,
+    BeyondFar, BiasMode, Cull, DepthFormat, Filter, Fit, LightProjection, LightView, PointPass,
+    Wrap,
 };
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
@@ -118,6 +119,9 @@ pub struct SettingsArgs {
     /// With --fit scene: snap the box to whole texels (true) or let it slide (false).
     #[arg(long, value_name = "BOOL")]
     pub snap: Option<bool>,
+    /// How a point light's cube faces are drawn.
+    #[arg(long, value_enum)]
+    pub point_pass: Option<PointPass>,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -361,7 +365,8 @@ impl SettingsArgs {
             light_projection,
             perspective_fov,
             fit,
-            snap
+            snap,
+            point_pass
         );
         Ok(s)
     }

@@ -123,6 +123,22 @@ impl ShaderProgram {
         fragment: &ShaderSource,
         defines: &[(String, String)],
     ) -> Result<ShaderProgram> {
+        Self::from_stages(
+            gl,
+            &[
+                (glow::VERTEX_SHADER, vertex),
+                (glow::FRAGMENT_SHADER, fragment),
+            ],
+            defines,
+        )
+    }
+
+    /// Compiles and links any set of stages (a geometry shader between the two above, say).
+    pub fn from_stages(
+        gl: &Gl,
+        stages: &[(u32, &ShaderSource)],
+        defines: &[(String, String)],
+    ) -> Result<ShaderProgram> {
         let program =
             unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
         let this = ShaderProgram {
@@ -130,27 +146,34 @@ impl ShaderProgram {
             program,
             uniforms: RefCell::new(HashMap::new()),
         };
-        let vs = compile(gl, glow::VERTEX_SHADER, vertex, defines)?;
-        let fs = match compile(gl, glow::FRAGMENT_SHADER, fragment, defines) {
-            Ok(fs) => fs,
-            Err(e) => {
-                unsafe { gl.delete_shader(vs) };
-                return Err(e);
+        let mut shaders = Vec::with_capacity(stages.len());
+        for (kind, source) in stages {
+            match compile(gl, *kind, source, defines) {
+                Ok(s) => shaders.push(s),
+                Err(e) => {
+                    shaders
+                        .into_iter()
+                        .for_each(|s| unsafe { gl.delete_shader(s) });
+                    return Err(e);
+                }
             }
-        };
+        }
+        let names: Vec<&str> = stages.iter().map(|(_, s)| s.name.as_str()).collect();
         unsafe {
-            gl.attach_shader(program, vs);
-            gl.attach_shader(program, fs);
+            for s in &shaders {
+                gl.attach_shader(program, *s);
+            }
             gl.link_program(program);
-            gl.detach_shader(program, vs);
-            gl.detach_shader(program, fs);
-            gl.delete_shader(vs);
-            gl.delete_shader(fs);
+            for s in shaders {
+                gl.detach_shader(program, s);
+                gl.delete_shader(s);
+            }
             if !gl.get_program_link_status(program) {
                 let log = gl.get_program_info_log(program);
+                let file = names.join(" + ");
                 return Err(Error::Shader {
-                    file: format!("{} + {}", vertex.name, fragment.name),
-                    log: annotate_log(&format!("{} + {}", vertex.name, fragment.name), &log),
+                    log: annotate_log(&file, &log),
+                    file,
                 });
             }
         }
@@ -180,6 +203,15 @@ impl ShaderProgram {
                 self.gl
                     .uniform_matrix_4_f32_slice(Some(&loc), false, &m.to_cols_array())
             };
+        }
+    }
+
+    /// Sets `name[0]`, `name[1]`, ... from a slice (`name` without the index).
+    pub fn set_mat4_array(&self, name: &'static str, ms: &[Mat4]) {
+        let loc = self.location(name);
+        if let Some(loc) = loc {
+            let flat: Vec<f32> = ms.iter().flat_map(|m| m.to_cols_array()).collect();
+            unsafe { self.gl.uniform_matrix_4_f32_slice(Some(&loc), false, &flat) };
         }
     }
 

@@ -157,6 +157,23 @@ impl CubeShadowMap {
         }
     }
 
+    /// Binds the framebuffer with the whole cube map attached (layered: a geometry shader
+    /// picks each face with gl_Layer), and the viewport to a face's size.
+    pub fn bind_layered(&self) -> Result<()> {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl.framebuffer_texture(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                Some(self.cube.id()),
+                0,
+            );
+            let size = self.cube.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+        check_framebuffer(&self.gl, "layered cube shadow map")
+    }
+
     pub fn texture(&self) -> &Texture {
         &self.cube
     }
