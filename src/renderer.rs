@@ -195,16 +195,7 @@ impl Renderer {
         let program = &self.depth_program;
         program.bind();
         program.set_mat4("orthoProjectionMatrix", &sv.projection);
-        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
-            let items = scene
-                .items
-                .iter()
-                .filter(|i| i.mesh == mesh_id && i.casts_shadows);
-            mesh.render_list(items, |item| {
-                let mlv = (sv.view64 * item.model_matrix64()).as_mat4();
-                program.set_mat4("modelLightViewMatrix", &mlv);
-            });
-        }
+        self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64);
         program.unbind();
         if let Some(t) = &self.timer {
             t.end();
@@ -266,16 +257,7 @@ impl Renderer {
             unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
             let faces = PointLight::face_views().map(|v| projection * v);
             program.set_mat4_array("faceProjections", &faces);
-            for (mesh_id, mesh) in self.meshes.iter().enumerate() {
-                let items = scene
-                    .items
-                    .iter()
-                    .filter(|i| i.mesh == mesh_id && i.casts_shadows);
-                mesh.render_list(items, |item| {
-                    let m = (to_light * item.model_matrix64()).as_mat4();
-                    program.set_mat4("modelLightMatrix", &m);
-                });
-            }
+            self.draw_casters(scene, program, "modelLightMatrix", to_light);
         }
         for (face, view) in PointLight::face_views()
             .iter()
@@ -285,16 +267,7 @@ impl Renderer {
             cube.bind_face(face as u32);
             unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
             program.set_mat4("faceProjection", &(projection * *view));
-            for (mesh_id, mesh) in self.meshes.iter().enumerate() {
-                let items = scene
-                    .items
-                    .iter()
-                    .filter(|i| i.mesh == mesh_id && i.casts_shadows);
-                mesh.render_list(items, |item| {
-                    let m = (to_light * item.model_matrix64()).as_mat4();
-                    program.set_mat4("modelLightMatrix", &m);
-                });
-            }
+            self.draw_casters(scene, program, "modelLightMatrix", to_light);
         }
         program.unbind();
         if let Some(t) = &self.timer {
@@ -302,6 +275,26 @@ impl Renderer {
         }
         self.end_depth_state();
         check_gl(&self.gl, "the point light's depth pass")
+    }
+
+    /// Draws every shadow caster, one mesh's items at a time, with `uniform` set to
+    /// `light * model` (composed in double precision).
+    fn draw_casters(
+        &self,
+        scene: &Scene,
+        program: &ShaderProgram,
+        uniform: &'static str,
+        light: DMat4,
+    ) {
+        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+            let items = scene
+                .items
+                .iter()
+                .filter(|i| i.mesh == mesh_id && i.casts_shadows);
+            mesh.render_list(items, |item| {
+                program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
+            });
+        }
     }
 
     /// Depth writes, polygon offset and culling as the settings ask, for a depth pass.
