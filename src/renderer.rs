@@ -12,8 +12,8 @@ use crate::engine::{
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
+use crate::settings::PointPass;
 use crate::settings::{Cull, ShadowSettings};
-use crate::settings::{DepthFormat, PointPass};
 use crate::shaders;
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
@@ -53,7 +53,6 @@ pub struct Renderer {
     cube_map: Option<CubeShadowMap>,
     /// 1 x 1 white, for items without a texture.
     white: Texture,
-    cube_format: DepthFormat,
     point_depth_program: Option<ShaderProgram>,
     point_program_layered: bool,
     depth_view_cube: Option<ShaderProgram>,
@@ -114,7 +113,6 @@ impl Renderer {
                     rgba: vec![255; 4],
                 },
             )?,
-            cube_format: settings.depth_format,
             point_depth_program: None,
             point_program_layered: false,
             depth_view_cube: None,
@@ -211,10 +209,9 @@ impl Renderer {
         let stale = self
             .cube_map
             .as_ref()
-            .is_none_or(|c| c.size() != size || self.cube_format != format);
+            .is_none_or(|c| c.size() != size || c.format() != format);
         if stale {
             self.cube_map = Some(CubeShadowMap::new(&self.gl, size, format)?);
-            self.cube_format = format;
         }
         let layered = self.settings.point_pass == PointPass::Layered;
         if self.point_depth_program.is_none() || self.point_program_layered != layered {

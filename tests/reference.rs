@@ -2,8 +2,6 @@
 
 mod common;
 
-use std::process::Command;
-
 use common::{context, dummy};
 use glam::Vec3;
 use shadowmap::compare::{compute_reference, CompareOptions};
@@ -103,10 +101,6 @@ fn the_reference_has_no_acne() {
     }
 }
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-}
-
 fn tmp(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("shadowmap-{name}-{}", std::process::id()));
     std::fs::remove_dir_all(&d).ok();
@@ -116,23 +110,17 @@ fn tmp(name: &str) -> std::path::PathBuf {
 #[test]
 fn compare_writes_every_output() {
     let dir = tmp("compare");
-    let out = bin()
-        .args([
-            "compare",
-            "--size",
-            "160x90",
-            "--supersample",
-            "2",
-            "--out-dir",
-        ])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = common::stdout_of(
+        common::bin()
+            .args([
+                "compare",
+                "--size",
+                "160x90",
+                "--supersample",
+                "2",
+                "--out-dir",
+            ])
+            .arg(&dir),
     );
     assert!(
         stdout.starts_with("dummy [1024^2 24 pcf3x3, bias 0.05"),
@@ -175,28 +163,22 @@ fn compare_writes_every_output() {
 #[test]
 fn quick_bench_fills_every_csv_column() {
     let dir = tmp("bench");
-    let out = bin()
-        .args([
-            "bench",
-            "--quick",
-            "--frames",
-            "3",
-            "--warmup",
-            "1",
-            "--size",
-            "160x90",
-            "--target-error",
-            "0.5",
-            "--out-dir",
-        ])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = common::stdout_of(
+        common::bin()
+            .args([
+                "bench",
+                "--quick",
+                "--frames",
+                "3",
+                "--warmup",
+                "1",
+                "--size",
+                "160x90",
+                "--target-error",
+                "0.5",
+                "--out-dir",
+            ])
+            .arg(&dir),
     );
     assert!(
         stdout.contains("cheapest configuration with error <= 50.000%"),

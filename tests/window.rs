@@ -1,11 +1,9 @@
 //! The demo in a real window. Needs an X display, so it is `#[ignore]`d here and run
 //! explicitly under Xvfb by `.ci/run` (`cargo test --test window -- --ignored`).
 
-use std::process::Command;
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-}
+use common::{bin, stdout_of};
 
 fn load(path: &std::path::Path) -> image::RgbaImage {
     image::open(path)
@@ -25,33 +23,23 @@ fn window_shows_the_scene_and_its_shadow() {
     let shot = dir.join("window.png");
     let headless = dir.join("headless.png");
 
-    let out = bin()
-        .args([
-            "demo",
-            "--no-animation",
-            "--size",
-            "640x360",
-            "--exit-after-frames",
-            "5",
-        ])
-        .arg("--screenshot")
-        .arg(&shot)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "demo failed: {}",
-        String::from_utf8_lossy(&out.stderr)
+    stdout_of(
+        bin()
+            .args([
+                "demo",
+                "--no-animation",
+                "--size",
+                "640x360",
+                "--exit-after-frames",
+                "5",
+            ])
+            .arg("--screenshot")
+            .arg(&shot),
     );
-    let out = bin()
-        .args(["render", "--size", "640x360", "--out"])
-        .arg(&headless)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    stdout_of(
+        bin()
+            .args(["render", "--size", "640x360", "--out"])
+            .arg(&headless),
     );
 
     let win = load(&shot);
@@ -96,22 +84,18 @@ fn window_survives_a_resize_storm_and_a_minimise() {
     let dir = std::env::temp_dir().join(format!("shadowmap-storm-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let shot = dir.join("after-storm.png");
-    let out = bin()
-        .args([
-            "demo",
-            "--no-animation",
-            "--size",
-            "640x360",
-            "--stress-window",
-        ])
-        .args(["--exit-after-frames", "40", "--screenshot"])
-        .arg(&shot)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "demo failed: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
+    let stdout = stdout_of(
+        bin()
+            .args([
+                "demo",
+                "--no-animation",
+                "--size",
+                "640x360",
+                "--stress-window",
+            ])
+            .args(["--exit-after-frames", "40", "--screenshot"])
+            .arg(&shot),
+    );
     // Nothing was drawn while the window was 0 x 0, and drawing resumed after.
     assert!(
         stdout.contains("stress: 40 frames drawn, 5 redraws skipped while minimised"),

@@ -117,6 +117,7 @@ pub struct CubeShadowMap {
     gl: Gl,
     fbo: glow::Framebuffer,
     cube: Texture,
+    format: DepthFormat,
 }
 
 impl CubeShadowMap {
@@ -128,6 +129,7 @@ impl CubeShadowMap {
             gl: gl.clone(),
             fbo,
             cube,
+            format,
         };
         map.bind_face(0);
         unsafe {
@@ -176,6 +178,10 @@ impl CubeShadowMap {
 
     pub fn texture(&self) -> &Texture {
         &self.cube
+    }
+
+    pub fn format(&self) -> DepthFormat {
+        self.format
     }
 
     pub fn size(&self) -> u32 {

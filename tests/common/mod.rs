@@ -51,3 +51,20 @@ pub fn plane_pixels(frame: &Frame) -> Vec<(Vec3, f32)> {
         })
         .collect()
 }
+
+/// The `shadowmap` binary under test.
+pub fn bin() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+}
+
+/// Runs `cmd` and returns its standard output; fails the test with its standard error if it
+/// did not succeed or panicked.
+pub fn stdout_of(cmd: &mut std::process::Command) -> String {
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{cmd:?} failed: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
