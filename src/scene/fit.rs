@@ -52,8 +52,9 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     let to_light_space = |p: DVec3| basis.transpose() * p;
 
     // Every item receives; casters can also shadow. Boxes in world space, then in light space.
+    let mesh_bounds: Vec<(Vec3, Vec3)> = scene.meshes.iter().map(|m| m.bounds()).collect();
     let world_box = |i: &super::GameItem| {
-        let (lo, hi) = scene.meshes[i.mesh].bounds();
+        let (lo, hi) = mesh_bounds[i.mesh];
         let m = i.model_matrix64();
         aabb(
             corners(lo.as_dvec3(), hi.as_dvec3())
@@ -93,9 +94,11 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     // itself, nor anything on its side facing the light: it matters only if some visible
     // receiver reaches behind its plane.
     let to_light = to_light.as_dvec3().normalize();
+    // Each mesh's plane, found once per fit rather than once per pair of items.
+    let planes: Vec<Option<(Vec3, Vec3)>> = scene.meshes.iter().map(|m| m.flat_plane()).collect();
     let behind_plane = |c: usize, r: usize| -> bool {
         let item = &scene.items[c];
-        let Some((point, normal)) = scene.meshes[item.mesh].flat_plane() else {
+        let Some((point, normal)) = planes[item.mesh] else {
             return true;
         };
         let m = item.model_matrix64();
@@ -116,7 +119,7 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     let relevant: Vec<usize> = (0..scene.items.len())
         .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
         .filter(|&c| {
-            scene.meshes[scene.items[c].mesh].flat_plane().is_none()
+            planes[scene.items[c].mesh].is_none()
                 || (0..scene.items.len()).any(|r| {
                     r != c
                         && overlaps_xy(&light_boxes[r], &visible)
