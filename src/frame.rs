@@ -107,6 +107,8 @@ pub fn render_frames(
             "frame size {width}x{height}: expected each side from 1 to {max} (the driver's maximum)"
         )));
     }
+    // The frame's shape is the scene's from now on (a fitted light box follows it).
+    scene.size = [width, height];
     let mut renderer = Renderer::new(gl, scene, settings)?;
     let target = RenderTarget::new(gl, width, height, outputs)?;
     let mut frame_ms = Vec::with_capacity(frames as usize);

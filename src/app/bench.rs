@@ -20,6 +20,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         .for_each(|i| i.spin = glam::Vec3::ZERO);
     let base = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
+    scene.size = [width, height];
     let dir = &args.out_dir;
     std::fs::create_dir_all(dir)
         .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;

@@ -179,6 +179,10 @@ impl Demo {
     /// A new framebuffer size; 0 x 0 means minimised, and then nothing is drawn.
     fn on_resized(&mut self, width: u32, height: u32) {
         self.minimised = width == 0 || height == 0;
+        if !self.minimised {
+            // The frame's shape, which a fitted light box follows.
+            self.scene.size = [width, height];
+        }
         if let Some(r) = &self.running {
             if !self.minimised {
                 r.context.resize(width, height);

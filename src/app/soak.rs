@@ -23,6 +23,7 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     let base = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
+    scene.size = [width, height];
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     args.settings.check(gl, &scene, &base)?;

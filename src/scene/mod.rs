@@ -61,7 +61,8 @@ pub struct Scene {
     pub specular_power: f32,
     pub shading: ShadingModel,
     pub clear_colour: Vec4,
-    /// The frame size the scene was made for (the window's initial size, `render`'s default).
+    /// The frame size: the scene file's (the window's initial size, `render`'s default),
+    /// updated to whatever is being drawn (a fitted light box uses its aspect).
     pub size: [u32; 2],
     pub items: Vec<GameItem>,
     pub meshes: Vec<MeshData>,
