@@ -1,13 +1,17 @@
 #version 330 core
 // The depth-map debug view (LearnOpenGL's debug quad). An orthographic map stores linear
 // depth and is shown raw; a perspective map is linearised first, or everything but the
-// nearest surfaces would look white.
+// nearest surfaces would look white. A cube map (CUBE) is shown as a panorama, a cascade
+// array (ARRAY) as its layers side by side.
 
 in vec2 texCoords;
 out vec4 fragColor;
 
 #if CUBE
 uniform samplerCube depthMap;  // a point light's distances / far, shown as a panorama
+#elif ARRAY
+uniform sampler2DArray depthMap;  // cascades, side by side from the nearest
+uniform int layers;
 #else
 uniform sampler2D depthMap;
 #endif
@@ -31,6 +35,10 @@ void main()
     float theta = (1.0 - texCoords.y) * 3.1415927;
     vec3 dir = vec3(sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi));
     float shown = texture(depthMap, dir).r;
+#elif ARRAY
+    float x = texCoords.x * float(layers);
+    float layer = floor(x);
+    float shown = texture(depthMap, vec3(x - layer, texCoords.y, layer)).r;
 #else
     float d = texture(depthMap, texCoords).r;
     float shown = linearize == 1 ? linearDepth(d) : d;

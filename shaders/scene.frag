@@ -1,20 +1,24 @@
 #version 330 core
-// Scene pass fragment shader ("Shadows": scene_fragment.fs with calcShadow).
-// Compiled with defines from the shadow settings:
+// Scene pass fragment shader ("Shadows": scene_fragment.fs with calcShadow), for one to
+// four lights. Compiled with defines from the shadow settings:
 //   PCF_RADIUS      0 = one lookup, 1 = a 3x3 grid (the chapters' PCF), 2 = 5x5
-//   HW_PCF          1 = lookups through sampler2DShadow with LINEAR (hardware 2x2 PCF each)
+//   HW_PCF          1 = lookups through shadow samplers with LINEAR (hardware 2x2 PCF each)
 //   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
-//   POINT_SHADOW    1 = a point light's depth cube map (distances in world units)
-// and with the scene's lighting (branches on uniforms would run for every pixel):
-//   LIGHT_POSITIONAL 0 = one direction for all fragments, 1 = from each fragment to a point
-//   SPOT_CONE        1 = a spot light's cone limits the light
+//   CASCADES        layers of a cascaded light's map; CASCADE_BLEND, SHOW_CASCADES
+// with the scene's lighting (branches on uniforms would run for every pixel):
 //   BLINN            0 = the book's Phong specular, 1 = LearnOpenGL's Blinn-Phong
+// and with the lights' layout from src/light_slots.rs:
+//   LIGHT_COUNT      length of the per-light uniform arrays
+//   LIGHT_SAMPLERS   one sampler declaration per casting light (shadowMapN, shadowCubeN or
+//                    cascadeMapN: GLSL 3.30 cannot index an array of samplers in a loop)
+//   LIGHT_CALLS      one add... call per light, with its kind's constants
+//   VISIBILITY_LIGHT the light whose shadow test goes to the visibility output
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
 in vec3 mvVertexPos;
-in vec4 mlightviewVertexPos;
+in vec4 mlightviewVertexPos[LIGHT_COUNT];
 in vec3 worldPos;
 in vec3 worldNormal;
 
@@ -26,37 +30,52 @@ layout (location = 3) out vec4 worldNormalOut;
 struct Material
 {
     vec4 colour;
-    vec3 specular;  // the light's colour x intensity x this material's reflectance (on the CPU)
+    float reflectance;
 };
+
+#if HW_PCF
+#define SHADOW_SAMPLER_2D sampler2DShadow
+#define SHADOW_SAMPLER_ARRAY sampler2DArrayShadow
+#else
+#define SHADOW_SAMPLER_2D sampler2D
+#define SHADOW_SAMPLER_ARRAY sampler2DArray
+#endif
+
+uniform sampler2D textureSampler;  // unit 0; shadows on units 1, 2, ... (one per light)
+LIGHT_SAMPLERS
+uniform Material material;
+uniform vec3 ambientLight;
 
 // The book's DirectionalLight, grown to cover positioned lights (LearnOpenGL shades from a
-// light position; spot lights add a cone). Directions and positions are in view space.
-struct Light
-{
-    vec3 colour;      // x intensity
-    vec3 direction;   // towards the light
-    vec3 position;
-    float coneCos;    // cos of the cone's half angle
-    vec3 coneAxis;    // the way the spot points
-};
+// light position; spot lights add a cone), as one array per field. View space.
+uniform vec3 lightColour[LIGHT_COUNT];     // x intensity
+uniform vec3 lightDirection[LIGHT_COUNT];  // towards the light
+uniform vec3 lightPosition[LIGHT_COUNT];
+uniform float lightConeCos[LIGHT_COUNT];   // cos of a spot's half angle
+uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
+uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
 
-uniform sampler2D textureSampler;  // unit 0
-#if POINT_SHADOW
-uniform samplerCube shadowMap;     // unit 1, linear distance / farPlane
-uniform float farPlane;
-#elif HW_PCF
-uniform sampler2DShadow shadowMap; // unit 1, compare mode on
-#else
-uniform sampler2D shadowMap;       // unit 1
+#if CASCADES > 1
+// Light i's cascade c maps camera-relative world positions with cascadeMatrix[i * CASCADES + c].
+uniform mat4 cascadeMatrix[LIGHT_COUNT * CASCADES];
+uniform float cascadeSplit[CASCADES + 1];     // view depths: cascade c serves [c, c + 1)
+uniform float cascadeNormalOffset[CASCADES];  // normal offset in world units (texel sizes)
 #endif
-uniform Material material;
-uniform Light light;
-uniform vec3 ambientLight;
 // SPECULAR_POWER, BIAS and BIAS_MIN are #defines too: constants the compiler can fold
 // (measured: a few percent of the frame on llvmpipe).
 
+// What a fragment gathers as each light is added.
+struct Fragment
+{
+    vec4 base;         // texture x material colour
+    vec3 normal;       // view space
+    vec4 colour;       // diffuse + specular so far
+    float visibility;  // VISIBILITY_LIGHT's shadow test
+    int cascade;       // the cascade used, for SHOW_CASCADES (-1: none)
+};
+
 // Diffuse plus specular of one light (the book's calcLightColour). `lightColour` already
-// carries the intensity, `material.specular` the reflectance: products the CPU makes once.
+// carries the intensity.
 vec4 calcLightColour(vec4 baseColour, vec3 lightColour, vec3 position, vec3 toLightDir,
                      vec3 normal)
 {
@@ -70,33 +89,91 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, vec3 position, vec3 toLi
     float specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
 #endif
     float specularFactor = pow(max(specularAngle, 0.0), SPECULAR_POWER);
-    vec4 specular = baseColour * vec4(material.specular * specularFactor, 1.0);
+    vec4 specular = baseColour
+                    * vec4(lightColour * material.reflectance * specularFactor, 1.0);
     return diffuse + specular;
 }
 
-#if POINT_SHADOW
+// The comparison's offset against acne, in the map's depth units.
+float depthBias(vec3 normal, vec3 toLightDir)
+{
+#if BIAS_MODE == 0
+    return 0.0;
+#elif BIAS_MODE == 1
+    return BIAS;
+#else
+    return max(BIAS * (1.0 - dot(normal, toLightDir)), BIAS_MIN);
+#endif
+}
+
+// One comparison: 1 = lit. With HW_PCF the hardware compares the 4 nearest texels
+// (reference <= stored depth) and blends the results bilinearly.
+#if HW_PCF
+#define LIT_2D(map, uv, ref) texture(map, vec3(uv, ref))
+#define LIT_ARRAY(map, uv, layer, ref) texture(map, vec4(uv, layer, ref))
+#else
+#define LIT_2D(map, uv, ref) (ref > texture(map, uv).r ? 0.0 : 1.0)
+#define LIT_ARRAY(map, uv, layer, ref) (ref > texture(map, vec3(uv, layer)).r ? 0.0 : 1.0)
+#endif
+#define PCF_TAPS float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1))
+
+// The lit fraction of a PCF_RADIUS grid of comparisons, one texel apart (the chapters' PCF).
+float pcf2D(SHADOW_SAMPLER_2D map, vec2 uv, float current)
+{
+    vec2 inc = 1.0 / vec2(textureSize(map, 0));
+    float lit = 0.0;
+    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
+        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
+            lit += LIT_2D(map, uv + vec2(row, col) * inc, current);
+        }
+    }
+    return lit / PCF_TAPS;
+}
+
+// The same grid in one layer of a cascade array.
+float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
+{
+    vec2 inc = 1.0 / vec2(textureSize(map, 0).xy);
+    float lit = 0.0;
+    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
+        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
+            lit += LIT_ARRAY(map, uv + vec2(row, col) * inc, layer, current);
+        }
+    }
+    return lit / PCF_TAPS;
+}
+
+// 1 = lit, 0 = in shadow (the book's calcShadow, returning 1 - shadowFactor), for a light
+// with one 2D map; `position` is the fragment in the light's clip space.
+float shadow2D(SHADOW_SAMPLER_2D map, vec4 position, vec3 normal, vec3 toLightDir)
+{
+    // Clip to normalised device coordinates (w = 1 for an orthographic light), then
+    // [-1, 1] to texture coordinates [0, 1].
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+#if BEYOND_FAR_LIT
+    if (projCoords.z > 1.0) {
+        return 1.0;
+    }
+#endif
+    return pcf2D(map, projCoords.xy, projCoords.z - depthBias(normal, toLightDir));
+}
+
 // A point light's omnidirectional test (LearnOpenGL's ShadowCalculation for cube maps):
-// `position` holds the fragment relative to the light; distances are world units, and so
+// `fragToLight` is the fragment relative to the light; distances are world units, and so
 // is the bias. PCF_RADIUS > 0 selects its soft variant: 20 samples on a grid disk whose
 // radius grows with the distance from the viewer.
-float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
+float shadowCube(samplerCube map, vec3 fragToLight, float farPlane, vec3 normal,
+                 vec3 toLightDir)
 {
-    vec3 fragToLight = position.xyz;
     float current = length(fragToLight);
 #if BEYOND_FAR_LIT
     if (current > farPlane) {
         return 1.0;
     }
 #endif
-#if BIAS_MODE == 0
-    float b = 0.0;
-#elif BIAS_MODE == 1
-    float b = BIAS;
-#else
-    float b = max(BIAS * (1.0 - dot(normal, toLightDir)), BIAS_MIN);
-#endif
+    float b = depthBias(normal, toLightDir);
 #if PCF_RADIUS == 0
-    float closest = texture(shadowMap, fragToLight).r * farPlane;
+    float closest = texture(map, fragToLight).r * farPlane;
     return current - b > closest ? 0.0 : 1.0;
 #else
     const vec3 offsets[20] = vec3[](
@@ -108,84 +185,133 @@ float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
     float radius = (1.0 + length(mvVertexPos) / farPlane) / 25.0;
     float shadowed = 0.0;
     for (int i = 0; i < 20; ++i) {
-        float closest = texture(shadowMap, fragToLight + offsets[i] * radius).r * farPlane;
+        float closest = texture(map, fragToLight + offsets[i] * radius).r * farPlane;
         shadowed += current - b > closest ? 1.0 : 0.0;
     }
     return 1.0 - shadowed / 20.0;
 #endif
 }
-#else
-// 1 = lit, 0 = in shadow (the book's calcShadow, returning 1 - shadowFactor).
-float calcShadow(vec4 position, vec3 normal, vec3 toLightDir)
+
+#if CASCADES > 1
+// Light `light`'s test in cascade `c`: the camera-relative world position (pushed along
+// the normal by the cascade's own texel size) through the cascade's matrix.
+float cascadeLookup(SHADOW_SAMPLER_ARRAY map, int light, int c, vec3 normal, vec3 toLightDir)
 {
-    // Clip to normalised device coordinates (w = 1 for an orthographic light), then
-    // [-1, 1] to texture coordinates [0, 1].
-    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
-#if BEYOND_FAR_LIT
+    vec3 p = worldPos;
+#if NORMAL_OFFSET
+    p += normalize(worldNormal) * cascadeNormalOffset[c];
+#endif
+    vec4 clip = cascadeMatrix[light * CASCADES + c] * vec4(p, 1.0);
+    vec3 projCoords = clip.xyz * 0.5 + 0.5;
     if (projCoords.z > 1.0) {
         return 1.0;
     }
-#endif
-#if BIAS_MODE == 0
-    float b = 0.0;
-#elif BIAS_MODE == 1
-    float b = BIAS;
-#else
-    float b = max(BIAS * (1.0 - dot(normal, toLightDir)), BIAS_MIN);
-#endif
-    float current = projCoords.z - b;
-#if HW_PCF
-    // The hardware returns the lit fraction (reference <= stored depth), bilinearly blended.
-    float lit = 0.0;
-    vec2 inc = 1.0 / vec2(textureSize(shadowMap, 0));
-    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
-        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
-            lit += texture(shadowMap, vec3(projCoords.xy + vec2(row, col) * inc, current));
+    return pcfArray(map, projCoords.xy, float(c),
+                    projCoords.z - depthBias(normal, toLightDir));
+}
+
+// A cascaded light: the cascade is chosen by view depth; over the last CASCADE_BLEND of
+// its range it fades into the next one, so the seam does not show. Past the last split
+// (the shadow distance) everything is lit.
+float shadowCascades(SHADOW_SAMPLER_ARRAY map, int light, vec3 normal, vec3 toLightDir,
+                     inout Fragment f)
+{
+    float depth = -mvVertexPos.z;
+    if (depth >= cascadeSplit[CASCADES]) {
+        return 1.0;
+    }
+    int c = 0;
+    for (int k = 1; k < CASCADES; ++k) {
+        c += depth >= cascadeSplit[k] ? 1 : 0;
+    }
+    f.cascade = c;
+    float lit = cascadeLookup(map, light, c, normal, toLightDir);
+    if (CASCADE_BLEND > 0.0 && c + 1 < CASCADES) {
+        float end = cascadeSplit[c + 1];
+        float start = end - CASCADE_BLEND * (end - cascadeSplit[c]);
+        if (depth > start) {
+            float next = cascadeLookup(map, light, c + 1, normal, toLightDir);
+            lit = mix(lit, next, (depth - start) / (end - start));
         }
     }
-    return lit / float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
-#else
-    float shadowFactor = 0.0;
-#if PCF_RADIUS == 0
-    shadowFactor = current > texture(shadowMap, projCoords.xy).r ? 1.0 : 0.0;
-#else
-    vec2 inc = 1.0 / vec2(textureSize(shadowMap, 0));
-    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
-        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
-            float textDepth = texture(shadowMap, projCoords.xy + vec2(row, col) * inc).r;
-            shadowFactor += current > textDepth ? 1.0 : 0.0;
-        }
+    return lit;
+}
+#endif
+
+// From the fragment towards light i (view space).
+vec3 toLightOf(int i, bool positional)
+{
+    return positional ? normalize(lightPosition[i] - mvVertexPos) : normalize(lightDirection[i]);
+}
+
+// Adds light i, scaled by its shadow test `lit`, to the fragment.
+void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
+{
+    vec4 light = calcLightColour(f.base, lightColour[i], mvVertexPos, toLight, f.normal);
+    if (cone) {
+        // A spot's cone, with a soft rim of about a degree.
+        float c = dot(-toLight, normalize(lightConeAxis[i]));
+        light *= smoothstep(lightConeCos[i], lightConeCos[i] + 0.01, c);
     }
-    shadowFactor /= float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1));
-#endif
-    return 1.0 - shadowFactor;
-#endif
+    f.colour += light * lit;
+    if (i == VISIBILITY_LIGHT) {
+        f.visibility = lit;
+    }
+}
+
+// One function per kind of shadow; LIGHT_CALLS calls one per light with constants, which
+// the compiler folds.
+void addLightUnshadowed(int i, bool positional, bool cone, inout Fragment f)
+{
+    addLight(i, toLightOf(i, positional), cone, 1.0, f);
+}
+
+void addLight2D(int i, SHADOW_SAMPLER_2D map, bool positional, bool cone, inout Fragment f)
+{
+    vec3 toLight = toLightOf(i, positional);
+    addLight(i, toLight, cone, shadow2D(map, mlightviewVertexPos[i], f.normal, toLight), f);
+}
+
+void addLightCube(int i, samplerCube map, bool positional, bool cone, inout Fragment f)
+{
+    vec3 toLight = toLightOf(i, positional);
+    float lit = shadowCube(map, mlightviewVertexPos[i].xyz, lightFar[i], f.normal, toLight);
+    addLight(i, toLight, cone, lit, f);
+}
+
+#if CASCADES > 1
+void addLightCascades(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool cone,
+                      inout Fragment f)
+{
+    vec3 toLight = toLightOf(i, positional);
+    addLight(i, toLight, cone, shadowCascades(map, i, f.normal, toLight, f), f);
 }
 #endif
 
 void main()
 {
+    Fragment f;
     // Untextured items sample a 1 x 1 white texture: no per-pixel branch.
-    vec4 baseColour = texture(textureSampler, outTexCoord) * material.colour;
-    vec3 normal = normalize(mvVertexNormal);
-#if LIGHT_POSITIONAL
-    vec3 toLight = normalize(light.position - mvVertexPos);
-#else
-    vec3 toLight = normalize(light.direction);
-#endif
-    vec4 diffuseSpecular = calcLightColour(baseColour, light.colour, mvVertexPos, toLight,
-                                           normal);
-#if SPOT_CONE
-    // A spot's cone, with a soft rim of about a degree.
-    float c = dot(-toLight, normalize(light.coneAxis));
-    diffuseSpecular *= smoothstep(light.coneCos, light.coneCos + 0.01, c);
-#endif
-    float shadow = calcShadow(mlightviewVertexPos, normal, toLight);
+    f.base = texture(textureSampler, outTexCoord) * material.colour;
+    f.normal = normalize(mvVertexNormal);
+    f.colour = vec4(0.0);
+    f.visibility = 1.0;
+    f.cascade = -1;
+
+    LIGHT_CALLS
+
     // Ambient light is not shadowed.
-    fragColor = clamp(baseColour * vec4(ambientLight, 1.0) + diffuseSpecular * shadow, 0.0, 1.0);
+    fragColor = clamp(f.base * vec4(ambientLight, 1.0) + f.colour, 0.0, 1.0);
+#if SHOW_CASCADES
+    const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
+                                 vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));
+    if (f.cascade >= 0) {
+        fragColor.rgb = mix(fragColor.rgb, fragColor.rgb * tints[f.cascade], 0.6);
+    }
+#endif
     fragColor.a = 1.0;
 
-    visibilityOut = vec4(shadow, 1.0, 0.0, 1.0);
+    visibilityOut = vec4(f.visibility, 1.0, 0.0, 1.0);
     worldPosOut = vec4(worldPos, 1.0);
     worldNormalOut = vec4(normalize(worldNormal), 1.0);
 }

@@ -1,6 +1,6 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
-// Compiled with NORMAL_OFFSET 0/1 (see scene.frag for the other defines).
+// Compiled with NORMAL_OFFSET 0/1 and LIGHT_COUNT (see scene.frag for the other defines).
 // Lighting happens in view space, as in the book; world position (relative to the camera,
 // so it keeps its precision far from the origin) and normal are passed on for the G-buffer
 // outputs that tests and the exact reference read.
@@ -12,7 +12,7 @@ layout (location = 2) in vec3 vertexNormal;
 out vec2 outTexCoord;
 out vec3 mvVertexNormal;
 out vec3 mvVertexPos;
-out vec4 mlightviewVertexPos;
+out vec4 mlightviewVertexPos[LIGHT_COUNT];  // per light: its clip space (a cube light: from it)
 out vec3 worldPos;
 out vec3 worldNormal;
 
@@ -21,9 +21,10 @@ uniform mat4 modelViewMatrix;
 uniform mat3 normalMatrix;       // inverse transpose of modelViewMatrix, for normals
 uniform mat3 worldNormalMatrix;  // inverse transpose of modelMatrix
 uniform mat4 projectionMatrix;
-uniform mat4 modelLightViewMatrix;
-uniform mat4 orthoProjectionMatrix;
-uniform float normalOffset;  // world units along the normal (NORMAL_OFFSET builds only)
+// One per light (LIGHT_COUNT, laid out by src/light_slots.rs).
+uniform mat4 modelLightViewMatrix[LIGHT_COUNT];
+uniform mat4 orthoProjectionMatrix[LIGHT_COUNT];
+uniform float normalOffset[LIGHT_COUNT];  // world units along the normal (NORMAL_OFFSET builds)
 
 void main()
 {
@@ -34,13 +35,16 @@ void main()
     // inverse transpose keeps them right for any scale.
     mvVertexNormal = normalize(normalMatrix * vertexNormal);
     mvVertexPos = mvPos.xyz;
-    vec4 lightViewPos = modelLightViewMatrix * vec4(position, 1.0);
+    for (int i = 0; i < LIGHT_COUNT; ++i) {
+        vec4 lightViewPos = modelLightViewMatrix[i] * vec4(position, 1.0);
 #if NORMAL_OFFSET
-    // Normal-offset bias: look the map up from a point pushed off the surface. The light
-    // view is rigid, so the normalised normal keeps world lengths.
-    lightViewPos.xyz += normalize(mat3(modelLightViewMatrix) * vertexNormal) * normalOffset;
+        // Normal-offset bias: look the map up from a point pushed off the surface. The
+        // light view is rigid, so the normalised normal keeps world lengths.
+        lightViewPos.xyz += normalize(mat3(modelLightViewMatrix[i]) * vertexNormal)
+                            * normalOffset[i];
 #endif
-    mlightviewVertexPos = orthoProjectionMatrix * lightViewPos;
+        mlightviewVertexPos[i] = orthoProjectionMatrix[i] * lightViewPos;
+    }
     worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
     worldNormal = normalize(worldNormalMatrix * vertexNormal);
 }

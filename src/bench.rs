@@ -307,6 +307,7 @@ pub fn bench_reference(
             height: opts.height,
             supersample: opts.supersample,
             band: opts.band,
+            light: 0,
         },
     )
 }

@@ -8,7 +8,7 @@ use glam::{DMat4, DVec3};
 
 use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
-use crate::frame::{render_frames, Frame};
+use crate::frame::{render_frames, render_frames_of_light, Frame};
 use crate::reference::{
     compute_metrics, reference_visibility, reference_visibility_supersampled, Bvh, GBuffer,
     LightKind, Metrics, RefPixel, Triangle,
@@ -25,6 +25,9 @@ pub struct CompareOptions {
     pub supersample: u32,
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
     pub band: usize,
+    /// The light measured (its shadow test against its exact visibility); scenes with
+    /// several lights are measured one light at a time.
+    pub light: usize,
 }
 
 /// The exact visibility of a view of a scene; independent of the shadow settings, so one
@@ -46,8 +49,13 @@ pub struct Reference {
 /// The light as the reference sees it, relative to `origin`: what the shadow map
 /// approximates (parallel rays for an orthographic map, rays to the light's eye for a
 /// perspective one).
-pub fn light_kind(scene: &Scene, settings: &ShadowSettings, origin: DVec3) -> LightKind {
-    match scene.shadow_view(settings).reference {
+pub fn light_kind(
+    scene: &Scene,
+    index: usize,
+    settings: &ShadowSettings,
+    origin: DVec3,
+) -> LightKind {
+    match scene.shadow_view(index, settings).reference {
         LightKind::Point { position } => LightKind::Point {
             position: (position.as_dvec3() - origin).as_vec3(),
         },
@@ -115,7 +123,8 @@ pub fn compute_reference(
     let start = Instant::now();
     let origin = frame.origin;
     let bvh = caster_bvh(scene, origin);
-    let light = light_kind(scene, settings, origin);
+    check_light(scene, opts.light)?;
+    let light = light_kind(scene, opts.light, settings, origin);
     let hard = reference_visibility(&bvh, &light, &gbuffer);
     let supersampled = hi
         .as_ref()
@@ -179,7 +188,7 @@ pub fn compare(
     opts: &CompareOptions,
 ) -> Result<Comparison> {
     let reference = compute_reference(gl, scene, settings, opts)?;
-    let frame = render_visibility(gl, scene, settings, opts.width, opts.height)?;
+    let frame = render_visibility(gl, scene, settings, opts.width, opts.height, opts.light)?;
     let visibility = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(visibility, opts.band);
     Ok(Comparison {
@@ -189,17 +198,44 @@ pub fn compare(
     })
 }
 
-/// One frame with the visibility and G-buffer outputs.
+/// One frame with the visibility (of light `light`'s shadow test) and G-buffer outputs.
 pub fn render_visibility(
     gl: &Gl,
     scene: &Scene,
     settings: &ShadowSettings,
     width: u32,
     height: u32,
+    light: usize,
 ) -> Result<Frame> {
+    check_light(scene, light)?;
     let outputs = Outputs {
         visibility: true,
         gbuffer: true,
     };
-    render_frames(gl, &mut scene.clone(), settings, width, height, 1, outputs)
+    render_frames_of_light(
+        gl,
+        &mut scene.clone(),
+        settings,
+        width,
+        height,
+        1,
+        outputs,
+        light,
+    )
+}
+
+/// A light that does not cast has nothing to measure; one past the end is a user's typo.
+fn check_light(scene: &Scene, light: usize) -> Result<()> {
+    match scene.lights.get(light) {
+        None => Err(Error::Invalid(format!(
+            "light {light}: the scene {} has {} light(s), numbered from 0",
+            scene.source.display(),
+            scene.lights.len()
+        ))),
+        Some(l) if !l.casts_shadows() => Err(Error::Invalid(format!(
+            "light {light} of {} does not cast shadows (casts_shadows = false): nothing to measure",
+            scene.source.display()
+        ))),
+        Some(_) => Ok(()),
+    }
 }

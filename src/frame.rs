@@ -21,8 +21,9 @@ pub struct Frame {
     /// World positions relative to `origin`, and world normals (NaN where no geometry).
     pub positions: Option<Vec<[f32; 3]>>,
     pub normals: Option<Vec<[f32; 3]>>,
-    /// The shadow map's size and its depth values (rows top to bottom).
-    pub depth_map: (u32, Vec<f32>),
+    /// The first light's 2D shadow map: its size and depth values (rows top to bottom);
+    /// `None` when that light has a cube map, cascades or no map.
+    pub depth_map: Option<(u32, Vec<f32>)>,
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
     /// The camera position the G-buffer positions are relative to.
@@ -77,12 +78,13 @@ impl Frame {
     }
 
     /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane).
-    pub fn depth_grey(&self) -> Vec<u8> {
-        self.depth_map
-            .1
+    pub fn depth_grey(&self) -> Option<(u32, Vec<u8>)> {
+        let (size, depth) = self.depth_map.as_ref()?;
+        let grey = depth
             .iter()
             .map(|d| (d.clamp(0.0, 1.0) * 255.0).round() as u8)
-            .collect()
+            .collect();
+        Some((*size, grey))
     }
 }
 
@@ -97,6 +99,21 @@ pub fn render_frames(
     frames: u32,
     outputs: Outputs,
 ) -> Result<Frame> {
+    render_frames_of_light(gl, scene, settings, width, height, frames, outputs, 0)
+}
+
+/// [`render_frames`] with the visibility output carrying light `light`'s shadow test.
+#[allow(clippy::too_many_arguments)]
+pub fn render_frames_of_light(
+    gl: &Gl,
+    scene: &mut Scene,
+    settings: &ShadowSettings,
+    width: u32,
+    height: u32,
+    frames: u32,
+    outputs: Outputs,
+    light: usize,
+) -> Result<Frame> {
     let limits = crate::engine::gl_limits(gl);
     let max = limits
         .max_renderbuffer_size
@@ -110,6 +127,7 @@ pub fn render_frames(
     // The frame's shape is the scene's from now on (a fitted light box follows it).
     scene.size = [width, height];
     let mut renderer = Renderer::new(gl, scene, settings)?;
+    renderer.set_visibility_light(light);
     let target = RenderTarget::new(gl, width, height, outputs)?;
     let mut frame_ms = Vec::with_capacity(frames as usize);
     for i in 0..frames.max(1) {
@@ -137,14 +155,17 @@ pub fn render_frames(
         }
         false => (None, None),
     };
-    let size = renderer.shadow_map().size();
-    let mut depth = renderer.shadow_map().read_depth();
-    // GL rows run bottom-up; flip so the image shows the map with +v up.
-    let row = size as usize;
-    for y in 0..row / 2 {
-        let (a, b) = depth.split_at_mut((row - 1 - y) * row);
-        a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
-    }
+    let depth_map = renderer.shadow_map().map(|map| {
+        let size = map.size();
+        let mut depth = map.read_depth();
+        // GL rows run bottom-up; flip so the image shows the map with +v up.
+        let row = size as usize;
+        for y in 0..row / 2 {
+            let (a, b) = depth.split_at_mut((row - 1 - y) * row);
+            a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
+        }
+        (size, depth)
+    });
     crate::engine::check_gl(gl, "reading the frame back")?;
     Ok(Frame {
         width,
@@ -153,7 +174,7 @@ pub fn render_frames(
         visibility,
         positions,
         normals,
-        depth_map: (size, depth),
+        depth_map,
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
     })

@@ -6,11 +6,13 @@ use glow::HasContext;
 
 use crate::engine::mesh::FullScreenTriangle;
 use crate::engine::{
-    check_gl, gl_limits, CubeShadowMap, Gl, Mesh, PassTimer, RenderTarget, ShaderProgram,
-    ShadowMap, Texture,
+    check_gl, gl_limits, CascadeShadowMap, CubeShadowMap, Gl, Mesh, PassTimer, RenderTarget,
+    ShaderProgram, ShadowMap, Texture,
 };
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
+use crate::light_slots::{self, LightSlot, ShadowKind};
+use crate::scene::cascades::{camera_relative_matrix, fit_cascades, Cascade};
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::PointPass;
 use crate::settings::{Cull, ShadowSettings};
@@ -33,8 +35,71 @@ impl Target<'_> {
     }
 }
 
-/// Owns the GL side of one scene: its meshes and textures, the two programs and the shadow
-/// map. Create it after the context and drop it before.
+/// A light's shadow storage, made when the light first casts and remade when the settings
+/// change its size, format or kind.
+enum LightShadow {
+    None,
+    Map(ShadowMap),
+    Cube(CubeShadowMap),
+    /// The array and the cascades of the last depth pass.
+    Cascades(CascadeShadowMap, Vec<Cascade>),
+}
+
+impl LightShadow {
+    fn kind(&self) -> ShadowKind {
+        match self {
+            LightShadow::None => ShadowKind::None,
+            LightShadow::Map(_) => ShadowKind::Map,
+            LightShadow::Cube(_) => ShadowKind::Cube,
+            LightShadow::Cascades(..) => ShadowKind::Cascades,
+        }
+    }
+
+    fn fits(&self, kind: ShadowKind, settings: &ShadowSettings) -> bool {
+        let (size, format) = (settings.map_size, settings.depth_format);
+        match self {
+            LightShadow::None => kind == ShadowKind::None,
+            LightShadow::Map(m) => {
+                kind == ShadowKind::Map && m.size() == size && m.format() == format
+            }
+            LightShadow::Cube(c) => {
+                kind == ShadowKind::Cube && c.size() == size && c.format() == format
+            }
+            LightShadow::Cascades(a, _) => {
+                kind == ShadowKind::Cascades
+                    && a.size() == size
+                    && a.format() == format
+                    && a.layers() == settings.cascades
+            }
+        }
+    }
+
+    fn new(gl: &Gl, kind: ShadowKind, settings: &ShadowSettings) -> Result<LightShadow> {
+        let (size, format) = (settings.map_size, settings.depth_format);
+        Ok(match kind {
+            ShadowKind::None => LightShadow::None,
+            ShadowKind::Map => LightShadow::Map(ShadowMap::new(gl, size, format)?),
+            ShadowKind::Cube => LightShadow::Cube(CubeShadowMap::new(gl, size, format)?),
+            ShadowKind::Cascades => LightShadow::Cascades(
+                CascadeShadowMap::new(gl, size, settings.cascades, format)?,
+                Vec::new(),
+            ),
+        })
+    }
+
+    /// The depth texture the scene pass samples.
+    fn texture(&self) -> Option<&Texture> {
+        match self {
+            LightShadow::None => None,
+            LightShadow::Map(m) => Some(m.depth_map_texture()),
+            LightShadow::Cube(c) => Some(c.texture()),
+            LightShadow::Cascades(a, _) => Some(a.texture()),
+        }
+    }
+}
+
+/// Owns the GL side of one scene: its meshes and textures, the programs and one shadow
+/// map per casting light. Create it after the context and drop it before.
 pub struct Renderer {
     gl: Gl,
     settings: ShadowSettings,
@@ -42,22 +107,27 @@ pub struct Renderer {
     scene_program: ShaderProgram,
     /// The lighting the scene program was compiled for.
     lighting: LightingKey,
-    shadow_map: ShadowMap,
+    /// One per scene light, in the scene's order.
+    shadows: Vec<LightShadow>,
+    /// Each light's camera in the last depth pass (`None` for lights that do not cast).
+    shadow_views: Vec<Option<ShadowView>>,
     meshes: Vec<Mesh>,
     textures: Vec<Texture>,
     depth_view_program: ShaderProgram,
     full_screen: FullScreenTriangle,
-    /// The light's camera used by the last depth pass.
-    shadow_view: Option<ShadowView>,
-    /// A point light's cube map and depth program, made when a point light first casts.
-    cube_map: Option<CubeShadowMap>,
     /// 1 x 1 white, for items without a texture.
     white: Texture,
+    /// A point light's depth program, made when a point light first casts.
     point_depth_program: Option<ShaderProgram>,
     point_program_layered: bool,
     depth_view_cube: Option<ShaderProgram>,
+    depth_view_array: Option<ShaderProgram>,
     /// GPU timers for the depth pass (0) and the scene pass (1), when enabled.
     timer: Option<PassTimer>,
+    /// The light whose shadow test the visibility output carries.
+    visibility_light: usize,
+    /// The light whose map the depth view shows.
+    depth_view_light: usize,
 }
 
 /// Indices of the passes in [`Renderer::pass_times_ms`].
@@ -80,31 +150,28 @@ impl Renderer {
             .collect::<Result<Vec<_>>>()?;
         let depth_program =
             ShaderProgram::new(gl, &shaders::depth_vert(), &shaders::depth_frag(), &[])?;
-        let lighting = LightingKey::of(scene);
-        let scene_program = scene_program(gl, settings, lighting)?;
+        let lighting = LightingKey::of(scene, settings, 0)?;
+        let scene_program = scene_program(gl, settings, &lighting)?;
         let depth_view_program = ShaderProgram::new(
             gl,
             &shaders::depth_view_vert(),
             &shaders::depth_view_frag(),
-            &[("CUBE".into(), "0".into())],
+            &[("CUBE".into(), "0".into()), ("ARRAY".into(), "0".into())],
         )?;
-        let shadow_map = ShadowMap::new(gl, settings.map_size, settings.depth_format)?;
-        configure_sampling(&shadow_map, settings);
         unsafe { gl.enable(glow::DEPTH_TEST) };
         check_gl(gl, "renderer setup")?;
-        Ok(Renderer {
+        let mut renderer = Renderer {
             gl: gl.clone(),
             settings: *settings,
             depth_program,
             scene_program,
             lighting,
-            shadow_map,
+            shadows: Vec::new(),
+            shadow_views: Vec::new(),
             meshes,
             textures,
             depth_view_program,
             full_screen: FullScreenTriangle::new(gl)?,
-            shadow_view: None,
-            cube_map: None,
             white: Texture::from_image(
                 gl,
                 &ImageData {
@@ -116,8 +183,13 @@ impl Renderer {
             point_depth_program: None,
             point_program_layered: false,
             depth_view_cube: None,
+            depth_view_array: None,
             timer: None,
-        })
+            visibility_light: 0,
+            depth_view_light: 0,
+        };
+        renderer.prepare_shadows(scene)?;
+        Ok(renderer)
     }
 
     pub fn settings(&self) -> &ShadowSettings {
@@ -125,20 +197,28 @@ impl Renderer {
     }
 
     /// Switches settings, rebuilding only what they change (the program for shader
-    /// variants, the shadow map for its size or format).
+    /// variants, shadow maps for their size, format or kind, on the next frame).
     pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
         settings.validate(gl_limits(&self.gl).max_texture_size)?;
         if settings.shader_defines() != self.settings.shader_defines() {
-            self.scene_program = scene_program(&self.gl, settings, self.lighting)?;
+            self.scene_program = scene_program(&self.gl, settings, &self.lighting)?;
         }
-        if settings.map_size != self.settings.map_size
-            || settings.depth_format != self.settings.depth_format
-        {
-            self.shadow_map = ShadowMap::new(&self.gl, settings.map_size, settings.depth_format)?;
-        }
-        configure_sampling(&self.shadow_map, settings);
         self.settings = *settings;
+        for shadow in &self.shadows {
+            configure_sampling(shadow, settings);
+        }
         check_gl(&self.gl, "changing settings")
+    }
+
+    /// Which light's shadow test the visibility output carries (`compare` measures one
+    /// light at a time); the program is rebuilt on the next frame.
+    pub fn set_visibility_light(&mut self, index: usize) {
+        self.visibility_light = index;
+    }
+
+    /// Which light's map the depth view shows.
+    pub fn set_depth_view_light(&mut self, index: usize) {
+        self.depth_view_light = index;
     }
 
     /// Times each pass on the GPU from now on (see [`Renderer::pass_times_ms`]).
@@ -153,16 +233,61 @@ impl Renderer {
         Some([t[DEPTH_PASS], t[SCENE_PASS]])
     }
 
-    pub fn shadow_map(&self) -> &ShadowMap {
-        &self.shadow_map
+    /// The first light's 2D shadow map, if it has one (the chapters' one map).
+    pub fn shadow_map(&self) -> Option<&ShadowMap> {
+        match self.shadows.first() {
+            Some(LightShadow::Map(m)) => Some(m),
+            _ => None,
+        }
     }
 
-    /// The light's camera of the last depth pass.
+    /// The first light's camera of the last depth pass.
     pub fn shadow_view(&self) -> Option<&ShadowView> {
-        self.shadow_view.as_ref()
+        self.shadow_views.first()?.as_ref()
     }
 
-    /// One frame: the depth map first, then the scene (or, with `show_depth_map`, the map
+    /// Light `index`'s camera of the last depth pass.
+    pub fn light_shadow_view(&self, index: usize) -> Option<&ShadowView> {
+        self.shadow_views.get(index)?.as_ref()
+    }
+
+    /// Light `index`'s cascades in the last depth pass (empty when it has none).
+    pub fn cascades(&self, index: usize) -> &[Cascade] {
+        match self.shadows.get(index) {
+            Some(LightShadow::Cascades(_, c)) => c,
+            _ => &[],
+        }
+    }
+
+    /// Shadow maps in use and the bytes they take (a depth texel is 4 bytes on this
+    /// driver whatever the format asks; reported as allocated, not as the format's size).
+    pub fn shadow_memory(&self) -> (usize, u64) {
+        let texel = |s: u32| u64::from(s) * u64::from(s) * 4;
+        self.shadows.iter().fold((0, 0), |(n, bytes), s| match s {
+            LightShadow::None => (n, bytes),
+            LightShadow::Map(m) => (n + 1, bytes + texel(m.size())),
+            LightShadow::Cube(c) => (n + 1, bytes + 6 * texel(c.size())),
+            LightShadow::Cascades(a, _) => (n + 1, bytes + u64::from(a.layers()) * texel(a.size())),
+        })
+    }
+
+    /// Makes each light's shadow storage match the scene's lights and the settings: only
+    /// lights that cast get a map.
+    fn prepare_shadows(&mut self, scene: &Scene) -> Result<()> {
+        self.shadows
+            .resize_with(scene.lights.len(), || LightShadow::None);
+        self.shadow_views.resize(scene.lights.len(), None);
+        for (light, shadow) in scene.lights.iter().zip(self.shadows.iter_mut()) {
+            let kind = ShadowKind::of(light, &self.settings);
+            if !shadow.fits(kind, &self.settings) {
+                *shadow = LightShadow::new(&self.gl, kind, &self.settings)?;
+                configure_sampling(shadow, &self.settings);
+            }
+        }
+        Ok(())
+    }
+
+    /// One frame: the depth maps first, then the scene (or, with `show_depth_map`, a map
     /// itself) into `target`.
     pub fn render(&mut self, scene: &Scene, target: Target) -> Result<()> {
         self.render_depth_map(scene)?;
@@ -173,46 +298,90 @@ impl Renderer {
         }
     }
 
-    /// The shadow pass: bind the map's FBO, viewport to its size, clear depth, and draw every
-    /// caster with the light's view and projection (ortho for the book's light).
+    /// The shadow pass, once per casting light: bind its map's FBO, viewport to its size,
+    /// clear depth, and draw every caster with the light's view and projection (ortho for
+    /// the book's light).
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
-        let sv = scene.shadow_view(&self.settings);
-        self.shadow_view = Some(sv);
-        if let Light::Point(p) = &scene.light {
-            return self.render_cube_depth_map(scene, p);
-        }
-        let gl = &self.gl;
-        self.shadow_map.bind_for_writing();
-        self.begin_depth_state();
-        unsafe {
-            gl.clear(glow::DEPTH_BUFFER_BIT);
-        }
+        self.prepare_shadows(scene)?;
         if let Some(t) = &self.timer {
             t.begin(DEPTH_PASS);
         }
-        let program = &self.depth_program;
-        program.bind();
-        program.set_mat4("orthoProjectionMatrix", &sv.projection);
-        self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64);
-        program.unbind();
+        for index in 0..scene.lights.len() {
+            self.render_light_depth(scene, index)?;
+        }
         if let Some(t) = &self.timer {
             t.end();
         }
+        check_gl(&self.gl, "the depth-map pass")
+    }
+
+    fn render_light_depth(&mut self, scene: &Scene, index: usize) -> Result<()> {
+        let light = scene.lights[index];
+        if self.shadows[index].kind() == ShadowKind::None {
+            self.shadow_views[index] = None;
+            return Ok(());
+        }
+        let sv = scene.shadow_view(index, &self.settings);
+        self.shadow_views[index] = Some(sv);
+        match (&light, &self.shadows[index]) {
+            (Light::Point(p), _) => return self.render_cube_depth_map(scene, index, p),
+            (Light::Directional(l), LightShadow::Cascades(..)) => {
+                let s = &self.settings;
+                let far = if s.shadow_distance > 0.0 {
+                    s.shadow_distance
+                } else {
+                    f32::INFINITY
+                };
+                let cascades = fit_cascades(
+                    scene,
+                    l.direction,
+                    s.cascades,
+                    s.cascade_lambda,
+                    far,
+                    s.map_size,
+                    s.snap,
+                );
+                if let LightShadow::Cascades(_, c) = &mut self.shadows[index] {
+                    *c = cascades;
+                }
+            }
+            _ => {}
+        }
+        self.begin_depth_state();
+        let program = &self.depth_program;
+        program.bind();
+        match &self.shadows[index] {
+            LightShadow::Map(map) => {
+                map.bind_for_writing();
+                unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
+                program.set_mat4("orthoProjectionMatrix", &sv.projection);
+                self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64);
+            }
+            LightShadow::Cascades(array, cascades) => {
+                for (layer, c) in cascades.iter().enumerate() {
+                    array.bind_layer(layer as u32);
+                    unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
+                    let [l, r, b, t, n, f] = c.fitted.bounds;
+                    let projection = DMat4::orthographic_rh_gl(l, r, b, t, n, f).as_mat4();
+                    program.set_mat4("orthoProjectionMatrix", &projection);
+                    self.draw_casters(scene, program, "modelLightViewMatrix", c.fitted.view);
+                }
+            }
+            LightShadow::None | LightShadow::Cube(_) => {}
+        }
+        program.unbind();
         self.end_depth_state();
-        check_gl(gl, "the depth-map pass")
+        Ok(())
     }
 
     /// A point light's depth pass: six faces of a cube map, each a 90-degree view from the
     /// light storing distance over `far` (LearnOpenGL's "Point Shadows").
-    fn render_cube_depth_map(&mut self, scene: &Scene, light: &PointLight) -> Result<()> {
-        let (size, format) = (self.settings.map_size, self.settings.depth_format);
-        let stale = self
-            .cube_map
-            .as_ref()
-            .is_none_or(|c| c.size() != size || c.format() != format);
-        if stale {
-            self.cube_map = Some(CubeShadowMap::new(&self.gl, size, format)?);
-        }
+    fn render_cube_depth_map(
+        &mut self,
+        scene: &Scene,
+        index: usize,
+        light: &PointLight,
+    ) -> Result<()> {
         let layered = self.settings.point_pass == PointPass::Layered;
         if self.point_depth_program.is_none() || self.point_program_layered != layered {
             self.point_depth_program = Some(if layered {
@@ -235,7 +404,9 @@ impl Renderer {
             });
             self.point_program_layered = layered;
         }
-        let (Some(cube), Some(program)) = (&self.cube_map, &self.point_depth_program) else {
+        let (LightShadow::Cube(cube), Some(program)) =
+            (&self.shadows[index], &self.point_depth_program)
+        else {
             return Err(Error::Invalid(
                 "the point light's cube map is missing".into(),
             ));
@@ -243,9 +414,6 @@ impl Renderer {
         let projection = Mat4::perspective_rh_gl(90f32.to_radians(), 1.0, light.near, light.far);
         let to_light = DMat4::from_translation(-light.position.as_dvec3());
         self.begin_depth_state();
-        if let Some(t) = &self.timer {
-            t.begin(DEPTH_PASS);
-        }
         program.bind();
         program.set_f32("farPlane", light.far);
         if layered {
@@ -267,9 +435,6 @@ impl Renderer {
             self.draw_casters(scene, program, "modelLightMatrix", to_light);
         }
         program.unbind();
-        if let Some(t) = &self.timer {
-            t.end();
-        }
         self.end_depth_state();
         check_gl(&self.gl, "the point light's depth pass")
     }
@@ -344,19 +509,19 @@ impl Renderer {
         (width, height)
     }
 
-    /// The main pass: draws the scene with the shadow map on texture unit 1. Call after
-    /// [`Renderer::render_depth_map`].
+    /// The main pass: draws the scene with each light's shadow map on its texture unit
+    /// ([`light_slots::texture_unit`]). Call after [`Renderer::render_depth_map`].
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
-        let lighting = LightingKey::of(scene);
+        let lighting = LightingKey::of(scene, &self.settings, self.visibility_light)?;
         if lighting != self.lighting {
-            self.scene_program = scene_program(&self.gl, &self.settings, lighting)?;
+            self.scene_program = scene_program(&self.gl, &self.settings, &lighting)?;
             self.lighting = lighting;
         }
-        let Some(sv) = self.shadow_view else {
+        if self.shadows.len() != scene.lights.len() {
             return Err(Error::Invalid(
-                "render_scene before render_depth_map: there is no shadow map yet".into(),
+                "render_scene before render_depth_map: there are no shadow maps yet".into(),
             ));
-        };
+        }
         let (width, height) = self.begin_target(scene, target);
         if let Some(t) = &self.timer {
             t.begin(SCENE_PASS);
@@ -373,47 +538,29 @@ impl Renderer {
             "projectionMatrix",
             &scene.camera.projection_matrix(width, height),
         );
-        // A point light's test works on the fragment relative to the light (no projection).
-        let point = match &scene.light {
-            Light::Point(l) => Some(l),
-            _ => None,
-        };
-        let light_from = match point {
-            Some(l) => DMat4::from_translation(-l.position.as_dvec3()),
-            None => sv.view64,
-        };
-        p.set_mat4(
-            "orthoProjectionMatrix",
-            &point.map_or(sv.projection, |_| Mat4::IDENTITY),
-        );
-        if let Some(l) = point {
-            p.set_f32("farPlane", l.far);
-        }
         p.set_vec3("ambientLight", scene.ambient);
-        p.set_i32(
-            "blinn",
-            i32::from(scene.shading == ShadingModel::BlinnPhong),
-        );
-        p.set_f32("normalOffset", self.settings.normal_offset * sv.texel_world);
-        let light = &scene.light;
-        let light_colour = light.colour() * light.intensity();
-        p.set_vec3("light.colour", light_colour);
-        match light.shading() {
-            Shading::Direction(d) => p.set_vec3("light.direction", view.transform_vector3(d)),
-            Shading::Position { position, cone } => {
-                let position = view64.transform_point3(position.as_dvec3()).as_vec3();
-                p.set_vec3("light.position", position);
-                let (cos, axis) = cone.unwrap_or((-2.0, Vec3::Z));
-                p.set_f32("light.coneCos", cos);
-                p.set_vec3("light.coneAxis", view.transform_vector3(axis));
+        let u = LightUniforms::of(scene, &self.shadow_views, &self.settings, view64);
+        p.set_vec3_array("lightColour", &u.colour);
+        p.set_vec3_array("lightDirection", &u.direction);
+        p.set_vec3_array("lightPosition", &u.position);
+        p.set_f32_array("lightConeCos", &u.cone_cos);
+        p.set_vec3_array("lightConeAxis", &u.cone_axis);
+        p.set_f32_array("lightFar", &u.far);
+        p.set_f32_array("normalOffset", &u.normal_offset);
+        p.set_mat4_array("orthoProjectionMatrix", &u.projection);
+        self.set_cascade_uniforms(scene);
+        p.set_i32("textureSampler", light_slots::MATERIAL_UNIT as i32);
+        for (i, shadow) in self.shadows.iter().enumerate() {
+            if let (Some(name), Some(texture)) = (
+                light_slots::sampler_name(i, shadow.kind()),
+                shadow.texture(),
+            ) {
+                let unit = light_slots::texture_unit(i);
+                p.set_i32(name, unit as i32);
+                texture.bind(unit);
             }
         }
-        p.set_i32("textureSampler", 0);
-        p.set_i32("shadowMap", 1);
-        match (&self.cube_map, point) {
-            (Some(cube), Some(_)) => cube.texture().bind_cube(1),
-            _ => self.shadow_map.depth_map_texture().bind(1),
-        }
+        let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
@@ -423,68 +570,122 @@ impl Renderer {
                 p.set_mat4("modelViewMatrix", &model_view);
                 p.set_mat3("normalMatrix", &normal_matrix(&model_view));
                 p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
-                p.set_mat4("modelLightViewMatrix", &(light_from * model).as_mat4());
+                for (m, from) in light_matrices.iter_mut().zip(&u.light_from) {
+                    *m = (*from * model).as_mat4();
+                }
+                p.set_mat4_array("modelLightViewMatrix", &light_matrices);
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
-                p.set_vec3("material.specular", light_colour * m.reflectance);
+                p.set_f32("material.reflectance", m.reflectance);
                 m.texture
                     .and_then(|t| self.textures.get(t))
                     .unwrap_or(&self.white)
-                    .bind(0);
+                    .bind(light_slots::MATERIAL_UNIT);
             });
         }
         p.unbind();
+        let _ = view;
         if let Some(t) = &self.timer {
             t.end();
         }
         check_gl(&self.gl, "the scene pass")
     }
 
-    /// The chapters' debug quad: the shadow map on the whole target, linearised for a
-    /// perspective light (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one.
+    /// The cascades' matrices (camera-relative world to each cascade's clip space), split
+    /// depths and normal offsets.
+    fn set_cascade_uniforms(&self, scene: &Scene) {
+        let count = self.settings.cascades as usize;
+        if count <= 1 {
+            return;
+        }
+        let p = &self.scene_program;
+        let mut matrices = vec![Mat4::IDENTITY; scene.lights.len() * count];
+        let mut splits = Vec::new();
+        let mut offsets = Vec::new();
+        for (i, shadow) in self.shadows.iter().enumerate() {
+            let LightShadow::Cascades(_, cascades) = shadow else {
+                continue;
+            };
+            for (c, cascade) in cascades.iter().enumerate() {
+                matrices[i * count + c] =
+                    camera_relative_matrix(cascade, scene.camera.position).as_mat4();
+            }
+            splits = cascades.iter().map(|c| c.near as f32).collect();
+            splits.extend(cascades.last().map(|c| c.far as f32));
+            offsets = cascades
+                .iter()
+                .map(|c| self.settings.normal_offset * c.fitted.texel as f32)
+                .collect();
+        }
+        p.set_mat4_array("cascadeMatrix", &matrices);
+        p.set_f32_array("cascadeSplit", &splits);
+        p.set_f32_array("cascadeNormalOffset", &offsets);
+    }
+
+    /// The chapters' debug quad: a light's shadow map on the whole target, linearised for a
+    /// perspective light (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one; a
+    /// cube map as a panorama, cascades side by side.
     pub fn render_depth_view(&mut self, scene: &Scene, target: Target) -> Result<()> {
-        let Some(sv) = self.shadow_view else {
+        let index = self
+            .depth_view_light
+            .min(self.shadows.len().saturating_sub(1));
+        let Some(shadow) = self.shadows.get(index) else {
             return Err(Error::Invalid(
                 "render_depth_view before render_depth_map: there is no shadow map yet".into(),
             ));
         };
         self.begin_target(scene, target);
-        if let (Light::Point(_), Some(cube)) = (&scene.light, &self.cube_map) {
-            // A point light's six faces as one panorama of directions from the light.
-            if self.depth_view_cube.is_none() {
-                self.depth_view_cube = Some(ShaderProgram::new(
+        let (cube, array) = match shadow {
+            LightShadow::None => {
+                // A light without a map: the cleared target says so.
+                return check_gl(&self.gl, "the depth-map view");
+            }
+            LightShadow::Map(_) => (false, false),
+            LightShadow::Cube(_) => (true, false),
+            LightShadow::Cascades(..) => (false, true),
+        };
+        let slot = match (cube, array) {
+            (true, _) => Some(&mut self.depth_view_cube),
+            (_, true) => Some(&mut self.depth_view_array),
+            _ => None,
+        };
+        if let Some(slot) = slot {
+            if slot.is_none() {
+                *slot = Some(ShaderProgram::new(
                     &self.gl,
                     &shaders::depth_view_vert(),
                     &shaders::depth_view_frag(),
-                    &[("CUBE".into(), "1".into())],
+                    &[
+                        ("CUBE".into(), u32::from(cube).to_string()),
+                        ("ARRAY".into(), u32::from(array).to_string()),
+                    ],
                 )?);
             }
-            if let Some(p) = &self.depth_view_cube {
-                p.bind();
-                p.set_i32("depthMap", 0);
-                cube.texture().bind_cube(0);
-                unsafe { self.gl.disable(glow::DEPTH_TEST) };
-                self.full_screen.draw();
-                unsafe { self.gl.enable(glow::DEPTH_TEST) };
-                p.unbind();
-            }
-            return check_gl(&self.gl, "the cube depth-map view");
         }
-        let texture = self.shadow_map.depth_map_texture();
-        // A plain sampler2D must not read a texture in compare mode.
+        let p = match (cube, array) {
+            (true, _) => self.depth_view_cube.as_ref(),
+            (_, true) => self.depth_view_array.as_ref(),
+            _ => Some(&self.depth_view_program),
+        };
+        let (Some(p), Some(texture)) = (p, self.shadows[index].texture()) else {
+            return Err(Error::Invalid("the depth view has no program".into()));
+        };
+        // A plain sampler must not read a texture in compare mode.
         texture.set_compare(false, false);
-        let p = &self.depth_view_program;
         p.bind();
         p.set_i32("depthMap", 0);
-        p.set_i32("linearize", i32::from(sv.perspective));
-        p.set_f32("nearPlane", sv.near);
-        p.set_f32("farPlane", sv.far);
+        if let Some(sv) = &self.shadow_views[index] {
+            p.set_i32("linearize", i32::from(sv.perspective && !cube));
+            p.set_f32("nearPlane", sv.near);
+            p.set_f32("farPlane", sv.far);
+        }
+        p.set_i32("layers", self.settings.cascades as i32);
         texture.bind(0);
         unsafe { self.gl.disable(glow::DEPTH_TEST) };
         self.full_screen.draw();
         unsafe { self.gl.enable(glow::DEPTH_TEST) };
         p.unbind();
-        configure_sampling(&self.shadow_map, &self.settings);
+        configure_sampling(&self.shadows[index], &self.settings);
         check_gl(&self.gl, "the depth-map view")
     }
 
@@ -496,45 +697,123 @@ impl Renderer {
 
 /// What the scene program is specialised for besides the shadow settings: branches on these
 /// would run for every pixel on a software rasteriser, so they are `#define`s.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 struct LightingKey {
-    positional: bool,
-    cone: bool,
+    slots: Vec<LightSlot>,
     blinn: bool,
-    point: bool,
     specular_power_bits: u32,
+    visibility_light: usize,
 }
 
 impl LightingKey {
-    fn of(scene: &Scene) -> LightingKey {
-        let (positional, cone) = match scene.light.shading() {
-            Shading::Direction(_) => (false, false),
-            Shading::Position { cone, .. } => (true, cone.is_some()),
-        };
-        LightingKey {
-            positional,
-            cone,
-            blinn: scene.shading == ShadingModel::BlinnPhong,
-            point: matches!(scene.light, Light::Point(_)),
-            specular_power_bits: scene.specular_power.to_bits(),
+    fn of(
+        scene: &Scene,
+        settings: &ShadowSettings,
+        visibility_light: usize,
+    ) -> Result<LightingKey> {
+        if scene.lights.is_empty() || scene.lights.len() > light_slots::MAX_LIGHTS {
+            return Err(Error::Invalid(format!(
+                "{}: {} lights: expected 1 to {}",
+                scene.source.display(),
+                scene.lights.len(),
+                light_slots::MAX_LIGHTS
+            )));
         }
+        let slots = scene
+            .lights
+            .iter()
+            .map(|light| {
+                let (positional, cone) = match light.shading() {
+                    Shading::Direction(_) => (false, false),
+                    Shading::Position { cone, .. } => (true, cone.is_some()),
+                };
+                LightSlot {
+                    shadow: ShadowKind::of(light, settings),
+                    positional,
+                    cone,
+                }
+            })
+            .collect();
+        Ok(LightingKey {
+            slots,
+            blinn: scene.shading == ShadingModel::BlinnPhong,
+            specular_power_bits: scene.specular_power.to_bits(),
+            visibility_light,
+        })
     }
 }
 
-fn scene_program(gl: &Gl, settings: &ShadowSettings, key: LightingKey) -> Result<ShaderProgram> {
-    let mut defines = settings.shader_defines();
-    for (name, on) in [
-        ("LIGHT_POSITIONAL", key.positional),
-        ("SPOT_CONE", key.cone),
-        ("BLINN", key.blinn),
-        ("POINT_SHADOW", key.point),
-    ] {
-        defines.push((name.into(), u32::from(on).to_string()));
+/// The per-light uniform arrays of the scene pass, in view space.
+struct LightUniforms {
+    colour: Vec<Vec3>,
+    direction: Vec<Vec3>,
+    position: Vec<Vec3>,
+    cone_cos: Vec<f32>,
+    cone_axis: Vec<Vec3>,
+    far: Vec<f32>,
+    normal_offset: Vec<f32>,
+    projection: Vec<Mat4>,
+    /// World to the light's view (a point light: to the light's position), per light.
+    light_from: Vec<DMat4>,
+}
+
+impl LightUniforms {
+    fn of(
+        scene: &Scene,
+        views: &[Option<ShadowView>],
+        settings: &ShadowSettings,
+        view64: DMat4,
+    ) -> LightUniforms {
+        let view = view64.as_mat4();
+        let n = scene.lights.len();
+        let mut u = LightUniforms {
+            colour: Vec::with_capacity(n),
+            direction: vec![Vec3::Z; n],
+            position: vec![Vec3::ZERO; n],
+            cone_cos: vec![-2.0; n],
+            cone_axis: vec![Vec3::Z; n],
+            far: vec![1.0; n],
+            normal_offset: vec![0.0; n],
+            projection: vec![Mat4::IDENTITY; n],
+            light_from: vec![DMat4::IDENTITY; n],
+        };
+        for (i, light) in scene.lights.iter().enumerate() {
+            u.colour.push(light.colour() * light.intensity());
+            match light.shading() {
+                Shading::Direction(d) => u.direction[i] = view.transform_vector3(d),
+                Shading::Position { position, cone } => {
+                    u.position[i] = view64.transform_point3(position.as_dvec3()).as_vec3();
+                    if let Some((cos, axis)) = cone {
+                        u.cone_cos[i] = cos;
+                        u.cone_axis[i] = view.transform_vector3(axis);
+                    }
+                }
+            }
+            let Some(sv) = views.get(i).copied().flatten() else {
+                continue;
+            };
+            u.normal_offset[i] = settings.normal_offset * sv.texel_world;
+            // A point light's test works on the fragment relative to the light.
+            if let Light::Point(l) = light {
+                u.far[i] = l.far;
+                u.light_from[i] = DMat4::from_translation(-l.position.as_dvec3());
+            } else {
+                u.projection[i] = sv.projection;
+                u.light_from[i] = sv.view64;
+            }
+        }
+        u
     }
+}
+
+fn scene_program(gl: &Gl, settings: &ShadowSettings, key: &LightingKey) -> Result<ShaderProgram> {
+    let mut defines = settings.shader_defines();
+    defines.push(("BLINN".into(), u32::from(key.blinn).to_string()));
     defines.push((
         "SPECULAR_POWER".into(),
         crate::settings::glsl_float(f32::from_bits(key.specular_power_bits)),
     ));
+    defines.extend(light_slots::defines(&key.slots, key.visibility_light));
     ShaderProgram::new(gl, &shaders::scene_vert(), &shaders::scene_frag(), &defines)
 }
 
@@ -544,10 +823,15 @@ fn normal_matrix(m: &Mat4) -> Mat3 {
     Mat3::from_mat4(*m).inverse().transpose()
 }
 
-/// Wrap mode and compare mode of the shadow map for the settings' filter.
-fn configure_sampling(shadow_map: &ShadowMap, settings: &ShadowSettings) {
+/// Wrap mode and compare mode of a 2D or array shadow map for the settings' filter (a cube
+/// map keeps plain NEAREST reads).
+fn configure_sampling(shadow: &LightShadow, settings: &ShadowSettings) {
     let settings = settings.effective();
-    let texture = shadow_map.depth_map_texture();
+    let texture = match shadow {
+        LightShadow::Map(m) => m.depth_map_texture(),
+        LightShadow::Cascades(a, _) => a.texture(),
+        LightShadow::None | LightShadow::Cube(_) => return,
+    };
     texture.set_wrap(settings.wrap);
     texture.set_compare(settings.filter.hardware(), settings.filter.hardware());
 }

@@ -215,6 +215,18 @@ pub struct ShadowSettings {
     pub snap: bool,
     /// A point light's cube faces: six passes or one layered pass.
     pub point_pass: PointPass,
+    /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4 =
+    /// that many `map_size` layers of a depth texture array, one per slice of the view.
+    pub cascades: u32,
+    /// The practical split scheme's blend: 0 = uniform slices, 1 = logarithmic.
+    pub cascade_lambda: f32,
+    /// The last fraction of each cascade's depth range over which it fades into the next,
+    /// hiding the seam (0 = a hard seam at the split).
+    pub cascade_blend: f32,
+    /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
+    pub shadow_distance: f32,
+    /// Tint each cascade (red, green, blue, yellow) to show where it applies.
+    pub show_cascades: bool,
 }
 
 impl Default for ShadowSettings {
@@ -238,6 +250,11 @@ impl Default for ShadowSettings {
             fit: Fit::Manual,
             snap: true,
             point_pass: PointPass::Layered,
+            cascades: 1,
+            cascade_lambda: 0.75,
+            cascade_blend: 0.1,
+            shadow_distance: 0.0,
+            show_cascades: false,
         }
     }
 }
@@ -258,6 +275,12 @@ impl ShadowSettings {
             extra.push_str(&format!(
                 ", polygon offset {}/{}",
                 self.polygon_offset[0], self.polygon_offset[1]
+            ));
+        }
+        if self.cascades > 1 {
+            extra.push_str(&format!(
+                ", {} cascades (lambda {})",
+                self.cascades, self.cascade_lambda
             ));
         }
         format!(
@@ -302,6 +325,27 @@ impl ShadowSettings {
                 self.perspective_fov
             ));
         }
+        let max = crate::scene::cascades::MAX_CASCADES;
+        if !(1..=max).contains(&self.cascades) {
+            return bad(format!(
+                "shadow.cascades = {}: expected 1 (one map) to {max}",
+                self.cascades
+            ));
+        }
+        for (name, v, hi) in [
+            ("cascade_lambda", self.cascade_lambda, 1.0),
+            ("cascade_blend", self.cascade_blend, 0.5),
+        ] {
+            if !(0.0..=hi).contains(&v) {
+                return bad(format!("shadow.{name} = {v}: expected 0 to {hi}"));
+            }
+        }
+        if !(self.shadow_distance.is_finite() && self.shadow_distance >= 0.0) {
+            return bad(format!(
+                "shadow.shadow_distance = {}: expected a finite number >= 0 (0 = the camera's far plane)",
+                self.shadow_distance
+            ));
+        }
         if self.polygon_offset.iter().any(|v| !v.is_finite()) {
             return bad(format!(
                 "shadow.polygon_offset = {:?}: expected two finite numbers [factor, units]",
@@ -311,12 +355,13 @@ impl ShadowSettings {
         Ok(())
     }
 
-    /// The settings as the renderer applies them: a fitted box covers exactly what can be
-    /// shadowed, so lookups outside it (a border of depth 1) and beyond its far plane are lit.
+    /// The settings as the renderer applies them: a fitted box (or cascade) covers exactly
+    /// what can be shadowed, so lookups outside it (a border of depth 1) and beyond its far
+    /// plane are lit.
     pub fn effective(&self) -> ShadowSettings {
         match self.fit {
-            Fit::Manual => *self,
-            Fit::Scene => ShadowSettings {
+            Fit::Manual if self.cascades <= 1 => *self,
+            _ => ShadowSettings {
                 wrap: Wrap::ClampToBorder,
                 beyond_far: BeyondFar::Lit,
                 ..*self
@@ -345,6 +390,12 @@ impl ShadowSettings {
             (
                 "BEYOND_FAR_LIT".into(),
                 u32::from(s.beyond_far == BeyondFar::Lit).to_string(),
+            ),
+            ("CASCADES".into(), s.cascades.to_string()),
+            ("CASCADE_BLEND".into(), glsl_float(s.cascade_blend)),
+            (
+                "SHOW_CASCADES".into(),
+                u32::from(s.show_cascades).to_string(),
             ),
         ]
     }

@@ -22,6 +22,7 @@ fn measure(ctx: &HeadlessContext, scene: &Scene, s: &ShadowSettings) -> Metrics 
         height: SIZE.1,
         supersample: 1,
         band: 1,
+        light: 0,
     };
     let c = compare(ctx.gl(), scene, s, &opts).unwrap_or_else(|e| panic!("{e}"));
     let vis = c.frame.visibility.as_ref().unwrap();
@@ -51,7 +52,7 @@ fn open_plane() -> Scene {
 }
 
 fn with_direction(mut s: Scene, d: Vec3) -> Scene {
-    if let Light::Directional(l) = &mut s.light {
+    if let Light::Directional(l) = &mut s.lights[0] {
         l.direction = d.normalize();
     }
     s
@@ -277,7 +278,7 @@ fn boxes_from_ten_kilometres_to_one_object() {
     };
     // A 10 km box: coarse (each texel ~10 m) but valid; nothing is falsely shadowed.
     let mut scene = common::dummy(60.0);
-    if let Light::Directional(l) = &mut scene.light {
+    if let Light::Directional(l) = &mut scene.lights[0] {
         l.ortho = shadowmap::scene::OrthoCoords {
             left: -5000.0,
             right: 5000.0,
@@ -295,7 +296,7 @@ fn boxes_from_ten_kilometres_to_one_object() {
     );
     assert_eq!(m.false_shadow, 0);
     // A box barely covering the cube: the plane around it is outside the map, and lit.
-    if let Light::Directional(l) = &mut scene.light {
+    if let Light::Directional(l) = &mut scene.lights[0] {
         l.ortho = shadowmap::scene::OrthoCoords {
             left: -0.8,
             right: 0.8,
@@ -323,7 +324,7 @@ fn depth_formats_over_depth_ranges() {
     eprintln!("| depth range | 16 | 24 | 32f |");
     for range in [1.0f32, 10.0, 100.0, 1000.0, 10000.0] {
         let mut scene = common::dummy(60.0);
-        if let Light::Directional(l) = &mut scene.light {
+        if let Light::Directional(l) = &mut scene.lights[0] {
             // The light 5 units away; the box reaches `range` units past the scene.
             l.ortho.near = 2.0;
             l.ortho.far = 2.0 + range.max(6.0);
@@ -357,7 +358,7 @@ fn depth_formats_over_depth_ranges() {
 fn perspective_lights_over_near_planes_and_ratios() {
     let ctx = common::context();
     let mut base = common::dummy(60.0);
-    base.light = Light::Spot(SpotLight {
+    base.lights[0] = Light::Spot(SpotLight {
         colour: Vec3::ONE,
         intensity: 1.0,
         position: Vec3::new(0.0, 4.0, 2.0),
@@ -366,12 +367,13 @@ fn perspective_lights_over_near_planes_and_ratios() {
         fov: 90.0,
         near: 1.0,
         far: 20.0,
+        casts_shadows: true,
     });
     eprintln!("| near | far/near | misclassified |");
     for near in [1e-4f32, 1e-3, 1e-2, 0.1, 1.0] {
         for ratio in [1e2f32, 1e4, 1e6] {
             let mut scene = base.clone();
-            if let Light::Spot(l) = &mut scene.light {
+            if let Light::Spot(l) = &mut scene.lights[0] {
                 l.near = near;
                 l.far = (near * ratio).max(near * 2.0);
             }
@@ -556,8 +558,8 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
                 position: scene.camera.position + Vec3::new(dx, 0.0, dx * 0.5),
                 ..scene.camera
             });
-            let f =
-                shadowmap::compare::render_visibility(ctx.gl(), &sc, &s, SIZE.0, SIZE.1).unwrap();
+            let f = shadowmap::compare::render_visibility(ctx.gl(), &sc, &s, SIZE.0, SIZE.1, 0)
+                .unwrap();
             f.visibility.unwrap()
         };
         let first = render(0.0);
@@ -588,7 +590,7 @@ fn faces_turned_from_the_light_are_dark_from_shading_not_from_the_test() {
     let mut scene = common::dummy(150.0);
     scene.camera.position = Vec3::new(0.0, 0.0, 2.0);
     let frame =
-        shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, SIZE.0, SIZE.1)
+        shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, SIZE.0, SIZE.1, 0)
             .unwrap();
     let normals = frame.normals.as_ref().unwrap();
     let mut front = 0;

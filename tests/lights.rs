@@ -15,6 +15,7 @@ fn measure(scene: &Scene, s: &ShadowSettings) -> shadowmap::reference::Metrics {
         height: 300,
         supersample: 2,
         band: 1,
+        light: 0,
     };
     compare(ctx.gl(), scene, s, &opts)
         .unwrap_or_else(|e| panic!("{e}"))
@@ -29,7 +30,7 @@ fn point_light_in_a_room_of_cubes_matches_the_reference() {
     scene.camera.rotation = Vec3::new(30.0, -35.0, 0.0);
     for z in [0.0f32, 2.0, -2.5] {
         let mut sc = scene.clone();
-        if let shadowmap::scene::Light::Point(p) = &mut sc.light {
+        if let shadowmap::scene::Light::Point(p) = &mut sc.lights[0] {
             p.position = Vec3::new(0.0, 0.0, z);
         }
         let hard = measure(&sc, &sc.shadow.clone());
@@ -69,8 +70,8 @@ fn point_light_in_a_room_of_cubes_matches_the_reference() {
     }
     // Shadows are in view: the cubes darken parts of the walls and floor.
     let ctx = common::context();
-    let frame =
-        shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, 400, 300).unwrap();
+    let frame = shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, 400, 300, 0)
+        .unwrap();
     let dark = frame
         .visibility
         .unwrap()
@@ -121,7 +122,7 @@ fn layered_and_six_pass_cube_maps_agree() {
             point_pass: pass,
             ..scene.shadow
         };
-        shadowmap::compare::render_visibility(ctx.gl(), &scene, &s, 200, 150).unwrap()
+        shadowmap::compare::render_visibility(ctx.gl(), &scene, &s, 200, 150, 0).unwrap()
     };
     let (a, b) = (render(PointPass::SixPasses), render(PointPass::Layered));
     assert_eq!(

@@ -12,6 +12,7 @@ fn opts(supersample: u32) -> CompareOptions {
         height: 180,
         supersample,
         band: 1,
+        light: 0,
     }
 }
 
@@ -53,7 +54,8 @@ fn overhead_light_reference_is_exactly_the_footprint() {
 fn light_from_below_shadows_nothing_on_top() {
     let ctx = context();
     let mut scene = dummy(90.0);
-    scene.light.as_directional_mut().unwrap().direction = Vec3::new(0.0, -1.0, 0.3).normalize();
+    scene.light_mut().as_directional_mut().unwrap().direction =
+        Vec3::new(0.0, -1.0, 0.3).normalize();
     let r = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
     let mut tops = 0;
     for (i, n) in r.gbuffer.normals.iter().enumerate() {

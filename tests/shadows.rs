@@ -39,7 +39,7 @@ fn classify(scene: &Scene, settings: &ShadowSettings, edge: f32) -> (usize, usiz
     let ctx = context();
     let mut scene = scene.clone();
     let frame = render(&ctx, &mut scene, settings, 640, 360);
-    let to_light = scene.light.as_directional().unwrap().direction;
+    let to_light = scene.light().as_directional().unwrap().direction;
     let (mut shadowed, mut lit, mut wrong) = (0, 0, 0);
     for (p, v) in plane_pixels(&frame) {
         if near_edge(p, to_light, edge) {
@@ -53,7 +53,7 @@ fn classify(scene: &Scene, settings: &ShadowSettings, edge: f32) -> (usize, usiz
     }
     eprintln!(
         "light {:.0} deg: {shadowed} shadowed, {lit} lit, {wrong} wrong",
-        scene.light.as_directional().unwrap().angle_deg()
+        scene.light().as_directional().unwrap().angle_deg()
     );
     (shadowed, lit, wrong)
 }

@@ -36,6 +36,7 @@ fn measure(
         height: size.1,
         supersample: ss,
         band: 1,
+        light: 0,
     };
     compare(ctx.gl(), scene, s, &opts).unwrap_or_else(|e| panic!("{}: {e}", scene.name))
 }
@@ -54,7 +55,7 @@ fn score_where(
     s: &ShadowSettings,
     keep: impl Fn(Vec3) -> bool,
 ) -> Metrics {
-    let sv = scene.shadow_view(s);
+    let sv = scene.shadow_view(0, s);
     let m = sv.projection * sv.view;
     let vis = c.frame.visibility.as_ref().unwrap();
     let masked: Vec<Option<f32>> = (0..vis.len())
@@ -163,7 +164,7 @@ fn over_sampling_outside_the_light_box() {
     let mut sc = scene("learnopengl");
     // A box narrower than the view (LearnOpenGL's floor runs past its light's box): +-3 still
     // holds the three cubes, and REPEAT then tiles their shadows 6 units apart, into view.
-    let light = sc.light.as_directional_mut().unwrap();
+    let light = sc.light_mut().as_directional_mut().unwrap();
     (
         light.ortho.left,
         light.ortho.right,
@@ -202,7 +203,7 @@ fn over_sampling_outside_the_light_box() {
     );
     // Not one receiver clearly beyond the far plane (past what the bias can reach back)
     // is rendered lit.
-    let sv = sc.shadow_view(&book);
+    let sv = sc.shadow_view(0, &book);
     let m = sv.projection * sv.view;
     let vis = c.frame.visibility.as_ref().unwrap();
     let lit_beyond = (0..vis.len())

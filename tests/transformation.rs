@@ -203,7 +203,7 @@ fn book_light_view_breaks_with_an_x_component() {
 fn dummy_light() -> DirectionalLight {
     *shadowmap::Scene::load("dummy")
         .unwrap()
-        .light
+        .light()
         .as_directional()
         .unwrap()
 }

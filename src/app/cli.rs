@@ -122,6 +122,26 @@ pub struct SettingsArgs {
     /// How a point light's cube faces are drawn.
     #[arg(long, value_enum)]
     pub point_pass: Option<PointPass>,
+    /// Cascaded shadow maps for directional lights: 2 to 4 layers of --map-size each, one
+    /// per slice of the view (1 = one map, as the chapters).
+    #[arg(long, value_name = "N")]
+    pub cascades: Option<u32>,
+    /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical scheme).
+    #[arg(long, value_name = "LAMBDA")]
+    pub cascade_lambda: Option<f32>,
+    /// The last fraction of each cascade that fades into the next (0 = a hard seam, at most 0.5).
+    #[arg(long, value_name = "FRACTION")]
+    pub cascade_blend: Option<f32>,
+    /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
+    #[arg(long, value_name = "DEPTH")]
+    pub shadow_distance: Option<f32>,
+    /// Draw the first light's shadow map instead of the scene (a cube map as a panorama,
+    /// cascades side by side).
+    #[arg(long)]
+    pub show_depth_map: bool,
+    /// Tint each cascade's part of the frame (red, green, blue, yellow from the camera out).
+    #[arg(long)]
+    pub show_cascades: bool,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -201,6 +221,10 @@ pub struct CompareArgs {
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
     #[arg(long, value_name = "K", default_value_t = 1)]
     pub band: usize,
+    /// Which light to measure, numbered from 0 in the scene file's order (a scene with
+    /// several lights is measured one light at a time).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub light: usize,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -366,8 +390,14 @@ impl SettingsArgs {
             perspective_fov,
             fit,
             snap,
-            point_pass
+            point_pass,
+            cascades,
+            cascade_lambda,
+            cascade_blend,
+            shadow_distance
         );
+        s.show_depth_map |= self.show_depth_map;
+        s.show_cascades |= self.show_cascades;
         Ok(s)
     }
 }

@@ -24,6 +24,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         height,
         supersample: args.supersample,
         band: args.band,
+        light: args.light,
     };
     let c = compare(context.gl(), &scene, &settings, &opts)?;
     let vis = c.frame.visibility.as_deref().unwrap_or_default();
@@ -64,7 +65,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let json = serde_json::json!({
         "scene": scene.name,
         "size": [width, height],
-        "light": scene.light.describe(),
+        "light": args.light,
+        "light_description": scene.lights.get(args.light).map(|l| l.describe()),
         "settings": settings,
         "supersample": args.supersample,
         "band": args.band,

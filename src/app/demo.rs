@@ -284,8 +284,10 @@ impl Demo {
         } else {
             self.angle_inc = 0.0;
         }
-        if let (true, Some(light)) = (self.angle_inc != 0.0, self.scene.light.as_directional_mut())
-        {
+        if let (true, Some(light)) = (
+            self.angle_inc != 0.0,
+            self.scene.light_mut().as_directional_mut(),
+        ) {
             let angle = light.angle_deg() + self.angle_inc;
             self.scene.set_light_angle(angle);
         }
@@ -384,7 +386,7 @@ impl Demo {
                 "shadowmap: {} | step {} | {} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
                 self.step.unwrap_or("(scene)"),
-                self.scene.light.describe(),
+                self.scene.light().describe(),
                 self.settings.summary(),
                 self.frame_ms,
                 w,

@@ -31,6 +31,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         height,
         supersample: args.supersample,
         band: 1,
+        light: 0,
     };
     // One reference per kind of light projection (orthographic: parallel rays; perspective:
     // rays to a point).
@@ -38,7 +39,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let mut rows = Vec::new();
     for (i, step) in steps::STEPS.iter().enumerate() {
         let settings = steps::settings_for(&scene, step.name)?;
-        let frame = render_visibility(gl, &scene, &settings, width, height)?;
+        let frame = render_visibility(gl, &scene, &settings, width, height, 0)?;
         let image = format!("{:02}-{}.png", i + 1, step.name);
         frame.colour.save_png(&dir.join(&image))?;
         let mut metrics: Option<Metrics> = None;

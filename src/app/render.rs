@@ -34,8 +34,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         image.save_png(path)?;
     }
     if let Some(path) = &args.depth_out {
-        let size = frame.depth_map.0;
-        save_grey_png(path, size, size, &frame.depth_grey())?;
+        let (size, grey) = frame.depth_grey().ok_or_else(|| {
+            shadowmap::Error::Invalid(format!(
+                "--depth-out {}: the first light has no 2D depth map (a point light's cube map \
+                 or cascades): use --show-depth-map to see it",
+                path.display()
+            ))
+        })?;
+        save_grey_png(path, size, size, &grey)?;
     }
     println!(
         "wrote {} ({}x{}, scene {}, {}, {}) in {:.0} ms",
@@ -43,7 +49,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         width,
         height,
         scene.name,
-        scene.light.describe(),
+        scene.light().describe(),
         settings.summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );

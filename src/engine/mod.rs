@@ -25,6 +25,6 @@ pub use headless::HeadlessContext;
 pub use mesh::Mesh;
 pub use render_target::{Outputs, RenderTarget};
 pub use shader_program::{ShaderProgram, ShaderSource};
-pub use shadow_map::{CubeShadowMap, ShadowMap};
+pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
 pub use texture::{DepthFormat, Texture, Wrap};
 pub use timer::PassTimer;

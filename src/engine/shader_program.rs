@@ -215,6 +215,21 @@ impl ShaderProgram {
         }
     }
 
+    /// Sets `name[0]`, `name[1]`, ... from a slice.
+    pub fn set_vec3_array(&self, name: &'static str, vs: &[Vec3]) {
+        if let Some(loc) = self.location(name) {
+            let flat: Vec<f32> = vs.iter().flat_map(|v| v.to_array()).collect();
+            unsafe { self.gl.uniform_3_f32_slice(Some(&loc), &flat) };
+        }
+    }
+
+    /// Sets `name[0]`, `name[1]`, ... from a slice.
+    pub fn set_f32_array(&self, name: &'static str, vs: &[f32]) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_1_f32_slice(Some(&loc), vs) };
+        }
+    }
+
     pub fn set_mat3(&self, name: &'static str, m: &Mat3) {
         if let Some(loc) = self.location(name) {
             unsafe {

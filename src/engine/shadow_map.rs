@@ -194,3 +194,77 @@ impl Drop for CubeShadowMap {
         unsafe { self.gl.delete_framebuffer(self.fbo) };
     }
 }
+
+/// The cascades of a cascaded shadow map: one depth texture array (a layer per cascade) and
+/// the framebuffer each layer is drawn into in turn. GL 3.3 has texture arrays and
+/// `glFramebufferTextureLayer`, so no extension is needed.
+pub struct CascadeShadowMap {
+    gl: Gl,
+    fbo: glow::Framebuffer,
+    array: Texture,
+    format: DepthFormat,
+    layers: u32,
+}
+
+impl CascadeShadowMap {
+    pub fn new(gl: &Gl, size: u32, layers: u32, format: DepthFormat) -> Result<CascadeShadowMap> {
+        let array = Texture::depth_array(gl, size, layers, format)?;
+        let fbo = unsafe { gl.create_framebuffer() }
+            .map_err(|e| Error::Create(format!("cascade shadow-map framebuffer: {e}")))?;
+        let map = CascadeShadowMap {
+            gl: gl.clone(),
+            fbo,
+            array,
+            format,
+            layers,
+        };
+        map.bind_layer(0);
+        unsafe {
+            gl.draw_buffer(glow::NONE);
+            gl.read_buffer(glow::NONE);
+        }
+        let status = check_framebuffer(gl, &format!("cascaded shadow map {size}x{size}x{layers}"));
+        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
+        status?;
+        Ok(map)
+    }
+
+    /// Binds the framebuffer with cascade `layer` as its depth attachment, and the viewport
+    /// to the layer's size.
+    pub fn bind_layer(&self, layer: u32) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl.framebuffer_texture_layer(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                Some(self.array.id()),
+                0,
+                layer as i32,
+            );
+            let size = self.array.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+    }
+
+    pub fn texture(&self) -> &Texture {
+        &self.array
+    }
+
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    pub fn size(&self) -> u32 {
+        self.array.width()
+    }
+
+    pub fn layers(&self) -> u32 {
+        self.layers
+    }
+}
+
+impl Drop for CascadeShadowMap {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_framebuffer(self.fbo) };
+    }
+}

@@ -80,10 +80,11 @@ impl Wrap {
     }
 }
 
-/// An owned GL 2D texture; deleted on drop.
+/// An owned GL texture (2D, cube map or 2D array: `target`); deleted on drop.
 pub struct Texture {
     gl: Gl,
     id: glow::Texture,
+    target: u32,
     width: u32,
     height: u32,
 }
@@ -92,7 +93,13 @@ impl Texture {
     /// Uploads an RGBA8 image (decoded from a PNG by [`ImageData::load_png`]), with mipmaps and
     /// REPEAT wrapping so floors can tile it.
     pub fn from_image(gl: &Gl, image: &ImageData) -> Result<Texture> {
-        let texture = Texture::create(gl, image.width, image.height, "colour texture")?;
+        let texture = Texture::create(
+            gl,
+            glow::TEXTURE_2D,
+            image.width,
+            image.height,
+            "colour texture",
+        )?;
         unsafe {
             gl.bind_texture(glow::TEXTURE_2D, Some(texture.id));
             gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
@@ -126,7 +133,7 @@ impl Texture {
     /// The book's depth constructor: an empty depth texture with NEAREST filtering and
     /// CLAMP_TO_EDGE, ready to be a framebuffer's depth attachment.
     pub fn depth(gl: &Gl, width: u32, height: u32, format: DepthFormat) -> Result<Texture> {
-        let texture = Texture::create(gl, width, height, "depth texture")?;
+        let texture = Texture::create(gl, glow::TEXTURE_2D, width, height, "depth texture")?;
         unsafe {
             gl.bind_texture(glow::TEXTURE_2D, Some(texture.id));
             gl.tex_image_2d(
@@ -165,7 +172,7 @@ impl Texture {
     /// An empty depth cube map, `size` texels a side per face (LearnOpenGL's point shadows):
     /// NEAREST, clamped on all three axes.
     pub fn depth_cube(gl: &Gl, size: u32, format: DepthFormat) -> Result<Texture> {
-        let texture = Texture::create(gl, size, size, "depth cube map")?;
+        let texture = Texture::create(gl, glow::TEXTURE_CUBE_MAP, size, size, "depth cube map")?;
         unsafe {
             gl.bind_texture(glow::TEXTURE_CUBE_MAP, Some(texture.id));
             for face in 0..6 {
@@ -192,12 +199,32 @@ impl Texture {
         Ok(texture)
     }
 
-    /// Binds a cube map to a texture unit.
-    pub fn bind_cube(&self, unit: u32) {
+    /// An empty array of `layers` depth textures, `size` texels a side (the cascades of a
+    /// cascaded shadow map): NEAREST, clamped, each layer a framebuffer attachment.
+    pub fn depth_array(gl: &Gl, size: u32, layers: u32, format: DepthFormat) -> Result<Texture> {
+        let texture = Texture::create(gl, glow::TEXTURE_2D_ARRAY, size, size, "depth array")?;
         unsafe {
-            self.gl.active_texture(glow::TEXTURE0 + unit);
-            self.gl.bind_texture(glow::TEXTURE_CUBE_MAP, Some(self.id));
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture.id));
+            gl.tex_image_3d(
+                glow::TEXTURE_2D_ARRAY,
+                0,
+                format.internal_format() as i32,
+                size as i32,
+                size as i32,
+                layers as i32,
+                0,
+                glow::DEPTH_COMPONENT,
+                glow::FLOAT,
+                glow::PixelUnpackData::Slice(None),
+            );
+            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, k, v as i32);
+            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
+            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
         }
+        Ok(texture)
     }
 
     /// An empty colour texture used as a render-target attachment.
@@ -209,7 +236,8 @@ impl Texture {
         format: u32,
         ty: u32,
     ) -> Result<Texture> {
-        let texture = Texture::create(gl, width, height, "render-target texture")?;
+        let texture =
+            Texture::create(gl, glow::TEXTURE_2D, width, height, "render-target texture")?;
         unsafe {
             gl.bind_texture(glow::TEXTURE_2D, Some(texture.id));
             gl.tex_image_2d(
@@ -231,7 +259,7 @@ impl Texture {
         Ok(texture)
     }
 
-    fn create(gl: &Gl, width: u32, height: u32, what: &str) -> Result<Texture> {
+    fn create(gl: &Gl, target: u32, width: u32, height: u32, what: &str) -> Result<Texture> {
         if width == 0 || height == 0 {
             return Err(Error::Invalid(format!(
                 "{what}: size {width}x{height}: expected both sides at least 1"
@@ -242,6 +270,7 @@ impl Texture {
         Ok(Texture {
             gl: gl.clone(),
             id,
+            target,
             width,
             height,
         })
@@ -251,18 +280,18 @@ impl Texture {
     /// lookups outside the map read "far away" and stay lit.
     pub fn set_wrap(&self, wrap: Wrap) {
         unsafe {
-            self.gl.bind_texture(glow::TEXTURE_2D, Some(self.id));
-            let p = |k, v: u32| self.gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
+            self.gl.bind_texture(self.target, Some(self.id));
+            let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
             p(glow::TEXTURE_WRAP_S, wrap.gl());
             p(glow::TEXTURE_WRAP_T, wrap.gl());
             if wrap == Wrap::ClampToBorder {
                 self.gl.tex_parameter_f32_slice(
-                    glow::TEXTURE_2D,
+                    self.target,
                     glow::TEXTURE_BORDER_COLOR,
                     &[1.0, 1.0, 1.0, 1.0],
                 );
             }
-            self.gl.bind_texture(glow::TEXTURE_2D, None);
+            self.gl.bind_texture(self.target, None);
         }
     }
 
@@ -270,8 +299,8 @@ impl Texture {
     /// or off (plain `sampler2D` reads, NEAREST as the book has it).
     pub fn set_compare(&self, compare: bool, linear: bool) {
         unsafe {
-            self.gl.bind_texture(glow::TEXTURE_2D, Some(self.id));
-            let p = |k, v: u32| self.gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
+            self.gl.bind_texture(self.target, Some(self.id));
+            let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
             if compare {
                 p(glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE);
                 p(glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL);
@@ -281,7 +310,7 @@ impl Texture {
             let filter = if linear { glow::LINEAR } else { glow::NEAREST };
             p(glow::TEXTURE_MIN_FILTER, filter);
             p(glow::TEXTURE_MAG_FILTER, filter);
-            self.gl.bind_texture(glow::TEXTURE_2D, None);
+            self.gl.bind_texture(self.target, None);
         }
     }
 
@@ -289,7 +318,7 @@ impl Texture {
     pub fn bind(&self, unit: u32) {
         unsafe {
             self.gl.active_texture(glow::TEXTURE0 + unit);
-            self.gl.bind_texture(glow::TEXTURE_2D, Some(self.id));
+            self.gl.bind_texture(self.target, Some(self.id));
         }
     }
 

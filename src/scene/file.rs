@@ -14,6 +14,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
+use crate::light_slots::MAX_LIGHTS;
 use crate::settings::{ShadowSettings, Wrap};
 use crate::transformation::Transformation;
 
@@ -33,7 +34,10 @@ struct SceneFile {
     shading: ShadingModel,
     #[serde(default)]
     camera: Camera,
-    light: LightFile,
+    /// One light (`[light]`), or several (`[[lights]]`); not both.
+    light: Option<LightFile>,
+    #[serde(default)]
+    lights: Vec<LightFile>,
     #[serde(default)]
     shadow: ShadowSettings,
     #[serde(default)]
@@ -106,6 +110,9 @@ struct LightFile {
     far: Option<f32>,
     /// Point: the light moves to position + oscillate * sin(0.5 t) (LearnOpenGL's moving light).
     oscillate: Option<[f32; 3]>,
+    /// Whether it gets a shadow map (a light that does not cast lights all it faces).
+    #[serde(default = "yes")]
+    casts_shadows: bool,
 }
 
 #[derive(Debug, Deserialize, Default, Clone, Copy, PartialEq, Eq, Hash)]
@@ -175,6 +182,55 @@ struct ItemFile {
     spin: [f32; 3],
     #[serde(default = "yes")]
     casts_shadows: bool,
+    /// Instead of one item, `count` copies strewn over an area (the `large` scene's
+    /// forest of pillars), each turned and scaled at random from a fixed seed.
+    scatter: Option<ScatterFile>,
+}
+
+/// Copies of an item at random (but repeatable) places: x and z uniform over `area`, y
+/// from the item's position, a turn about y, and the item's scale times a factor per axis
+/// between `scale_min` and `scale_max`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScatterFile {
+    count: u32,
+    #[serde(default)]
+    seed: u64,
+    /// [x_min, x_max, z_min, z_max]
+    area: [f32; 4],
+    #[serde(default = "one3")]
+    scale_min: [f32; 3],
+    #[serde(default = "one3")]
+    scale_max: [f32; 3],
+}
+
+/// The most copies one scatter makes (a typo of a few zeros should not hang the loader).
+const MAX_SCATTER: u32 = 10_000;
+
+impl ScatterFile {
+    /// (position offset in x and z, turn in degrees, scale factor) for each copy: SplitMix64,
+    /// so a seed gives the same scene on every machine.
+    fn placements(&self) -> Vec<([f32; 2], f32, Vec3)> {
+        let mut state = self.seed;
+        let mut next = move || {
+            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
+        let [x0, x1, z0, z1] = self.area;
+        (0..self.count)
+            .map(|_| {
+                let (x, z, turn) = (lerp(x0, x1, next()), lerp(z0, z1, next()), next() * 360.0);
+                let scale = Vec3::from_array(std::array::from_fn(|k| {
+                    lerp(self.scale_min[k], self.scale_max[k], next())
+                }));
+                ([x, z], turn, scale)
+            })
+            .collect()
+    }
 }
 
 fn unit_scale() -> ScaleFile {
@@ -256,7 +312,36 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         ));
     }
 
-    let light = build_light(&file.light, &bad, &finite)?;
+    let lights = match (&file.light, file.lights.len()) {
+        (Some(l), 0) => vec![build_light(l, "light", &bad, &finite)?],
+        (None, 0) => {
+            return Err(bad(
+                "light",
+                "missing: expected a [light] table or one to 4 [[lights]] tables".into(),
+            ))
+        }
+        (None, n) if n > MAX_LIGHTS => {
+            return Err(bad(
+                "lights",
+                format!(
+                    "{n} lights: expected at most {MAX_LIGHTS} (each has a texture unit and a \
+                     block of the scene shader)"
+                ),
+            ))
+        }
+        (None, _) => file
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| build_light(l, &format!("lights[{i}]"), &bad, &finite))
+            .collect::<Result<Vec<_>>>()?,
+        (Some(_), _) => {
+            return Err(bad(
+                "light",
+                "give either one [light] table or [[lights]] tables, not both".into(),
+            ))
+        }
+    };
 
     let s = &file.shadow;
     finite("shadow", &[s.bias, s.bias_min])?;
@@ -403,7 +488,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                 })
             }
         };
-        items.push(GameItem {
+        let one = GameItem {
             name: item.name.unwrap_or_else(|| format!("item{i}")),
             mesh,
             position: Vec3::from(item.position),
@@ -416,7 +501,44 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
             },
             spin: Vec3::from(item.spin),
             casts_shadows: item.casts_shadows,
-        });
+        };
+        match &item.scatter {
+            None => items.push(one),
+            Some(sc) => {
+                finite(&field("scatter.area"), &sc.area)?;
+                finite(&field("scatter.scale_min"), &sc.scale_min)?;
+                finite(&field("scatter.scale_max"), &sc.scale_max)?;
+                if sc.count == 0 || sc.count > MAX_SCATTER {
+                    return Err(bad(
+                        &field("scatter.count"),
+                        format!("{}: expected 1 to {MAX_SCATTER}", sc.count),
+                    ));
+                }
+                let [x0, x1, z0, z1] = sc.area;
+                if !(x0 <= x1 && z0 <= z1) {
+                    return Err(bad(
+                        &field("scatter.area"),
+                        format!("{:?}: expected [x_min, x_max, z_min, z_max]", sc.area),
+                    ));
+                }
+                let scales = sc.scale_min.iter().chain(&sc.scale_max);
+                if scales.clone().any(|v| *v <= 0.0) {
+                    return Err(bad(
+                        &field("scatter"),
+                        "scale_min and scale_max: expected numbers > 0".into(),
+                    ));
+                }
+                for (k, ([x, z], turn, factor)) in sc.placements().into_iter().enumerate() {
+                    items.push(GameItem {
+                        name: format!("{}{k}", one.name),
+                        position: one.position + Vec3::new(x, 0.0, z),
+                        rotation: one.rotation + Vec3::new(0.0, turn, 0.0),
+                        scale: one.scale * factor,
+                        ..one.clone()
+                    });
+                }
+            }
+        }
     }
 
     let name = file.name.unwrap_or_else(|| {
@@ -429,7 +551,7 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         source: source.to_path_buf(),
         name,
         camera: file.camera,
-        light,
+        lights,
         shading: file.shading,
         steps: StepContext {
             bias: file.steps.bias,
@@ -453,13 +575,13 @@ type Finite<'a> = &'a dyn Fn(&str, &[f32]) -> Result<()>;
 
 /// The `[light]` table: a directional light (the book's, or LearnOpenGL's positioned one)
 /// or a spot light.
-fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
-    finite("light.colour", &l.colour)?;
-    finite("light.intensity", &[l.intensity])?;
+fn build_light(l: &LightFile, prefix: &str, bad: Bad, finite: Finite) -> Result<Light> {
+    finite(&format!("{prefix}.colour"), &l.colour)?;
+    finite(&format!("{prefix}.intensity"), &[l.intensity])?;
     let vec = |name: &str, v: Option<[f32; 3]>| -> Result<Option<Vec3>> {
         match v {
             Some(v) => {
-                finite(&format!("light.{name}"), &v)?;
+                finite(&format!("{prefix}.{name}"), &v)?;
                 Ok(Some(Vec3::from(v)))
             }
             None => Ok(None),
@@ -471,7 +593,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
     let only = |kind: &str, fields: &[(&str, bool)]| -> Result<()> {
         match fields.iter().find(|(_, given)| *given) {
             Some((name, _)) => Err(bad(
-                &format!("light.{name}"),
+                &format!("{prefix}.{name}"),
                 format!("not used by a {kind} light"),
             )),
             None => Ok(()),
@@ -493,7 +615,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
             let given = [l.angle.is_some(), l.direction.is_some(), position.is_some()];
             if given.iter().filter(|g| **g).count() != 1 {
                 return Err(bad(
-                    "light",
+                    prefix,
                     "expected exactly one of `angle` (degrees), `direction` ([x, y, z] towards \
                      the light) or `position` (a point the light shines from, towards the origin)"
                         .into(),
@@ -502,14 +624,14 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
             let non_zero = |name: &str, v: Vec3| {
                 v.try_normalize().ok_or_else(|| {
                     bad(
-                        &format!("light.{name}"),
+                        &format!("{prefix}.{name}"),
                         format!("{v}: expected a non-zero vector"),
                     )
                 })
             };
             let direction = match (l.angle, vec("direction", l.direction)?, position) {
                 (Some(a), _, _) => {
-                    finite("light.angle", &[a])?;
+                    finite(&format!("{prefix}.angle"), &[a])?;
                     DirectionalLight::direction_from_angle(a)
                 }
                 (_, Some(d), _) => non_zero("direction", d)?,
@@ -519,7 +641,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
             let shadow_pos_mult = match (l.shadow_pos_mult, position) {
                 (Some(_), Some(_)) => {
                     return Err(bad(
-                        "light.shadow_pos_mult",
+                        &format!("{prefix}.shadow_pos_mult"),
                         "not used with `position` (the shadow camera sits at the position)".into(),
                     ))
                 }
@@ -527,16 +649,16 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 (None, Some(p)) => p.length(),
                 (None, None) => 5.0,
             };
-            finite("light.shadow_pos_mult", &[shadow_pos_mult])?;
+            finite(&format!("{prefix}.shadow_pos_mult"), &[shadow_pos_mult])?;
             let ortho = l.ortho.unwrap_or_default();
             let o = &ortho;
             finite(
-                "light.ortho",
+                &format!("{prefix}.ortho"),
                 &[o.left, o.right, o.bottom, o.top, o.near, o.far],
             )?;
             if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
                 return Err(bad(
-                    "light.ortho",
+                    &format!("{prefix}.ortho"),
                     format!("{o:?}: expected left < right, bottom < top and near < far"),
                 ));
             }
@@ -547,6 +669,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 ortho,
                 shadow_pos_mult,
                 shading_position: position,
+                casts_shadows: l.casts_shadows,
             }))
         }
         LightKindFile::Point => {
@@ -562,13 +685,17 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                     ("fov", l.fov.is_some()),
                 ],
             )?;
-            let position =
-                position.ok_or_else(|| bad("light.position", "a point light needs it".into()))?;
+            let position = position.ok_or_else(|| {
+                bad(
+                    &format!("{prefix}.position"),
+                    "a point light needs it".into(),
+                )
+            })?;
             let (near, far) = (l.near.unwrap_or(1.0), l.far.unwrap_or(25.0));
-            finite("light.near", &[near, far])?;
+            finite(&format!("{prefix}.near"), &[near, far])?;
             if !(near > 0.0 && near < far) {
                 return Err(bad(
-                    "light",
+                    prefix,
                     format!("near = {near}, far = {far}: expected 0 < near < far"),
                 ));
             }
@@ -581,6 +708,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 far,
                 oscillate,
                 centre: position,
+                casts_shadows: l.casts_shadows,
             }))
         }
         LightKindFile::Spot => {
@@ -594,7 +722,8 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                     ("oscillate", l.oscillate.is_some()),
                 ],
             )?;
-            let need = |name: &str| bad(&format!("light.{name}"), "a spot light needs it".into());
+            let need =
+                |name: &str| bad(&format!("{prefix}.{name}"), "a spot light needs it".into());
             let position = position.ok_or_else(|| need("position"))?;
             let target = target.ok_or_else(|| need("target"))?;
             let (fov, near, far) = (
@@ -602,22 +731,22 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 l.near.ok_or_else(|| need("near"))?,
                 l.far.ok_or_else(|| need("far"))?,
             );
-            finite("light.fov", &[fov, near, far])?;
+            finite(&format!("{prefix}.fov"), &[fov, near, far])?;
             if (target - position).length() < 1e-6 {
                 return Err(bad(
-                    "light.target",
+                    &format!("{prefix}.target"),
                     "must differ from light.position".into(),
                 ));
             }
             if !(fov > 0.0 && fov < 180.0) {
                 return Err(bad(
-                    "light.fov",
+                    &format!("{prefix}.fov"),
                     format!("{fov}: expected degrees between 0 and 180"),
                 ));
             }
             if !(near > 0.0 && near < far) {
                 return Err(bad(
-                    "light",
+                    prefix,
                     format!("near = {near}, far = {far}: expected 0 < near < far"),
                 ));
             }
@@ -630,6 +759,7 @@ fn build_light(l: &LightFile, bad: Bad, finite: Finite) -> Result<Light> {
                 fov,
                 near,
                 far,
+                casts_shadows: l.casts_shadows,
             }))
         }
     }

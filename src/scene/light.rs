@@ -51,6 +51,9 @@ pub struct DirectionalLight {
     /// LearnOpenGL shades with a light *position* while its shadow map is orthographic;
     /// when set, shading uses the direction from each fragment to this point.
     pub shading_position: Option<Vec3>,
+    /// Only a light that casts gets a shadow map ("render a separate depth map for each
+    /// light"); the others light everything they face.
+    pub casts_shadows: bool,
 }
 
 impl DirectionalLight {
@@ -117,6 +120,7 @@ pub struct SpotLight {
     pub fov: f32,
     pub near: f32,
     pub far: f32,
+    pub casts_shadows: bool,
 }
 
 /// A light shining every way from a point, with an omnidirectional shadow in a depth cube
@@ -133,6 +137,7 @@ pub struct PointLight {
     pub oscillate: Vec3,
     /// The resting position the oscillation is about.
     pub centre: Vec3,
+    pub casts_shadows: bool,
 }
 
 impl PointLight {
@@ -204,6 +209,14 @@ impl Light {
             Light::Directional(l) => l.intensity,
             Light::Spot(l) => l.intensity,
             Light::Point(l) => l.intensity,
+        }
+    }
+
+    pub fn casts_shadows(&self) -> bool {
+        match self {
+            Light::Directional(l) => l.casts_shadows,
+            Light::Spot(l) => l.casts_shadows,
+            Light::Point(l) => l.casts_shadows,
         }
     }
 

@@ -2,6 +2,7 @@
 //! TOML scene files they load from.
 
 pub mod camera;
+pub mod cascades;
 pub mod file;
 pub mod fit;
 pub mod game_item;
@@ -35,6 +36,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "point-shadows",
         include_str!("../../assets/scenes/point-shadows.toml"),
     ),
+    ("large", include_str!("../../assets/scenes/large.toml")),
 ];
 
 /// The lighting equation of the scene pass.
@@ -56,7 +58,9 @@ pub struct Scene {
     /// The file the scene came from (`<built-in NAME>` for built-in scenes), for messages.
     pub source: std::path::PathBuf,
     pub camera: Camera,
-    pub light: Light,
+    /// One to [`crate::light_slots::MAX_LIGHTS`] lights; the first is "the" light of the
+    /// chapters (the one the DummyGame's keys turn and `compare` measures by default).
+    pub lights: Vec<Light>,
     pub ambient: Vec3,
     pub specular_power: f32,
     pub shading: ShadingModel,
@@ -115,15 +119,17 @@ impl Scene {
             item.update();
         }
         self.time += 1.0 / 30.0;
-        if let Light::Point(p) = &mut self.light {
-            p.position = p.centre + p.oscillate * (0.5 * self.time).sin();
+        for light in &mut self.lights {
+            if let Light::Point(p) = light {
+                p.position = p.centre + p.oscillate * (0.5 * self.time).sin();
+            }
         }
     }
 
     /// Sets the DummyGame's light angle in degrees, clamped to [0, 180] as the book does.
     /// Only a directional light has an angle; returns false for other lights.
     pub fn set_light_angle(&mut self, angle_deg: f32) -> bool {
-        match self.light.as_directional_mut() {
+        match self.lights.first_mut().and_then(Light::as_directional_mut) {
             Some(l) => {
                 l.direction = DirectionalLight::direction_from_angle(angle_deg.clamp(0.0, 180.0));
                 true
@@ -132,15 +138,26 @@ impl Scene {
         }
     }
 
-    /// The light's camera for the depth pass under `settings`: the light's own, or with
+    /// The first light: the chapters' one light.
+    pub fn light(&self) -> &Light {
+        &self.lights[0]
+    }
+
+    /// The first light, to change it.
+    pub fn light_mut(&mut self) -> &mut Light {
+        &mut self.lights[0]
+    }
+
+    /// Light `index`'s camera for the depth pass under `settings`: the light's own, or with
     /// `fit = "scene"` an orthographic box fitted to this scene (see [`fit::fit_ortho`]).
-    pub fn shadow_view(&self, settings: &ShadowSettings) -> ShadowView {
-        let fitted = match (&self.light, settings.light_projection, settings.fit) {
+    pub fn shadow_view(&self, index: usize, settings: &ShadowSettings) -> ShadowView {
+        let light = &self.lights[index];
+        let fitted = match (light, settings.light_projection, settings.fit) {
             (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => Some(l),
             _ => None,
         };
         let Some(l) = fitted else {
-            return self.light.shadow_view(settings);
+            return light.shadow_view(settings);
         };
         let fit_scene;
         let scene = match self.fit_camera {
@@ -155,6 +172,19 @@ impl Scene {
             None => self,
         };
         let b = fit::fit_ortho(scene, l.direction, settings.map_size, settings.snap);
+        b.shadow_view(l.direction)
+    }
+
+    /// The camera that shadow fitting follows: `fit_camera` when set, else the viewer.
+    pub fn fitting_camera(&self) -> &Camera {
+        self.fit_camera.as_ref().unwrap_or(&self.camera)
+    }
+}
+
+impl fit::FittedBox {
+    /// The fitted box as the depth pass' camera for a light shining from `to_light`.
+    pub fn shadow_view(&self, to_light: Vec3) -> ShadowView {
+        let b = self;
         let [left, right, bottom, top, near, far] = b.bounds;
         let projection =
             glam::DMat4::orthographic_rh_gl(left, right, bottom, top, near, far).as_mat4();
@@ -172,11 +202,13 @@ impl Scene {
             far: far as f32,
             texel_world: b.texel as f32,
             reference: crate::reference::LightKind::Directional {
-                to_light: l.direction.normalize(),
+                to_light: to_light.normalize(),
             },
         }
     }
+}
 
+impl Scene {
     /// All triangles of the items that cast shadows, in world space (for the reference).
     pub fn world_triangles(&self) -> Vec<[Vec3; 3]> {
         let mut out = Vec::new();

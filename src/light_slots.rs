@@ -1,0 +1,121 @@
+//! The one place that decides where each light's shadow lives in the scene shader: its
+//! texture unit, its sampler's name and type, its slot in the uniform arrays, and the call
+//! that adds its light to a fragment. ("Shadows" ends with "render a separate depth map
+//! for each light"; this is the bookkeeping that takes.)
+//!
+//! GLSL 3.30 indexes sampler arrays only with constant expressions, and a scene can mix
+//! 2D maps, cube maps and cascade arrays, so each light gets its own named sampler and its
+//! own call, written into the program as `#define`s when it is compiled for the scene.
+
+use crate::scene::Light;
+use crate::settings::{LightProjection, ShadowSettings};
+
+/// Lights per scene. Each casting light takes one texture unit besides the material's (GL
+/// 3.3 guarantees 16 per stage) and one block of per-pixel work; four keeps the shader's
+/// cost within a few of the book's one light.
+pub const MAX_LIGHTS: usize = 4;
+
+/// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
+pub const MATERIAL_UNIT: u32 = 0;
+
+/// The texture unit of light `index`'s shadow map.
+pub fn texture_unit(index: usize) -> u32 {
+    1 + index as u32
+}
+
+/// What a light's shadow is stored in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShadowKind {
+    /// The light does not cast: no map, no lookup.
+    None,
+    /// One 2D depth map (directional and spot lights; the chapters' case).
+    Map,
+    /// A depth cube map of distances (point lights).
+    Cube,
+    /// A depth texture array, one layer per cascade (directional lights with cascades).
+    Cascades,
+}
+
+impl ShadowKind {
+    /// The kind `light` gets under `settings`.
+    pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
+        match light {
+            l if !l.casts_shadows() => ShadowKind::None,
+            Light::Point(_) => ShadowKind::Cube,
+            Light::Directional(_)
+                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
+            {
+                ShadowKind::Cascades
+            }
+            Light::Directional(_) | Light::Spot(_) => ShadowKind::Map,
+        }
+    }
+}
+
+/// What the scene program is compiled for about one light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LightSlot {
+    pub shadow: ShadowKind,
+    /// Shades from a position (per-fragment direction) rather than one direction.
+    pub positional: bool,
+    /// A spot light's cone limits it.
+    pub cone: bool,
+}
+
+const SAMPLERS: [[&str; 3]; MAX_LIGHTS] = [
+    ["shadowMap0", "shadowCube0", "cascadeMap0"],
+    ["shadowMap1", "shadowCube1", "cascadeMap1"],
+    ["shadowMap2", "shadowCube2", "cascadeMap2"],
+    ["shadowMap3", "shadowCube3", "cascadeMap3"],
+];
+
+/// The sampler uniform of light `index`'s shadow, if it has one.
+pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
+    let names = SAMPLERS.get(index)?;
+    match kind {
+        ShadowKind::None => None,
+        ShadowKind::Map => Some(names[0]),
+        ShadowKind::Cube => Some(names[1]),
+        ShadowKind::Cascades => Some(names[2]),
+    }
+}
+
+/// The `#define`s that lay the lights out in `shaders/scene.{vert,frag}`:
+/// `LIGHT_COUNT` (the uniform arrays' length), `LIGHT_SAMPLERS` (one declaration per
+/// casting light), `LIGHT_CALLS` (one `add...` call per light, in order) and
+/// `VISIBILITY_LIGHT` (whose shadow test goes to the visibility output that `compare`
+/// reads).
+pub fn defines(slots: &[LightSlot], visibility_light: usize) -> Vec<(String, String)> {
+    let mut samplers = String::new();
+    let mut calls = String::new();
+    for (i, slot) in slots.iter().enumerate() {
+        let (p, c) = (slot.positional, slot.cone);
+        let sampler = sampler_name(i, slot.shadow);
+        let (ty, call) = match slot.shadow {
+            ShadowKind::None => (None, format!("addLightUnshadowed({i}, {p}, {c}, f);")),
+            ShadowKind::Map => (
+                Some("SHADOW_SAMPLER_2D"),
+                format!("addLight2D({i}, shadowMap{i}, {p}, {c}, f);"),
+            ),
+            ShadowKind::Cube => (
+                Some("samplerCube"),
+                format!("addLightCube({i}, shadowCube{i}, {p}, {c}, f);"),
+            ),
+            ShadowKind::Cascades => (
+                Some("SHADOW_SAMPLER_ARRAY"),
+                format!("addLightCascades({i}, cascadeMap{i}, {p}, {c}, f);"),
+            ),
+        };
+        if let (Some(ty), Some(name)) = (ty, sampler) {
+            samplers.push_str(&format!("uniform {ty} {name}; "));
+        }
+        calls.push_str(&call);
+        calls.push(' ');
+    }
+    vec![
+        ("LIGHT_COUNT".into(), slots.len().max(1).to_string()),
+        ("LIGHT_SAMPLERS".into(), samplers),
+        ("LIGHT_CALLS".into(), calls),
+        ("VISIBILITY_LIGHT".into(), visibility_light.to_string()),
+    ]
+}

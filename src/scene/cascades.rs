@@ -1,0 +1,190 @@
+//! Cascaded shadow maps for a directional light (past the chapters: LearnOpenGL's "Shadow
+//! Mapping" ends by pointing at them). The camera's view range is cut into slices, each
+//! slice gets its own orthographic light box, and near slices get small boxes, so texels
+//! stay about the size of a pixel from the camera's feet to the horizon.
+//!
+//! - Splits: the practical scheme (Zhang et al., "Parallel-split shadow maps"), a blend of
+//!   the logarithmic split, which keeps texels per pixel constant, and the uniform one:
+//!   `d_i = lambda * n (f/n)^(i/N) + (1 - lambda) (n + (f - n) i/N)`.
+//! - Boxes: each slice's smallest bounding sphere. Its radius depends only on the slice's
+//!   shape, not on where the camera looks, so the box keeps its size as the camera turns;
+//!   its centre moves in whole texels (snapping), so shadow edges do not crawl.
+
+use glam::{DMat4, DVec3, Vec3};
+
+use super::fit::{light_basis, light_view, FittedBox};
+use super::{Camera, Scene};
+
+/// Cascades per light: the layers of one depth texture array, and slots in the shader's
+/// uniform arrays.
+pub const MAX_CASCADES: u32 = 4;
+
+/// `count + 1` view depths from `near` to `far`: the practical split scheme with `lambda`
+/// from 0 (uniform) to 1 (logarithmic). Computed in double precision so a near plane of
+/// 1e-3 and a far one of 1e5 still give finite, strictly increasing splits.
+pub fn practical_splits(near: f64, far: f64, count: u32, lambda: f64) -> Vec<f64> {
+    let n = near.max(f64::MIN_POSITIVE);
+    let f = far.max(n);
+    (0..=count)
+        .map(|i| {
+            let t = f64::from(i) / f64::from(count.max(1));
+            let log = n * (f / n).powf(t);
+            let uniform = n + (f - n) * t;
+            let d = lambda * log + (1.0 - lambda) * uniform;
+            // The ends exactly, whatever rounding did in between.
+            match i {
+                0 => n,
+                _ if i == count => f,
+                _ => d,
+            }
+        })
+        .collect()
+}
+
+/// The smallest sphere around the slice of the camera's frustum between view depths `a`
+/// and `b`: (distance of its centre along the view axis, radius). `k` is the slice's
+/// half-diagonal per unit of depth, sqrt(tan^2(fov/2) (1 + aspect^2)).
+pub fn slice_sphere(a: f64, b: f64, k: f64) -> (f64, f64) {
+    // The centre on the axis equidistant from a near corner and a far corner, unless that
+    // lies past the far plane (a wide slice), where the far cap alone decides.
+    let z = ((a + b) * (1.0 + k * k) * 0.5).min(b);
+    let near_corner = ((z - a).powi(2) + (a * k).powi(2)).sqrt();
+    let far_corner = ((b - z).powi(2) + (b * k).powi(2)).sqrt();
+    (z, near_corner.max(far_corner))
+}
+
+/// One cascade: its light box and the view depths it serves.
+#[derive(Debug, Clone, Copy)]
+pub struct Cascade {
+    pub fitted: FittedBox,
+    pub near: f64,
+    pub far: f64,
+}
+
+/// The cascades of a light shining from `to_light` for the scene's fitting camera (the
+/// viewer, or `fit_camera`), one `map_size` layer each. `far` is where shadows end (the
+/// camera's far plane or the settings' shadow distance); `snap` moves boxes in whole texels.
+pub fn fit_cascades(
+    scene: &Scene,
+    to_light: Vec3,
+    count: u32,
+    lambda: f32,
+    far: f32,
+    map_size: u32,
+    snap: bool,
+) -> Vec<Cascade> {
+    let camera = scene.fitting_camera();
+    let aspect = f64::from(scene.size[0].max(1)) / f64::from(scene.size[1].max(1));
+    let splits = practical_splits(
+        f64::from(camera.near),
+        f64::from(far.min(camera.far)),
+        count,
+        f64::from(lambda),
+    );
+    let basis = light_basis(to_light.as_dvec3());
+    // How far towards the light casters reach, in light space (z points at the light).
+    let caster_top = scene
+        .items
+        .iter()
+        .filter(|i| i.casts_shadows)
+        .flat_map(|i| {
+            let (lo, hi) = scene.meshes[i.mesh].bounds();
+            let m = i.model_matrix64();
+            corners(lo.as_dvec3(), hi.as_dvec3()).map(move |c| m.transform_point3(c))
+        })
+        .map(|p| (basis.transpose() * p).z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    splits
+        .windows(2)
+        .map(|w| {
+            let (near, far) = (w[0], w[1]);
+            let fitted = fit_slice(camera, aspect, near, far, basis, caster_top, map_size, snap);
+            Cascade { fitted, near, far }
+        })
+        .collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn fit_slice(
+    camera: &Camera,
+    aspect: f64,
+    near: f64,
+    far: f64,
+    basis: glam::DMat3,
+    caster_top: f64,
+    map_size: u32,
+    snap: bool,
+) -> FittedBox {
+    let tan = (f64::from(camera.fov).to_radians() * 0.5).tan();
+    let k = tan * (1.0 + aspect * aspect).sqrt();
+    let (z, radius) = slice_sphere(near, far, k);
+    let inverse_view = camera.view_matrix64().inverse();
+    let centre = inverse_view.transform_point3(DVec3::new(0.0, 0.0, -z));
+    let texel = 2.0 * radius / f64::from(map_size);
+    // The centre in light space, its x and y rounded to whole texels.
+    let mut c = basis.transpose() * centre;
+    if snap {
+        c.x = (c.x / texel).round() * texel;
+        c.y = (c.y / texel).round() * texel;
+    }
+    // The box reaches from the sphere's back to the highest caster, so everything that can
+    // shadow the slice is drawn into the cascade.
+    let reach = (caster_top - c.z).max(radius);
+    let eye = basis * c;
+    FittedBox {
+        view: light_view(eye, basis),
+        bounds: [-radius, radius, -radius, radius, -reach, radius],
+        texel,
+    }
+}
+
+fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
+    std::array::from_fn(|i| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+/// Camera-relative world position to the cascade's light clip space (the scene shader's
+/// `worldPos` is relative to the camera, which keeps its digits far from the origin).
+pub fn camera_relative_matrix(cascade: &Cascade, camera_position: Vec3) -> DMat4 {
+    let [l, r, b, t, n, f] = cascade.fitted.bounds;
+    DMat4::orthographic_rh_gl(l, r, b, t, n, f)
+        * cascade.fitted.view
+        * DMat4::from_translation(camera_position.as_dvec3())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sphere_holds_every_corner_of_its_slice() {
+        for (a, b, k) in [
+            (0.1, 1.0, 0.7),
+            (1.0, 1.5, 0.7),
+            (0.001, 1e4, 2.0),
+            (5.0, 6.0, 0.1),
+        ] {
+            let (z, r) = slice_sphere(a, b, k);
+            for (d, h) in [(a, a * k), (b, b * k)] {
+                let dist = ((d - z).powi(2) + h * h).sqrt();
+                assert!(
+                    dist <= r * (1.0 + 1e-12),
+                    "corner at {d} outside ({dist} > {r})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn splits_interpolate_between_uniform_and_log() {
+        let u = practical_splits(1.0, 100.0, 4, 0.0);
+        let l = practical_splits(1.0, 100.0, 4, 1.0);
+        assert!((u[2] - 50.5).abs() < 1e-9, "{u:?}");
+        assert!((l[2] - 10.0).abs() < 1e-9, "{l:?}");
+    }
+}
