@@ -456,7 +456,37 @@ fn bad_scene_files_give_one_clear_error() {
     let above_driver = (max + 1).to_string();
     let above_scene = format!("[light]\nangle = 45.0\n\n[shadow]\nmap_size = {above_driver}\n");
     let above_needle = format!("shadow.map_size = {above_driver}: {expected_max}");
+    let five_lights = "[[lights]]\nangle = 45.0\n\n".repeat(5);
+    let both_lights = "[light]\nangle = 45.0\n\n[[lights]]\nangle = 90.0\n";
+    let bad_second_light = "[[lights]]\nangle = 45.0\n\n[[lights]]\nkind = \"point\"\n";
+    let bad_scatter = "[light]\nangle = 45.0\n\n[[item]]\nmesh = \"cube\"\n\
+                       scatter = { count = 0, area = [-1.0, 1.0, -1.0, 1.0] }\n";
     report(vec![
+        bad_generated(
+            "toml five lights",
+            &[("scene.toml", five_lights.as_bytes())],
+            &["lights: 5 lights: expected at most 4 (each has a texture unit and a block of the scene shader)"],
+        ),
+        bad_generated(
+            "toml light and lights",
+            &[("scene.toml", both_lights.as_bytes())],
+            &["light: give either one [light] table or [[lights]] tables, not both"],
+        ),
+        bad_generated(
+            "toml second light without position",
+            &[("scene.toml", bad_second_light.as_bytes())],
+            &["lights[1].position: a point light needs it"],
+        ),
+        bad_generated(
+            "toml scatter count 0",
+            &[("scene.toml", bad_scatter.as_bytes())],
+            &["item[0].scatter.count: 0: expected 1 to 10000"],
+        ),
+        bad_generated(
+            "toml no light",
+            &[("scene.toml", b"name = \"dark\"\n")],
+            &["light: missing: expected a [light] table or one to 4 [[lights]] tables"],
+        ),
         bad_scene(
             "toml syntax error",
             "toml_syntax.toml",
@@ -652,6 +682,47 @@ fn bad_cli_values_give_one_clear_error() {
             &["--size", "64x36", "--light-angle", "nan"],
             &["--light-angle NaN: expected degrees from 0 to 180"],
         ),
+        cli(
+            "--cascades 9",
+            &["--size", "64x36", "--cascades", "9"],
+            &["--cascades: shadow.cascades = 9: expected 1 (one map) to 4"],
+        ),
+        cli(
+            "--cascade-lambda 2",
+            &["--size", "64x36", "--cascade-lambda", "2"],
+            &["--cascade-lambda: shadow.cascade_lambda = 2: expected 0 to 1"],
+        ),
+        cli(
+            "--cascade-blend 0.9",
+            &["--size", "64x36", "--cascade-blend", "0.9"],
+            &["--cascade-blend: shadow.cascade_blend = 0.9: expected 0 to 0.5"],
+        ),
+        cli(
+            "--depth-out of a point light",
+            &[
+                "--size",
+                "64x36",
+                "--depth-out",
+                "/tmp/never.png",
+                "--scene",
+                "point-shadows",
+            ],
+            &["--depth-out /tmp/never.png: the first light has no 2D depth map"],
+        ),
+        {
+            let case = "compare --light 3";
+            let dir = case_dir(case);
+            let args = ["compare", "--size", "64x36", "--light", "3", "--out-dir"];
+            let mut args: Vec<&str> = args.to_vec();
+            args.push(dir.to_str().unwrap());
+            let run = run_in(case, here, &args);
+            check_error(
+                case,
+                &run,
+                &dir.join("metrics.json"),
+                &["light 3: the scene <built-in dummy> has 1 light(s), numbered from 0"],
+            )
+        },
     ]);
 }
 

@@ -9,13 +9,18 @@ use shadowmap::settings::{BiasMode, Filter, ShadowSettings};
 use shadowmap::Scene;
 
 fn measure(scene: &Scene, s: &ShadowSettings) -> shadowmap::reference::Metrics {
+    measure_light(scene, s, 0)
+}
+
+/// Light `light`'s shadow test against its own exact visibility.
+fn measure_light(scene: &Scene, s: &ShadowSettings, light: usize) -> shadowmap::reference::Metrics {
     let ctx = common::context();
     let opts = CompareOptions {
         width: 400,
         height: 300,
         supersample: 2,
         band: 1,
-        light: 0,
+        light,
     };
     compare(ctx.gl(), scene, s, &opts)
         .unwrap_or_else(|e| panic!("{e}"))
@@ -130,4 +135,125 @@ fn layered_and_six_pass_cube_maps_agree() {
         "the two ways of drawing the faces disagree"
     );
     assert_eq!(a.colour, b.colour);
+}
+
+/// The three-lights scene with its animation stopped.
+fn three_lights() -> Scene {
+    let mut scene = Scene::load("three-lights").unwrap();
+    scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
+    scene
+}
+
+#[test]
+fn each_of_several_lights_matches_its_own_reference() {
+    // A sun (2D ortho map), a spot (2D perspective map) and a point light (cube map) in one
+    // frame: each light's test, read from the one scene program, against rays to that light.
+    let scene = three_lights();
+    let ctx = common::context();
+    let mut shadowed = Vec::new();
+    for light in 0..3 {
+        let m = measure_light(&scene, &scene.shadow, light);
+        eprintln!(
+            "three-lights, light {light}: {:.3}% misclassified ({:.3}% outside the band), {} receivers",
+            m.misclassified_rate * 100.0,
+            m.misclassified_outside_band_rate * 100.0,
+            m.receivers
+        );
+        assert!(m.receivers > 50_000, "light {light}: {m:?}");
+        assert!(m.misclassified_rate < 0.005, "light {light}: {m:?}");
+        assert!(
+            m.misclassified_outside_band_rate < 0.001,
+            "light {light}: {m:?}"
+        );
+        let frame =
+            shadowmap::compare::render_visibility(ctx.gl(), &scene, &scene.shadow, 400, 300, light)
+                .unwrap();
+        let vis = frame.visibility.unwrap();
+        shadowed.push(
+            vis.iter()
+                .map(|v| v.is_some_and(|v| v < 0.5))
+                .collect::<Vec<_>>(),
+        );
+    }
+    // Three different shadows: each light's map is its own.
+    for (a, b) in [(0, 1), (0, 2), (1, 2)] {
+        let differ = shadowed[a]
+            .iter()
+            .zip(&shadowed[b])
+            .filter(|(x, y)| x != y)
+            .count();
+        assert!(
+            differ > 2000,
+            "lights {a} and {b} differ at only {differ} pixels"
+        );
+    }
+}
+
+#[test]
+fn only_lights_that_cast_get_a_shadow_map() {
+    use shadowmap::engine::RenderTarget;
+    use shadowmap::renderer::{Renderer, Target};
+    let ctx = common::context();
+    let mut scene = three_lights();
+    let target = RenderTarget::new(ctx.gl(), 160, 90, Default::default()).unwrap();
+    let count = |scene: &Scene| {
+        let mut r = Renderer::new(ctx.gl(), scene, &scene.shadow).unwrap();
+        r.render(scene, Target::Offscreen(&target)).unwrap();
+        r.shadow_memory()
+    };
+    let (maps, bytes) = count(&scene);
+    // Sun and spot 1024^2, the point light's six faces; the fill light none.
+    assert_eq!(maps, 3);
+    assert_eq!(bytes, (1 + 1 + 6) * 1024 * 1024 * 4);
+    for l in &mut scene.lights {
+        if let shadowmap::scene::Light::Point(p) = l {
+            p.casts_shadows = false;
+        }
+    }
+    assert_eq!(count(&scene), (2, 2 * 1024 * 1024 * 4));
+}
+
+#[test]
+fn a_light_that_does_not_cast_lights_what_another_shadows() {
+    // The DummyGame with a second, non-casting light from the same direction: the cube's
+    // shadow on the plane gets that light's diffuse term (lit areas are already at full
+    // blue, so there it clamps).
+    let ctx = common::context();
+    let one = common::dummy(90.0);
+    let mut two = one.clone();
+    let mut fill = one.lights[0];
+    if let shadowmap::scene::Light::Directional(l) = &mut fill {
+        l.casts_shadows = false;
+        l.intensity = 0.5;
+    }
+    two.lights.push(fill);
+    let a = common::render(&ctx, &mut one.clone(), &one.shadow, 320, 180);
+    let b = common::render(&ctx, &mut two.clone(), &two.shadow, 320, 180);
+    let plane_a = common::plane_pixels(&a);
+    let (shadow_px, lit_px): (Vec<usize>, Vec<usize>) = {
+        let pos = a.world_positions().unwrap();
+        let vis = a.visibility.as_ref().unwrap();
+        let on_plane = |i: usize| (pos[i][1] + 1.0).abs() < 1e-3;
+        let shadow = (0..pos.len())
+            .filter(|&i| on_plane(i) && vis[i] == Some(0.0))
+            .collect();
+        let lit = (0..pos.len())
+            .filter(|&i| on_plane(i) && vis[i] == Some(1.0))
+            .collect();
+        (shadow, lit)
+    };
+    assert!(
+        plane_a.len() > 10_000 && shadow_px.len() > 500,
+        "{}",
+        shadow_px.len()
+    );
+    // In light 0's shadow, only ambient in `one`; ambient plus the fill in `two`.
+    let blue = |f: &shadowmap::frame::Frame, i: usize| f32::from(f.colour.rgba[i * 4 + 2]);
+    let gain =
+        |px: &[usize]| px.iter().map(|&i| blue(&b, i) - blue(&a, i)).sum::<f32>() / px.len() as f32;
+    let (in_shadow, in_light) = (gain(&shadow_px), gain(&lit_px));
+    eprintln!("fill light adds {in_shadow:.1} in the shadow, {in_light:.1} in the light (of 255)");
+    assert!(in_shadow > 50.0, "{in_shadow}");
+    // The visibility output is still light 0's: the fill light does not change the test.
+    assert_eq!(a.visibility, b.visibility);
 }

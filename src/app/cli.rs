@@ -357,10 +357,35 @@ impl SettingsArgs {
         settings: &ShadowSettings,
     ) -> shadowmap::Result<()> {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
-        settings.validate(max).map_err(|e| match self.map_size {
-            Some(_) => shadowmap::Error::Invalid(format!("--map-size: {e}")),
-            None => shadowmap::Error::file(&scene.source, e.to_string()),
+        settings.validate(max).map_err(|e| {
+            // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
+            let text = e.to_string();
+            let name = text
+                .strip_prefix("shadow.")
+                .and_then(|t| t.split(' ').next())
+                .unwrap_or_default();
+            match self.flag_given(name) {
+                true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
+                false => shadowmap::Error::file(&scene.source, text),
+            }
         })
+    }
+
+    /// Whether the setting `name` (as the scene file spells it) was given as a flag.
+    fn flag_given(&self, name: &str) -> bool {
+        match name {
+            "map_size" => self.map_size.is_some(),
+            "bias" => self.bias.is_some(),
+            "bias_min" => self.bias_min.is_some(),
+            "normal_offset" => self.normal_offset.is_some(),
+            "perspective_fov" => self.perspective_fov.is_some(),
+            "polygon_offset" => self.polygon_offset.is_some(),
+            "cascades" => self.cascades.is_some(),
+            "cascade_lambda" => self.cascade_lambda.is_some(),
+            "cascade_blend" => self.cascade_blend.is_some(),
+            "shadow_distance" => self.shadow_distance.is_some(),
+            _ => false,
+        }
     }
 
     /// The scene's settings with the given flags applied.

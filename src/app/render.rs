@@ -5,6 +5,7 @@ use std::time::Instant;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::save_grey_png;
+use shadowmap::light_slots::ShadowKind;
 use shadowmap::Result;
 
 use super::cli::RenderArgs;
@@ -14,6 +15,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
+    if let Some(path) = &args.depth_out {
+        if ShadowKind::of(scene.light(), &settings) != ShadowKind::Map {
+            return Err(shadowmap::Error::Invalid(format!(
+                "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
+                 cascades or casts no shadow): use --show-depth-map to see its map",
+                path.display()
+            )));
+        }
+    }
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &settings)?;
     let outputs = Outputs {
@@ -33,14 +43,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
         image.save_png(path)?;
     }
-    if let Some(path) = &args.depth_out {
-        let (size, grey) = frame.depth_grey().ok_or_else(|| {
-            shadowmap::Error::Invalid(format!(
-                "--depth-out {}: the first light has no 2D depth map (a point light's cube map \
-                 or cascades): use --show-depth-map to see it",
-                path.display()
-            ))
-        })?;
+    if let (Some(path), Some((size, grey))) = (&args.depth_out, frame.depth_grey()) {
         save_grey_png(path, size, size, &grey)?;
     }
     println!(

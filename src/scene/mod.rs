@@ -37,6 +37,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         include_str!("../../assets/scenes/point-shadows.toml"),
     ),
     ("large", include_str!("../../assets/scenes/large.toml")),
+    (
+        "three-lights",
+        include_str!("../../assets/scenes/three-lights.toml"),
+    ),
 ];
 
 /// The lighting equation of the scene pass.
