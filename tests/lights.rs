@@ -257,3 +257,29 @@ fn a_light_that_does_not_cast_lights_what_another_shadows() {
     // The visibility output is still light 0's: the fill light does not change the test.
     assert_eq!(a.visibility, b.visibility);
 }
+
+#[test]
+fn the_depth_view_shows_each_lights_own_map() {
+    use shadowmap::engine::RenderTarget;
+    use shadowmap::renderer::{Renderer, Target};
+    let ctx = common::context();
+    let scene = three_lights();
+    let s = ShadowSettings {
+        show_depth_map: true,
+        ..scene.shadow
+    };
+    let target = RenderTarget::new(ctx.gl(), 160, 90, Default::default()).unwrap();
+    let mut renderer = Renderer::new(ctx.gl(), &scene, &s).unwrap();
+    let mut views = Vec::new();
+    for light in 0..3 {
+        renderer.set_depth_view_light(light);
+        renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+        let grey: Vec<u8> = target.read_colour().chunks_exact(4).map(|p| p[0]).collect();
+        let (lo, hi) = (grey.iter().min().unwrap(), grey.iter().max().unwrap());
+        // A map with something in it: near casters and far receivers.
+        assert!(hi - lo > 40, "light {light}: depth view {lo}..{hi}");
+        views.push(grey);
+    }
+    assert_ne!(views[0], views[1]);
+    assert_ne!(views[1], views[2]);
+}

@@ -112,3 +112,62 @@ fn window_survives_a_resize_storm_and_a_minimise() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_draws_several_lights_and_cascades_as_headless_does() {
+    assert!(
+        std::env::var_os("DISPLAY").is_some(),
+        "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
+    );
+    let dir = std::env::temp_dir().join(format!("shadowmap-lights-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, extra) in [
+        ("three-lights", &[][..]),
+        (
+            "large",
+            &["--cascades", "4", "--map-size", "1024", "--show-cascades"][..],
+        ),
+    ] {
+        let shot = dir.join(format!("{name}-window.png"));
+        let headless = dir.join(format!("{name}-headless.png"));
+        stdout_of(
+            bin()
+                .args([
+                    "demo",
+                    "--no-animation",
+                    "--scene",
+                    name,
+                    "--size",
+                    "480x270",
+                ])
+                .args(extra)
+                .args(["--exit-after-frames", "5", "--screenshot"])
+                .arg(&shot),
+        );
+        stdout_of(
+            bin()
+                .args(["render", "--scene", name, "--size", "480x270"])
+                .args(extra)
+                .arg("--out")
+                .arg(&headless),
+        );
+        let (win, head) = (load(&shot), load(&headless));
+        assert_eq!(win.dimensions(), (480, 270), "{name}");
+        let diff: u64 = win
+            .as_raw()
+            .iter()
+            .zip(head.as_raw())
+            .map(|(a, b)| u64::from(a.abs_diff(*b)))
+            .sum();
+        let mean = diff as f64 / win.as_raw().len() as f64;
+        assert!(mean < 1.0, "{name}: window and headless differ by {mean}");
+        // Not a blank frame: many distinct colours (lights of three colours, tints).
+        let colours: std::collections::HashSet<[u8; 3]> = win
+            .pixels()
+            .map(|p| [p[0] >> 3, p[1] >> 3, p[2] >> 3])
+            .collect();
+        assert!(colours.len() > 100, "{name}: {} colours", colours.len());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

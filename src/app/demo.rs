@@ -10,6 +10,7 @@ use shadowmap::engine::window_context::WindowContext;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
+use shadowmap::scene::cascades::MAX_CASCADES;
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -37,6 +38,11 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     let settings = args.settings.apply(&scene)?;
     if args.no_animation {
         scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
+        for light in &mut scene.lights {
+            if let shadowmap::scene::Light::Point(p) = light {
+                p.oscillate = Vec3::ZERO;
+            }
+        }
     }
     let event_loop = match EventLoop::new() {
         Ok(l) => l,
@@ -79,6 +85,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             .map(|s| s.name),
         minimised: false,
         skipped: 0,
+        depth_light: 0,
     };
     event_loop
         .run_app(&mut demo)
@@ -157,6 +164,8 @@ struct Demo {
     minimised: bool,
     /// Redraws skipped while minimised.
     skipped: u64,
+    /// The light whose map M shows.
+    depth_light: usize,
 }
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
@@ -243,16 +252,40 @@ impl Demo {
         }
     }
 
-    /// Shows the shadow map instead of the scene, or the scene again.
-    fn toggle_depth_map(&mut self, event_loop: &ActiveEventLoop) {
+    /// Applies a change to the settings (rebuilding what it touches), or stops on an error.
+    fn change_settings(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+        change: impl Fn(&mut ShadowSettings),
+    ) {
         let mut s = self.settings;
-        s.show_depth_map = !s.show_depth_map;
+        change(&mut s);
         if let Some(r) = &mut self.running {
             if let Err(e) = r.renderer.set_settings(&s) {
                 return self.fail(event_loop, e);
             }
         }
         self.settings = s;
+        self.last_title = Instant::now() - Duration::from_secs(1);
+    }
+
+    /// M: the first casting light's shadow map instead of the scene, then the next light's,
+    /// and after the last, the scene again.
+    fn next_depth_view(&mut self, event_loop: &ActiveEventLoop) {
+        let casting: Vec<usize> = (0..self.scene.lights.len())
+            .filter(|&i| self.scene.lights[i].casts_shadows())
+            .collect();
+        let next = match self.settings.show_depth_map {
+            false => casting.first().copied(),
+            true => casting.iter().copied().find(|&i| i > self.depth_light),
+        };
+        if let Some(i) = next {
+            self.depth_light = i;
+            if let Some(r) = &mut self.running {
+                r.renderer.set_depth_view_light(i);
+            }
+        }
+        self.change_settings(event_loop, |s| s.show_depth_map = next.is_some());
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
@@ -383,10 +416,15 @@ impl Demo {
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
             running.context.window().set_title(&format!(
-                "shadowmap: {} | step {} | {} | {} | {:.2} ms ({}x{})",
+                "shadowmap: {} | step {} | {}{} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
                 self.step.unwrap_or("(scene)"),
                 self.scene.light().describe(),
+                match (self.settings.show_depth_map, self.scene.lights.len()) {
+                    (true, _) => format!(" | depth map of light {}", self.depth_light),
+                    (false, 1) => String::new(),
+                    (false, n) => format!(" (+{} more)", n - 1),
+                },
                 self.settings.summary(),
                 self.frame_ms,
                 w,
@@ -439,7 +477,15 @@ impl ApplicationHandler for Demo {
                             KeyCode::Backspace if !event.repeat => {
                                 self.select_step(event_loop, None)
                             }
-                            KeyCode::KeyM if !event.repeat => self.toggle_depth_map(event_loop),
+                            KeyCode::KeyM if !event.repeat => self.next_depth_view(event_loop),
+                            KeyCode::KeyC if !event.repeat => self
+                                .change_settings(event_loop, |s| {
+                                    s.show_cascades = !s.show_cascades
+                                }),
+                            KeyCode::KeyK if !event.repeat => self
+                                .change_settings(event_loop, |s| {
+                                    s.cascades = s.cascades % MAX_CASCADES + 1
+                                }),
                             _ if !event.repeat => {
                                 if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
                                     let name = steps::STEPS.get(i).map(|s| s.name);
