@@ -6,6 +6,8 @@
 //   BIAS_MODE       0 = none, 1 = constant (bias), 2 = slope: max(bias * (1 - n.l), biasMin)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares and shadows), 1 = LearnOpenGL (z > 1 is lit)
 //   CASCADES        layers of a cascaded light's map; CASCADE_BLEND, SHOW_CASCADES
+//   SHADOW_MAP_SIZE texels per side of every 2D map and cascade (a constant, not a
+//                   textureSize query per pixel)
 // with the scene's lighting (branches on uniforms would run for every pixel):
 //   BLINN            0 = the book's Phong specular, 1 = LearnOpenGL's Blinn-Phong
 // and with the lights' layout from src/light_slots.rs:
@@ -14,6 +16,7 @@
 //                    cascadeMapN: GLSL 3.30 cannot index an array of samplers in a loop)
 //   LIGHT_CALLS      one add... call per light, with its kind's constants
 //   VISIBILITY_LIGHT the light whose shadow test goes to the visibility output
+// and with the target's outputs: OUTPUT_VISIBILITY, OUTPUT_GBUFFER.
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -22,15 +25,22 @@ in vec4 mlightviewVertexPos[LIGHT_COUNT];
 in vec3 worldPos;
 in vec3 worldNormal;
 
+// The extra outputs exist only when the target has them (OUTPUT_VISIBILITY,
+// OUTPUT_GBUFFER): a window's frame computes none of them.
 layout (location = 0) out vec4 fragColor;
+#if OUTPUT_VISIBILITY
 layout (location = 1) out vec4 visibilityOut;  // r = shadow-test visibility, g = 1 on geometry
+#endif
+#if OUTPUT_GBUFFER
 layout (location = 2) out vec4 worldPosOut;
 layout (location = 3) out vec4 worldNormalOut;
+#endif
 
 struct Material
 {
     vec4 colour;
-    float reflectance;
+    // Light i's colour x intensity x this material's reflectance (products made on the CPU).
+    vec3 specular[LIGHT_COUNT];
 };
 
 #if HW_PCF
@@ -69,18 +79,18 @@ struct Fragment
 {
     vec4 base;         // texture x material colour
     vec3 normal;       // view space
-    vec4 colour;       // diffuse + specular so far
+    vec3 light;        // diffuse + specular so far, per unit of base colour
     float visibility;  // VISIBILITY_LIGHT's shadow test
     int cascade;       // the cascade used, for SHOW_CASCADES (-1: none)
 };
 
-// Diffuse plus specular of one light (the book's calcLightColour). `lightColour` already
-// carries the intensity.
-vec4 calcLightColour(vec4 baseColour, vec3 lightColour, vec3 position, vec3 toLightDir,
+// Diffuse plus specular of one light (the book's calcLightColour), as light reaching the
+// eye per unit of base colour: the base colour multiplies the sum of every light once, in
+// main. `lightColour` already carries the intensity, `specularColour` the reflectance too.
+vec3 calcLightColour(vec3 lightColour, vec3 specularColour, vec3 position, vec3 toLightDir,
                      vec3 normal)
 {
     float diffuseFactor = max(dot(normal, toLightDir), 0.0);
-    vec4 diffuse = baseColour * vec4(lightColour * diffuseFactor, 1.0);
 
     vec3 cameraDirection = normalize(-position);
 #if BLINN
@@ -89,9 +99,7 @@ vec4 calcLightColour(vec4 baseColour, vec3 lightColour, vec3 position, vec3 toLi
     float specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
 #endif
     float specularFactor = pow(max(specularAngle, 0.0), SPECULAR_POWER);
-    vec4 specular = baseColour
-                    * vec4(lightColour * material.reflectance * specularFactor, 1.0);
-    return diffuse + specular;
+    return lightColour * diffuseFactor + specularColour * specularFactor;
 }
 
 // The comparison's offset against acne, in the map's depth units.
@@ -112,15 +120,15 @@ float depthBias(vec3 normal, vec3 toLightDir)
 #define LIT_2D(map, uv, ref) texture(map, vec3(uv, ref))
 #define LIT_ARRAY(map, uv, layer, ref) texture(map, vec4(uv, layer, ref))
 #else
-#define LIT_2D(map, uv, ref) (ref > texture(map, uv).r ? 0.0 : 1.0)
-#define LIT_ARRAY(map, uv, layer, ref) (ref > texture(map, vec3(uv, layer)).r ? 0.0 : 1.0)
+#define LIT_2D(map, uv, ref) step(ref, texture(map, uv).r)
+#define LIT_ARRAY(map, uv, layer, ref) step(ref, texture(map, vec3(uv, layer)).r)
 #endif
 #define PCF_TAPS float((2 * PCF_RADIUS + 1) * (2 * PCF_RADIUS + 1))
 
 // The lit fraction of a PCF_RADIUS grid of comparisons, one texel apart (the chapters' PCF).
 float pcf2D(SHADOW_SAMPLER_2D map, vec2 uv, float current)
 {
-    vec2 inc = 1.0 / vec2(textureSize(map, 0));
+    vec2 inc = vec2(1.0 / float(SHADOW_MAP_SIZE));
     float lit = 0.0;
     for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
         for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
@@ -133,7 +141,7 @@ float pcf2D(SHADOW_SAMPLER_2D map, vec2 uv, float current)
 // The same grid in one layer of a cascade array.
 float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
 {
-    vec2 inc = 1.0 / vec2(textureSize(map, 0).xy);
+    vec2 inc = vec2(1.0 / float(SHADOW_MAP_SIZE));
     float lit = 0.0;
     for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
         for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
@@ -247,13 +255,14 @@ vec3 toLightOf(int i, bool positional)
 // Adds light i, scaled by its shadow test `lit`, to the fragment.
 void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
 {
-    vec4 light = calcLightColour(f.base, lightColour[i], mvVertexPos, toLight, f.normal);
+    vec3 light = calcLightColour(lightColour[i], material.specular[i], mvVertexPos, toLight,
+                                 f.normal);
     if (cone) {
         // A spot's cone, with a soft rim of about a degree.
         float c = dot(-toLight, normalize(lightConeAxis[i]));
         light *= smoothstep(lightConeCos[i], lightConeCos[i] + 0.01, c);
     }
-    f.colour += light * lit;
+    f.light += light * lit;
     if (i == VISIBILITY_LIGHT) {
         f.visibility = lit;
     }
@@ -294,14 +303,14 @@ void main()
     // Untextured items sample a 1 x 1 white texture: no per-pixel branch.
     f.base = texture(textureSampler, outTexCoord) * material.colour;
     f.normal = normalize(mvVertexNormal);
-    f.colour = vec4(0.0);
+    f.light = vec3(0.0);
     f.visibility = 1.0;
     f.cascade = -1;
 
     LIGHT_CALLS
 
     // Ambient light is not shadowed.
-    fragColor = clamp(f.base * vec4(ambientLight, 1.0) + f.colour, 0.0, 1.0);
+    fragColor = vec4(clamp(f.base.rgb * (ambientLight + f.light), 0.0, 1.0), 1.0);
 #if SHOW_CASCADES
     const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
                                  vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));
@@ -309,9 +318,12 @@ void main()
         fragColor.rgb = mix(fragColor.rgb, fragColor.rgb * tints[f.cascade], 0.6);
     }
 #endif
-    fragColor.a = 1.0;
 
+#if OUTPUT_VISIBILITY
     visibilityOut = vec4(f.visibility, 1.0, 0.0, 1.0);
+#endif
+#if OUTPUT_GBUFFER
     worldPosOut = vec4(worldPos, 1.0);
     worldNormalOut = vec4(normalize(worldNormal), 1.0);
+#endif
 }

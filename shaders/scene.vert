@@ -1,6 +1,6 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
-// Compiled with NORMAL_OFFSET 0/1 and LIGHT_COUNT (see scene.frag for the other defines).
+// Compiled with NORMAL_OFFSET 0/1, LIGHT_COUNT, OUTPUT_GBUFFER and CASCADES (see scene.frag).
 // Lighting happens in view space, as in the book; world position (relative to the camera,
 // so it keeps its precision far from the origin) and normal are passed on for the G-buffer
 // outputs that tests and the exact reference read.
@@ -45,6 +45,12 @@ void main()
 #endif
         mlightviewVertexPos[i] = orthoProjectionMatrix[i] * lightViewPos;
     }
+#if OUTPUT_GBUFFER || CASCADES > 1
     worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
     worldNormal = normalize(worldNormalMatrix * vertexNormal);
+#else
+    // Not read: the target has no G-buffer and no cascade looks the map up from them.
+    worldPos = vec3(0.0);
+    worldNormal = vec3(0.0, 0.0, 1.0);
+#endif
 }

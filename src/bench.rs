@@ -10,10 +10,12 @@ use serde::Serialize;
 use crate::compare::{compute_reference, CompareOptions, Reference};
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
+use crate::light_slots::ShadowKind;
 use crate::reference::Metrics;
 use crate::renderer::{Renderer, Target};
+use crate::scene::Light;
 use crate::scene::Scene;
-use crate::settings::{BiasMode, Cull, DepthFormat, Filter, ShadowSettings};
+use crate::settings::{BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowSettings};
 
 /// The bias configurations the sweep tries, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -85,6 +87,40 @@ impl BiasPreset {
     }
 }
 
+/// What kind of shadow a configuration draws, for the plot's series and the tables.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// One 2D map (the chapters).
+    OneMap,
+    /// A directional light's cascades.
+    Cascades,
+    /// A point light's cube map drawn in one layered pass.
+    PointLayered,
+    /// A point light's cube map drawn face by face.
+    PointSixPasses,
+}
+
+impl Family {
+    pub fn of(light: &Light, s: &ShadowSettings) -> Family {
+        match (ShadowKind::of(light, s), s.point_pass) {
+            (ShadowKind::Cascades, _) => Family::Cascades,
+            (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
+            (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
+            _ => Family::OneMap,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::OneMap => "one map",
+            Family::Cascades => "cascades",
+            Family::PointLayered => "point light, layered",
+            Family::PointSixPasses => "point light, six passes",
+        }
+    }
+}
+
 /// One configuration of the sweep.
 #[derive(Debug, Clone, Serialize)]
 pub struct BenchConfig {
@@ -92,6 +128,7 @@ pub struct BenchConfig {
     pub bias_preset: BiasPreset,
     /// Set for the tutorials' own configurations ("book", "learnopengl").
     pub tutorial: Option<&'static str>,
+    pub family: Family,
 }
 
 /// The tutorials' own final configurations, on top of the scene's settings.
@@ -112,20 +149,80 @@ pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
             settings: book,
             bias_preset: BiasPreset::Book,
             tutorial: Some("book"),
+            family: Family::OneMap,
         },
         BenchConfig {
             settings: learn,
             bias_preset: BiasPreset::Slope,
             tutorial: Some("learnopengl"),
+            family: Family::OneMap,
         },
     ]
 }
 
-/// The configurations to try. The full sweep is the grid map size x filter x bias (no
-/// culling, 24-bit), then culling and depth format varied around 1024^2 with 3x3 PCF, and
-/// the driver's largest map; `quick` keeps a representative subset.
-pub fn sweep(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<BenchConfig> {
+/// The configurations to try for the scene's first light. The full sweep is the grid map
+/// size x filter x bias (no culling, 24-bit), then culling and depth format varied around
+/// 1024^2 with 3x3 PCF, and the driver's largest map; for a directional light, cascades
+/// (2 to 4 layers) over sizes, filters and biases; for a point light, the cube faces drawn
+/// in six passes as well as in one. `quick` keeps a representative subset.
+pub fn sweep(
+    base: &ShadowSettings,
+    quick: bool,
+    max_texture_size: u32,
+    light: &Light,
+) -> Vec<BenchConfig> {
+    let base = &ShadowSettings {
+        cascades: 1,
+        ..*base
+    };
     let mut out = sweep_grid(base, quick, max_texture_size);
+    let variants = |c: &BenchConfig| -> Vec<ShadowSettings> {
+        let s = c.settings;
+        match (Family::of(light, &s), quick) {
+            (Family::OneMap, _)
+                if Family::of(light, &ShadowSettings { cascades: 2, ..s }) == Family::Cascades =>
+            {
+                // Cascades: the same total memory as some one-map sizes (4 x 1024^2 = 2048^2).
+                let keep = matches!(s.filter, Filter::Single | Filter::Hardware2x2)
+                    && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
+                    && s.cull == Cull::None
+                    && s.depth_format == DepthFormat::D24
+                    && (512..=2048).contains(&s.map_size)
+                    && (!quick || s.map_size == 1024);
+                let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
+                match keep {
+                    true => counts
+                        .iter()
+                        .map(|&n| ShadowSettings { cascades: n, ..s })
+                        .collect(),
+                    false => Vec::new(),
+                }
+            }
+            (Family::PointLayered, _)
+                if s.cull == Cull::None && s.depth_format == DepthFormat::D24 =>
+            {
+                vec![ShadowSettings {
+                    point_pass: PointPass::SixPasses,
+                    ..s
+                }]
+            }
+            _ => Vec::new(),
+        }
+    };
+    let extra: Vec<BenchConfig> = out
+        .iter()
+        .flat_map(|c| {
+            variants(c).into_iter().map(|settings| BenchConfig {
+                settings,
+                family: Family::of(light, &settings),
+                ..c.clone()
+            })
+        })
+        .collect();
+    out.extend(extra);
+    for c in &mut out {
+        c.family = Family::of(light, &c.settings);
+    }
     // The tutorials' configurations go in the middle of the sweep: the first and last
     // places (timed at the start and at the very end) are the likeliest to catch the
     // machine changing state.
@@ -145,6 +242,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
                 settings,
                 bias_preset,
                 tutorial: None,
+                family: Family::OneMap,
             });
         }
     };
@@ -277,12 +375,18 @@ impl BenchRow {
         self.metrics.misclassified_rate
     }
 
-    /// A short name: "2048 hw2x2 slope cull-none 24".
+    /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
+    /// "... six-passes".
     pub fn label(&self) -> String {
         let s = &self.config.settings;
+        let (size, suffix) = match self.config.family {
+            Family::OneMap => (s.map_size.to_string(), ""),
+            Family::Cascades => (format!("{}x{}", s.cascades, s.map_size), " cascades"),
+            Family::PointLayered => (s.map_size.to_string(), " cube layered"),
+            Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
+        };
         format!(
-            "{} {} {} cull-{} {}",
-            s.map_size,
+            "{size} {} {} cull-{} {}{suffix}",
             s.filter.name(),
             self.config.bias_preset.name(),
             s.cull.name(),
@@ -437,7 +541,7 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
 }
 
 /// The CSV columns, in order.
-pub const CSV_HEADER: &str = "tutorial,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
+pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
@@ -452,6 +556,9 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
         let m = &r.metrics;
         let fields = [
             r.config.tutorial.unwrap_or("-").to_string(),
+            format!("{:?}", r.config.family).to_lowercase(),
+            s.cascades.to_string(),
+            format!("{:?}", s.point_pass).to_lowercase(),
             s.map_size.to_string(),
             s.filter.name().to_string(),
             r.config.bias_preset.name().to_string(),

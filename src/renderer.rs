@@ -6,8 +6,8 @@ use glow::HasContext;
 
 use crate::engine::mesh::FullScreenTriangle;
 use crate::engine::{
-    check_gl, gl_limits, CascadeShadowMap, CubeShadowMap, Gl, Mesh, PassTimer, RenderTarget,
-    ShaderProgram, ShadowMap, Texture,
+    check_gl, gl_limits, CascadeShadowMap, CubeShadowMap, Gl, Mesh, Outputs, PassTimer,
+    RenderTarget, ShaderProgram, ShadowMap, Texture,
 };
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
@@ -31,6 +31,14 @@ impl Target<'_> {
         match self {
             Target::Window { width, height } => (*width, *height),
             Target::Offscreen(t) => (t.width(), t.height()),
+        }
+    }
+
+    /// The outputs besides colour (a window has none).
+    pub fn outputs(&self) -> Outputs {
+        match self {
+            Target::Window { .. } => Outputs::default(),
+            Target::Offscreen(t) => t.outputs(),
         }
     }
 }
@@ -104,9 +112,9 @@ pub struct Renderer {
     gl: Gl,
     settings: ShadowSettings,
     depth_program: ShaderProgram,
-    scene_program: ShaderProgram,
-    /// The lighting the scene program was compiled for.
-    lighting: LightingKey,
+    /// Scene programs by what they were compiled for, the last used first (a bench
+    /// alternates a timed target without extra outputs and a scored one with them).
+    scene_programs: Vec<(ProgramKey, ShaderProgram)>,
     /// One per scene light, in the scene's order.
     shadows: Vec<LightShadow>,
     /// Each light's camera in the last depth pass (`None` for lights that do not cast).
@@ -150,8 +158,8 @@ impl Renderer {
             .collect::<Result<Vec<_>>>()?;
         let depth_program =
             ShaderProgram::new(gl, &shaders::depth_vert(), &shaders::depth_frag(), &[])?;
-        let lighting = LightingKey::of(scene, settings, 0)?;
-        let scene_program = scene_program(gl, settings, &lighting)?;
+        let key = ProgramKey::of(scene, settings, 0, Outputs::default())?;
+        let scene_program = scene_program(gl, &key)?;
         let depth_view_program = ShaderProgram::new(
             gl,
             &shaders::depth_view_vert(),
@@ -164,8 +172,7 @@ impl Renderer {
             gl: gl.clone(),
             settings: *settings,
             depth_program,
-            scene_program,
-            lighting,
+            scene_programs: vec![(key, scene_program)],
             shadows: Vec::new(),
             shadow_views: Vec::new(),
             meshes,
@@ -200,9 +207,6 @@ impl Renderer {
     /// variants, shadow maps for their size, format or kind, on the next frame).
     pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
         settings.validate(gl_limits(&self.gl).max_texture_size)?;
-        if settings.shader_defines() != self.settings.shader_defines() {
-            self.scene_program = scene_program(&self.gl, settings, &self.lighting)?;
-        }
         self.settings = *settings;
         for shadow in &self.shadows {
             configure_sampling(shadow, settings);
@@ -512,11 +516,13 @@ impl Renderer {
     /// The main pass: draws the scene with each light's shadow map on its texture unit
     /// ([`light_slots::texture_unit`]). Call after [`Renderer::render_depth_map`].
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
-        let lighting = LightingKey::of(scene, &self.settings, self.visibility_light)?;
-        if lighting != self.lighting {
-            self.scene_program = scene_program(&self.gl, &self.settings, &lighting)?;
-            self.lighting = lighting;
-        }
+        let key = ProgramKey::of(
+            scene,
+            &self.settings,
+            self.visibility_light,
+            target.outputs(),
+        )?;
+        self.use_program(key)?;
         if self.shadows.len() != scene.lights.len() {
             return Err(Error::Invalid(
                 "render_scene before render_depth_map: there are no shadow maps yet".into(),
@@ -532,7 +538,7 @@ impl Renderer {
         let view = view64.as_mat4();
         // World outputs are written relative to the camera for the same reason.
         let origin = DMat4::from_translation(-scene.camera.position.as_dvec3());
-        let p = &self.scene_program;
+        let p = &self.scene_programs[0].1;
         p.bind();
         p.set_mat4(
             "projectionMatrix",
@@ -561,6 +567,7 @@ impl Renderer {
             }
         }
         let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
+        let mut specular = vec![Vec3::ZERO; u.colour.len()];
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
@@ -576,7 +583,10 @@ impl Renderer {
                 p.set_mat4_array("modelLightViewMatrix", &light_matrices);
                 let m = &item.material;
                 p.set_vec4("material.colour", m.colour);
-                p.set_f32("material.reflectance", m.reflectance);
+                for (s, c) in specular.iter_mut().zip(&u.colour) {
+                    *s = *c * m.reflectance;
+                }
+                p.set_vec3_array("material.specular", &specular);
                 m.texture
                     .and_then(|t| self.textures.get(t))
                     .unwrap_or(&self.white)
@@ -591,6 +601,25 @@ impl Renderer {
         check_gl(&self.gl, "the scene pass")
     }
 
+    /// Moves the program compiled for `key` to the front of the cache, compiling it if it is
+    /// not there (the cache keeps the last few).
+    fn use_program(&mut self, key: ProgramKey) -> Result<()> {
+        const KEEP: usize = 4;
+        match self.scene_programs.iter().position(|(k, _)| *k == key) {
+            Some(0) => {}
+            Some(i) => {
+                let entry = self.scene_programs.remove(i);
+                self.scene_programs.insert(0, entry);
+            }
+            None => {
+                let program = scene_program(&self.gl, &key)?;
+                self.scene_programs.insert(0, (key, program));
+                self.scene_programs.truncate(KEEP);
+            }
+        }
+        Ok(())
+    }
+
     /// The cascades' matrices (camera-relative world to each cascade's clip space), split
     /// depths and normal offsets.
     fn set_cascade_uniforms(&self, scene: &Scene) {
@@ -598,7 +627,7 @@ impl Renderer {
         if count <= 1 {
             return;
         }
-        let p = &self.scene_program;
+        let p = &self.scene_programs[0].1;
         let mut matrices = vec![Mat4::IDENTITY; scene.lights.len() * count];
         let mut splits = Vec::new();
         let mut offsets = Vec::new();
@@ -695,22 +724,27 @@ impl Renderer {
     }
 }
 
-/// What the scene program is specialised for besides the shadow settings: branches on these
-/// would run for every pixel on a software rasteriser, so they are `#define`s.
-#[derive(Debug, Clone, PartialEq, Eq)]
-struct LightingKey {
+/// Everything a scene program is compiled for: branches on these would run for every pixel
+/// on a software rasteriser, so they are `#define`s.
+#[derive(Debug, Clone, PartialEq)]
+struct ProgramKey {
+    /// The shadow settings' defines.
+    settings: Vec<(String, String)>,
     slots: Vec<LightSlot>,
     blinn: bool,
     specular_power_bits: u32,
     visibility_light: usize,
+    /// The outputs the target has: the others are not computed.
+    outputs: Outputs,
 }
 
-impl LightingKey {
+impl ProgramKey {
     fn of(
         scene: &Scene,
         settings: &ShadowSettings,
         visibility_light: usize,
-    ) -> Result<LightingKey> {
+        outputs: Outputs,
+    ) -> Result<ProgramKey> {
         if scene.lights.is_empty() || scene.lights.len() > light_slots::MAX_LIGHTS {
             return Err(Error::Invalid(format!(
                 "{}: {} lights: expected 1 to {}",
@@ -734,11 +768,13 @@ impl LightingKey {
                 }
             })
             .collect();
-        Ok(LightingKey {
+        Ok(ProgramKey {
+            settings: settings.shader_defines(),
             slots,
             blinn: scene.shading == ShadingModel::BlinnPhong,
             specular_power_bits: scene.specular_power.to_bits(),
             visibility_light,
+            outputs,
         })
     }
 }
@@ -806,8 +842,14 @@ impl LightUniforms {
     }
 }
 
-fn scene_program(gl: &Gl, settings: &ShadowSettings, key: &LightingKey) -> Result<ShaderProgram> {
-    let mut defines = settings.shader_defines();
+fn scene_program(gl: &Gl, key: &ProgramKey) -> Result<ShaderProgram> {
+    let mut defines = key.settings.clone();
+    for (name, on) in [
+        ("OUTPUT_VISIBILITY", key.outputs.visibility),
+        ("OUTPUT_GBUFFER", key.outputs.gbuffer),
+    ] {
+        defines.push((name.into(), u32::from(on).to_string()));
+    }
     defines.push(("BLINN".into(), u32::from(key.blinn).to_string()));
     defines.push((
         "SPECULAR_POWER".into(),

@@ -392,6 +392,7 @@ impl ShadowSettings {
                 u32::from(s.beyond_far == BeyondFar::Lit).to_string(),
             ),
             ("CASCADES".into(), s.cascades.to_string()),
+            ("SHADOW_MAP_SIZE".into(), s.map_size.to_string()),
             ("CASCADE_BLEND".into(), glsl_float(s.cascade_blend)),
             (
                 "SHOW_CASCADES".into(),

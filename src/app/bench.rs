@@ -28,7 +28,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     args.settings.check(context.gl(), &scene, &base)?;
     let gl = context.gl();
     let max = gl_limits(gl).max_texture_size;
-    let configs = bench::sweep(&base, args.quick, max);
+    let configs = bench::sweep(&base, args.quick, max, scene.light());
     let opts = BenchOptions {
         width,
         height,

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use plotters::prelude::*;
-use shadowmap::bench::BenchRow;
+use shadowmap::bench::{BenchRow, Family};
 use shadowmap::image_data::ImageData;
 use shadowmap::{Error, Result};
 
@@ -43,17 +43,32 @@ pub fn pareto_png(path: &Path, title: &str, rows: &[BenchRow]) -> Result<()> {
             .label_style(("sans-serif", 14))
             .draw()
             .map_err(|e| err(&e))?;
-        chart
-            .draw_series(rows.iter().map(|r| {
-                Circle::new(
-                    (r.wall_ms.median, y(r)),
-                    3,
-                    RGBColor(150, 150, 150).filled(),
+        // One series per kind of shadow (one map, cascades, a point light's two ways of
+        // drawing its cube), each in its own colour.
+        for (family, colour) in [
+            (Family::OneMap, RGBColor(150, 150, 150)),
+            (Family::Cascades, RGBColor(20, 150, 60)),
+            (Family::PointLayered, RGBColor(140, 60, 190)),
+            (Family::PointSixPasses, RGBColor(230, 140, 20)),
+        ] {
+            let points: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.config.family == family)
+                .map(|r| (r.wall_ms.median, y(r)))
+                .collect();
+            if points.is_empty() {
+                continue;
+            }
+            chart
+                .draw_series(
+                    points
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, colour.filled())),
                 )
-            }))
-            .map_err(|e| err(&e))?
-            .label("configuration")
-            .legend(|(x, y)| Circle::new((x, y), 3, RGBColor(150, 150, 150).filled()));
+                .map_err(|e| err(&e))?
+                .label(family.name())
+                .legend(move |(x, y)| Circle::new((x, y), 3, colour.filled()));
+        }
         let mut front: Vec<&BenchRow> = rows.iter().filter(|r| r.pareto).collect();
         front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
         // The front as a staircase: each step holds the best error reached so far.

@@ -43,8 +43,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
         image.save_png(path)?;
     }
-    if let (Some(path), Some((size, grey))) = (&args.depth_out, frame.depth_grey()) {
-        save_grey_png(path, size, size, &grey)?;
+    if let Some(path) = &args.depth_out {
+        if let Some((size, grey)) = frame.depth_grey() {
+            save_grey_png(path, size, size, &grey)?;
+        }
     }
     println!(
         "wrote {} ({}x{}, scene {}, {}, {}) in {:.0} ms",

@@ -118,6 +118,14 @@ impl RenderTarget {
         }
     }
 
+    /// The extra outputs this target has (the scene program writes only those).
+    pub fn outputs(&self) -> Outputs {
+        Outputs {
+            visibility: self.visibility.is_some(),
+            gbuffer: self.positions.is_some(),
+        }
+    }
+
     fn attachments(&self) -> [(u32, Option<&Texture>); 4] {
         [
             (0, Some(&self.colour)),
