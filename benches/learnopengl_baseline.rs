@@ -3,6 +3,13 @@
 //! both draw 800x600 frames in alternating blocks, each frame timed as wall time around
 //! render + glFinish. Run with `cargo bench --bench learnopengl_baseline`;
 //! `SHADOWMAP_BENCH_BLOCKS=N` changes the number of blocks per side (default 10).
+//!
+//! Wall time on this machine drifts by more than the difference measured, so the frames
+//! can also be counted in instructions, which do not drift: `SHADOWMAP_BENCH_ONLY=baseline`
+//! (or `ours`) with `SHADOWMAP_BENCH_FRAMES=N` draws N frames of one side and nothing else;
+//! run it under `valgrind --tool=callgrind` with `LP_NUM_THREADS=0` (llvmpipe rasterising
+//! on the calling thread) for two values of N, and the difference over the difference in
+//! N is the instructions per frame.
 
 use std::time::Instant;
 
@@ -64,6 +71,22 @@ fn main() -> shadowmap::Result<()> {
         }
         renderer.finish();
     };
+    if let Ok(side) = std::env::var("SHADOWMAP_BENCH_ONLY") {
+        let frames: usize = std::env::var("SHADOWMAP_BENCH_FRAMES")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(10);
+        match side.as_str() {
+            "baseline" => time_block(frames, &mut base_frame),
+            "ours" => time_block(frames, &mut ours_frame),
+            other => panic!("SHADOWMAP_BENCH_ONLY={other}: expected baseline or ours"),
+        };
+        if let Some(e) = ours_error {
+            return Err(e);
+        }
+        println!("drew {frames} frames of {side}");
+        return Ok(());
+    }
     time_block(WARM_UP, &mut base_frame);
     time_block(WARM_UP, &mut ours_frame);
     let (mut base_all, mut ours_all, mut pair_ratios) = (Vec::new(), Vec::new(), Vec::new());

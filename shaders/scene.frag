@@ -24,6 +24,12 @@ in vec3 mvVertexPos;
 in vec4 mlightviewVertexPos[LIGHT_COUNT];
 in vec3 worldPos;
 in vec3 worldNormal;
+// The same for every pixel of an item (see scene.vert: on llvmpipe a flat input costs a
+// pixel far less than a uniform read).
+flat in vec3 ambientColour;              // the material's colour x the ambient light
+flat in vec3 diffuseColour[LIGHT_COUNT]; // the material's colour x light i (x intensity)
+flat in float reflectance;               // specular = diffuse x reflectance
+flat in vec3 lightVector[LIGHT_COUNT];   // view space: light i's position, or its direction
 
 // The extra outputs exist only when the target has them (OUTPUT_VISIBILITY,
 // OUTPUT_GBUFFER): a window's frame computes none of them.
@@ -36,13 +42,6 @@ layout (location = 2) out vec4 worldPosOut;
 layout (location = 3) out vec4 worldNormalOut;
 #endif
 
-struct Material
-{
-    vec4 colour;
-    // Light i's colour x intensity x this material's reflectance (products made on the CPU).
-    vec3 specular[LIGHT_COUNT];
-};
-
 #if HW_PCF
 #define SHADOW_SAMPLER_2D sampler2DShadow
 #define SHADOW_SAMPLER_ARRAY sampler2DArrayShadow
@@ -53,14 +52,10 @@ struct Material
 
 uniform sampler2D textureSampler;  // unit 0; shadows on units 1, 2, ... (one per light)
 LIGHT_SAMPLERS
-uniform Material material;
-uniform vec3 ambientLight;
 
 // The book's DirectionalLight, grown to cover positioned lights (LearnOpenGL shades from a
-// light position; spot lights add a cone), as one array per field. View space.
-uniform vec3 lightColour[LIGHT_COUNT];     // x intensity
-uniform vec3 lightDirection[LIGHT_COUNT];  // towards the light
-uniform vec3 lightPosition[LIGHT_COUNT];
+// light position; spot lights add a cone), as one array per field; its colour comes with
+// the material's, its position or direction as lightVector. View space.
 uniform float lightConeCos[LIGHT_COUNT];   // cos of a spot's half angle
 uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
 uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
@@ -77,17 +72,16 @@ uniform float cascadeNormalOffset[CASCADES];  // normal offset in world units (t
 // What a fragment gathers as each light is added.
 struct Fragment
 {
-    vec4 base;         // texture x material colour
+    vec3 base;         // the texture (white for untextured items)
     vec3 normal;       // view space
     vec3 light;        // diffuse + specular so far, per unit of base colour
     float visibility;  // VISIBILITY_LIGHT's shadow test
     int cascade;       // the cascade used, for SHOW_CASCADES (-1: none)
 };
 
-// Diffuse plus specular of one light (the book's calcLightColour), as light reaching the
-// eye per unit of base colour: the base colour multiplies the sum of every light once, in
-// main. `lightColour` already carries the intensity, `specularColour` the reflectance too.
-vec3 calcLightColour(vec3 lightColour, vec3 specularColour, vec3 position, vec3 toLightDir,
+// Diffuse plus specular of one light (the book's calcLightColour), per unit of texture
+// colour: the texture multiplies the sum of every light once, in main.
+vec3 calcLightColour(vec3 diffuseColour, vec3 specularColour, vec3 position, vec3 toLightDir,
                      vec3 normal)
 {
     float diffuseFactor = max(dot(normal, toLightDir), 0.0);
@@ -99,7 +93,7 @@ vec3 calcLightColour(vec3 lightColour, vec3 specularColour, vec3 position, vec3 
     float specularAngle = dot(cameraDirection, normalize(reflect(-toLightDir, normal)));
 #endif
     float specularFactor = pow(max(specularAngle, 0.0), SPECULAR_POWER);
-    return lightColour * diffuseFactor + specularColour * specularFactor;
+    return diffuseColour * diffuseFactor + specularColour * specularFactor;
 }
 
 // The comparison's offset against acne, in the map's depth units.
@@ -158,12 +152,13 @@ float shadow2D(SHADOW_SAMPLER_2D map, vec4 position, vec3 normal, vec3 toLightDi
     // Clip to normalised device coordinates (w = 1 for an orthographic light), then
     // [-1, 1] to texture coordinates [0, 1].
     vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float lit = pcf2D(map, projCoords.xy, projCoords.z - depthBias(normal, toLightDir));
 #if BEYOND_FAR_LIT
-    if (projCoords.z > 1.0) {
-        return 1.0;
-    }
+    // A select, not an early return: no branch per pixel, and n.l is shared with the
+    // lighting.
+    lit = projCoords.z > 1.0 ? 1.0 : lit;
 #endif
-    return pcf2D(map, projCoords.xy, projCoords.z - depthBias(normal, toLightDir));
+    return lit;
 }
 
 // A point light's omnidirectional test (LearnOpenGL's ShadowCalculation for cube maps):
@@ -249,14 +244,14 @@ float shadowCascades(SHADOW_SAMPLER_ARRAY map, int light, vec3 normal, vec3 toLi
 // From the fragment towards light i (view space).
 vec3 toLightOf(int i, bool positional)
 {
-    return positional ? normalize(lightPosition[i] - mvVertexPos) : normalize(lightDirection[i]);
+    return positional ? normalize(lightVector[i] - mvVertexPos) : normalize(lightVector[i]);
 }
 
 // Adds light i, scaled by its shadow test `lit`, to the fragment.
 void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
 {
-    vec3 light = calcLightColour(lightColour[i], material.specular[i], mvVertexPos, toLight,
-                                 f.normal);
+    vec3 light = calcLightColour(diffuseColour[i], diffuseColour[i] * reflectance,
+                                 mvVertexPos, toLight, f.normal);
     if (cone) {
         // A spot's cone, with a soft rim of about a degree.
         float c = dot(-toLight, normalize(lightConeAxis[i]));
@@ -301,7 +296,7 @@ void main()
 {
     Fragment f;
     // Untextured items sample a 1 x 1 white texture: no per-pixel branch.
-    f.base = texture(textureSampler, outTexCoord) * material.colour;
+    f.base = texture(textureSampler, outTexCoord).rgb;
     f.normal = normalize(mvVertexNormal);
     f.light = vec3(0.0);
     f.visibility = 1.0;
@@ -309,8 +304,9 @@ void main()
 
     LIGHT_CALLS
 
-    // Ambient light is not shadowed.
-    fragColor = vec4(clamp(f.base.rgb * (ambientLight + f.light), 0.0, 1.0), 1.0);
+    // Ambient light is not shadowed. The book clamps to [0, 1]; the colour buffer is
+    // normalised fixed point, which clamps on the way in, so the shader need not.
+    fragColor = vec4(f.base * (ambientColour + f.light), 1.0);
 #if SHOW_CASCADES
     const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
                                  vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));

@@ -176,6 +176,12 @@ pub fn sweep(
         ..*base
     };
     let mut out = sweep_grid(base, quick, max_texture_size);
+    // The tutorials' configurations go in the middle of the sweep (below): the first and
+    // last places (timed at the start and at the very end) are the likeliest to catch the
+    // machine changing state.
+    let tutorials = tutorial_configs(base);
+    out.retain(|c| !tutorials.iter().any(|t| t.settings == c.settings));
+    out.extend(tutorials);
     let variants = |c: &BenchConfig| -> Vec<ShadowSettings> {
         let s = c.settings;
         match (Family::of(light, &s), quick) {
@@ -215,6 +221,7 @@ pub fn sweep(
             variants(c).into_iter().map(|settings| BenchConfig {
                 settings,
                 family: Family::of(light, &settings),
+                tutorial: None,
                 ..c.clone()
             })
         })
@@ -223,14 +230,12 @@ pub fn sweep(
     for c in &mut out {
         c.family = Family::of(light, &c.settings);
     }
-    // The tutorials' configurations go in the middle of the sweep: the first and last
-    // places (timed at the start and at the very end) are the likeliest to catch the
-    // machine changing state.
-    let tutorials = tutorial_configs(base);
-    out.retain(|c| !tutorials.iter().any(|t| t.settings == c.settings));
-    let mid = out.len() / 2;
-    out.splice(mid..mid, tutorials);
-    out
+    // The tutorials back in the middle of the whole sweep.
+    let (tutorials, mut rest): (Vec<_>, Vec<_>) =
+        out.into_iter().partition(|c| c.tutorial.is_some());
+    let mid = rest.len() / 2;
+    rest.splice(mid..mid, tutorials);
+    rest
 }
 
 fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<BenchConfig> {

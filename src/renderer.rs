@@ -544,11 +544,8 @@ impl Renderer {
             "projectionMatrix",
             &scene.camera.projection_matrix(width, height),
         );
-        p.set_vec3("ambientLight", scene.ambient);
         let u = LightUniforms::of(scene, &self.shadow_views, &self.settings, view64);
-        p.set_vec3_array("lightColour", &u.colour);
-        p.set_vec3_array("lightDirection", &u.direction);
-        p.set_vec3_array("lightPosition", &u.position);
+        p.set_vec3_array("lightPositionOrDirection", &u.position_or_direction);
         p.set_f32_array("lightConeCos", &u.cone_cos);
         p.set_vec3_array("lightConeAxis", &u.cone_axis);
         p.set_f32_array("lightFar", &u.far);
@@ -567,7 +564,7 @@ impl Renderer {
             }
         }
         let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
-        let mut specular = vec![Vec3::ZERO; u.colour.len()];
+        let mut diffuse = vec![Vec3::ZERO; u.colour.len()];
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
             mesh.render_list(items, |item| {
@@ -582,11 +579,13 @@ impl Renderer {
                 }
                 p.set_mat4_array("modelLightViewMatrix", &light_matrices);
                 let m = &item.material;
-                p.set_vec4("material.colour", m.colour);
-                for (s, c) in specular.iter_mut().zip(&u.colour) {
-                    *s = *c * m.reflectance;
+                let colour = m.colour.truncate();
+                p.set_vec3("material.ambient", scene.ambient * colour);
+                for (d, light) in diffuse.iter_mut().zip(&u.colour) {
+                    *d = *light * colour;
                 }
-                p.set_vec3_array("material.specular", &specular);
+                p.set_vec3_array("material.diffuse", &diffuse);
+                p.set_f32("material.reflectance", m.reflectance);
                 m.texture
                     .and_then(|t| self.textures.get(t))
                     .unwrap_or(&self.white)
@@ -782,8 +781,8 @@ impl ProgramKey {
 /// The per-light uniform arrays of the scene pass, in view space.
 struct LightUniforms {
     colour: Vec<Vec3>,
-    direction: Vec<Vec3>,
-    position: Vec<Vec3>,
+    /// A positional light's position, or the direction towards a directional one.
+    position_or_direction: Vec<Vec3>,
     cone_cos: Vec<f32>,
     cone_axis: Vec<Vec3>,
     far: Vec<f32>,
@@ -804,8 +803,7 @@ impl LightUniforms {
         let n = scene.lights.len();
         let mut u = LightUniforms {
             colour: Vec::with_capacity(n),
-            direction: vec![Vec3::Z; n],
-            position: vec![Vec3::ZERO; n],
+            position_or_direction: vec![Vec3::Z; n],
             cone_cos: vec![-2.0; n],
             cone_axis: vec![Vec3::Z; n],
             far: vec![1.0; n],
@@ -816,9 +814,10 @@ impl LightUniforms {
         for (i, light) in scene.lights.iter().enumerate() {
             u.colour.push(light.colour() * light.intensity());
             match light.shading() {
-                Shading::Direction(d) => u.direction[i] = view.transform_vector3(d),
+                Shading::Direction(d) => u.position_or_direction[i] = view.transform_vector3(d),
                 Shading::Position { position, cone } => {
-                    u.position[i] = view64.transform_point3(position.as_dvec3()).as_vec3();
+                    u.position_or_direction[i] =
+                        view64.transform_point3(position.as_dvec3()).as_vec3();
                     if let Some((cos, axis)) = cone {
                         u.cone_cos[i] = cos;
                         u.cone_axis[i] = view.transform_vector3(axis);

@@ -163,6 +163,25 @@ fn compare_writes_every_output() {
 }
 
 #[test]
+fn the_sweep_has_rows_for_cascades_and_for_both_point_light_passes() {
+    use shadowmap::bench::{sweep, Family};
+    let count = |scene: &str, family: Family| {
+        let scene = shadowmap::Scene::load(scene).unwrap();
+        sweep(&scene.shadow, true, 16384, scene.light())
+            .iter()
+            .filter(|c| c.family == family)
+            .count()
+    };
+    assert_eq!(count("dummy", Family::Cascades), 8);
+    assert_eq!(count("dummy", Family::PointLayered), 0);
+    // Every point-light configuration is also drawn face by face.
+    let layered = count("point-shadows", Family::PointLayered);
+    assert!(layered >= 20, "{layered}");
+    assert_eq!(count("point-shadows", Family::PointSixPasses), layered);
+    assert_eq!(count("point-shadows", Family::Cascades), 0);
+}
+
+#[test]
 fn quick_bench_fills_every_csv_column() {
     let dir = tmp("bench");
     let stdout = common::stdout_of(
@@ -206,6 +225,18 @@ fn quick_bench_fills_every_csv_column() {
     assert_eq!(labelled, ["book", "learnopengl"]);
     let pareto = header.iter().position(|h| *h == "pareto").unwrap();
     assert!(rows.iter().any(|r| r[pareto] == "true"));
+    // The DummyGame's light is directional: the sweep has rows with cascades (2 and 4).
+    let family = header.iter().position(|h| *h == "family").unwrap();
+    let cascades = header.iter().position(|h| *h == "cascades").unwrap();
+    let cascaded: Vec<&str> = rows
+        .iter()
+        .filter(|r| r[family] == "cascades")
+        .map(|r| r[cascades])
+        .collect();
+    assert!(
+        cascaded.contains(&"2") && cascaded.contains(&"4"),
+        "{cascaded:?}"
+    );
     let png = std::fs::read(dir.join("pareto.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
     assert!(std::fs::read_to_string(dir.join("bench.md"))
