@@ -61,10 +61,10 @@ uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
 uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
 
 #if CASCADES > 1
-// Light i's cascade c maps camera-relative world positions with cascadeMatrix[i * CASCADES + c].
-uniform mat4 cascadeMatrix[LIGHT_COUNT * CASCADES];
+// The cascaded light's position in each cascade's clip space (scene.vert: one light has
+// cascades, so they fit among the inputs).
+in vec4 cascadePos[CASCADES];
 uniform float cascadeSplit[CASCADES + 1];     // view depths: cascade c serves [c, c + 1)
-uniform float cascadeNormalOffset[CASCADES];  // normal offset in world units (texel sizes)
 #endif
 // SPECULAR_POWER, BIAS and BIAS_MIN are #defines too: constants the compiler can fold
 // (measured: a few percent of the frame on llvmpipe).
@@ -196,44 +196,41 @@ float shadowCube(samplerCube map, vec3 fragToLight, float farPlane, vec3 normal,
 }
 
 #if CASCADES > 1
-// Light `light`'s test in cascade `c`: the camera-relative world position (pushed along
-// the normal by the cascade's own texel size) through the cascade's matrix.
-float cascadeLookup(SHADOW_SAMPLER_ARRAY map, int light, int c, vec3 normal, vec3 toLightDir)
+// The test in cascade `c` (the position already pushed along the normal by the cascade's
+// own texel size, in scene.vert).
+float cascadeLookup(SHADOW_SAMPLER_ARRAY map, int c, vec3 normal, vec3 toLightDir)
 {
-    vec3 p = worldPos;
-#if NORMAL_OFFSET
-    p += normalize(worldNormal) * cascadeNormalOffset[c];
-#endif
-    vec4 clip = cascadeMatrix[light * CASCADES + c] * vec4(p, 1.0);
-    vec3 projCoords = clip.xyz * 0.5 + 0.5;
-    if (projCoords.z > 1.0) {
-        return 1.0;
-    }
-    return pcfArray(map, projCoords.xy, float(c),
-                    projCoords.z - depthBias(normal, toLightDir));
+    vec3 projCoords = cascadePos[c].xyz * 0.5 + 0.5;
+    float lit = pcfArray(map, projCoords.xy, float(c),
+                         projCoords.z - depthBias(normal, toLightDir));
+    return projCoords.z > 1.0 ? 1.0 : lit;
 }
 
 // A cascaded light: the cascade is chosen by view depth; over the last CASCADE_BLEND of
 // its range it fades into the next one, so the seam does not show. Past the last split
-// (the shadow distance) everything is lit.
-float shadowCascades(SHADOW_SAMPLER_ARRAY map, int light, vec3 normal, vec3 toLightDir,
-                     inout Fragment f)
+// (the shadow distance) everything is lit. Indices that vary per pixel go into local
+// arrays and inputs (selects), never into uniform arrays (a gather per pixel on llvmpipe).
+float shadowCascades(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir, inout Fragment f)
 {
     float depth = -mvVertexPos.z;
-    if (depth >= cascadeSplit[CASCADES]) {
+    float splits[CASCADES + 1];
+    for (int k = 0; k <= CASCADES; ++k) {
+        splits[k] = cascadeSplit[k];
+    }
+    if (depth >= splits[CASCADES]) {
         return 1.0;
     }
     int c = 0;
     for (int k = 1; k < CASCADES; ++k) {
-        c += depth >= cascadeSplit[k] ? 1 : 0;
+        c += depth >= splits[k] ? 1 : 0;
     }
     f.cascade = c;
-    float lit = cascadeLookup(map, light, c, normal, toLightDir);
+    float lit = cascadeLookup(map, c, normal, toLightDir);
     if (CASCADE_BLEND > 0.0 && c + 1 < CASCADES) {
-        float end = cascadeSplit[c + 1];
-        float start = end - CASCADE_BLEND * (end - cascadeSplit[c]);
+        float end = splits[c + 1];
+        float start = end - CASCADE_BLEND * (end - splits[c]);
         if (depth > start) {
-            float next = cascadeLookup(map, light, c + 1, normal, toLightDir);
+            float next = cascadeLookup(map, c + 1, normal, toLightDir);
             lit = mix(lit, next, (depth - start) / (end - start));
         }
     }
@@ -288,7 +285,7 @@ void addLightCascades(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool con
                       inout Fragment f)
 {
     vec3 toLight = toLightOf(i, positional);
-    addLight(i, toLight, cone, shadowCascades(map, i, f.normal, toLight, f), f);
+    addLight(i, toLight, cone, shadowCascades(map, f.normal, toLight, f), f);
 }
 #endif
 

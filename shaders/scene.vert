@@ -1,6 +1,7 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
-// Compiled with NORMAL_OFFSET 0/1, LIGHT_COUNT, OUTPUT_GBUFFER and CASCADES (see scene.frag).
+// Compiled with NORMAL_OFFSET 0/1, LIGHT_COUNT and CASCADES (see scene.frag). The
+// G-buffer outputs are dropped by the linker when the fragment shader does not write them.
 // Lighting happens in view space, as in the book; world position (relative to the camera,
 // so it keeps its precision far from the origin) and normal are passed on for the G-buffer
 // outputs that tests and the exact reference read.
@@ -42,6 +43,14 @@ flat out vec3 diffuseColour[LIGHT_COUNT];
 flat out float reflectance;
 flat out vec3 lightVector[LIGHT_COUNT];
 
+#if CASCADES > 1
+// The cascaded light (one per scene): camera-relative world position to each cascade's
+// clip space, and each cascade's normal offset in world units (its own texel size).
+uniform mat4 cascadeMatrix[CASCADES];
+uniform float cascadeNormalOffset[CASCADES];
+out vec4 cascadePos[CASCADES];
+#endif
+
 void main()
 {
     vec4 mvPos = modelViewMatrix * vec4(position, 1.0);
@@ -65,12 +74,15 @@ void main()
 #endif
         mlightviewVertexPos[i] = orthoProjectionMatrix[i] * lightViewPos;
     }
-#if OUTPUT_GBUFFER || CASCADES > 1
     worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
     worldNormal = normalize(worldNormalMatrix * vertexNormal);
+#if CASCADES > 1
+    for (int c = 0; c < CASCADES; ++c) {
+#if NORMAL_OFFSET
+        cascadePos[c] = cascadeMatrix[c] * vec4(worldPos + worldNormal * cascadeNormalOffset[c], 1.0);
 #else
-    // Not read: the target has no G-buffer and no cascade looks the map up from them.
-    worldPos = vec3(0.0);
-    worldNormal = vec3(0.0, 0.0, 1.0);
+        cascadePos[c] = cascadeMatrix[c] * vec4(worldPos, 1.0);
+#endif
+    }
 #endif
 }

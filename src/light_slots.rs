@@ -37,7 +37,26 @@ pub enum ShadowKind {
 }
 
 impl ShadowKind {
-    /// The kind `light` gets under `settings`.
+    /// The kind each of a scene's lights gets: as [`ShadowKind::of`], except that only the
+    /// first casting directional light gets cascades (the sun; its cascades' positions are
+    /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
+    /// others one map each.
+    pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
+        let mut cascaded = false;
+        lights
+            .iter()
+            .map(|l| match ShadowKind::of(l, settings) {
+                ShadowKind::Cascades if cascaded => ShadowKind::Map,
+                ShadowKind::Cascades => {
+                    cascaded = true;
+                    ShadowKind::Cascades
+                }
+                kind => kind,
+            })
+            .collect()
+    }
+
+    /// The kind a light gets under `settings`, alone in its scene.
     pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
         match light {
             l if !l.casts_shadows() => ShadowKind::None,
@@ -118,4 +137,82 @@ pub fn defines(slots: &[LightSlot], visibility_light: usize) -> Vec<(String, Str
         ("LIGHT_CALLS".into(), calls),
         ("VISIBILITY_LIGHT".into(), visibility_light.to_string()),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+
+    #[test]
+    fn only_the_first_casting_directional_light_gets_cascades() {
+        let mut scene = Scene::load("three-lights").unwrap();
+        let sun = scene.lights[0];
+        let mut quiet_sun = sun;
+        if let Light::Directional(l) = &mut quiet_sun {
+            l.casts_shadows = false;
+        }
+        // A sun that does not cast, then two that do, then the spot, point and fill lights.
+        scene.lights = vec![quiet_sun, sun, sun, scene.lights[1], scene.lights[2]];
+        let settings = ShadowSettings {
+            cascades: 4,
+            ..scene.shadow
+        };
+        use ShadowKind::*;
+        assert_eq!(
+            ShadowKind::for_lights(&scene.lights, &settings),
+            [None, Cascades, Map, Map, Cube]
+        );
+        let one = ShadowSettings {
+            cascades: 1,
+            ..settings
+        };
+        assert_eq!(
+            ShadowKind::for_lights(&scene.lights, &one),
+            [None, Map, Map, Map, Cube]
+        );
+    }
+
+    #[test]
+    fn every_light_has_its_own_texture_unit_and_call() {
+        let slots = [
+            LightSlot {
+                shadow: ShadowKind::Map,
+                positional: false,
+                cone: false,
+            },
+            LightSlot {
+                shadow: ShadowKind::None,
+                positional: true,
+                cone: false,
+            },
+            LightSlot {
+                shadow: ShadowKind::Cube,
+                positional: true,
+                cone: false,
+            },
+            LightSlot {
+                shadow: ShadowKind::Cascades,
+                positional: false,
+                cone: false,
+            },
+        ];
+        let d: std::collections::HashMap<String, String> = defines(&slots, 2).into_iter().collect();
+        assert_eq!(d["LIGHT_COUNT"], "4");
+        assert_eq!(d["VISIBILITY_LIGHT"], "2");
+        assert_eq!(
+            d["LIGHT_SAMPLERS"].trim(),
+            "uniform SHADOW_SAMPLER_2D shadowMap0; uniform samplerCube shadowCube2; \
+             uniform SHADOW_SAMPLER_ARRAY cascadeMap3;"
+        );
+        assert_eq!(
+            d["LIGHT_CALLS"].trim(),
+            "addLight2D(0, shadowMap0, false, false, f); addLightUnshadowed(1, true, false, f); \
+             addLightCube(2, shadowCube2, true, false, f); \
+             addLightCascades(3, cascadeMap3, false, false, f);"
+        );
+        let units: Vec<u32> = (0..MAX_LIGHTS).map(texture_unit).collect();
+        assert_eq!(units, [1, 2, 3, 4]);
+        assert!(!units.contains(&MATERIAL_UNIT));
+    }
 }

@@ -13,6 +13,7 @@ use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::light_slots::{self, LightSlot, ShadowKind};
 use crate::scene::cascades::{camera_relative_matrix, fit_cascades, Cascade};
+use crate::scene::fit::item_world_boxes;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::PointPass;
 use crate::settings::{Cull, ShadowSettings};
@@ -281,8 +282,8 @@ impl Renderer {
         self.shadows
             .resize_with(scene.lights.len(), || LightShadow::None);
         self.shadow_views.resize(scene.lights.len(), None);
-        for (light, shadow) in scene.lights.iter().zip(self.shadows.iter_mut()) {
-            let kind = ShadowKind::of(light, &self.settings);
+        let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
+        for (kind, shadow) in kinds.into_iter().zip(self.shadows.iter_mut()) {
             if !shadow.fits(kind, &self.settings) {
                 *shadow = LightShadow::new(&self.gl, kind, &self.settings)?;
                 configure_sampling(shadow, &self.settings);
@@ -359,16 +360,18 @@ impl Renderer {
                 map.bind_for_writing();
                 unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
                 program.set_mat4("orthoProjectionMatrix", &sv.projection);
-                self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64);
+                self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64, &|_| true);
             }
             LightShadow::Cascades(array, cascades) => {
+                let boxes = item_world_boxes(scene);
                 for (layer, c) in cascades.iter().enumerate() {
                     array.bind_layer(layer as u32);
                     unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
                     let [l, r, b, t, n, f] = c.fitted.bounds;
                     let projection = DMat4::orthographic_rh_gl(l, r, b, t, n, f).as_mat4();
                     program.set_mat4("orthoProjectionMatrix", &projection);
-                    self.draw_casters(scene, program, "modelLightViewMatrix", c.fitted.view);
+                    let keep = |i: usize| c.may_hold(boxes[i].0, boxes[i].1);
+                    self.draw_casters(scene, program, "modelLightViewMatrix", c.fitted.view, &keep);
                 }
             }
             LightShadow::None | LightShadow::Cube(_) => {}
@@ -426,7 +429,7 @@ impl Renderer {
             unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
             let faces = PointLight::face_views().map(|v| projection * v);
             program.set_mat4_array("faceProjections", &faces);
-            self.draw_casters(scene, program, "modelLightMatrix", to_light);
+            self.draw_casters(scene, program, "modelLightMatrix", to_light, &|_| true);
         }
         for (face, view) in PointLight::face_views()
             .iter()
@@ -436,27 +439,30 @@ impl Renderer {
             cube.bind_face(face as u32);
             unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
             program.set_mat4("faceProjection", &(projection * *view));
-            self.draw_casters(scene, program, "modelLightMatrix", to_light);
+            self.draw_casters(scene, program, "modelLightMatrix", to_light, &|_| true);
         }
         program.unbind();
         self.end_depth_state();
         check_gl(&self.gl, "the point light's depth pass")
     }
 
-    /// Draws every shadow caster, one mesh's items at a time, with `uniform` set to
-    /// `light * model` (composed in double precision).
+    /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items
+    /// at a time, with `uniform` set to `light * model` (composed in double precision).
     fn draw_casters(
         &self,
         scene: &Scene,
         program: &ShaderProgram,
         uniform: &'static str,
         light: DMat4,
+        keep: &dyn Fn(usize) -> bool,
     ) {
         for (mesh_id, mesh) in self.meshes.iter().enumerate() {
             let items = scene
                 .items
                 .iter()
-                .filter(|i| i.mesh == mesh_id && i.casts_shadows);
+                .enumerate()
+                .filter(|(k, i)| i.mesh == mesh_id && i.casts_shadows && keep(*k))
+                .map(|(_, i)| i);
             mesh.render_list(items, |item| {
                 program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
             });
@@ -619,35 +625,28 @@ impl Renderer {
         Ok(())
     }
 
-    /// The cascades' matrices (camera-relative world to each cascade's clip space), split
-    /// depths and normal offsets.
+    /// The cascaded light's matrices (camera-relative world to each cascade's clip space),
+    /// split depths and normal offsets.
     fn set_cascade_uniforms(&self, scene: &Scene) {
-        let count = self.settings.cascades as usize;
-        if count <= 1 {
-            return;
-        }
         let p = &self.scene_programs[0].1;
-        let mut matrices = vec![Mat4::IDENTITY; scene.lights.len() * count];
-        let mut splits = Vec::new();
-        let mut offsets = Vec::new();
-        for (i, shadow) in self.shadows.iter().enumerate() {
+        for shadow in &self.shadows {
             let LightShadow::Cascades(_, cascades) = shadow else {
                 continue;
             };
-            for (c, cascade) in cascades.iter().enumerate() {
-                matrices[i * count + c] =
-                    camera_relative_matrix(cascade, scene.camera.position).as_mat4();
-            }
-            splits = cascades.iter().map(|c| c.near as f32).collect();
+            let matrices: Vec<Mat4> = cascades
+                .iter()
+                .map(|c| camera_relative_matrix(c, scene.camera.position).as_mat4())
+                .collect();
+            let mut splits: Vec<f32> = cascades.iter().map(|c| c.near as f32).collect();
             splits.extend(cascades.last().map(|c| c.far as f32));
-            offsets = cascades
+            let offsets: Vec<f32> = cascades
                 .iter()
                 .map(|c| self.settings.normal_offset * c.fitted.texel as f32)
                 .collect();
+            p.set_mat4_array("cascadeMatrix", &matrices);
+            p.set_f32_array("cascadeSplit", &splits);
+            p.set_f32_array("cascadeNormalOffset", &offsets);
         }
-        p.set_mat4_array("cascadeMatrix", &matrices);
-        p.set_f32_array("cascadeSplit", &splits);
-        p.set_f32_array("cascadeNormalOffset", &offsets);
     }
 
     /// The chapters' debug quad: a light's shadow map on the whole target, linearised for a
@@ -752,16 +751,18 @@ impl ProgramKey {
                 light_slots::MAX_LIGHTS
             )));
         }
+        let kinds = ShadowKind::for_lights(&scene.lights, settings);
         let slots = scene
             .lights
             .iter()
-            .map(|light| {
+            .zip(kinds)
+            .map(|(light, shadow)| {
                 let (positional, cone) = match light.shading() {
                     Shading::Direction(_) => (false, false),
                     Shading::Position { cone, .. } => (true, cone.is_some()),
                 };
                 LightSlot {
-                    shadow: ShadowKind::of(light, settings),
+                    shadow,
                     positional,
                     cone,
                 }

@@ -483,6 +483,14 @@ fn bad_scene_files_give_one_clear_error() {
             &["item[0].scatter.count: 0: expected 1 to 10000"],
         ),
         bad_generated(
+            "toml sphere detail too small",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"sphere\"\ndetail = [2, 2]\n",
+            )],
+            &["item[0].detail: [2, 2] for mesh 'sphere': expected [segments 3..512, rings 2..256]"],
+        ),
+        bad_generated(
             "toml no light",
             &[("scene.toml", b"name = \"dark\"\n")],
             &["light: missing: expected a [light] table or one to 4 [[lights]] tables"],

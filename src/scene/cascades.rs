@@ -12,7 +12,7 @@
 
 use glam::{DMat4, DVec3, Vec3};
 
-use super::fit::{light_basis, light_view, FittedBox};
+use super::fit::{aabb, corners, item_world_boxes, light_basis, light_view, FittedBox};
 use super::{Camera, Scene};
 
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
@@ -83,15 +83,13 @@ pub fn fit_cascades(
     );
     let basis = light_basis(to_light.as_dvec3());
     // How far towards the light casters reach, in light space (z points at the light).
+    let boxes = item_world_boxes(scene);
     let caster_top = scene
         .items
         .iter()
-        .filter(|i| i.casts_shadows)
-        .flat_map(|i| {
-            let (lo, hi) = scene.meshes[i.mesh].bounds();
-            let m = i.model_matrix64();
-            corners(lo.as_dvec3(), hi.as_dvec3()).map(move |c| m.transform_point3(c))
-        })
+        .zip(&boxes)
+        .filter(|(i, _)| i.casts_shadows)
+        .flat_map(|(_, (lo, hi))| corners(*lo, *hi))
         .map(|p| (basis.transpose() * p).z)
         .fold(f64::NEG_INFINITY, f64::max);
     splits
@@ -138,14 +136,21 @@ fn fit_slice(
     }
 }
 
-fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
-    std::array::from_fn(|i| {
-        DVec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    })
+impl Cascade {
+    /// Whether an item with world box `(lo, hi)` can land in this cascade's map: seen from
+    /// the light, its box overlaps the cascade's across and reaches in front of its far
+    /// plane. The depth pass draws only those (the near cascades hold few casters).
+    pub fn may_hold(&self, lo: DVec3, hi: DVec3) -> bool {
+        let view = self.fitted.view;
+        let (l, h) = aabb(
+            corners(lo, hi)
+                .into_iter()
+                .map(|c| view.transform_point3(c)),
+        );
+        let [left, right, bottom, top, _near, far] = self.fitted.bounds;
+        // View space looks down -z: depth is -z.
+        l.x <= right && h.x >= left && l.y <= top && h.y >= bottom && -h.z <= far
+    }
 }
 
 /// Camera-relative world position to the cascade's light clip space (the scene shader's

@@ -185,6 +185,9 @@ struct ItemFile {
     /// Instead of one item, `count` copies strewn over an area (the `large` scene's
     /// forest of pillars), each turned and scaled at random from a fixed seed.
     scatter: Option<ScatterFile>,
+    /// Tessellation of a built-in sphere ([segments, rings], default [48, 24]) or terrain
+    /// ([cells, cells], default [64, 64]): many copies of a mesh want fewer triangles.
+    detail: Option<[u32; 2]>,
 }
 
 /// Copies of an item at random (but repeatable) places: x and z uniform over `area`, y
@@ -350,7 +353,8 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
         .map_err(|e| Error::file(source, e.to_string()))?;
 
     let mut meshes: Vec<MeshData> = Vec::new();
-    let mut mesh_ids: HashMap<(String, u32, Winding, bool), usize> = HashMap::new();
+    type MeshKey = (String, u32, Winding, bool, Option<[u32; 2]>);
+    let mut mesh_ids: HashMap<MeshKey, usize> = HashMap::new();
     let mut textures: Vec<ImageData> = Vec::new();
     let mut texture_ids: HashMap<PathBuf, usize> = HashMap::new();
     let mut items = Vec::new();
@@ -404,11 +408,28 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                 format!("{}: expected a finite number > 0", item.tiles),
             ));
         }
+        let detail = match (item.mesh.as_str(), item.detail) {
+            (_, None) => None,
+            ("sphere", Some([s, r])) if (3..=512).contains(&s) && (2..=256).contains(&r) => {
+                Some([s, r])
+            }
+            ("terrain", Some([c, r])) if c == r && (1..=1024).contains(&c) => Some([c, r]),
+            (mesh, Some(d)) => {
+                return Err(bad(
+                    &field("detail"),
+                    format!(
+                        "{d:?} for mesh '{mesh}': expected [segments 3..512, rings 2..256] for \
+                         a sphere or [cells, cells] (1..1024) for a terrain"
+                    ),
+                ))
+            }
+        };
         let key = (
             item.mesh.clone(),
             item.tiles.to_bits(),
             item.winding,
             item.inside_out,
+            detail,
         );
         let mesh = match mesh_ids.get(&key) {
             Some(&id) => id,
@@ -422,8 +443,11 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
                     )),
                     "cube" => MeshData::cube(),
                     "plane" => MeshData::plane(item.tiles),
-                    "sphere" => MeshData::sphere(48, 24),
-                    "terrain" => MeshData::terrain(64),
+                    "sphere" => {
+                        let [segments, rings] = detail.unwrap_or([48, 24]);
+                        MeshData::sphere(segments, rings)
+                    }
+                    "terrain" => MeshData::terrain(detail.map_or(64, |d| d[0])),
                     path => {
                         let base = base.ok_or_else(|| {
                             bad(

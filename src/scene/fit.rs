@@ -52,17 +52,7 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     let to_light_space = |p: DVec3| basis.transpose() * p;
 
     // Every item receives; casters can also shadow. Boxes in world space, then in light space.
-    let mesh_bounds: Vec<(Vec3, Vec3)> = scene.meshes.iter().map(|m| m.bounds()).collect();
-    let world_box = |i: &super::GameItem| {
-        let (lo, hi) = mesh_bounds[i.mesh];
-        let m = i.model_matrix64();
-        aabb(
-            corners(lo.as_dvec3(), hi.as_dvec3())
-                .map(|c| m.transform_point3(c))
-                .into_iter(),
-        )
-    };
-    let boxes: Vec<(DVec3, DVec3)> = scene.items.iter().map(world_box).collect();
+    let boxes = item_world_boxes(scene);
     let (rlo, rhi) = union(&boxes);
 
     // The part of the receivers the camera can see: their box cut by the view frustum's box.
@@ -226,7 +216,25 @@ fn clipped_min_z(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> Option<f64> {
     poly.iter().map(|p| p.z).reduce(f64::min)
 }
 
-fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
+/// Each item's axis-aligned box in world space, in the scene's item order.
+pub fn item_world_boxes(scene: &Scene) -> Vec<(DVec3, DVec3)> {
+    let mesh_bounds: Vec<(Vec3, Vec3)> = scene.meshes.iter().map(|m| m.bounds()).collect();
+    scene
+        .items
+        .iter()
+        .map(|i| {
+            let (lo, hi) = mesh_bounds[i.mesh];
+            let m = i.model_matrix64();
+            aabb(
+                corners(lo.as_dvec3(), hi.as_dvec3())
+                    .map(|c| m.transform_point3(c))
+                    .into_iter(),
+            )
+        })
+        .collect()
+}
+
+pub(crate) fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
     std::array::from_fn(|i| {
         DVec3::new(
             if i & 1 == 0 { lo.x } else { hi.x },
@@ -236,7 +244,7 @@ fn corners(lo: DVec3, hi: DVec3) -> [DVec3; 8] {
     })
 }
 
-fn aabb(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+pub(crate) fn aabb(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
     points.fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(p), hi.max(p)),
