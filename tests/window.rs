@@ -11,15 +11,22 @@ fn load(path: &std::path::Path) -> image::RgbaImage {
         .to_rgba8()
 }
 
-#[test]
-#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
-fn window_shows_the_scene_and_its_shadow() {
+/// Fails unless there is a display (these tests must not pass by skipping), and makes a
+/// fresh folder for the test's images.
+fn display_and_dir(name: &str) -> std::path::PathBuf {
     assert!(
         std::env::var_os("DISPLAY").is_some(),
         "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
     );
-    let dir = std::env::temp_dir().join(format!("shadowmap-window-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("shadowmap-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_shows_the_scene_and_its_shadow() {
+    let dir = display_and_dir("window");
     let shot = dir.join("window.png");
     let headless = dir.join("headless.png");
 
@@ -77,12 +84,7 @@ fn window_shows_the_scene_and_its_shadow() {
 #[test]
 #[ignore = "needs an X display: .ci/run runs it under Xvfb"]
 fn window_survives_a_resize_storm_and_a_minimise() {
-    assert!(
-        std::env::var_os("DISPLAY").is_some(),
-        "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
-    );
-    let dir = std::env::temp_dir().join(format!("shadowmap-storm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = display_and_dir("storm");
     let shot = dir.join("after-storm.png");
     let stdout = stdout_of(
         bin()
@@ -116,12 +118,7 @@ fn window_survives_a_resize_storm_and_a_minimise() {
 #[test]
 #[ignore = "needs an X display: .ci/run runs it under Xvfb"]
 fn window_draws_several_lights_and_cascades_as_headless_does() {
-    assert!(
-        std::env::var_os("DISPLAY").is_some(),
-        "DISPLAY is not set: run this test under Xvfb (see .ci/run)"
-    );
-    let dir = std::env::temp_dir().join(format!("shadowmap-lights-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = display_and_dir("lights");
     for (name, extra) in [
         ("three-lights", &[][..]),
         (

@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 /// Owns the framebuffer and the depth texture attached to it; both are freed on drop.
 pub struct ShadowMap {
     gl: Gl,
-    fbo: glow::Framebuffer,
+    fbo: DepthFbo,
     depth_map: Texture,
     format: DepthFormat,
 }
@@ -27,17 +27,15 @@ impl ShadowMap {
     /// attachment gives [`Error::IncompleteFramebuffer`], never a silently black map.
     pub fn from_texture(gl: &Gl, depth_map: Texture, format: DepthFormat) -> Result<ShadowMap> {
         let size = depth_map.width();
-        let fbo = unsafe { gl.create_framebuffer() }
-            .map_err(|e| Error::Create(format!("shadow-map framebuffer: {e}")))?;
-        // Build the struct first so Drop frees the FBO if the completeness check fails.
+        // The FBO has its owner before the completeness check, so a failure frees it.
         let map = ShadowMap {
             gl: gl.clone(),
-            fbo,
+            fbo: DepthFbo::new(gl, "shadow-map framebuffer")?,
             depth_map,
             format,
         };
+        map.fbo.bind();
         unsafe {
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
             gl.framebuffer_texture_2d(
                 glow::FRAMEBUFFER,
                 glow::DEPTH_ATTACHMENT,
@@ -45,19 +43,15 @@ impl ShadowMap {
                 Some(map.depth_map.id()),
                 0,
             );
-            gl.draw_buffer(glow::NONE);
-            gl.read_buffer(glow::NONE);
         }
-        let status = check_framebuffer(gl, &format!("shadow map {size}x{size}"));
-        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
-        status?;
+        map.fbo.finish(&format!("shadow map {size}x{size}"))?;
         Ok(map)
     }
 
     /// Binds the FBO and sets the viewport to the map's size (the start of `renderDepthMap`).
     pub fn bind_for_writing(&self) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl.viewport(
                 0,
                 0,
@@ -83,8 +77,8 @@ impl ShadowMap {
     pub fn read_depth(&self) -> Vec<f32> {
         let n = (self.size() * self.size()) as usize;
         let mut bytes = vec![0u8; n * 4];
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
             self.gl.read_pixels(
                 0,
@@ -104,7 +98,42 @@ impl ShadowMap {
     }
 }
 
-impl Drop for ShadowMap {
+/// A framebuffer with only a depth attachment (draw and read buffers NONE), shared by the
+/// three kinds of shadow map; deleted on drop.
+struct DepthFbo {
+    gl: Gl,
+    fbo: glow::Framebuffer,
+}
+
+impl DepthFbo {
+    fn new(gl: &Gl, what: &str) -> Result<DepthFbo> {
+        let fbo = unsafe { gl.create_framebuffer() }
+            .map_err(|e| Error::Create(format!("{what}: {e}")))?;
+        Ok(DepthFbo {
+            gl: gl.clone(),
+            fbo,
+        })
+    }
+
+    fn bind(&self) {
+        unsafe { self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo)) };
+    }
+
+    /// Once the depth attachment is bound: no colour buffers, then the completeness check
+    /// (an error naming `what`, never a silently black map).
+    fn finish(&self, what: &str) -> Result<()> {
+        self.bind();
+        unsafe {
+            self.gl.draw_buffer(glow::NONE);
+            self.gl.read_buffer(glow::NONE);
+        }
+        let status = check_framebuffer(&self.gl, what);
+        unsafe { self.gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
+        status
+    }
+}
+
+impl Drop for DepthFbo {
     fn drop(&mut self) {
         unsafe { self.gl.delete_framebuffer(self.fbo) };
     }
@@ -115,38 +144,29 @@ impl Drop for ShadowMap {
 /// geometry shader).
 pub struct CubeShadowMap {
     gl: Gl,
-    fbo: glow::Framebuffer,
+    fbo: DepthFbo,
     cube: Texture,
     format: DepthFormat,
 }
 
 impl CubeShadowMap {
     pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<CubeShadowMap> {
-        let cube = Texture::depth_cube(gl, size, format)?;
-        let fbo = unsafe { gl.create_framebuffer() }
-            .map_err(|e| Error::Create(format!("cube shadow-map framebuffer: {e}")))?;
         let map = CubeShadowMap {
             gl: gl.clone(),
-            fbo,
-            cube,
+            fbo: DepthFbo::new(gl, "cube shadow-map framebuffer")?,
+            cube: Texture::depth_cube(gl, size, format)?,
             format,
         };
         map.bind_face(0);
-        unsafe {
-            gl.draw_buffer(glow::NONE);
-            gl.read_buffer(glow::NONE);
-        }
-        let status = check_framebuffer(gl, &format!("cube shadow map {size}x{size}"));
-        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
-        status?;
+        map.fbo.finish(&format!("cube shadow map {size}x{size}"))?;
         Ok(map)
     }
 
     /// Binds the framebuffer with face `face` (0..6: +X, -X, +Y, -Y, +Z, -Z) as its depth
     /// attachment, and the viewport to the face's size.
     pub fn bind_face(&self, face: u32) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl.framebuffer_texture_2d(
                 glow::FRAMEBUFFER,
                 glow::DEPTH_ATTACHMENT,
@@ -162,8 +182,8 @@ impl CubeShadowMap {
     /// Binds the framebuffer with the whole cube map attached (layered: a geometry shader
     /// picks each face with gl_Layer), and the viewport to a face's size.
     pub fn bind_layered(&self) -> Result<()> {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl.framebuffer_texture(
                 glow::FRAMEBUFFER,
                 glow::DEPTH_ATTACHMENT,
@@ -189,18 +209,12 @@ impl CubeShadowMap {
     }
 }
 
-impl Drop for CubeShadowMap {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_framebuffer(self.fbo) };
-    }
-}
-
 /// The cascades of a cascaded shadow map: one depth texture array (a layer per cascade) and
 /// the framebuffer each layer is drawn into in turn. GL 3.3 has texture arrays and
 /// `glFramebufferTextureLayer`, so no extension is needed.
 pub struct CascadeShadowMap {
     gl: Gl,
-    fbo: glow::Framebuffer,
+    fbo: DepthFbo,
     array: Texture,
     format: DepthFormat,
     layers: u32,
@@ -208,32 +222,24 @@ pub struct CascadeShadowMap {
 
 impl CascadeShadowMap {
     pub fn new(gl: &Gl, size: u32, layers: u32, format: DepthFormat) -> Result<CascadeShadowMap> {
-        let array = Texture::depth_array(gl, size, layers, format)?;
-        let fbo = unsafe { gl.create_framebuffer() }
-            .map_err(|e| Error::Create(format!("cascade shadow-map framebuffer: {e}")))?;
         let map = CascadeShadowMap {
             gl: gl.clone(),
-            fbo,
-            array,
+            fbo: DepthFbo::new(gl, "cascade shadow-map framebuffer")?,
+            array: Texture::depth_array(gl, size, layers, format)?,
             format,
             layers,
         };
         map.bind_layer(0);
-        unsafe {
-            gl.draw_buffer(glow::NONE);
-            gl.read_buffer(glow::NONE);
-        }
-        let status = check_framebuffer(gl, &format!("cascaded shadow map {size}x{size}x{layers}"));
-        unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
-        status?;
+        map.fbo
+            .finish(&format!("cascaded shadow map {size}x{size}x{layers}"))?;
         Ok(map)
     }
 
     /// Binds the framebuffer with cascade `layer` as its depth attachment, and the viewport
     /// to the layer's size.
     pub fn bind_layer(&self, layer: u32) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl.framebuffer_texture_layer(
                 glow::FRAMEBUFFER,
                 glow::DEPTH_ATTACHMENT,
@@ -260,11 +266,5 @@ impl CascadeShadowMap {
 
     pub fn layers(&self) -> u32 {
         self.layers
-    }
-}
-
-impl Drop for CascadeShadowMap {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_framebuffer(self.fbo) };
     }
 }
