@@ -145,3 +145,26 @@ fn cli_rejects_bad_values_with_a_clear_message() {
     );
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn help_names_every_built_in_scene_and_the_demo_keys() {
+    let help = common::stdout_of(common::bin().arg("--help"));
+    let demo = common::stdout_of(common::bin().args(["demo", "--help"]));
+    for name in shadowmap::Scene::builtin_names() {
+        assert!(
+            help.contains(name),
+            "`shadowmap --help` omits the scene {name}"
+        );
+        assert!(
+            demo.contains(name),
+            "`shadowmap demo --help` omits the scene {name}"
+        );
+    }
+    for key in [
+        "M shows each casting light's shadow map",
+        "C tints the cascades",
+        "K cycles",
+    ] {
+        assert!(demo.contains(key), "`shadowmap demo --help` omits: {key}");
+    }
+}

@@ -18,11 +18,13 @@ use shadowmap::{Scene, ShadowSettings};
     long_about = "The classic shadow-mapping chapters, ported to Rust and OpenGL 3.3 core.\n\n\
         With no command, opens the DummyGame demo in a window (or, with no display, renders it \
         headless to shadowmap-demo.png). `render` draws frames headless through EGL and writes \
-        PNGs.\n\nScenes: a built-in name (dummy) or a path to a .toml scene file (see the README, \
-        \"Scene files\").",
+        PNGs.\n\nScenes: a built-in name (dummy, learnopengl, slides, playground, point-shadows, \
+        large, three-lights) or a path to a .toml scene file (see the README, \"Scene files\").",
     after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
         shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
-        shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope"
+        shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope\n  \
+        shadowmap render --scene large --cascades 4 --map-size 1024 --show-cascades --out csm.png\n  \
+        shadowmap compare --scene three-lights --light 2 --out-dir point"
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -32,6 +34,10 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Open the interactive window (the default).
+    ///
+    /// Keys: arrows turn the light, WASD/Z/X move, right-drag looks, 1..9 0 - = pick a chapter
+    /// step (Backspace: the scene's own), M shows each casting light's shadow map in turn,
+    /// C tints the cascades, K cycles 1..4 cascades, F12 saves a screenshot, ESC quits.
     Demo(DemoArgs),
     /// Render frames headless (EGL, no display needed) and write PNG files.
     Render(RenderArgs),
@@ -48,7 +54,8 @@ pub enum Command {
 /// Scene choice and the light angle, shared by every command.
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// A built-in scene (dummy) or a .toml scene file.
+    /// A built-in scene (dummy, learnopengl, slides, playground, point-shadows, large,
+    /// three-lights) or a .toml scene file.
     #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
     pub scene: String,
     /// The DummyGame light angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
