@@ -21,14 +21,12 @@
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
 in vec3 mvVertexPos;
-in vec4 mlightviewVertexPos[LIGHT_COUNT];
-in vec3 worldPos;
-in vec3 worldNormal;
+in vec4 mlightviewVertexPos[MAP_SLOTS];  // slot p of each light with a 2D or cube map
 // The same for every pixel of an item (see scene.vert: on llvmpipe a flat input costs a
 // pixel far less than a uniform read).
-flat in vec3 ambientColour;              // the material's colour x the ambient light
+flat in vec4 ambientColour;              // the material's colour x the ambient light; a:
 flat in vec3 diffuseColour[LIGHT_COUNT]; // the material's colour x light i (x intensity)
-flat in float reflectance;               // specular = diffuse x reflectance
+                                         // the reflectance (specular = diffuse x it)
 flat in vec3 lightVector[LIGHT_COUNT];   // view space: light i's position, or its direction
 
 // The extra outputs exist only when the target has them (OUTPUT_VISIBILITY,
@@ -40,6 +38,7 @@ layout (location = 1) out vec4 visibilityOut;  // r = shadow-test visibility, g 
 #if OUTPUT_GBUFFER
 layout (location = 2) out vec4 worldPosOut;
 layout (location = 3) out vec4 worldNormalOut;
+uniform mat3 viewToWorld;  // the camera's rotation, transposed
 #endif
 
 #if HW_PCF
@@ -247,7 +246,7 @@ vec3 toLightOf(int i, bool positional)
 // Adds light i, scaled by its shadow test `lit`, to the fragment.
 void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
 {
-    vec3 light = calcLightColour(diffuseColour[i], diffuseColour[i] * reflectance,
+    vec3 light = calcLightColour(diffuseColour[i], diffuseColour[i] * ambientColour.a,
                                  mvVertexPos, toLight, f.normal);
     if (cone) {
         // A spot's cone, with a soft rim of about a degree.
@@ -267,16 +266,17 @@ void addLightUnshadowed(int i, bool positional, bool cone, inout Fragment f)
     addLight(i, toLightOf(i, positional), cone, 1.0, f);
 }
 
-void addLight2D(int i, SHADOW_SAMPLER_2D map, bool positional, bool cone, inout Fragment f)
+void addLight2D(int i, int p, SHADOW_SAMPLER_2D map, bool positional, bool cone,
+                inout Fragment f)
 {
     vec3 toLight = toLightOf(i, positional);
-    addLight(i, toLight, cone, shadow2D(map, mlightviewVertexPos[i], f.normal, toLight), f);
+    addLight(i, toLight, cone, shadow2D(map, mlightviewVertexPos[p], f.normal, toLight), f);
 }
 
-void addLightCube(int i, samplerCube map, bool positional, bool cone, inout Fragment f)
+void addLightCube(int i, int p, samplerCube map, bool positional, bool cone, inout Fragment f)
 {
     vec3 toLight = toLightOf(i, positional);
-    float lit = shadowCube(map, mlightviewVertexPos[i].xyz, lightFar[i], f.normal, toLight);
+    float lit = shadowCube(map, mlightviewVertexPos[p].xyz, lightFar[i], f.normal, toLight);
     addLight(i, toLight, cone, lit, f);
 }
 
@@ -303,7 +303,7 @@ void main()
 
     // Ambient light is not shadowed. The book clamps to [0, 1]; the colour buffer is
     // normalised fixed point, which clamps on the way in, so the shader need not.
-    fragColor = vec4(f.base * (ambientColour + f.light), 1.0);
+    fragColor = vec4(f.base * (ambientColour.rgb + f.light), 1.0);
 #if SHOW_CASCADES
     const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
                                  vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));
@@ -316,7 +316,9 @@ void main()
     visibilityOut = vec4(f.visibility, 1.0, 0.0, 1.0);
 #endif
 #if OUTPUT_GBUFFER
-    worldPosOut = vec4(worldPos, 1.0);
-    worldNormalOut = vec4(normalize(worldNormal), 1.0);
+    // The view is rigid: its transposed rotation takes view-space position and normal back to
+    // world space, relative to the camera (where the reference wants them).
+    worldPosOut = vec4(viewToWorld * mvVertexPos, 1.0);
+    worldNormalOut = vec4(normalize(viewToWorld * mvVertexNormal), 1.0);
 #endif
 }

@@ -99,30 +99,67 @@ pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     }
 }
 
+/// For each light, its slot among the lights with a 2D or cube map (the ones that get a
+/// light-space position from the vertex shader), in order; `None` for the others.
+pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usize>> {
+    let mut next = 0;
+    kinds
+        .into_iter()
+        .map(|k| match k {
+            ShadowKind::Map | ShadowKind::Cube => {
+                next += 1;
+                Some(next - 1)
+            }
+            ShadowKind::None | ShadowKind::Cascades => None,
+        })
+        .collect()
+}
+
+/// The vertex shader's output components for these lights with `cascades` layers: texture
+/// coordinate, view-space normal and position (8), a light-space position per mapped
+/// light (4 each), the cascaded light's positions (4 per cascade), and per light a flat
+/// diffuse colour and light vector (6 each) besides the ambient colour (4). GL 3.3
+/// guarantees 64; the worst case (four lights, one with four cascades) is exactly that.
+pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
+    let mapped = map_slots(slots.iter().map(|s| s.shadow))
+        .iter()
+        .flatten()
+        .count();
+    let cascaded = slots.iter().any(|s| s.shadow == ShadowKind::Cascades);
+    8 + 4 * mapped + if cascaded { 4 * cascades as usize } else { 0 } + 4 + 6 * slots.len()
+}
+
 /// The `#define`s that lay the lights out in `shaders/scene.{vert,frag}`:
-/// `LIGHT_COUNT` (the uniform arrays' length), `LIGHT_SAMPLERS` (one declaration per
-/// casting light), `LIGHT_CALLS` (one `add...` call per light, in order) and
-/// `VISIBILITY_LIGHT` (whose shadow test goes to the visibility output that `compare`
-/// reads).
+/// `LIGHT_COUNT` (the per-light arrays' length), `MAP_COUNT` and `MAP_SLOTS` (lights with
+/// a light-space position, and their arrays' length, at least 1), `LIGHT_SAMPLERS` (one
+/// declaration per casting light), `LIGHT_CALLS` (one `add...` call per light, in order,
+/// with its map slot) and `VISIBILITY_LIGHT` (whose shadow test goes to the visibility
+/// output that `compare` reads).
 pub fn defines(slots: &[LightSlot], visibility_light: usize) -> Vec<(String, String)> {
     let mut samplers = String::new();
     let mut calls = String::new();
+    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
+    let mapped = map_slot.iter().flatten().count();
     for (i, slot) in slots.iter().enumerate() {
-        let (p, c) = (slot.positional, slot.cone);
+        let p = map_slot[i].unwrap_or(0);
+        let (positional, c) = (slot.positional, slot.cone);
         let sampler = sampler_name(i, slot.shadow);
         let (ty, call) = match slot.shadow {
-            ShadowKind::None => (None, format!("addLightUnshadowed({i}, {p}, {c}, f);")),
+            ShadowKind::None => (
+                None,
+                format!("addLightUnshadowed({i}, {positional}, {c}, f);"),
+            ),
             ShadowKind::Map => (
                 Some("SHADOW_SAMPLER_2D"),
-                format!("addLight2D({i}, shadowMap{i}, {p}, {c}, f);"),
+                format!("addLight2D({i}, {p}, shadowMap{i}, {positional}, {c}, f);"),
             ),
             ShadowKind::Cube => (
                 Some("samplerCube"),
-                format!("addLightCube({i}, shadowCube{i}, {p}, {c}, f);"),
+                format!("addLightCube({i}, {p}, shadowCube{i}, {positional}, {c}, f);"),
             ),
             ShadowKind::Cascades => (
                 Some("SHADOW_SAMPLER_ARRAY"),
-                format!("addLightCascades({i}, cascadeMap{i}, {p}, {c}, f);"),
+                format!("addLightCascades({i}, cascadeMap{i}, {positional}, {c}, f);"),
             ),
         };
         if let (Some(ty), Some(name)) = (ty, sampler) {
@@ -133,6 +170,8 @@ pub fn defines(slots: &[LightSlot], visibility_light: usize) -> Vec<(String, Str
     }
     vec![
         ("LIGHT_COUNT".into(), slots.len().max(1).to_string()),
+        ("MAP_COUNT".into(), mapped.to_string()),
+        ("MAP_SLOTS".into(), mapped.max(1).to_string()),
         ("LIGHT_SAMPLERS".into(), samplers),
         ("LIGHT_CALLS".into(), calls),
         ("VISIBILITY_LIGHT".into(), visibility_light.to_string()),
@@ -201,18 +240,41 @@ mod tests {
         assert_eq!(d["LIGHT_COUNT"], "4");
         assert_eq!(d["VISIBILITY_LIGHT"], "2");
         assert_eq!(
+            (d["MAP_COUNT"].as_str(), d["MAP_SLOTS"].as_str()),
+            ("2", "2")
+        );
+        assert_eq!(
             d["LIGHT_SAMPLERS"].trim(),
             "uniform SHADOW_SAMPLER_2D shadowMap0; uniform samplerCube shadowCube2; \
              uniform SHADOW_SAMPLER_ARRAY cascadeMap3;"
         );
         assert_eq!(
             d["LIGHT_CALLS"].trim(),
-            "addLight2D(0, shadowMap0, false, false, f); addLightUnshadowed(1, true, false, f); \
-             addLightCube(2, shadowCube2, true, false, f); \
+            "addLight2D(0, 0, shadowMap0, false, false, f); addLightUnshadowed(1, true, false, f); \
+             addLightCube(2, 1, shadowCube2, true, false, f); \
              addLightCascades(3, cascadeMap3, false, false, f);"
         );
         let units: Vec<u32> = (0..MAX_LIGHTS).map(texture_unit).collect();
         assert_eq!(units, [1, 2, 3, 4]);
         assert!(!units.contains(&MATERIAL_UNIT));
+    }
+
+    #[test]
+    fn the_worst_case_fits_gl_3_3s_vertex_outputs() {
+        let slot = |shadow| LightSlot {
+            shadow,
+            positional: true,
+            cone: false,
+        };
+        use ShadowKind::*;
+        let worst = [slot(Cascades), slot(Map), slot(Cube), slot(Map)];
+        assert_eq!(vertex_outputs(&worst, 4), 64);
+        let maps = [slot(Map), slot(Map), slot(Cube), slot(Map)];
+        assert_eq!(vertex_outputs(&maps, 4), 52);
+        assert_eq!(vertex_outputs(&[slot(Map)], 1), 22);
+        assert_eq!(
+            map_slots([Cascades, Map, None, Cube]),
+            [Option::None, Some(0), Option::None, Some(1)]
+        );
     }
 }

@@ -12,7 +12,7 @@ use crate::engine::{
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::light_slots::{self, LightSlot, ShadowKind};
-use crate::scene::cascades::{camera_relative_matrix, fit_cascades, Cascade};
+use crate::scene::cascades::{camera_relative_matrix, fit_cascades, Cascade, CascadeSpec};
 use crate::scene::fit::item_world_boxes;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::PointPass;
@@ -326,32 +326,36 @@ impl Renderer {
             self.shadow_views[index] = None;
             return Ok(());
         }
-        let sv = scene.shadow_view(index, &self.settings);
-        self.shadow_views[index] = Some(sv);
-        match (&light, &self.shadows[index]) {
-            (Light::Point(p), _) => return self.render_cube_depth_map(scene, index, p),
-            (Light::Directional(l), LightShadow::Cascades(..)) => {
-                let s = &self.settings;
-                let far = if s.shadow_distance > 0.0 {
-                    s.shadow_distance
-                } else {
-                    f32::INFINITY
+        let s = &self.settings;
+        let sv = match (&light, &mut self.shadows[index]) {
+            (Light::Point(p), _) => {
+                self.shadow_views[index] = Some(scene.shadow_view(index, s));
+                return self.render_cube_depth_map(scene, index, p);
+            }
+            (Light::Directional(l), LightShadow::Cascades(_, c)) => {
+                let spec = CascadeSpec {
+                    count: s.cascades,
+                    lambda: s.cascade_lambda,
+                    blend: s.cascade_blend,
+                    far: if s.shadow_distance > 0.0 {
+                        s.shadow_distance
+                    } else {
+                        f32::INFINITY
+                    },
+                    map_size: s.map_size,
+                    snap: s.snap,
                 };
-                let cascades = fit_cascades(
-                    scene,
-                    l.direction,
-                    s.cascades,
-                    s.cascade_lambda,
-                    far,
-                    s.map_size,
-                    s.snap,
-                );
-                if let LightShadow::Cascades(_, c) = &mut self.shadows[index] {
-                    *c = cascades;
+                *c = fit_cascades(scene, l.direction, &spec);
+                // The first cascade stands for the light's camera (reports, the depth
+                // view's near and far); the one-map fit is not needed.
+                match c.first() {
+                    Some(first) => first.fitted.shadow_view(l.direction),
+                    None => scene.shadow_view(index, s),
                 }
             }
-            _ => {}
-        }
+            _ => scene.shadow_view(index, s),
+        };
+        self.shadow_views[index] = Some(sv);
         self.begin_depth_state();
         let program = &self.depth_program;
         program.bind();
@@ -550,12 +554,16 @@ impl Renderer {
             "projectionMatrix",
             &scene.camera.projection_matrix(width, height),
         );
-        let u = LightUniforms::of(scene, &self.shadow_views, &self.settings, view64);
+        let kinds: Vec<ShadowKind> = self.shadows.iter().map(LightShadow::kind).collect();
+        let u = LightUniforms::of(scene, &self.shadow_views, &kinds, &self.settings, view64);
         p.set_vec3_array("lightPositionOrDirection", &u.position_or_direction);
         p.set_f32_array("lightConeCos", &u.cone_cos);
         p.set_vec3_array("lightConeAxis", &u.cone_axis);
         p.set_f32_array("lightFar", &u.far);
         p.set_f32_array("normalOffset", &u.normal_offset);
+        p.set_mat3_array("lightRotation", &u.rotation);
+        // The view is rigid: the transpose of its rotation undoes it (G-buffer outputs).
+        p.set_mat3("viewToWorld", &Mat3::from_mat4(view).transpose());
         p.set_mat4_array("orthoProjectionMatrix", &u.projection);
         self.set_cascade_uniforms(scene);
         p.set_i32("textureSampler", light_slots::MATERIAL_UNIT as i32);
@@ -586,12 +594,14 @@ impl Renderer {
                 p.set_mat4_array("modelLightViewMatrix", &light_matrices);
                 let m = &item.material;
                 let colour = m.colour.truncate();
-                p.set_vec3("material.ambient", scene.ambient * colour);
+                p.set_vec4(
+                    "material.ambient",
+                    (scene.ambient * colour).extend(m.reflectance),
+                );
                 for (d, light) in diffuse.iter_mut().zip(&u.colour) {
                     *d = *light * colour;
                 }
                 p.set_vec3_array("material.diffuse", &diffuse);
-                p.set_f32("material.reflectance", m.reflectance);
                 m.texture
                     .and_then(|t| self.textures.get(t))
                     .unwrap_or(&self.white)
@@ -779,7 +789,8 @@ impl ProgramKey {
     }
 }
 
-/// The per-light uniform arrays of the scene pass, in view space.
+/// The per-light uniform arrays of the scene pass (view space), and the per-slot ones of
+/// the lights with a 2D or cube map ([`light_slots::map_slots`]).
 struct LightUniforms {
     colour: Vec<Vec3>,
     /// A positional light's position, or the direction towards a directional one.
@@ -787,30 +798,37 @@ struct LightUniforms {
     cone_cos: Vec<f32>,
     cone_axis: Vec<Vec3>,
     far: Vec<f32>,
+    /// Per map slot.
     normal_offset: Vec<f32>,
     projection: Vec<Mat4>,
-    /// World to the light's view (a point light: to the light's position), per light.
+    /// World to the light's view (a point light: to the light's position), per map slot.
     light_from: Vec<DMat4>,
+    /// Its rotation (for normal offsets), per map slot.
+    rotation: Vec<Mat3>,
 }
 
 impl LightUniforms {
     fn of(
         scene: &Scene,
         views: &[Option<ShadowView>],
+        kinds: &[ShadowKind],
         settings: &ShadowSettings,
         view64: DMat4,
     ) -> LightUniforms {
         let view = view64.as_mat4();
         let n = scene.lights.len();
+        let slots = light_slots::map_slots(kinds.iter().copied());
+        let mapped = slots.iter().flatten().count().max(1);
         let mut u = LightUniforms {
             colour: Vec::with_capacity(n),
             position_or_direction: vec![Vec3::Z; n],
             cone_cos: vec![-2.0; n],
             cone_axis: vec![Vec3::Z; n],
             far: vec![1.0; n],
-            normal_offset: vec![0.0; n],
-            projection: vec![Mat4::IDENTITY; n],
-            light_from: vec![DMat4::IDENTITY; n],
+            normal_offset: vec![0.0; mapped],
+            projection: vec![Mat4::IDENTITY; mapped],
+            light_from: vec![DMat4::IDENTITY; mapped],
+            rotation: vec![Mat3::IDENTITY; mapped],
         };
         for (i, light) in scene.lights.iter().enumerate() {
             u.colour.push(light.colour() * light.intensity());
@@ -825,24 +843,44 @@ impl LightUniforms {
                     }
                 }
             }
-            let Some(sv) = views.get(i).copied().flatten() else {
-                continue;
-            };
-            u.normal_offset[i] = settings.normal_offset * sv.texel_world;
-            // A point light's test works on the fragment relative to the light.
             if let Light::Point(l) = light {
                 u.far[i] = l.far;
-                u.light_from[i] = DMat4::from_translation(-l.position.as_dvec3());
-            } else {
-                u.projection[i] = sv.projection;
-                u.light_from[i] = sv.view64;
             }
+            let (Some(p), Some(sv)) = (slots[i], views.get(i).copied().flatten()) else {
+                continue;
+            };
+            u.normal_offset[p] = settings.normal_offset * sv.texel_world;
+            // A point light's test works on the fragment relative to the light.
+            let from = match light {
+                Light::Point(l) => DMat4::from_translation(-l.position.as_dvec3()),
+                _ => {
+                    u.projection[p] = sv.projection;
+                    sv.view64
+                }
+            };
+            u.light_from[p] = from;
+            u.rotation[p] = Mat3::from_mat4(from.as_mat4());
         }
         u
     }
 }
 
 fn scene_program(gl: &Gl, key: &ProgramKey) -> Result<ShaderProgram> {
+    let cascades = key
+        .settings
+        .iter()
+        .find(|(k, _)| k == "CASCADES")
+        .and_then(|(_, v)| v.parse().ok())
+        .unwrap_or(1);
+    let needed = light_slots::vertex_outputs(&key.slots, cascades);
+    let allowed = gl_limits(gl).max_vertex_output_components as usize;
+    if needed > allowed {
+        return Err(Error::Invalid(format!(
+            "{} lights with {cascades} cascades need {needed} vertex shader outputs and this \
+             driver allows {allowed}: use fewer lights or fewer cascades",
+            key.slots.len()
+        )));
+    }
     let mut defines = key.settings.clone();
     for (name, on) in [
         ("OUTPUT_VISIBILITY", key.outputs.visibility),

@@ -6,7 +6,7 @@ mod common;
 
 use glam::{DVec3, Vec3};
 use shadowmap::compare::{compare, render_visibility, CompareOptions};
-use shadowmap::scene::cascades::{fit_cascades, practical_splits, MAX_CASCADES};
+use shadowmap::scene::cascades::{fit_cascades, practical_splits, CascadeSpec, MAX_CASCADES};
 use shadowmap::scene::Camera;
 use shadowmap::settings::{Filter, ShadowSettings};
 use shadowmap::Scene;
@@ -64,14 +64,27 @@ fn every_cascade_holds_its_slice_of_the_view() {
     let to_light = scene.light().as_directional().unwrap().direction;
     for (pitch, yaw) in [(8.0, 0.0), (-30.0, 90.0), (45.0, 200.0), (89.0, 10.0)] {
         scene.camera.rotation = Vec3::new(pitch, yaw, 0.0);
-        let cascades = fit_cascades(&scene, to_light, 4, 0.75, f32::INFINITY, 1024, true);
+        let spec = CascadeSpec {
+            count: 4,
+            lambda: 0.75,
+            blend: 0.1,
+            far: f32::INFINITY,
+            map_size: 1024,
+            snap: true,
+        };
+        let cascades = fit_cascades(&scene, to_light, &spec);
         let cam = scene.camera;
         let aspect = scene.size[0] as f64 / scene.size[1] as f64;
         let tan = ((cam.fov as f64).to_radians() * 0.5).tan();
         let inverse_view = cam.view_matrix64().inverse();
         for (i, c) in cascades.iter().enumerate() {
             let [l, r, b, t, n, f] = c.fitted.bounds;
-            for depth in [c.near, c.far] {
+            // The box holds its slice and the part of the previous one that fades into it.
+            let from = match i {
+                0 => c.near,
+                _ => c.near - 0.1 * (c.near - cascades[i - 1].near),
+            };
+            for depth in [from, c.near, c.far] {
                 for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)] {
                     let corner = DVec3::new(sx * depth * tan * aspect, sy * depth * tan, -depth);
                     let world = inverse_view.transform_point3(corner);

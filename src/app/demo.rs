@@ -302,7 +302,9 @@ impl Demo {
         self.args
             .settings
             .check(context.gl(), &self.scene, &self.settings)?;
-        let renderer = Renderer::new(context.gl(), &self.scene, &self.settings)?;
+        let mut renderer = Renderer::new(context.gl(), &self.scene, &self.settings)?;
+        // A window made again (after a suspend) keeps showing the light M had picked.
+        renderer.set_depth_view_light(self.depth_light);
         Ok(Running { renderer, context })
     }
 

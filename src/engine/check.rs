@@ -116,6 +116,8 @@ pub struct GlLimits {
     pub max_texture_size: u32,
     pub max_renderbuffer_size: u32,
     pub max_viewport: [u32; 2],
+    /// Components a vertex shader may output (GL 3.3 guarantees 64).
+    pub max_vertex_output_components: u32,
 }
 
 /// Reads the limits of the current context.
@@ -127,6 +129,9 @@ pub fn gl_limits(gl: &Gl) -> GlLimits {
             max_texture_size: gl.get_parameter_i32(glow::MAX_TEXTURE_SIZE).max(0) as u32,
             max_renderbuffer_size: gl.get_parameter_i32(glow::MAX_RENDERBUFFER_SIZE).max(0) as u32,
             max_viewport: [viewport[0].max(0) as u32, viewport[1].max(0) as u32],
+            max_vertex_output_components: gl
+                .get_parameter_i32(glow::MAX_VERTEX_OUTPUT_COMPONENTS)
+                .max(0) as u32,
         }
     }
 }

@@ -230,6 +230,14 @@ impl ShaderProgram {
         }
     }
 
+    /// Sets `name[0]`, `name[1]`, ... from a slice.
+    pub fn set_mat3_array(&self, name: &'static str, ms: &[Mat3]) {
+        if let Some(loc) = self.location(name) {
+            let flat: Vec<f32> = ms.iter().flat_map(|m| m.to_cols_array()).collect();
+            unsafe { self.gl.uniform_matrix_3_f32_slice(Some(&loc), false, &flat) };
+        }
+    }
+
     pub fn set_mat3(&self, name: &'static str, m: &Mat3) {
         if let Some(loc) = self.location(name) {
             unsafe {

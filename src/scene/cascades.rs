@@ -61,18 +61,32 @@ pub struct Cascade {
     pub far: f64,
 }
 
+/// How cascades are cut and fitted (the shadow settings' cascade fields).
+#[derive(Debug, Clone, Copy)]
+pub struct CascadeSpec {
+    pub count: u32,
+    pub lambda: f32,
+    /// The fraction of each cascade's range that fades into the next: the next cascade's
+    /// box starts that far before its split, so the fade reads inside it.
+    pub blend: f32,
+    /// Where shadows end (the camera's far plane when that is nearer).
+    pub far: f32,
+    pub map_size: u32,
+    /// Move boxes in whole texels.
+    pub snap: bool,
+}
+
 /// The cascades of a light shining from `to_light` for the scene's fitting camera (the
-/// viewer, or `fit_camera`), one `map_size` layer each. `far` is where shadows end (the
-/// camera's far plane or the settings' shadow distance); `snap` moves boxes in whole texels.
-pub fn fit_cascades(
-    scene: &Scene,
-    to_light: Vec3,
-    count: u32,
-    lambda: f32,
-    far: f32,
-    map_size: u32,
-    snap: bool,
-) -> Vec<Cascade> {
+/// viewer, or `fit_camera`), one `map_size` layer each.
+pub fn fit_cascades(scene: &Scene, to_light: Vec3, spec: &CascadeSpec) -> Vec<Cascade> {
+    let CascadeSpec {
+        count,
+        lambda,
+        blend,
+        far,
+        map_size,
+        snap,
+    } = *spec;
     let camera = scene.fitting_camera();
     let aspect = f64::from(scene.size[0].max(1)) / f64::from(scene.size[1].max(1));
     let splits = practical_splits(
@@ -94,9 +108,15 @@ pub fn fit_cascades(
         .fold(f64::NEG_INFINITY, f64::max);
     splits
         .windows(2)
-        .map(|w| {
+        .enumerate()
+        .map(|(c, w)| {
             let (near, far) = (w[0], w[1]);
-            let fitted = fit_slice(camera, aspect, near, far, basis, caster_top, map_size, snap);
+            // From where the previous cascade starts fading into this one.
+            let from = match c {
+                0 => near,
+                _ => near - f64::from(blend) * (near - splits[c - 1]),
+            };
+            let fitted = fit_slice(camera, aspect, from, far, basis, caster_top, map_size, snap);
             Cascade { fitted, near, far }
         })
         .collect()
