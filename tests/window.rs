@@ -11,6 +11,17 @@ fn load(path: &std::path::Path) -> image::RgbaImage {
         .to_rgba8()
 }
 
+/// The mean absolute difference per channel of two images of the same size (0..255).
+fn mean_difference(a: &image::RgbaImage, b: &image::RgbaImage) -> f64 {
+    let diff: u64 = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| u64::from(x.abs_diff(*y)))
+        .sum();
+    diff as f64 / a.as_raw().len() as f64
+}
+
 /// Fails unless there is a display (these tests must not pass by skipping), and makes a
 /// fresh folder for the test's images.
 fn display_and_dir(name: &str) -> std::path::PathBuf {
@@ -67,13 +78,7 @@ fn window_shows_the_scene_and_its_shadow() {
     assert!(shadow > 2000, "shadow pixels: {shadow}");
 
     // The window draws the same frame as the headless path (same driver, same settings).
-    let diff: u64 = win
-        .as_raw()
-        .iter()
-        .zip(head.as_raw())
-        .map(|(a, b)| u64::from(a.abs_diff(*b)))
-        .sum();
-    let mean = diff as f64 / win.as_raw().len() as f64;
+    let mean = mean_difference(&win, &head);
     assert!(
         mean < 1.0,
         "window and headless frames differ by {mean} per channel"
@@ -151,13 +156,7 @@ fn window_draws_several_lights_and_cascades_as_headless_does() {
         );
         let (win, head) = (load(&shot), load(&headless));
         assert_eq!(win.dimensions(), (480, 270), "{name}");
-        let diff: u64 = win
-            .as_raw()
-            .iter()
-            .zip(head.as_raw())
-            .map(|(a, b)| u64::from(a.abs_diff(*b)))
-            .sum();
-        let mean = diff as f64 / win.as_raw().len() as f64;
+        let mean = mean_difference(&win, &head);
         assert!(mean < 1.0, "{name}: window and headless differ by {mean}");
         // Not a blank frame: many distinct colours (lights of three colours, tints).
         let colours: std::collections::HashSet<[u8; 3]> = win
