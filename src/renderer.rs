@@ -16,7 +16,7 @@ use crate::scene::cascades::{camera_relative_matrix, fit_cascades, Cascade, Casc
 use crate::scene::fit::item_world_boxes;
 use crate::scene::{Light, PointLight, Scene, Shading, ShadingModel, ShadowView};
 use crate::settings::PointPass;
-use crate::settings::{Cull, ShadowSettings};
+use crate::settings::{Cull, ShadowSettings, Wrap};
 use crate::shaders;
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
@@ -907,11 +907,12 @@ fn normal_matrix(m: &Mat4) -> Mat3 {
 /// map keeps plain NEAREST reads).
 fn configure_sampling(shadow: &LightShadow, settings: &ShadowSettings) {
     let settings = settings.effective();
-    let texture = match shadow {
-        LightShadow::Map(m) => m.depth_map_texture(),
-        LightShadow::Cascades(a, _) => a.texture(),
+    // A cascade covers exactly its slice and the casters that reach it: outside it is lit.
+    let (texture, wrap) = match shadow {
+        LightShadow::Map(m) => (m.depth_map_texture(), settings.wrap),
+        LightShadow::Cascades(a, _) => (a.texture(), Wrap::ClampToBorder),
         LightShadow::None | LightShadow::Cube(_) => return,
     };
-    texture.set_wrap(settings.wrap);
+    texture.set_wrap(wrap);
     texture.set_compare(settings.filter.hardware(), settings.filter.hardware());
 }

@@ -355,12 +355,13 @@ impl ShadowSettings {
         Ok(())
     }
 
-    /// The settings as the renderer applies them: a fitted box (or cascade) covers exactly
-    /// what can be shadowed, so lookups outside it (a border of depth 1) and beyond its far
-    /// plane are lit.
+    /// The settings as the renderer applies them: a fitted box covers exactly what can be
+    /// shadowed, so lookups outside it (a border of depth 1) and beyond its far plane are
+    /// lit. (Cascades always work that way, whatever the other maps do: see the renderer's
+    /// `configure_sampling` and `shaders/scene.frag`.)
     pub fn effective(&self) -> ShadowSettings {
         match self.fit {
-            Fit::Manual if self.cascades <= 1 => *self,
+            Fit::Manual => *self,
             _ => ShadowSettings {
                 wrap: Wrap::ClampToBorder,
                 beyond_far: BeyondFar::Lit,
