@@ -251,19 +251,6 @@ impl Renderer {
         self.shadow_views.first()?.as_ref()
     }
 
-    /// Light `index`'s camera of the last depth pass.
-    pub fn light_shadow_view(&self, index: usize) -> Option<&ShadowView> {
-        self.shadow_views.get(index)?.as_ref()
-    }
-
-    /// Light `index`'s cascades in the last depth pass (empty when it has none).
-    pub fn cascades(&self, index: usize) -> &[Cascade] {
-        match self.shadows.get(index) {
-            Some(LightShadow::Cascades(_, c)) => c,
-            _ => &[],
-        }
-    }
-
     /// Shadow maps in use and the bytes they take (a depth texel is 4 bytes on this
     /// driver whatever the format asks; reported as allocated, not as the format's size).
     pub fn shadow_memory(&self) -> (usize, u64) {
@@ -327,25 +314,18 @@ impl Renderer {
             return Ok(());
         }
         let s = &self.settings;
+        // Items' world boxes: cascades are fitted above them and culled by them.
+        let boxes = match self.shadows[index] {
+            LightShadow::Cascades(..) => item_world_boxes(scene),
+            _ => Vec::new(),
+        };
         let sv = match (&light, &mut self.shadows[index]) {
             (Light::Point(p), _) => {
                 self.shadow_views[index] = Some(scene.shadow_view(index, s));
                 return self.render_cube_depth_map(scene, index, p);
             }
             (Light::Directional(l), LightShadow::Cascades(_, c)) => {
-                let spec = CascadeSpec {
-                    count: s.cascades,
-                    lambda: s.cascade_lambda,
-                    blend: s.cascade_blend,
-                    far: if s.shadow_distance > 0.0 {
-                        s.shadow_distance
-                    } else {
-                        f32::INFINITY
-                    },
-                    map_size: s.map_size,
-                    snap: s.snap,
-                };
-                *c = fit_cascades(scene, l.direction, &spec);
+                *c = fit_cascades(scene, &boxes, l.direction, &CascadeSpec::of(s));
                 // The first cascade stands for the light's camera (reports, the depth
                 // view's near and far); the one-map fit is not needed.
                 match c.first() {
@@ -367,7 +347,6 @@ impl Renderer {
                 self.draw_casters(scene, program, "modelLightViewMatrix", sv.view64, &|_| true);
             }
             LightShadow::Cascades(array, cascades) => {
-                let boxes = item_world_boxes(scene);
                 for (layer, c) in cascades.iter().enumerate() {
                     array.bind_layer(layer as u32);
                     unsafe { self.gl.clear(glow::DEPTH_BUFFER_BIT) };
@@ -609,7 +588,6 @@ impl Renderer {
             });
         }
         p.unbind();
-        let _ = view;
         if let Some(t) = &self.timer {
             t.end();
         }

@@ -5,9 +5,8 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use shadowmap::compare::{compare, render_visibility, CompareOptions};
+use shadowmap::compare::{compare, CompareOptions};
 use shadowmap::scene::cascades::{fit_cascades, practical_splits, CascadeSpec, MAX_CASCADES};
-use shadowmap::scene::Camera;
 use shadowmap::settings::{Filter, ShadowSettings};
 use shadowmap::Scene;
 
@@ -72,7 +71,8 @@ fn every_cascade_holds_its_slice_of_the_view() {
             map_size: 1024,
             snap: true,
         };
-        let cascades = fit_cascades(&scene, to_light, &spec);
+        let boxes = shadowmap::scene::fit::item_world_boxes(&scene);
+        let cascades = fit_cascades(&scene, &boxes, to_light, &spec);
         let cam = scene.camera;
         let aspect = scene.size[0] as f64 / scene.size[1] as f64;
         let tan = ((cam.fov as f64).to_radians() * 0.5).tan();
@@ -120,28 +120,8 @@ fn snapped_cascades_do_not_shimmer_under_sub_texel_camera_moves() {
             filter: Filter::Single,
             ..cascaded(&scene, 4, 1024)
         };
-        let render = |dx: f32| {
-            let mut sc = scene.clone();
-            // The view stays; only the camera the cascades are fitted to moves.
-            sc.fit_camera = Some(Camera {
-                position: scene.camera.position + Vec3::new(dx, 0.0, dx * 0.5),
-                ..scene.camera
-            });
-            render_visibility(ctx.gl(), &sc, &s, w, h, 0)
-                .unwrap()
-                .visibility
-                .unwrap()
-        };
-        let first = render(0.0);
-        let receivers = first.iter().filter(|p| p.is_some()).count();
-        let mut worst = 0.0f64;
-        for k in 1..6 {
-            // Fractions of a millimetre: below a texel of even the nearest cascade.
-            let v = render(k as f32 * 0.0003);
-            let diff = first.iter().zip(&v).filter(|(a, b)| a != b).count();
-            worst = worst.max(diff as f64 / receivers as f64);
-        }
-        worst
+        // Fractions of a millimetre: below a texel of even the nearest cascade.
+        common::shimmer(&ctx, &scene, &s, (w, h), 0.0003, 5)
     };
     let (with, without) = (changed(true), changed(false));
     eprintln!("pixels changing under sub-texel moves: snapped {with}, unsnapped {without}");

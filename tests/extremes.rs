@@ -8,7 +8,7 @@ use glam::Vec3;
 use shadowmap::compare::{compare, CompareOptions};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::reference::Metrics;
-use shadowmap::scene::{Camera, Light, SpotLight};
+use shadowmap::scene::{Light, SpotLight};
 use shadowmap::settings::{
     BeyondFar, BiasMode, DepthFormat, Filter, Fit, LightView, ShadowSettings, Wrap,
 };
@@ -551,27 +551,8 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
             bias_mode: BiasMode::Slope,
             ..scene.shadow
         };
-        let render = |dx: f32| {
-            let mut sc = scene.clone();
-            // The view stays; only the camera the box is fitted to moves.
-            sc.fit_camera = Some(Camera {
-                position: scene.camera.position + Vec3::new(dx, 0.0, dx * 0.5),
-                ..scene.camera
-            });
-            let f = shadowmap::compare::render_visibility(ctx.gl(), &sc, &s, SIZE.0, SIZE.1, 0)
-                .unwrap();
-            f.visibility.unwrap()
-        };
-        let first = render(0.0);
-        let mut worst = 0.0f64;
-        for k in 1..8 {
-            // Steps of a fraction of a millimetre: far below a texel of the fitted box.
-            let v = render(k as f32 * 0.0007);
-            let receivers = first.iter().filter(|p| p.is_some()).count();
-            let diff = first.iter().zip(&v).filter(|(a, b)| a != b).count();
-            worst = worst.max(diff as f64 / receivers as f64);
-        }
-        worst
+        // Steps of a fraction of a millimetre: far below a texel of the fitted box.
+        common::shimmer(&ctx, &scene, &s, SIZE, 0.0007, 7)
     };
     let (with, without) = (changed(true), changed(false));
     eprintln!("pixels changing under sub-texel moves: snapped {with}, unsnapped {without}");

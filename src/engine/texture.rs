@@ -147,13 +147,8 @@ impl Texture {
                 glow::FLOAT,
                 glow::PixelUnpackData::Slice(None),
             );
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            gl.bind_texture(glow::TEXTURE_2D, None);
         }
+        texture.nearest_clamped();
         Ok(texture)
     }
 
@@ -188,14 +183,8 @@ impl Texture {
                     glow::PixelUnpackData::Slice(None),
                 );
             }
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_CUBE_MAP, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_R, glow::CLAMP_TO_EDGE);
-            gl.bind_texture(glow::TEXTURE_CUBE_MAP, None);
         }
+        texture.nearest_clamped();
         Ok(texture)
     }
 
@@ -217,13 +206,8 @@ impl Texture {
                 glow::FLOAT,
                 glow::PixelUnpackData::Slice(None),
             );
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
         }
+        texture.nearest_clamped();
         Ok(texture)
     }
 
@@ -257,6 +241,24 @@ impl Texture {
             gl.bind_texture(glow::TEXTURE_2D, None);
         }
         Ok(texture)
+    }
+
+    /// A depth texture's sampling: NEAREST (the book's), clamped on every axis.
+    fn nearest_clamped(&self) {
+        unsafe {
+            self.gl.bind_texture(self.target, Some(self.id));
+            let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
+            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
+            for axis in [
+                glow::TEXTURE_WRAP_S,
+                glow::TEXTURE_WRAP_T,
+                glow::TEXTURE_WRAP_R,
+            ] {
+                p(axis, glow::CLAMP_TO_EDGE);
+            }
+            self.gl.bind_texture(self.target, None);
+        }
     }
 
     fn create(gl: &Gl, target: u32, width: u32, height: u32, what: &str) -> Result<Texture> {

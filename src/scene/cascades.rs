@@ -12,7 +12,9 @@
 
 use glam::{DMat4, DVec3, Vec3};
 
-use super::fit::{aabb, corners, item_world_boxes, light_basis, light_view, FittedBox};
+#[cfg(doc)]
+use super::fit::item_world_boxes;
+use super::fit::{aabb, corners, light_basis, light_view, FittedBox};
 use super::{Camera, Scene};
 
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
@@ -76,9 +78,33 @@ pub struct CascadeSpec {
     pub snap: bool,
 }
 
+impl CascadeSpec {
+    /// The cascade fields of the shadow settings (`shadow_distance = 0`: no limit).
+    pub fn of(s: &crate::settings::ShadowSettings) -> CascadeSpec {
+        CascadeSpec {
+            count: s.cascades,
+            lambda: s.cascade_lambda,
+            blend: s.cascade_blend,
+            far: if s.shadow_distance > 0.0 {
+                s.shadow_distance
+            } else {
+                f32::INFINITY
+            },
+            map_size: s.map_size,
+            snap: s.snap,
+        }
+    }
+}
+
 /// The cascades of a light shining from `to_light` for the scene's fitting camera (the
-/// viewer, or `fit_camera`), one `map_size` layer each.
-pub fn fit_cascades(scene: &Scene, to_light: Vec3, spec: &CascadeSpec) -> Vec<Cascade> {
+/// viewer, or `fit_camera`), one `map_size` layer each. `boxes` are the items' world boxes
+/// ([`item_world_boxes`]; the depth pass culls with them too).
+pub fn fit_cascades(
+    scene: &Scene,
+    boxes: &[(DVec3, DVec3)],
+    to_light: Vec3,
+    spec: &CascadeSpec,
+) -> Vec<Cascade> {
     let CascadeSpec {
         count,
         lambda,
@@ -97,11 +123,10 @@ pub fn fit_cascades(scene: &Scene, to_light: Vec3, spec: &CascadeSpec) -> Vec<Ca
     );
     let basis = light_basis(to_light.as_dvec3());
     // How far towards the light casters reach, in light space (z points at the light).
-    let boxes = item_world_boxes(scene);
     let caster_top = scene
         .items
         .iter()
-        .zip(&boxes)
+        .zip(boxes)
         .filter(|(i, _)| i.casts_shadows)
         .flat_map(|(_, (lo, hi))| corners(*lo, *hi))
         .map(|p| (basis.transpose() * p).z)

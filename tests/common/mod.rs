@@ -68,3 +68,35 @@ pub fn stdout_of(cmd: &mut std::process::Command) -> String {
     assert!(!stderr.contains("panicked"), "{stderr}");
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
+
+/// The largest fraction of receiver pixels whose visibility changes when only the camera a
+/// light's box (or cascades) is fitted to moves by `step`, 2`step`, ... (`steps` moves,
+/// each along (1, 0, 0.5)), the view itself staying put: what shimmer would show.
+pub fn shimmer(
+    ctx: &HeadlessContext,
+    scene: &Scene,
+    settings: &ShadowSettings,
+    (width, height): (u32, u32),
+    step: f32,
+    steps: u32,
+) -> f64 {
+    let render = |dx: f32| {
+        let mut sc = scene.clone();
+        sc.fit_camera = Some(shadowmap::scene::Camera {
+            position: scene.camera.position + Vec3::new(dx, 0.0, dx * 0.5),
+            ..scene.camera
+        });
+        shadowmap::compare::render_visibility(ctx.gl(), &sc, settings, width, height, 0)
+            .unwrap_or_else(|e| panic!("render: {e}"))
+            .visibility
+            .unwrap_or_default()
+    };
+    let first = render(0.0);
+    let receivers = first.iter().filter(|p| p.is_some()).count().max(1);
+    (1..=steps)
+        .map(|k| {
+            let v = render(k as f32 * step);
+            first.iter().zip(&v).filter(|(a, b)| a != b).count() as f64 / receivers as f64
+        })
+        .fold(0.0, f64::max)
+}
