@@ -1,9 +1,9 @@
 #version 330 core
 // Scene pass vertex shader ("Shadows": scene_vertex.vs with the light-space position).
-// Compiled with NORMAL_OFFSET 0/1, LIGHT_COUNT, MAP_COUNT / MAP_SLOTS and CASCADES (see
-// scene.frag). Lighting happens in view space, as in the book.
+// Compiled with NORMAL_OFFSET (defined when the lookups move along the normal),
+// LIGHT_COUNT, MAP_COUNT / MAP_SLOTS and USES_CASCADES / CASCADES (see scene.frag). Lighting happens in view space, as in the book.
 //
-// Outputs are counted (src/light_slots.rs, `vertex_outputs`): GL 3.3 guarantees 64
+// Outputs are counted (src/shadows/slots.rs, `vertex_outputs`): GL 3.3 guarantees 64
 // components, and four lights with cascades use all of them. So only lights with a 2D or
 // cube map get a light-space position (slot p of MAP_SLOTS), the cascaded light gets its
 // cascades' positions, and the G-buffer's world position and normal are rebuilt in the
@@ -23,7 +23,7 @@ uniform mat4 modelViewMatrix;
 uniform mat3 normalMatrix;       // inverse transpose of modelViewMatrix, for normals
 uniform mat3 worldNormalMatrix;  // inverse transpose of modelMatrix
 uniform mat4 projectionMatrix;
-// One per mapped light (slot p, laid out by src/light_slots.rs).
+// One per mapped light (slot p, laid out by src/shadows/slots.rs).
 uniform mat4 modelLightViewMatrix[MAP_SLOTS];
 uniform mat4 orthoProjectionMatrix[MAP_SLOTS];
 uniform mat3 lightRotation[MAP_SLOTS];    // world to light view, without the translation
@@ -43,7 +43,7 @@ flat out vec4 ambientColour;      // a: the reflectance (specular = diffuse x re
 flat out vec3 diffuseColour[LIGHT_COUNT];
 flat out vec3 lightVector[LIGHT_COUNT];
 
-#if CASCADES > 1
+#ifdef USES_CASCADES
 // The cascaded light (one per scene): camera-relative world position to each cascade's
 // clip space, and each cascade's normal offset in world units (its own texel size).
 uniform mat4 cascadeMatrix[CASCADES];
@@ -69,17 +69,17 @@ void main()
     }
     for (int p = 0; p < MAP_COUNT; ++p) {
         vec4 lightViewPos = modelLightViewMatrix[p] * vec4(position, 1.0);
-#if NORMAL_OFFSET
+#ifdef NORMAL_OFFSET
         // Normal-offset bias: look the map up from a point pushed off the surface. The
         // light view is rigid, so the rotated unit normal keeps world lengths.
         lightViewPos.xyz += lightRotation[p] * worldNormal * normalOffset[p];
 #endif
         mlightviewVertexPos[p] = orthoProjectionMatrix[p] * lightViewPos;
     }
-#if CASCADES > 1
+#ifdef USES_CASCADES
     vec3 worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
     for (int c = 0; c < CASCADES; ++c) {
-#if NORMAL_OFFSET
+#ifdef NORMAL_OFFSET
         cascadePos[c] = cascadeMatrix[c] * vec4(worldPos + worldNormal * cascadeNormalOffset[c], 1.0);
 #else
         cascadePos[c] = cascadeMatrix[c] * vec4(worldPos, 1.0);

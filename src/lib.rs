@@ -2,25 +2,33 @@
 //! "Shadow Mapping", a course's slides, the shadow-playground blog) ported to Rust and
 //! OpenGL 3.3 core, built to be read beside them and to measure itself.
 //!
-//! The engine (`engine`) holds every GL call; the scene side (`scene`, `transformation`,
-//! `settings`) is plain data; `renderer` is the book's two-pass frame; `frame` renders
-//! headless frames and reads them back.
+//! Layers, each importing only those above it:
+//! - data: `settings`, `transformation`, `geometry`, `image_data`, `scene` (the book's
+//!   `Camera`, `GameItem`, lights, and the scene files);
+//! - `engine`: every GL call (RAII owners, state as values);
+//! - `shadows`: one module per technique (the chapter's 2D map, cube maps, cascades, the
+//!   fitted box) behind one trait;
+//! - `renderer`: the book's two passes;
+//! - `measure`: frames read back, the exact reference, compare and bench, attached through
+//!   hooks; `steps`: the chapter steps as presets.
+//!
+//! `tests/layers.rs` checks that no module imports a layer below it.
 
-pub mod bench;
-pub mod compare;
 pub mod engine;
 pub mod error;
-pub mod frame;
 pub mod geometry;
 pub mod image_data;
-pub mod light_slots;
-pub mod reference;
+pub mod measure;
 pub mod renderer;
 pub mod scene;
 pub mod settings;
 pub mod shaders;
+pub mod shadows;
 pub mod steps;
 pub mod transformation;
+
+// The measurement modules keep their old paths for the program and the tests.
+pub use measure::{bench, compare, frame, reference};
 
 pub use error::{Error, Result};
 pub use renderer::{Renderer, Target};

@@ -3,7 +3,59 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::engine::{DepthFormat, Wrap};
+/// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
+/// stores as 24 bits; we name the size so the choice is explicit and measurable.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+pub enum DepthFormat {
+    #[serde(rename = "16")]
+    #[value(name = "16")]
+    D16,
+    #[default]
+    #[serde(rename = "24")]
+    #[value(name = "24")]
+    D24,
+    #[serde(rename = "32f")]
+    #[value(name = "32f")]
+    D32F,
+}
+
+impl DepthFormat {
+    pub const ALL: [DepthFormat; 3] = [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F];
+
+    /// The name used on the command line and in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthFormat::D16 => "16",
+            DepthFormat::D24 => "24",
+            DepthFormat::D32F => "32f",
+        }
+    }
+}
+
+/// How lookups outside [0, 1] behave. The book clamps to the edge; LearnOpenGL's first steps
+/// REPEAT (showing over-sampling) and its final step clamps to a border of depth 1.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Wrap {
+    #[default]
+    ClampToEdge,
+    ClampToBorder,
+    Repeat,
+}
+
+impl Wrap {
+    pub fn name(self) -> &'static str {
+        match self {
+            Wrap::ClampToEdge => "clamp-to-edge",
+            Wrap::ClampToBorder => "clamp-to-border",
+            Wrap::Repeat => "repeat",
+        }
+    }
+}
 
 /// How the shadow map is sampled ("Shadow Mapping improvements": 3x3 PCF).
 #[derive(
@@ -180,6 +232,10 @@ pub enum PointPass {
     Layered,
 }
 
+/// Cascades per light: the layers of one depth texture array, and slots in the shader's
+/// uniform arrays.
+pub const MAX_CASCADES: u32 = 4;
+
 /// Every setting of the shadow pipeline. The defaults are the book's final configuration.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -325,7 +381,7 @@ impl ShadowSettings {
                 self.perspective_fov
             ));
         }
-        let max = crate::scene::cascades::MAX_CASCADES;
+        let max = MAX_CASCADES;
         if !(1..=max).contains(&self.cascades) {
             return bad(format!(
                 "shadow.cascades = {}: expected 1 (one map) to {max}",
@@ -357,8 +413,8 @@ impl ShadowSettings {
 
     /// The settings as the renderer applies them: a fitted box covers exactly what can be
     /// shadowed, so lookups outside it (a border of depth 1) and beyond its far plane are
-    /// lit. (Cascades always work that way, whatever the other maps do: see the renderer's
-    /// `configure_sampling` and `shaders/scene.frag`.)
+    /// lit. (Cascades always work that way, whatever the other maps do: see
+    /// `crate::shadows::cascades`.)
     pub fn effective(&self) -> ShadowSettings {
         match self.fit {
             Fit::Manual => *self,
@@ -368,38 +424,6 @@ impl ShadowSettings {
                 ..*self
             },
         }
-    }
-
-    /// The `#define`s the scene shader is compiled with for these settings.
-    pub fn shader_defines(&self) -> Vec<(String, String)> {
-        let s = self.effective();
-        let bias_mode = match s.bias_mode {
-            BiasMode::None => 0,
-            BiasMode::Constant => 1,
-            BiasMode::Slope => 2,
-        };
-        vec![
-            ("PCF_RADIUS".into(), s.filter.radius().to_string()),
-            ("HW_PCF".into(), u32::from(s.filter.hardware()).to_string()),
-            (
-                "NORMAL_OFFSET".into(),
-                u32::from(s.normal_offset != 0.0).to_string(),
-            ),
-            ("BIAS_MODE".into(), bias_mode.to_string()),
-            ("BIAS".into(), glsl_float(s.bias)),
-            ("BIAS_MIN".into(), glsl_float(s.bias_min)),
-            (
-                "BEYOND_FAR_LIT".into(),
-                u32::from(s.beyond_far == BeyondFar::Lit).to_string(),
-            ),
-            ("CASCADES".into(), s.cascades.to_string()),
-            ("SHADOW_MAP_SIZE".into(), s.map_size.to_string()),
-            ("CASCADE_BLEND".into(), glsl_float(s.cascade_blend)),
-            (
-                "SHOW_CASCADES".into(),
-                u32::from(s.show_cascades).to_string(),
-            ),
-        ]
     }
 }
 

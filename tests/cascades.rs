@@ -6,8 +6,9 @@ mod common;
 
 use glam::{DVec3, Vec3};
 use shadowmap::compare::{compare, CompareOptions};
-use shadowmap::scene::cascades::{fit_cascades, practical_splits, CascadeSpec, MAX_CASCADES};
+use shadowmap::settings::MAX_CASCADES;
 use shadowmap::settings::{Filter, ShadowSettings};
+use shadowmap::shadows::cascades::{fit_cascades, practical_splits, CascadeSpec};
 use shadowmap::Scene;
 
 fn large() -> Scene {
@@ -71,7 +72,7 @@ fn every_cascade_holds_its_slice_of_the_view() {
             map_size: 1024,
             snap: true,
         };
-        let boxes = shadowmap::scene::fit::item_world_boxes(&scene);
+        let boxes = shadowmap::shadows::fitted::item_world_boxes(&scene);
         let cascades = fit_cascades(&scene, &boxes, to_light, &spec);
         let cam = scene.camera;
         let aspect = scene.size[0] as f64 / scene.size[1] as f64;

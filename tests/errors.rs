@@ -5,7 +5,8 @@ mod common;
 use std::path::Path;
 use std::process::Command;
 
-use shadowmap::engine::{DepthFormat, ShaderProgram, ShaderSource, ShadowMap, Texture};
+use shadowmap::engine::{ShaderProgram, ShaderSource, ShadowMap, Texture};
+use shadowmap::settings::DepthFormat;
 use shadowmap::{shaders, Error, Scene};
 
 #[test]

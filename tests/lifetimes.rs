@@ -4,9 +4,10 @@
 mod common;
 
 use shadowmap::engine::check::object_exists;
-use shadowmap::engine::{DepthFormat, Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
+use shadowmap::engine::{Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
 use shadowmap::geometry::MeshData;
 use shadowmap::image_data::ImageData;
+use shadowmap::settings::DepthFormat;
 use shadowmap::shaders;
 
 fn resident_kib() -> u64 {

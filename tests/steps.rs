@@ -55,7 +55,7 @@ fn score_where(
     s: &ShadowSettings,
     keep: impl Fn(Vec3) -> bool,
 ) -> Metrics {
-    let sv = scene.shadow_view(0, s);
+    let sv = shadowmap::shadows::light_camera(scene, 0, s);
     let m = sv.projection * sv.view;
     let vis = c.frame.visibility.as_ref().unwrap();
     let masked: Vec<Option<f32>> = (0..vis.len())
@@ -203,7 +203,7 @@ fn over_sampling_outside_the_light_box() {
     );
     // Not one receiver clearly beyond the far plane (past what the bias can reach back)
     // is rendered lit.
-    let sv = sc.shadow_view(0, &book);
+    let sv = shadowmap::shadows::light_camera(&sc, 0, &book);
     let m = sv.projection * sv.view;
     let vis = c.frame.visibility.as_ref().unwrap();
     let lit_beyond = (0..vis.len())

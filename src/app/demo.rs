@@ -10,7 +10,7 @@ use shadowmap::engine::window_context::WindowContext;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
-use shadowmap::scene::cascades::MAX_CASCADES;
+use shadowmap::settings::MAX_CASCADES;
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;

@@ -5,7 +5,7 @@ use std::time::Instant;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::save_grey_png;
-use shadowmap::light_slots::ShadowKind;
+use shadowmap::shadows::ShadowKind;
 use shadowmap::Result;
 
 use super::cli::RenderArgs;

@@ -10,7 +10,7 @@ use super::Gl;
 use crate::error::{Error, Result};
 
 /// Which extra outputs to attach besides colour.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub struct Outputs {
     /// Attachment 1: R = shadow-test visibility, G = 1 where geometry was drawn.
     pub visibility: bool,

@@ -10,17 +10,22 @@ use glow::HasContext;
 use super::Gl;
 use crate::error::{Error, Result};
 
-/// A shader's text and the file it came from, so errors can name it.
+/// A shader's text and the files it came from, so errors can name them.
 #[derive(Debug, Clone)]
 pub struct ShaderSource {
     pub name: String,
     pub text: String,
+    /// The file of each GLSL source-string number (`#line N K`): 0 is `name`, the others
+    /// are the files it includes (see [`crate::shaders::resolve`]).
+    pub files: Vec<String>,
 }
 
 impl ShaderSource {
     pub fn new(name: impl Into<String>, text: impl Into<String>) -> Self {
+        let name = name.into();
         ShaderSource {
-            name: name.into(),
+            files: vec![name.clone()],
+            name,
             text: text.into(),
         }
     }
@@ -56,19 +61,22 @@ impl ShaderSource {
     }
 }
 
-/// Rewrites a driver info log so each message starts with `file:line:column:`.
+/// Rewrites a driver info log so each message starts with `file:line:column:`; `files`
+/// names each source-string number (the first number of a message), so a message from an
+/// included snippet names the snippet.
 ///
 /// Mesa writes `0:12(5): error: ...`; NVIDIA writes `0(12) : error ...`. Lines in neither form
 /// are kept as they are.
-pub fn annotate_log(file: &str, log: &str) -> String {
+pub fn annotate_log(files: &[String], log: &str) -> String {
+    let main = files.first().map(String::as_str).unwrap_or("shader");
     let mut out = Vec::new();
     for line in log.lines().filter(|l| !l.trim().is_empty()) {
-        out.push(annotate_line(file, line).unwrap_or_else(|| format!("{file}: {line}")));
+        out.push(annotate_line(files, line).unwrap_or_else(|| format!("{main}: {line}")));
     }
     out.join("\n")
 }
 
-fn annotate_line(file: &str, line: &str) -> Option<String> {
+fn annotate_line(files: &[String], line: &str) -> Option<String> {
     let digits = |s: &str| -> Option<(u32, usize)> {
         let n = s.bytes().take_while(|b| b.is_ascii_digit()).count();
         if n == 0 {
@@ -76,7 +84,8 @@ fn annotate_line(file: &str, line: &str) -> Option<String> {
         }
         Some((s[..n].parse().ok()?, n))
     };
-    let (_, n) = digits(line)?;
+    let (string, n) = digits(line)?;
+    let file = files.get(string as usize)?;
     let rest = &line[n..];
     if let Some(rest) = rest.strip_prefix(':') {
         // Mesa: <string>:<line>(<col>): message
@@ -172,7 +181,7 @@ impl ShaderProgram {
                 let log = gl.get_program_info_log(program);
                 let file = names.join(" + ");
                 return Err(Error::Shader {
-                    log: annotate_log(&file, &log),
+                    log: annotate_log(std::slice::from_ref(&file), &log),
                     file,
                 });
             }
@@ -295,7 +304,7 @@ fn compile(
             gl.delete_shader(shader);
             return Err(Error::Shader {
                 file: source.name.clone(),
-                log: annotate_log(&source.name, &log),
+                log: annotate_log(&source.files, &log),
             });
         }
         Ok(shader)
@@ -308,17 +317,31 @@ mod tests {
 
     #[test]
     fn mesa_and_nvidia_logs_get_file_and_line() {
+        let files = |f: &[&str]| f.iter().map(|s| s.to_string()).collect::<Vec<_>>();
         let mesa = "0:12(5): error: syntax error, unexpected '}'\n";
         assert_eq!(
-            annotate_log("shaders/scene.frag", mesa),
+            annotate_log(&files(&["shaders/scene.frag"]), mesa),
             "shaders/scene.frag:12:5: error: syntax error, unexpected '}'"
         );
         let nv = "0(7) : error C0000: syntax error";
         assert_eq!(
-            annotate_log("a.vert", nv),
+            annotate_log(&files(&["a.vert"]), nv),
             "a.vert:7: error C0000: syntax error"
         );
-        assert_eq!(annotate_log("a.vert", "odd text"), "a.vert: odd text");
+        assert_eq!(
+            annotate_log(&files(&["a.vert"]), "odd text"),
+            "a.vert: odd text"
+        );
+        // A message from source string 2 names the second included file.
+        let included = files(&[
+            "shaders/scene.frag",
+            "shaders/lib/a.glsl",
+            "shaders/lib/b.glsl",
+        ]);
+        assert_eq!(
+            annotate_log(&included, "2:7(3): error: `x' undeclared"),
+            "shaders/lib/b.glsl:7:3: error: `x' undeclared"
+        );
     }
 
     #[test]

@@ -4,9 +4,10 @@
 use glow::HasContext;
 
 use super::check::check_framebuffer;
-use super::texture::{DepthFormat, Texture};
+use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
+use crate::settings::DepthFormat;
 
 /// Owns the framebuffer and the depth texture attached to it; both are freed on drop.
 pub struct ShadowMap {

@@ -4,79 +4,18 @@
 use std::path::Path;
 
 use glow::HasContext;
-use serde::{Deserialize, Serialize};
 
 use super::Gl;
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
+use crate::settings::DepthFormat;
 
-/// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
-/// stores as 24 bits; we name the size so the choice is explicit and measurable.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-pub enum DepthFormat {
-    #[serde(rename = "16")]
-    #[value(name = "16")]
-    D16,
-    #[default]
-    #[serde(rename = "24")]
-    #[value(name = "24")]
-    D24,
-    #[serde(rename = "32f")]
-    #[value(name = "32f")]
-    D32F,
-}
-
-impl DepthFormat {
-    pub const ALL: [DepthFormat; 3] = [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F];
-
-    fn internal_format(self) -> u32 {
-        match self {
-            DepthFormat::D16 => glow::DEPTH_COMPONENT16,
-            DepthFormat::D24 => glow::DEPTH_COMPONENT24,
-            DepthFormat::D32F => glow::DEPTH_COMPONENT32F,
-        }
-    }
-
-    /// The name used on the command line and in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            DepthFormat::D16 => "16",
-            DepthFormat::D24 => "24",
-            DepthFormat::D32F => "32f",
-        }
-    }
-}
-
-/// How lookups outside [0, 1] behave. The book clamps to the edge; LearnOpenGL's first steps
-/// REPEAT (showing over-sampling) and its final step clamps to a border of depth 1.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum Wrap {
-    #[default]
-    ClampToEdge,
-    ClampToBorder,
-    Repeat,
-}
-
-impl Wrap {
-    fn gl(self) -> u32 {
-        match self {
-            Wrap::ClampToEdge => glow::CLAMP_TO_EDGE,
-            Wrap::ClampToBorder => glow::CLAMP_TO_BORDER,
-            Wrap::Repeat => glow::REPEAT,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Wrap::ClampToEdge => "clamp-to-edge",
-            Wrap::ClampToBorder => "clamp-to-border",
-            Wrap::Repeat => "repeat",
-        }
+/// The GL internal format of a depth map.
+fn depth_internal_format(format: DepthFormat) -> u32 {
+    match format {
+        DepthFormat::D16 => glow::DEPTH_COMPONENT16,
+        DepthFormat::D24 => glow::DEPTH_COMPONENT24,
+        DepthFormat::D32F => glow::DEPTH_COMPONENT32F,
     }
 }
 
@@ -139,7 +78,7 @@ impl Texture {
             gl.tex_image_2d(
                 glow::TEXTURE_2D,
                 0,
-                format.internal_format() as i32,
+                depth_internal_format(format) as i32,
                 width as i32,
                 height as i32,
                 0,
@@ -174,7 +113,7 @@ impl Texture {
                 gl.tex_image_2d(
                     glow::TEXTURE_CUBE_MAP_POSITIVE_X + face,
                     0,
-                    format.internal_format() as i32,
+                    depth_internal_format(format) as i32,
                     size as i32,
                     size as i32,
                     0,
@@ -197,7 +136,7 @@ impl Texture {
             gl.tex_image_3d(
                 glow::TEXTURE_2D_ARRAY,
                 0,
-                format.internal_format() as i32,
+                depth_internal_format(format) as i32,
                 size as i32,
                 size as i32,
                 layers as i32,
@@ -276,44 +215,6 @@ impl Texture {
             width,
             height,
         })
-    }
-
-    /// Sets the wrap mode; a border wrap gets a border of depth 1 (LearnOpenGL's fix), so
-    /// lookups outside the map read "far away" and stay lit.
-    pub fn set_wrap(&self, wrap: Wrap) {
-        unsafe {
-            self.gl.bind_texture(self.target, Some(self.id));
-            let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
-            p(glow::TEXTURE_WRAP_S, wrap.gl());
-            p(glow::TEXTURE_WRAP_T, wrap.gl());
-            if wrap == Wrap::ClampToBorder {
-                self.gl.tex_parameter_f32_slice(
-                    self.target,
-                    glow::TEXTURE_BORDER_COLOR,
-                    &[1.0, 1.0, 1.0, 1.0],
-                );
-            }
-            self.gl.bind_texture(self.target, None);
-        }
-    }
-
-    /// Turns the depth comparison on (for `sampler2DShadow`, with LINEAR for hardware 2x2 PCF)
-    /// or off (plain `sampler2D` reads, NEAREST as the book has it).
-    pub fn set_compare(&self, compare: bool, linear: bool) {
-        unsafe {
-            self.gl.bind_texture(self.target, Some(self.id));
-            let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
-            if compare {
-                p(glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE);
-                p(glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL);
-            } else {
-                p(glow::TEXTURE_COMPARE_MODE, glow::NONE);
-            }
-            let filter = if linear { glow::LINEAR } else { glow::NEAREST };
-            p(glow::TEXTURE_MIN_FILTER, filter);
-            p(glow::TEXTURE_MAG_FILTER, filter);
-            self.gl.bind_texture(self.target, None);
-        }
     }
 
     /// Binds the texture to a texture unit (0-based).

@@ -61,10 +61,7 @@ impl Camera {
     /// The view matrix in double precision, so that view x model keeps its digits when the
     /// scene sits far from the origin.
     pub fn view_matrix64(&self) -> DMat4 {
-        let r = self.rotation.as_dvec3();
-        DMat4::from_rotation_x(r.x.to_radians())
-            * DMat4::from_rotation_y(r.y.to_radians())
-            * DMat4::from_translation(-self.position.as_dvec3())
+        Transformation::view64(self.position, self.rotation)
     }
 
     pub fn projection_matrix(&self, width: u32, height: u32) -> Mat4 {

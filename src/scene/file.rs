@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use glam::{Vec3, Vec4};
 use serde::Deserialize;
 
+use super::MAX_LIGHTS;
 use super::{
     Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, PointLight, Scene,
     ShadingModel, SpotLight, StepContext,
@@ -14,7 +15,6 @@ use super::{
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
-use crate::light_slots::MAX_LIGHTS;
 use crate::settings::{ShadowSettings, Wrap};
 use crate::transformation::Transformation;
 

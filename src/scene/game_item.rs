@@ -40,12 +40,7 @@ impl GameItem {
 
     /// The model matrix in double precision (see `Camera::view_matrix64`).
     pub fn model_matrix64(&self) -> DMat4 {
-        let r = self.rotation.as_dvec3();
-        DMat4::from_translation(self.position.as_dvec3())
-            * DMat4::from_rotation_x(-r.x.to_radians())
-            * DMat4::from_rotation_y(-r.y.to_radians())
-            * DMat4::from_rotation_z(-r.z.to_radians())
-            * DMat4::from_scale(self.scale.as_dvec3())
+        Transformation::model64(self.position, self.rotation, self.scale)
     }
 
     /// One fixed update of the animation (the book runs 30 per second).

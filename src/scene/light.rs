@@ -3,11 +3,10 @@
 //! light with a perspective shadow map of the slides, the blog and LearnOpenGL's
 //! "orthographic vs perspective" section.
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::reference::LightKind;
-use crate::settings::{LightProjection, LightView, ShadowSettings};
+use crate::settings::LightView;
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -91,11 +90,9 @@ impl DirectionalLight {
                 Transformation::light_view(self.position(), rotation)
             }
             // A basis that stays finite and smooth for every direction, poles included.
-            LightView::LookAt => super::fit::light_view(
-                self.position().as_dvec3(),
-                super::fit::light_basis(d.as_dvec3()),
-            )
-            .as_mat4(),
+            LightView::LookAt => {
+                Transformation::light_look_at(self.position().as_dvec3(), d.as_dvec3()).as_mat4()
+            }
         }
     }
 
@@ -140,22 +137,6 @@ pub struct PointLight {
     pub casts_shadows: bool,
 }
 
-impl PointLight {
-    /// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,
-    /// with GL's cube-map orientation.
-    pub fn face_views() -> [Mat4; 6] {
-        let faces = [
-            (Vec3::X, -Vec3::Y),
-            (-Vec3::X, -Vec3::Y),
-            (Vec3::Y, Vec3::Z),
-            (-Vec3::Y, -Vec3::Z),
-            (Vec3::Z, -Vec3::Y),
-            (-Vec3::Z, -Vec3::Y),
-        ];
-        faces.map(|(d, up)| Mat4::look_at_rh(Vec3::ZERO, d, up))
-    }
-}
-
 /// A scene's light.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Light {
@@ -174,25 +155,6 @@ pub enum Shading {
         position: Vec3,
         cone: Option<(f32, Vec3)>,
     },
-}
-
-/// The light's camera for the depth pass, as the settings ask for it.
-#[derive(Debug, Clone, Copy)]
-pub struct ShadowView {
-    pub view: Mat4,
-    /// The same view in double precision, for view x model far from the origin.
-    pub view64: DMat4,
-    pub projection: Mat4,
-    /// Perspective projections need the divide by w (and linearising for display).
-    pub perspective: bool,
-    pub eye: Vec3,
-    pub near: f32,
-    pub far: f32,
-    /// The size of one shadow-map texel in world units, at the target for perspective maps.
-    pub texel_world: f32,
-    /// The same light for the exact reference: parallel rays for an orthographic map,
-    /// rays to the eye for a perspective one.
-    pub reference: LightKind,
 }
 
 impl Light {
@@ -268,112 +230,6 @@ impl Light {
                     (l.target - l.position).normalize_or_zero(),
                 )),
             },
-        }
-    }
-
-    /// The depth pass' camera. A directional light with `LightProjection::Perspective`
-    /// becomes a point-like light at its shadow position looking at the origin
-    /// (LearnOpenGL's "orthographic vs perspective" comparison).
-    pub fn shadow_view(&self, settings: &ShadowSettings) -> ShadowView {
-        match (self, settings.light_projection) {
-            (Light::Directional(l), LightProjection::Ortho) => {
-                let o = &l.ortho;
-                let view = l.view_matrix(settings.light_view);
-                ShadowView {
-                    view,
-                    view64: view.as_dmat4(),
-                    projection: l.projection_matrix(),
-                    perspective: false,
-                    eye: l.position(),
-                    near: o.near,
-                    far: o.far,
-                    texel_world: (o.right - o.left).max(o.top - o.bottom)
-                        / settings.map_size as f32,
-                    reference: LightKind::Directional {
-                        to_light: l.direction.normalize(),
-                    },
-                }
-            }
-            (Light::Directional(l), LightProjection::Perspective) => {
-                let eye = l.position();
-                // The ortho box may start behind the light (the book's near is -1); a
-                // perspective frustum needs a positive near, and at least 1 unit keeps its
-                // depth precision usable (LearnOpenGL's comparison uses near 1).
-                let near = l.ortho.near.max(1.0);
-                let far = l.ortho.far.max(near * 2.0);
-                perspective_view(
-                    eye,
-                    eye - l.direction.normalize() * l.shadow_pos_mult,
-                    None,
-                    settings.perspective_fov,
-                    near,
-                    far,
-                    settings.map_size,
-                )
-            }
-            (Light::Point(p), _) => {
-                // The cube map's faces are drawn from the light's position; this view is the
-                // +Z face, and the reference casts rays to the point.
-                let mut v = perspective_view(
-                    p.position,
-                    p.position + Vec3::Z,
-                    Some(-Vec3::Y),
-                    90.0,
-                    p.near,
-                    p.far,
-                    settings.map_size,
-                );
-                v.texel_world = 2.0 * p.far / settings.map_size as f32;
-                v
-            }
-            (Light::Spot(s), _) => perspective_view(
-                s.position,
-                s.target,
-                s.up,
-                s.fov,
-                s.near,
-                s.far,
-                settings.map_size,
-            ),
-        }
-    }
-}
-
-fn perspective_view(
-    eye: Vec3,
-    target: Vec3,
-    up: Option<Vec3>,
-    fov: f32,
-    near: f32,
-    far: f32,
-    map_size: u32,
-) -> ShadowView {
-    let distance = (target - eye).length().max(near);
-    let view = look_at(eye, target, up);
-    ShadowView {
-        view,
-        view64: view.as_dmat4(),
-        projection: Mat4::perspective_rh_gl(fov.to_radians(), 1.0, near, far),
-        perspective: true,
-        eye,
-        near,
-        far,
-        texel_world: 2.0 * distance * (fov.to_radians() * 0.5).tan() / map_size as f32,
-        reference: LightKind::Point { position: eye },
-    }
-}
-
-/// A right-handed look-at. With an up vector (the slides' +Z) it is the usual look-at; when
-/// there is none, or it lines up with the view direction (where the usual look-at gives
-/// NaN), the basis comes from [`super::fit::light_basis`] and is finite everywhere.
-pub fn look_at(eye: Vec3, target: Vec3, up: Option<Vec3>) -> Mat4 {
-    let d = (target - eye).normalize_or_zero();
-    match up {
-        Some(u) if u.normalize_or_zero().cross(d).length_squared() > 1e-6 => {
-            Mat4::look_at_rh(eye, target, u)
-        }
-        _ => {
-            super::fit::light_view(eye.as_dvec3(), super::fit::light_basis(-d.as_dvec3())).as_mat4()
         }
     }
 }

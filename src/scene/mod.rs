@@ -2,9 +2,7 @@
 //! TOML scene files they load from.
 
 pub mod camera;
-pub mod cascades;
 pub mod file;
-pub mod fit;
 pub mod game_item;
 pub mod light;
 
@@ -13,12 +11,17 @@ use serde::{Deserialize, Serialize};
 
 pub use camera::Camera;
 pub use game_item::{GameItem, Material};
-pub use light::{DirectionalLight, Light, OrthoCoords, PointLight, Shading, ShadowView, SpotLight};
+pub use light::{DirectionalLight, Light, OrthoCoords, PointLight, Shading, SpotLight};
 
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
-use crate::settings::{Fit, LightProjection, ShadowSettings};
+use crate::settings::ShadowSettings;
+
+/// Lights per scene. Each casting light takes one texture unit besides the material's (GL
+/// 3.3 guarantees 16 per stage) and one block of per-pixel work; four keeps the shader's
+/// cost within a few of the book's one light.
+pub const MAX_LIGHTS: usize = 4;
 
 /// The built-in scenes, each also a file under `assets/scenes/`.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
@@ -62,7 +65,7 @@ pub struct Scene {
     /// The file the scene came from (`<built-in NAME>` for built-in scenes), for messages.
     pub source: std::path::PathBuf,
     pub camera: Camera,
-    /// One to [`crate::light_slots::MAX_LIGHTS`] lights; the first is "the" light of the
+    /// One to [`MAX_LIGHTS`] lights; the first is "the" light of the
     /// chapters (the one the DummyGame's keys turn and `compare` measures by default).
     pub lights: Vec<Light>,
     pub ambient: Vec3,
@@ -152,63 +155,9 @@ impl Scene {
         &mut self.lights[0]
     }
 
-    /// Light `index`'s camera for the depth pass under `settings`: the light's own, or with
-    /// `fit = "scene"` an orthographic box fitted to this scene (see [`fit::fit_ortho`]).
-    pub fn shadow_view(&self, index: usize, settings: &ShadowSettings) -> ShadowView {
-        let light = &self.lights[index];
-        let fitted = match (light, settings.light_projection, settings.fit) {
-            (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => Some(l),
-            _ => None,
-        };
-        let Some(l) = fitted else {
-            return light.shadow_view(settings);
-        };
-        let fit_scene;
-        let scene = match self.fit_camera {
-            Some(camera) => {
-                fit_scene = Scene {
-                    camera,
-                    fit_camera: None,
-                    ..self.clone()
-                };
-                &fit_scene
-            }
-            None => self,
-        };
-        let b = fit::fit_ortho(scene, l.direction, settings.map_size, settings.snap);
-        b.shadow_view(l.direction)
-    }
-
     /// The camera that shadow fitting follows: `fit_camera` when set, else the viewer.
     pub fn fitting_camera(&self) -> &Camera {
         self.fit_camera.as_ref().unwrap_or(&self.camera)
-    }
-}
-
-impl fit::FittedBox {
-    /// The fitted box as the depth pass' camera for a light shining from `to_light`.
-    pub fn shadow_view(&self, to_light: Vec3) -> ShadowView {
-        let b = self;
-        let [left, right, bottom, top, near, far] = b.bounds;
-        let projection =
-            glam::DMat4::orthographic_rh_gl(left, right, bottom, top, near, far).as_mat4();
-        ShadowView {
-            view: b.view.as_mat4(),
-            view64: b.view,
-            projection,
-            perspective: false,
-            eye: b
-                .view
-                .inverse()
-                .transform_point3(glam::DVec3::ZERO)
-                .as_vec3(),
-            near: near as f32,
-            far: far as f32,
-            texel_world: b.texel as f32,
-            reference: crate::reference::LightKind::Directional {
-                to_light: to_light.normalize(),
-            },
-        }
     }
 }
 

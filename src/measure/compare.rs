@@ -6,15 +6,16 @@ use std::time::Instant;
 
 use glam::{DMat4, DVec3};
 
-use crate::engine::{Gl, Outputs};
-use crate::error::{Error, Result};
-use crate::frame::{render_frames, render_frames_of_light, Frame};
-use crate::reference::{
+use super::frame::{render_frames, render_frames_of_light, Frame};
+use super::reference::{
     compute_metrics, reference_visibility, reference_visibility_supersampled, Bvh, GBuffer,
     LightKind, Metrics, RefPixel, Triangle,
 };
+use crate::engine::{Gl, Outputs};
+use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
+use crate::shadows::Rays;
 
 /// How a comparison is made.
 #[derive(Debug, Clone, Copy)]
@@ -55,11 +56,11 @@ pub fn light_kind(
     settings: &ShadowSettings,
     origin: DVec3,
 ) -> LightKind {
-    match scene.shadow_view(index, settings).reference {
-        LightKind::Point { position } => LightKind::Point {
+    match crate::shadows::light_camera(scene, index, settings).rays {
+        Rays::FromPoint { position } => LightKind::Point {
             position: (position.as_dvec3() - origin).as_vec3(),
         },
-        directional => directional,
+        Rays::Parallel { to_light } => LightKind::Directional { to_light },
     }
 }
 

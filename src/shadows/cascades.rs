@@ -10,16 +10,18 @@
 //!   shape, not on where the camera looks, so the box keeps its size as the camera turns;
 //!   its centre moves in whole texels (snapping), so shadow edges do not crawl.
 
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 
-#[cfg(doc)]
-use super::fit::item_world_boxes;
-use super::fit::{aabb, corners, light_basis, light_view, FittedBox};
-use super::{Camera, Scene};
-
-/// Cascades per light: the layers of one depth texture array, and slots in the shader's
-/// uniform arrays.
-pub const MAX_CASCADES: u32 = 4;
+use super::casters::{depth_state, draw_casters};
+use super::fitted::{aabb, corners, item_world_boxes, FittedBox};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use crate::engine::{
+    state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
+};
+use crate::error::Result;
+use crate::scene::{Camera, Light, Scene};
+use crate::settings::{ShadowSettings, Wrap};
+use crate::transformation::{light_basis, light_view};
 
 /// `count + 1` view depths from `near` to `far`: the practical split scheme with `lambda`
 /// from 0 (uniform) to 1 (logarithmic). Computed in double precision so a near plane of
@@ -80,7 +82,7 @@ pub struct CascadeSpec {
 
 impl CascadeSpec {
     /// The cascade fields of the shadow settings (`shadow_distance = 0`: no limit).
-    pub fn of(s: &crate::settings::ShadowSettings) -> CascadeSpec {
+    pub fn of(s: &ShadowSettings) -> CascadeSpec {
         CascadeSpec {
             count: s.cascades,
             lambda: s.cascade_lambda,
@@ -205,6 +207,144 @@ pub fn camera_relative_matrix(cascade: &Cascade, camera_position: Vec3) -> DMat4
     DMat4::orthographic_rh_gl(l, r, b, t, n, f)
         * cascade.fitted.view
         * DMat4::from_translation(camera_position.as_dvec3())
+}
+
+/// Its sampler in the scene shader, per light.
+pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
+    ["cascadeMap0", "cascadeMap1", "cascadeMap2", "cascadeMap3"];
+
+/// Light `i`'s lines in the generated snippets: its sampler and its `addLightCascades` call
+/// (shaders/lib/shadow_cascades.glsl).
+pub fn glsl(i: usize, positional: bool, cone: bool) -> (String, String) {
+    (
+        format!("uniform SHADOW_SAMPLER_ARRAY {};", SAMPLERS[i]),
+        format!(
+            "addLightCascades({i}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    )
+}
+
+/// A cascaded light's storage: the depth array and the cascades of the last depth pass.
+pub struct Cascades {
+    array: CascadeShadowMap,
+    cascades: Vec<Cascade>,
+}
+
+impl Cascades {
+    pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Cascades> {
+        Ok(Cascades {
+            array: CascadeShadowMap::new(gl, s.map_size, s.cascades, s.depth_format)?,
+            cascades: Vec::new(),
+        })
+    }
+}
+
+impl Technique for Cascades {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Cascades
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.array.size() == s.map_size
+            && self.array.format() == s.depth_format
+            && self.array.layers() == s.cascades
+    }
+
+    /// One depth pass per cascade, into its layer, with the casters that can land in it.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let Light::Directional(l) = &scene.lights[index] else {
+            return Err(crate::Error::Invalid(format!(
+                "light {index} has cascades but is not a directional light"
+            )));
+        };
+        // Items' world boxes, once: the cascades are fitted above them and culled by them.
+        let boxes = item_world_boxes(scene);
+        self.cascades = fit_cascades(scene, &boxes, l.direction, &CascadeSpec::of(pass.settings));
+        let program = pass.programs.flat(pass.gl)?;
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
+        for (layer, c) in self.cascades.iter().enumerate() {
+            self.array.bind_layer(layer as u32);
+            state::clear_depth(pass.gl);
+            let [l, r, b, t, n, f] = c.fitted.bounds;
+            let projection = DMat4::orthographic_rh_gl(l, r, b, t, n, f).as_mat4();
+            program.set_mat4("orthoProjectionMatrix", &projection);
+            let keep = |i: usize| c.may_hold(boxes[i].0, boxes[i].1);
+            draw_casters(
+                pass.meshes,
+                scene,
+                program,
+                "modelLightViewMatrix",
+                c.fitted.view,
+                keep,
+            );
+        }
+        // The first cascade stands for the light's camera (reports, the depth view's near
+        // and far).
+        Ok(match self.cascades.first() {
+            Some(first) => first.fitted.shadow_view(l.direction),
+            None => super::map2d::camera(scene, index, pass.settings),
+        })
+    }
+
+    fn texture(&self) -> &Texture {
+        self.array.texture()
+    }
+
+    /// A cascade covers exactly its slice and the casters that reach it: outside it is lit
+    /// (a border of depth 1), whatever the settings' wrap.
+    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
+        let hardware = settings.filter.hardware();
+        Sampling {
+            compare: hardware,
+            linear: hardware,
+            wrap: Wrap::ClampToBorder,
+        }
+    }
+
+    fn slot_transform(
+        &self,
+        _: &Light,
+        _: &ShadowView,
+        _: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        None
+    }
+
+    /// Camera-relative world to each cascade's clip space, the split depths and each
+    /// cascade's normal offset (its own texel size).
+    fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
+        let matrices: Vec<Mat4> = self
+            .cascades
+            .iter()
+            .map(|c| camera_relative_matrix(c, scene.camera.position).as_mat4())
+            .collect();
+        let mut splits: Vec<f32> = self.cascades.iter().map(|c| c.near as f32).collect();
+        splits.extend(self.cascades.last().map(|c| c.far as f32));
+        let offsets: Vec<f32> = self
+            .cascades
+            .iter()
+            .map(|c| s.normal_offset * c.fitted.texel as f32)
+            .collect();
+        p.set_mat4_array("cascadeMatrix", &matrices);
+        p.set_f32_array("cascadeSplit", &splits);
+        p.set_f32_array("cascadeNormalOffset", &offsets);
+    }
+
+    fn bytes(&self) -> u64 {
+        u64::from(self.array.layers()) * u64::from(self.array.size()).pow(2) * 4
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        DepthViewKind::Array {
+            layers: self.array.layers(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -1,39 +1,14 @@
 //! The light's camera fitted to what the scene needs (past the chapters: the book suggests
 //! it and leaves it): an orthographic box around the receivers the camera can see and every
 //! caster that can shadow them, snapped to whole texels so it does not shimmer as the
-//! camera moves. Also the light basis that stays finite at the poles.
+//! camera moves. (The light basis it builds on, finite at the poles, is
+//! [`crate::transformation::light_basis`].)
 
-use glam::{DMat3, DMat4, DVec3, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 
-use super::Scene;
-
-/// The direction whose basis is not continuous (every continuous choice of basis on the
-/// sphere has one): well below the horizon and off every axis, where no chapter's light
-/// goes. The basis is finite there too.
-const SINGULAR: DVec3 = DVec3::new(
-    0.301_511_344_577_763_6,
-    -0.904_534_033_733_291,
-    0.301_511_344_577_763_6,
-);
-
-/// An orthonormal light basis: columns x, y and z = `to_light` (the light's view looks down
-/// -z). Finite for every non-zero direction, and continuous everywhere but [`SINGULAR`], so
-/// a sun passing overhead (the usual look-at's NaN, +-Y) turns its map smoothly.
-pub fn light_basis(to_light: DVec3) -> DMat3 {
-    let d = to_light.normalize();
-    // The reference frame, for d = -SINGULAR: any orthonormal pair around it.
-    let r = -SINGULAR;
-    let x0 = r.any_orthonormal_vector();
-    let y0 = r.cross(x0);
-    // The shortest rotation from r to d; only d = -r = SINGULAR has no unique one.
-    let q = glam::DQuat::from_rotation_arc(r, d);
-    DMat3::from_cols(q * x0, q * y0, d)
-}
-
-/// World to light view for a light at `eye` with basis `basis` (a rigid transform).
-pub fn light_view(eye: DVec3, basis: DMat3) -> DMat4 {
-    DMat4::from_mat3(basis.transpose()) * DMat4::from_translation(-eye)
-}
+use super::{Rays, ShadowView};
+use crate::scene::Scene;
+use crate::transformation::{light_basis, light_view};
 
 /// A fitted orthographic light camera.
 #[derive(Debug, Clone, Copy)]
@@ -43,6 +18,27 @@ pub struct FittedBox {
     pub bounds: [f64; 6],
     /// One texel in world units.
     pub texel: f64,
+}
+
+impl FittedBox {
+    /// The fitted box as the depth pass' camera for a light shining from `to_light`.
+    pub fn shadow_view(&self, to_light: Vec3) -> ShadowView {
+        let [left, right, bottom, top, near, far] = self.bounds;
+        let projection = DMat4::orthographic_rh_gl(left, right, bottom, top, near, far).as_mat4();
+        ShadowView {
+            view: self.view.as_mat4(),
+            view64: self.view,
+            projection,
+            perspective: false,
+            eye: self.view.inverse().transform_point3(DVec3::ZERO).as_vec3(),
+            near: near as f32,
+            far: far as f32,
+            texel_world: self.texel as f32,
+            rays: Rays::Parallel {
+                to_light: to_light.normalize(),
+            },
+        }
+    }
 }
 
 /// Fits the light's box to `scene` for a light shining from `to_light`, with a
@@ -273,71 +269,4 @@ fn frustum_corners(scene: &Scene, reach: f64) -> [DVec3; 8] {
         let y = if i & 2 == 0 { -1.0 } else { 1.0 } * d * t.tan();
         inv_view.transform_point3(DVec3::new(x, y, -d))
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn check(d: DVec3) {
-        let b = light_basis(d);
-        assert!(
-            b.to_cols_array().iter().all(|v| v.is_finite()),
-            "{d}: not finite"
-        );
-        let e = b.transpose() * b - DMat3::IDENTITY;
-        let worst = e.to_cols_array().iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        assert!(worst < 1e-5, "{d}: not orthonormal ({worst:e})");
-        assert!(
-            (b.z_axis - d.normalize()).length() < 1e-9,
-            "{d}: z is not the direction"
-        );
-        assert!(
-            (b.x_axis.cross(b.y_axis) - b.z_axis).length() < 1e-9,
-            "{d}: left-handed"
-        );
-    }
-
-    #[test]
-    fn basis_is_finite_and_orthonormal_everywhere() {
-        // 10,000 directions spread over the sphere (a Fibonacci lattice) ...
-        let n = 10_000;
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-        for i in 0..n {
-            let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-            let r = (1.0 - y * y).sqrt();
-            let a = golden * i as f64;
-            check(DVec3::new(r * a.cos(), y, r * a.sin()));
-        }
-        // ... the poles, within 1e-7 of them, and the one singular direction itself.
-        for d in [
-            DVec3::Y,
-            -DVec3::Y,
-            DVec3::new(1e-7, 1.0, 0.0),
-            DVec3::new(0.0, -1.0, 1e-7),
-            SINGULAR,
-            -SINGULAR,
-        ] {
-            check(d);
-        }
-    }
-
-    #[test]
-    fn basis_is_continuous_across_the_poles() {
-        for pole in [DVec3::Y, -DVec3::Y] {
-            for k in 0..64 {
-                let a = k as f64 * std::f64::consts::TAU / 64.0;
-                let off = DVec3::new(a.cos(), 0.0, a.sin()) * 1e-7;
-                let (b0, b1) = (light_basis(pole), light_basis(pole + off));
-                let diff = (b1 - b0)
-                    .to_cols_array()
-                    .iter()
-                    .fold(0.0f64, |m, v| m.max(v.abs()));
-                assert!(
-                    diff < 1e-5,
-                    "a step of 1e-7 from {pole} moves the basis by {diff}"
-                );
-            }
-        }
-    }
 }

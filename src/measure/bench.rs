@@ -7,15 +7,16 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::compare::{compute_reference, CompareOptions, Reference};
+use super::compare::{compute_reference, CompareOptions, Reference};
+use super::reference::Metrics;
+use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
-use crate::light_slots::ShadowKind;
-use crate::reference::Metrics;
 use crate::renderer::{Renderer, Target};
 use crate::scene::Light;
 use crate::scene::Scene;
 use crate::settings::{BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowSettings};
+use crate::shadows::ShadowKind;
 
 /// The bias configurations the sweep tries, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -434,7 +435,8 @@ pub fn run(
         return Ok(Vec::new());
     };
     let mut renderer = Renderer::new(gl, scene, &first.settings)?;
-    renderer.enable_timer()?;
+    let timer = std::rc::Rc::new(GpuPassTimes::new(gl)?);
+    renderer.set_hooks(timer.clone());
     let target = RenderTarget::new(gl, opts.width, opts.height, Outputs::default())?;
     let scored = RenderTarget::new(
         gl,
@@ -480,10 +482,9 @@ pub fn run(
             t.wall.push(ms(end - start));
             t.depth_wall.push(ms(mid - start));
             t.scene_wall.push(ms(end - mid));
-            if let Some([d, s]) = renderer.pass_times_ms() {
-                t.depth_gpu.push(d);
-                t.scene_gpu.push(s);
-            }
+            let [d, s] = timer.read_ms();
+            t.depth_gpu.push(d);
+            t.scene_gpu.push(s);
         }
         let quieter = match best[i].take() {
             Some(old) if Stat::of(&old.wall).median <= Stat::of(&t.wall).median => old,

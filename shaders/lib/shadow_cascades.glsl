@@ -1,0 +1,85 @@
+// Cascaded shadow maps (past the chapters; LearnOpenGL's "Shadow Mapping" ends pointing at
+// them): one directional light's map split into CASCADES layers of a depth array, each
+// covering a slice of the view. Compiled with the defines of bias.glsl and:
+//   CASCADES       layers (2 to 4)
+//   CASCADE_BLEND  the last fraction of each cascade that fades into the next
+//   SHADOW_MAP_SIZE, PCF_RADIUS as for the 2D test
+
+// The cascaded light's position in each cascade's clip space (scene.vert: one light has
+// cascades, so they fit among the vertex outputs).
+in vec4 cascadePos[CASCADES];
+uniform float cascadeSplit[CASCADES + 1];  // view depths: cascade c serves [c, c + 1)
+
+// The PCF grid of calcShadow, in one layer of the array.
+float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
+{
+    vec2 inc = vec2(1.0 / float(SHADOW_MAP_SIZE));
+    float lit = 0.0;
+    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
+        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
+            lit += LIT_ARRAY(map, uv + vec2(row, col) * inc, layer, current);
+        }
+    }
+    return lit / PCF_TAPS;
+}
+
+// The test in cascade `c` (the position already pushed along the normal by the cascade's
+// own texel size, in scene.vert). A cascade covers exactly its slice: beyond it is lit.
+float cascadeLookup(SHADOW_SAMPLER_ARRAY map, int c, vec3 normal, vec3 toLightDir)
+{
+    vec3 projCoords = cascadePos[c].xyz * 0.5 + 0.5;
+    float lit = pcfArray(map, projCoords.xy, float(c),
+                         projCoords.z - depthBias(normal, toLightDir));
+    return projCoords.z > 1.0 ? 1.0 : lit;
+}
+
+// The cascade is chosen by view depth; over the last CASCADE_BLEND of its range it fades
+// into the next one, so the seam does not show. Past the last split (the shadow distance)
+// everything is lit. Indices that vary per pixel go into local arrays and inputs
+// (selects), never into uniform arrays (a gather per pixel on llvmpipe).
+float calcShadowCascades(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir,
+                         inout Fragment f)
+{
+    float depth = -mvVertexPos.z;
+    float splits[CASCADES + 1];
+    for (int k = 0; k <= CASCADES; ++k) {
+        splits[k] = cascadeSplit[k];
+    }
+    if (depth >= splits[CASCADES]) {
+        return 1.0;
+    }
+    int c = 0;
+    for (int k = 1; k < CASCADES; ++k) {
+        c += depth >= splits[k] ? 1 : 0;
+    }
+    f.cascade = c;
+    float lit = cascadeLookup(map, c, normal, toLightDir);
+    if (CASCADE_BLEND > 0.0 && c + 1 < CASCADES) {
+        float end = splits[c + 1];
+        float start = end - CASCADE_BLEND * (end - splits[c]);
+        if (depth > start) {
+            float next = cascadeLookup(map, c + 1, normal, toLightDir);
+            lit = mix(lit, next, (depth - start) / (end - start));
+        }
+    }
+    return lit;
+}
+
+// The cascaded light i.
+void addLightCascades(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool cone,
+                      inout Fragment f)
+{
+    vec3 toLight = toLightOf(i, positional);
+    addLight(i, toLight, cone, calcShadowCascades(map, f.normal, toLight, f), f);
+}
+
+// SHOW_CASCADES: tint each cascade's part of the frame.
+vec3 cascadeTint(vec3 colour, int cascade)
+{
+    const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
+                                 vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));
+    if (cascade >= 0) {
+        colour = mix(colour, colour * tints[cascade], 0.6);
+    }
+    return colour;
+}

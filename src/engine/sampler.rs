@@ -1,0 +1,136 @@
+//! How a shadow map is read, as a value: GL 3.3's sampler objects. A texture keeps the
+//! parameters it was made with; the scene pass binds a sampler with the filter's compare
+//! mode, filtering and wrap next to it, and unbinds it when the pass ends, so nothing is
+//! changed on the texture per use.
+
+use glow::HasContext;
+
+use super::Gl;
+use crate::error::{Error, Result};
+use crate::settings::Wrap;
+
+/// What a sampler does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Sampling {
+    /// Depth comparison in the sampler (`sampler2DShadow`: reference <= stored depth).
+    pub compare: bool,
+    /// LINEAR filtering (with `compare`: the hardware's 2 x 2 PCF); otherwise NEAREST, as the
+    /// book samples its map.
+    pub linear: bool,
+    /// Outside [0, 1]. A border is depth 1 (LearnOpenGL's fix: "far away", so lit).
+    pub wrap: Wrap,
+}
+
+impl Sampling {
+    /// Plain NEAREST reads, clamped: the book's depth texture, a cube map, the depth view.
+    pub const PLAIN: Sampling = Sampling {
+        compare: false,
+        linear: false,
+        wrap: Wrap::ClampToEdge,
+    };
+}
+
+fn wrap_mode(wrap: Wrap) -> u32 {
+    match wrap {
+        Wrap::ClampToEdge => glow::CLAMP_TO_EDGE,
+        Wrap::ClampToBorder => glow::CLAMP_TO_BORDER,
+        Wrap::Repeat => glow::REPEAT,
+    }
+}
+
+/// An owned sampler object; deleted on drop.
+pub struct Sampler {
+    gl: Gl,
+    id: glow::Sampler,
+    sampling: Sampling,
+}
+
+impl Sampler {
+    pub fn new(gl: &Gl, sampling: Sampling) -> Result<Sampler> {
+        let id =
+            unsafe { gl.create_sampler() }.map_err(|e| Error::Create(format!("sampler: {e}")))?;
+        let s = Sampler {
+            gl: gl.clone(),
+            id,
+            sampling,
+        };
+        unsafe {
+            let p = |k, v: u32| gl.sampler_parameter_i32(id, k, v as i32);
+            let filter = if sampling.linear {
+                glow::LINEAR
+            } else {
+                glow::NEAREST
+            };
+            p(glow::TEXTURE_MIN_FILTER, filter);
+            p(glow::TEXTURE_MAG_FILTER, filter);
+            for axis in [
+                glow::TEXTURE_WRAP_S,
+                glow::TEXTURE_WRAP_T,
+                glow::TEXTURE_WRAP_R,
+            ] {
+                p(axis, wrap_mode(sampling.wrap));
+            }
+            if sampling.wrap == Wrap::ClampToBorder {
+                gl.sampler_parameter_f32_slice(id, glow::TEXTURE_BORDER_COLOR, &[1.0; 4]);
+            }
+            if sampling.compare {
+                p(glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE);
+                p(glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL);
+            } else {
+                p(glow::TEXTURE_COMPARE_MODE, glow::NONE);
+            }
+        }
+        Ok(s)
+    }
+
+    pub fn sampling(&self) -> Sampling {
+        self.sampling
+    }
+
+    /// Binds the sampler to texture unit `unit` until the returned guard drops.
+    pub fn bind(&self, unit: u32) -> BoundSampler {
+        unsafe { self.gl.bind_sampler(unit, Some(self.id)) };
+        BoundSampler {
+            gl: self.gl.clone(),
+            unit,
+        }
+    }
+}
+
+impl Drop for Sampler {
+    fn drop(&mut self) {
+        unsafe { self.gl.delete_sampler(self.id) };
+    }
+}
+
+/// A sampler bound to a unit; the unit goes back to its texture's own parameters on drop.
+pub struct BoundSampler {
+    gl: Gl,
+    unit: u32,
+}
+
+impl Drop for BoundSampler {
+    fn drop(&mut self) {
+        unsafe { self.gl.bind_sampler(self.unit, None) };
+    }
+}
+
+/// The samplers in use, made once per kind of sampling (a scene needs two or three).
+#[derive(Default)]
+pub struct Samplers {
+    made: Vec<Sampler>,
+}
+
+impl Samplers {
+    /// The sampler for `sampling`, made on first use.
+    pub fn get(&mut self, gl: &Gl, sampling: Sampling) -> Result<&Sampler> {
+        let i = match self.made.iter().position(|s| s.sampling == sampling) {
+            Some(i) => i,
+            None => {
+                self.made.push(Sampler::new(gl, sampling)?);
+                self.made.len() - 1
+            }
+        };
+        Ok(&self.made[i])
+    }
+}

@@ -1,0 +1,104 @@
+//! Fixed-function state as values: a pass says what it needs, a guard applies it and puts
+//! the renderer's resting state back when it drops, on an error's early return too. The
+//! resting state between passes: depth test on, no culling, no polygon offset, the default
+//! framebuffer and no program bound.
+
+use glow::HasContext;
+
+use super::{Gl, ShaderProgram};
+use crate::settings::Cull;
+
+/// What a depth pass changes ("Shadows": the depth pass; LearnOpenGL's front-face culling
+/// against peter panning; glPolygonOffset as the slides' alternative to a bias).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DepthState {
+    pub cull: Cull,
+    /// `glPolygonOffset(factor, units)`; [0, 0] leaves it off.
+    pub polygon_offset: [f32; 2],
+}
+
+/// A depth pass in progress: culling, polygon offset and its program applied; dropping it
+/// restores the resting state (and unbinds the shadow map's framebuffer).
+pub struct DepthPassGuard {
+    gl: Gl,
+}
+
+impl DepthPassGuard {
+    pub fn begin(gl: &Gl, state: DepthState, program: &ShaderProgram) -> DepthPassGuard {
+        let [factor, units] = state.polygon_offset;
+        unsafe {
+            gl.depth_mask(true);
+            if factor != 0.0 || units != 0.0 {
+                gl.enable(glow::POLYGON_OFFSET_FILL);
+                gl.polygon_offset(factor, units);
+            }
+            match state.cull {
+                Cull::None => gl.disable(glow::CULL_FACE),
+                Cull::Back => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::BACK);
+                }
+                Cull::Front => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(glow::FRONT);
+                }
+            }
+        }
+        program.bind();
+        DepthPassGuard { gl: gl.clone() }
+    }
+}
+
+impl Drop for DepthPassGuard {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.use_program(None);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::POLYGON_OFFSET_FILL);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+}
+
+/// Clears the bound framebuffer's depth (a shadow map, before its casters are drawn).
+pub fn clear_depth(gl: &Gl) {
+    unsafe { gl.clear(glow::DEPTH_BUFFER_BIT) };
+}
+
+/// The resting state's depth test, set once when a renderer is made.
+pub fn enable_depth_test(gl: &Gl) {
+    unsafe { gl.enable(glow::DEPTH_TEST) };
+}
+
+/// Binds the window's framebuffer, sets the viewport to its size in pixels and clears it.
+pub fn bind_window_and_clear(gl: &Gl, width: u32, height: u32, colour: [f32; 4]) {
+    unsafe {
+        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        gl.viewport(0, 0, width as i32, height as i32);
+        gl.clear_color(colour[0], colour[1], colour[2], colour[3]);
+        gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+    }
+}
+
+/// Depth testing off while it lives (a full-screen quad), back on when it drops.
+pub struct NoDepthTest {
+    gl: Gl,
+}
+
+impl NoDepthTest {
+    pub fn begin(gl: &Gl) -> NoDepthTest {
+        unsafe { gl.disable(glow::DEPTH_TEST) };
+        NoDepthTest { gl: gl.clone() }
+    }
+}
+
+impl Drop for NoDepthTest {
+    fn drop(&mut self) {
+        unsafe { self.gl.enable(glow::DEPTH_TEST) };
+    }
+}
+
+/// Blocks until the GPU has finished (wall-time measurements).
+pub fn finish(gl: &Gl) {
+    unsafe { gl.finish() };
+}

@@ -1,0 +1,338 @@
+//! `Renderer`: the book's two-pass frame ("Shadows": `Renderer.render`).
+//!
+//! 1. [`Renderer::render_depth_map`]: each casting light's technique draws the scene from
+//!    the light into its map (for the chapter's light, [`crate::shadows::map2d`]).
+//! 2. [`Renderer::render_scene`]: the scene from the camera; each fragment asks each
+//!    light's test whether it is lit (`calcShadow` in `shaders/lib/shadow_2d.glsl`).
+//!
+//! The techniques live in [`crate::shadows`]; this file only orders the passes and feeds
+//! the scene shader ([`scene_pass`]). Measurement attaches through [`PassHooks`] and the
+//! target's extra outputs; the renderer does not know who measures.
+
+mod depth_view;
+mod scene_pass;
+
+use std::rc::Rc;
+
+use crate::engine::{check_gl, gl_limits, state, Gl, Mesh, Outputs, RenderTarget, Samplers};
+use crate::engine::{ShaderProgram, ShadowMap, Texture};
+use crate::error::{Error, Result};
+use crate::image_data::ImageData;
+use crate::scene::{Scene, MAX_LIGHTS};
+use crate::settings::ShadowSettings;
+use crate::shadows::casters::DepthPrograms;
+use crate::shadows::program::ProgramKey;
+use crate::shadows::{DepthPass, ShadowKind, ShadowView, Technique};
+
+/// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
+/// offscreen [`RenderTarget`].
+#[derive(Clone, Copy)]
+pub enum Target<'a> {
+    Window { width: u32, height: u32 },
+    Offscreen(&'a RenderTarget),
+}
+
+impl Target<'_> {
+    pub fn size(&self) -> (u32, u32) {
+        match self {
+            Target::Window { width, height } => (*width, *height),
+            Target::Offscreen(t) => (t.width(), t.height()),
+        }
+    }
+
+    /// The outputs besides colour (a window has none).
+    pub fn outputs(&self) -> Outputs {
+        match self {
+            Target::Window { .. } => Outputs::default(),
+            Target::Offscreen(t) => t.outputs(),
+        }
+    }
+
+    /// Binds the target, sets the viewport to its size in pixels (not the window's logical
+    /// size) and clears it.
+    fn bind_and_clear(&self, gl: &Gl, colour: [f32; 4]) {
+        match self {
+            Target::Offscreen(t) => t.bind_and_clear(colour),
+            Target::Window { width, height } => {
+                state::bind_window_and_clear(gl, *width, *height, colour)
+            }
+        }
+    }
+}
+
+/// The passes of a frame, for [`PassHooks`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pass {
+    Depth,
+    Scene,
+}
+
+/// Measurement attached from outside (the bench's GPU timers): told when a pass begins and
+/// ends.
+pub trait PassHooks {
+    fn begin(&self, pass: Pass);
+    fn end(&self, pass: Pass);
+}
+
+/// Owns the GL side of one scene: its meshes and textures, the programs, and one shadow
+/// technique per casting light. Create it after the context and drop it before.
+pub struct Renderer {
+    gl: Gl,
+    settings: ShadowSettings,
+    meshes: Vec<Mesh>,
+    textures: Vec<Texture>,
+    /// 1 x 1 white, for items without a texture.
+    white: Texture,
+    /// One per scene light, in the scene's order; `None` for a light that does not cast.
+    shadows: Vec<Option<Box<dyn Technique>>>,
+    /// Each light's camera in the last depth pass.
+    views: Vec<Option<ShadowView>>,
+    depth_programs: DepthPrograms,
+    /// Scene programs by what they were compiled for, the last used first (a bench
+    /// alternates a timed target without extra outputs and a scored one with them).
+    scene_programs: Vec<(ProgramKey, ShaderProgram)>,
+    samplers: Samplers,
+    depth_view: depth_view::DepthView,
+    hooks: Option<Rc<dyn PassHooks>>,
+    /// The light whose shadow test the visibility output carries.
+    visibility_light: usize,
+    /// The light whose map the depth view shows.
+    depth_view_light: usize,
+}
+
+impl Renderer {
+    /// Uploads the scene's meshes and textures and builds the pipeline for `settings`.
+    pub fn new(gl: &Gl, scene: &Scene, settings: &ShadowSettings) -> Result<Renderer> {
+        settings.validate(gl_limits(gl).max_texture_size)?;
+        let meshes = scene
+            .meshes
+            .iter()
+            .map(|m| Mesh::new(gl, m))
+            .collect::<Result<Vec<_>>>()?;
+        let textures = scene
+            .textures
+            .iter()
+            .map(|t| Texture::from_image(gl, t))
+            .collect::<Result<Vec<_>>>()?;
+        let white = ImageData {
+            width: 1,
+            height: 1,
+            rgba: vec![255; 4],
+        };
+        state::enable_depth_test(gl);
+        let mut renderer = Renderer {
+            gl: gl.clone(),
+            settings: *settings,
+            meshes,
+            textures,
+            white: Texture::from_image(gl, &white)?,
+            shadows: Vec::new(),
+            views: Vec::new(),
+            depth_programs: DepthPrograms::default(),
+            scene_programs: Vec::new(),
+            samplers: Samplers::default(),
+            depth_view: depth_view::DepthView::new(gl)?,
+            hooks: None,
+            visibility_light: 0,
+            depth_view_light: 0,
+        };
+        renderer.prepare_shadows(scene)?;
+        // Compile the scene program now, so a shader error shows before the first frame.
+        renderer.use_program(scene, Outputs::default())?;
+        check_gl(gl, "renderer setup")?;
+        Ok(renderer)
+    }
+
+    pub fn settings(&self) -> &ShadowSettings {
+        &self.settings
+    }
+
+    /// Switches settings; what they change (programs, maps) is rebuilt on the next frame.
+    pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
+        settings.validate(gl_limits(&self.gl).max_texture_size)?;
+        self.settings = *settings;
+        Ok(())
+    }
+
+    /// Which light's shadow test the visibility output carries (`compare` measures one
+    /// light at a time).
+    pub fn set_visibility_light(&mut self, index: usize) {
+        self.visibility_light = index;
+    }
+
+    /// Which light's map the depth view shows.
+    pub fn set_depth_view_light(&mut self, index: usize) {
+        self.depth_view_light = index;
+    }
+
+    /// Attaches measurement: `hooks` is told when each pass begins and ends.
+    pub fn set_hooks(&mut self, hooks: Rc<dyn PassHooks>) {
+        self.hooks = Some(hooks);
+    }
+
+    /// The first light's 2D shadow map, if it has one (the chapters' one map).
+    pub fn shadow_map(&self) -> Option<&ShadowMap> {
+        self.shadows.first()?.as_deref()?.depth_map()
+    }
+
+    /// The first light's camera of the last depth pass.
+    pub fn shadow_view(&self) -> Option<&ShadowView> {
+        self.views.first()?.as_ref()
+    }
+
+    /// Shadow maps in use and the bytes they take.
+    pub fn shadow_memory(&self) -> (usize, u64) {
+        let techniques = self.shadows.iter().flatten();
+        (
+            techniques.clone().count(),
+            techniques.map(|t| t.bytes()).sum(),
+        )
+    }
+
+    /// One frame: the depth maps first, then the scene (or, with `show_depth_map`, a map
+    /// itself) into `target`.
+    pub fn render(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        self.render_depth_map(scene)?;
+        if self.settings.show_depth_map {
+            self.render_depth_view(scene, target)
+        } else {
+            self.render_scene(scene, target)
+        }
+    }
+
+    /// The shadow pass: each casting light's technique draws the casters into its map
+    /// (the book's `renderDepthMap`: bind the map's FBO, viewport to its size, clear depth,
+    /// draw with the light's view and projection).
+    pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
+        self.prepare_shadows(scene)?;
+        self.hook(Pass::Depth, true);
+        let mut pass = DepthPass {
+            gl: &self.gl,
+            meshes: &self.meshes,
+            programs: &mut self.depth_programs,
+            settings: &self.settings,
+        };
+        for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
+            *view = match shadow {
+                Some(technique) => Some(technique.render_depth(&mut pass, scene, index)?),
+                None => None,
+            };
+        }
+        self.hook(Pass::Depth, false);
+        check_gl(&self.gl, "the depth-map pass")
+    }
+
+    /// The main pass: the scene from the camera, each light's map on its texture unit. Call
+    /// after [`Renderer::render_depth_map`].
+    pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        if self.shadows.len() != scene.lights.len() {
+            return Err(Error::Invalid(
+                "render_scene before render_depth_map: there are no shadow maps yet".into(),
+            ));
+        }
+        self.use_program(scene, target.outputs())?;
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        self.hook(Pass::Scene, true);
+        let inputs = scene_pass::Inputs {
+            program: &self.scene_programs[0].1,
+            shadows: &self.shadows,
+            views: &self.views,
+            settings: &self.settings,
+            meshes: &self.meshes,
+            textures: &self.textures,
+            white: &self.white,
+        };
+        let result = scene_pass::draw(&inputs, &mut self.samplers, &self.gl, scene, target.size());
+        self.hook(Pass::Scene, false);
+        result?;
+        check_gl(&self.gl, "the scene pass")
+    }
+
+    /// The chapters' debug quad: a light's shadow map on the whole target (see
+    /// [`depth_view`]).
+    pub fn render_depth_view(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        let index = self
+            .depth_view_light
+            .min(self.shadows.len().saturating_sub(1));
+        if self.shadows.is_empty() {
+            return Err(Error::Invalid(
+                "render_depth_view before render_depth_map: there is no shadow map yet".into(),
+            ));
+        }
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        // A light without a map: the cleared target says so.
+        if let Some(technique) = self.shadows[index].as_deref() {
+            self.depth_view.draw(
+                &self.gl,
+                &mut self.samplers,
+                technique,
+                self.views[index].as_ref(),
+            )?;
+        }
+        check_gl(&self.gl, "the depth-map view")
+    }
+
+    /// Blocks until the GPU has finished (for wall-time measurements).
+    pub fn finish(&self) {
+        state::finish(&self.gl);
+    }
+
+    /// Makes each light's technique match the scene's lights and the settings: only lights
+    /// that cast get one, remade when the settings change its kind or storage.
+    fn prepare_shadows(&mut self, scene: &Scene) -> Result<()> {
+        let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
+        self.shadows.resize_with(kinds.len(), || None);
+        self.views.resize(kinds.len(), None);
+        for (kind, shadow) in kinds.into_iter().zip(self.shadows.iter_mut()) {
+            let fits = match shadow {
+                Some(t) => t.kind() == kind && t.fits(&self.settings),
+                None => kind == ShadowKind::None,
+            };
+            if !fits {
+                *shadow = kind.create(&self.gl, &self.settings)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Moves the program for this frame's key to the front of the cache, compiling it if it
+    /// is not there (the cache keeps the last few).
+    fn use_program(&mut self, scene: &Scene, outputs: Outputs) -> Result<()> {
+        const KEEP: usize = 4;
+        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
+        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
+        for (k, shadow) in kinds.iter_mut().zip(&self.shadows) {
+            *k = shadow.as_ref().map_or(ShadowKind::None, |t| t.kind());
+        }
+        let n = self.shadows.len().min(MAX_LIGHTS);
+        let key = ProgramKey::of(
+            scene,
+            &self.settings,
+            &kinds[..n],
+            self.visibility_light,
+            outputs,
+        )?;
+        match self.scene_programs.iter().position(|(k, _)| *k == key) {
+            Some(0) => {}
+            Some(i) => {
+                let entry = self.scene_programs.remove(i);
+                self.scene_programs.insert(0, entry);
+            }
+            None => {
+                let program = key.compile(&self.gl)?;
+                self.scene_programs.insert(0, (key, program));
+                self.scene_programs.truncate(KEEP);
+            }
+        }
+        Ok(())
+    }
+
+    fn hook(&self, pass: Pass, begin: bool) {
+        if let Some(h) = &self.hooks {
+            match begin {
+                true => h.begin(pass),
+                false => h.end(pass),
+            }
+        }
+    }
+}

@@ -1,0 +1,64 @@
+//! Light cameras shared by the techniques: a perspective light "camera" (the slides', the
+//! blog's, a spot's) and a point light's.
+
+use glam::{Mat4, Vec3};
+
+use super::{Rays, ShadowView};
+use crate::scene::PointLight;
+use crate::settings::ShadowSettings;
+use crate::transformation::Transformation;
+
+/// The camera reported for a point light: its +Z face (the reference casts rays to the
+/// point; a texel is about 2 far / size at the far plane).
+pub fn point_camera(p: &PointLight, settings: &ShadowSettings) -> ShadowView {
+    let mut v = perspective_view(
+        p.position,
+        p.position + Vec3::Z,
+        Some(-Vec3::Y),
+        90.0,
+        p.near,
+        p.far,
+        settings.map_size,
+    );
+    v.texel_world = 2.0 * p.far / settings.map_size as f32;
+    v
+}
+
+/// A perspective light camera (the slides' and the blog's light "camera", a spot's).
+pub fn perspective_view(
+    eye: Vec3,
+    target: Vec3,
+    up: Option<Vec3>,
+    fov: f32,
+    near: f32,
+    far: f32,
+    map_size: u32,
+) -> ShadowView {
+    let distance = (target - eye).length().max(near);
+    let view = look_at(eye, target, up);
+    ShadowView {
+        view,
+        view64: view.as_dmat4(),
+        projection: Mat4::perspective_rh_gl(fov.to_radians(), 1.0, near, far),
+        perspective: true,
+        eye,
+        near,
+        far,
+        texel_world: 2.0 * distance * (fov.to_radians() * 0.5).tan() / map_size as f32,
+        rays: Rays::FromPoint { position: eye },
+    }
+}
+
+/// A right-handed look-at. With an up vector (the slides' +Z) it is the usual look-at; when
+/// there is none, or it lines up with the view direction (where the usual look-at gives
+/// NaN), the basis comes from [`crate::transformation::light_basis`] and is finite
+/// everywhere.
+pub fn look_at(eye: Vec3, target: Vec3, up: Option<Vec3>) -> Mat4 {
+    let d = (target - eye).normalize_or_zero();
+    match up {
+        Some(u) if u.normalize_or_zero().cross(d).length_squared() > 1e-6 => {
+            Mat4::look_at_rh(eye, target, u)
+        }
+        _ => Transformation::light_look_at(eye.as_dvec3(), -d.as_dvec3()).as_mat4(),
+    }
+}

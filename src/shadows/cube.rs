@@ -1,0 +1,156 @@
+//! A point light's omnidirectional shadow: a depth cube map of distances (LearnOpenGL's
+//! "Point Shadows"). The depth pass draws six 90-degree faces from the light, storing each
+//! fragment's distance over the far plane; the test (`shaders/lib/shadow_cube.glsl`)
+//! compares distances in world units.
+
+use glam::{DMat4, Mat4, Vec3};
+
+use super::camera::point_camera;
+use super::casters::{depth_state, draw_casters};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
+use crate::error::Result;
+use crate::scene::{Light, PointLight, Scene};
+use crate::settings::{PointPass, ShadowSettings};
+
+/// Its sampler in the scene shader, per light.
+pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
+    ["shadowCube0", "shadowCube1", "shadowCube2", "shadowCube3"];
+
+/// Light `i`'s lines in the generated snippets: its sampler and its `addLightCube` call.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> (String, String) {
+    (
+        format!("uniform samplerCube {};", SAMPLERS[i]),
+        format!(
+            "addLightCube({i}, {p}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    )
+}
+
+/// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,
+/// with GL's cube-map orientation.
+pub fn face_views() -> [Mat4; 6] {
+    let faces = [
+        (Vec3::X, -Vec3::Y),
+        (-Vec3::X, -Vec3::Y),
+        (Vec3::Y, Vec3::Z),
+        (-Vec3::Y, -Vec3::Z),
+        (Vec3::Z, -Vec3::Y),
+        (-Vec3::Z, -Vec3::Y),
+    ];
+    faces.map(|(d, up)| Mat4::look_at_rh(Vec3::ZERO, d, up))
+}
+
+/// World to the light's position: the faces and the scene pass' lookups are relative to it.
+fn from_light(p: &PointLight) -> DMat4 {
+    DMat4::from_translation(-p.position.as_dvec3())
+}
+
+pub struct Cube {
+    cube: CubeShadowMap,
+}
+
+impl Cube {
+    pub fn new(gl: &Gl, settings: &ShadowSettings) -> Result<Cube> {
+        Ok(Cube {
+            cube: CubeShadowMap::new(gl, settings.map_size, settings.depth_format)?,
+        })
+    }
+}
+
+impl Technique for Cube {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Cube
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.cube.size() == s.map_size && self.cube.format() == s.depth_format
+    }
+
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let Light::Point(light) = &scene.lights[index] else {
+            return Err(crate::Error::Invalid(format!(
+                "light {index} has a cube map but is not a point light"
+            )));
+        };
+        let point_pass = pass.settings.point_pass;
+        let program = pass.programs.point(pass.gl, point_pass)?;
+        let projection = Mat4::perspective_rh_gl(90f32.to_radians(), 1.0, light.near, light.far);
+        let to_light = from_light(light);
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
+        program.set_f32("farPlane", light.far);
+        match point_pass {
+            PointPass::Layered => {
+                // One pass: the geometry shader draws every triangle into all six faces.
+                self.cube.bind_layered()?;
+                state::clear_depth(pass.gl);
+                let faces = face_views().map(|v| projection * v);
+                program.set_mat4_array("faceProjections", &faces);
+                draw_casters(
+                    pass.meshes,
+                    scene,
+                    program,
+                    "modelLightMatrix",
+                    to_light,
+                    |_| true,
+                );
+            }
+            PointPass::SixPasses => {
+                for (face, view) in face_views().iter().enumerate() {
+                    self.cube.bind_face(face as u32);
+                    state::clear_depth(pass.gl);
+                    program.set_mat4("faceProjection", &(projection * *view));
+                    draw_casters(
+                        pass.meshes,
+                        scene,
+                        program,
+                        "modelLightMatrix",
+                        to_light,
+                        |_| true,
+                    );
+                }
+            }
+        }
+        Ok(point_camera(light, pass.settings))
+    }
+
+    fn texture(&self) -> &Texture {
+        self.cube.texture()
+    }
+
+    /// Plain NEAREST reads of distances: there is no shadow cube sampler path, so the
+    /// hardware filters fall back to one lookup.
+    fn sampling(&self, _settings: &ShadowSettings) -> Sampling {
+        Sampling::PLAIN
+    }
+
+    fn slot_transform(
+        &self,
+        light: &Light,
+        view: &ShadowView,
+        settings: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        let Light::Point(p) = light else {
+            return None;
+        };
+        Some(SlotTransform {
+            from: from_light(p),
+            projection: Mat4::IDENTITY,
+            normal_offset: settings.normal_offset * view.texel_world,
+        })
+    }
+
+    fn bytes(&self) -> u64 {
+        6 * u64::from(self.cube.size()).pow(2) * 4
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        DepthViewKind::Cube
+    }
+}

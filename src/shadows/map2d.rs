@@ -1,0 +1,201 @@
+//! The chapters' technique: one 2D depth map per light ("Shadows", sections "Shadow
+//! Mapping" and "Improving"; LearnOpenGL "Shadow Mapping").
+//!
+//! 1. The depth pass ([`Map2d::render_depth`], the book's `renderDepthMap`): bind the
+//!    map's framebuffer, viewport to its size, clear depth, draw every caster with the
+//!    light's view and its orthographic (or perspective) projection.
+//! 2. The test: `calcShadow` in `shaders/lib/shadow_2d.glsl`, called once per fragment with
+//!    the fragment's light-space position (`mlightviewVertexPos`, from scene.vert).
+//!
+//! The light's camera ([`camera`]) is the book's `OrthoCoords` box with its angle-built
+//! view, LearnOpenGL's look-at, a perspective frustum (the slides, the blog), a spot's
+//! frustum, or a box fitted to the scene ([`super::fitted`]).
+
+use super::camera::{perspective_view, point_camera};
+use super::casters::{depth_state, draw_casters};
+use super::{
+    fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
+};
+use crate::engine::{state, DepthPassGuard, Gl, Sampling, ShadowMap, Texture};
+use crate::error::Result;
+use crate::scene::{Light, Scene};
+use crate::settings::{Fit, LightProjection, ShadowSettings};
+
+/// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
+pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
+    ["shadowMap0", "shadowMap1", "shadowMap2", "shadowMap3"];
+
+/// Light `i`'s lines in the generated snippets: its sampler and its call of `addLight2D`
+/// (shaders/lib/shadow_2d.glsl) with its map slot `p`.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> (String, String) {
+    (
+        format!("uniform SHADOW_SAMPLER_2D {};", SAMPLERS[i]),
+        format!(
+            "addLight2D({i}, {p}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    )
+}
+
+/// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
+pub struct Map2d {
+    map: ShadowMap,
+}
+
+impl Map2d {
+    pub fn new(gl: &Gl, settings: &ShadowSettings) -> Result<Map2d> {
+        Ok(Map2d {
+            map: ShadowMap::new(gl, settings.map_size, settings.depth_format)?,
+        })
+    }
+}
+
+impl Technique for Map2d {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Map
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.map.size() == s.map_size && self.map.format() == s.depth_format
+    }
+
+    /// The book's `renderDepthMap`.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let view = camera(scene, index, pass.settings);
+        let program = pass.programs.flat(pass.gl)?;
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
+        self.map.bind_for_writing();
+        state::clear_depth(pass.gl);
+        program.set_mat4("orthoProjectionMatrix", &view.projection);
+        draw_casters(
+            pass.meshes,
+            scene,
+            program,
+            "modelLightViewMatrix",
+            view.view64,
+            |_| true,
+        );
+        Ok(view)
+    }
+
+    fn texture(&self) -> &Texture {
+        self.map.depth_map_texture()
+    }
+
+    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
+        let s = settings.effective();
+        Sampling {
+            compare: s.filter.hardware(),
+            linear: s.filter.hardware(),
+            wrap: s.wrap,
+        }
+    }
+
+    fn slot_transform(
+        &self,
+        _light: &Light,
+        view: &ShadowView,
+        settings: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        Some(SlotTransform {
+            from: view.view64,
+            projection: view.projection,
+            normal_offset: settings.normal_offset * view.texel_world,
+        })
+    }
+
+    fn bytes(&self) -> u64 {
+        u64::from(self.map.size()).pow(2) * 4
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        DepthViewKind::Flat
+    }
+
+    fn depth_map(&self) -> Option<&ShadowMap> {
+        Some(&self.map)
+    }
+}
+
+/// Light `index`'s camera for its 2D map under `settings`: its own, or with
+/// `fit = "scene"` an orthographic box fitted to this scene ([`fitted::fit_ortho`]).
+pub fn camera(scene: &Scene, index: usize, settings: &ShadowSettings) -> ShadowView {
+    let light = &scene.lights[index];
+    match (light, settings.light_projection, settings.fit) {
+        (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => {
+            let fit_scene;
+            let scene = match scene.fit_camera {
+                Some(camera) => {
+                    fit_scene = Scene {
+                        camera,
+                        fit_camera: None,
+                        ..scene.clone()
+                    };
+                    &fit_scene
+                }
+                None => scene,
+            };
+            fitted::fit_ortho(scene, l.direction, settings.map_size, settings.snap)
+                .shadow_view(l.direction)
+        }
+        _ => own_camera(light, settings),
+    }
+}
+
+/// The light's own camera. A directional light with `LightProjection::Perspective` becomes
+/// a point-like light at its shadow position looking at the origin (LearnOpenGL's
+/// "orthographic vs perspective" comparison).
+fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
+    match (light, settings.light_projection) {
+        (Light::Directional(l), LightProjection::Ortho) => {
+            let o = &l.ortho;
+            let view = l.view_matrix(settings.light_view);
+            ShadowView {
+                view,
+                view64: view.as_dmat4(),
+                projection: l.projection_matrix(),
+                perspective: false,
+                eye: l.position(),
+                near: o.near,
+                far: o.far,
+                texel_world: (o.right - o.left).max(o.top - o.bottom) / settings.map_size as f32,
+                rays: Rays::Parallel {
+                    to_light: l.direction.normalize(),
+                },
+            }
+        }
+        (Light::Directional(l), LightProjection::Perspective) => {
+            let eye = l.position();
+            // The ortho box may start behind the light (the book's near is -1); a
+            // perspective frustum needs a positive near, and at least 1 unit keeps its
+            // depth precision usable (LearnOpenGL's comparison uses near 1).
+            let near = l.ortho.near.max(1.0);
+            let far = l.ortho.far.max(near * 2.0);
+            perspective_view(
+                eye,
+                eye - l.direction.normalize() * l.shadow_pos_mult,
+                None,
+                settings.perspective_fov,
+                near,
+                far,
+                settings.map_size,
+            )
+        }
+        (Light::Spot(s), _) => perspective_view(
+            s.position,
+            s.target,
+            s.up,
+            s.fov,
+            s.near,
+            s.far,
+            settings.map_size,
+        ),
+        // A point light's camera is its cube's.
+        (Light::Point(p), _) => point_camera(p, settings),
+    }
+}

@@ -1,0 +1,190 @@
+//! Shadow techniques, one module each, behind one trait ([`Technique`]).
+//!
+//! - [`map2d`]: the chapters' technique: one 2D depth map drawn from the light, then
+//!   `calcShadow` in `shaders/lib/shadow_2d.glsl` ("Shadows"; LearnOpenGL "Shadow Mapping").
+//! - [`cube`]: a point light's depth cube map (LearnOpenGL "Point Shadows").
+//! - [`cascades`]: cascaded shadow maps for a directional light.
+//! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
+//!   [`map2d`]).
+//!
+//! A technique owns its storage (and says whether it still fits the settings), makes its
+//! light camera, runs its depth pass, names its shader snippet and sampler, and gives the
+//! scene pass its uniforms. The renderer only asks; [`slots`] lays the lights out in the
+//! scene shader and [`program`] turns what the shader is compiled for into `#define`s.
+
+pub mod camera;
+pub mod cascades;
+pub mod casters;
+pub mod cube;
+pub mod fitted;
+pub mod map2d;
+pub mod program;
+pub mod slots;
+
+use glam::{DMat4, Mat4, Vec3};
+
+use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
+use crate::error::Result;
+use crate::scene::{Light, Scene};
+use crate::settings::{LightProjection, ShadowSettings};
+
+/// What a light's shadow is stored in, and so which technique draws it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ShadowKind {
+    /// The light does not cast: no map, no lookup.
+    None,
+    /// One 2D depth map (directional and spot lights; the chapters' case).
+    Map,
+    /// A depth cube map of distances (point lights).
+    Cube,
+    /// A depth texture array, one layer per cascade (directional lights with cascades).
+    Cascades,
+}
+
+impl ShadowKind {
+    /// The kind each of a scene's lights gets: as [`ShadowKind::of`], except that only the
+    /// first casting directional light gets cascades (the sun; its cascades' positions are
+    /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
+    /// others one map each.
+    pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
+        let mut cascaded = false;
+        lights
+            .iter()
+            .map(|l| match ShadowKind::of(l, settings) {
+                ShadowKind::Cascades if cascaded => ShadowKind::Map,
+                ShadowKind::Cascades => {
+                    cascaded = true;
+                    ShadowKind::Cascades
+                }
+                kind => kind,
+            })
+            .collect()
+    }
+
+    /// The kind a light gets under `settings`, alone in its scene.
+    pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
+        match light {
+            l if !l.casts_shadows() => ShadowKind::None,
+            Light::Point(_) => ShadowKind::Cube,
+            Light::Directional(_)
+                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
+            {
+                ShadowKind::Cascades
+            }
+            Light::Directional(_) | Light::Spot(_) => ShadowKind::Map,
+        }
+    }
+
+    /// Makes the storage of this kind for `settings` (`None` for a light that does not cast).
+    pub fn create(self, gl: &Gl, settings: &ShadowSettings) -> Result<Option<Box<dyn Technique>>> {
+        Ok(match self {
+            ShadowKind::None => None,
+            ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
+            ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
+            ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),
+        })
+    }
+}
+
+/// The rays a light's map stands for: what the exact reference traces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Rays {
+    /// Parallel, towards the light (an orthographic map).
+    Parallel { to_light: Vec3 },
+    /// From a point (a perspective or cube map: the light's eye).
+    FromPoint { position: Vec3 },
+}
+
+/// A light's camera in a depth pass.
+#[derive(Debug, Clone, Copy)]
+pub struct ShadowView {
+    pub view: Mat4,
+    /// The same view in double precision, for view x model far from the origin.
+    pub view64: DMat4,
+    pub projection: Mat4,
+    /// Perspective projections need the divide by w (and linearising for display).
+    pub perspective: bool,
+    pub eye: Vec3,
+    pub near: f32,
+    pub far: f32,
+    /// The size of one shadow-map texel in world units, at the target for perspective maps.
+    pub texel_world: f32,
+    pub rays: Rays,
+}
+
+/// How a depth view shows a technique's texture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthViewKind {
+    Flat,
+    /// A cube map, as a panorama.
+    Cube,
+    /// A texture array, its layers side by side.
+    Array {
+        layers: u32,
+    },
+}
+
+/// Where a light with a 2D or cube map finds its fragment's light-space position: the
+/// scene pass sets `modelLightViewMatrix[slot] = from * model` per item.
+#[derive(Debug, Clone, Copy)]
+pub struct SlotTransform {
+    /// World to the light's view (a point light: to its position).
+    pub from: DMat4,
+    pub projection: Mat4,
+    /// The normal offset in world units.
+    pub normal_offset: f32,
+}
+
+/// What a depth pass draws with: the scene's meshes, the depth programs and the settings.
+pub struct DepthPass<'a> {
+    pub gl: &'a Gl,
+    pub meshes: &'a [Mesh],
+    pub programs: &'a mut casters::DepthPrograms,
+    pub settings: &'a ShadowSettings,
+}
+
+/// One shadow technique for one light.
+pub trait Technique {
+    fn kind(&self) -> ShadowKind;
+    /// Whether the storage still matches `settings` (size, format, layers).
+    fn fits(&self, settings: &ShadowSettings) -> bool;
+    /// The depth pass for light `index` of `scene`: draws its casters into the storage and
+    /// returns the light's camera.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView>;
+    /// The depth texture the scene pass samples.
+    fn texture(&self) -> &Texture;
+    /// How the scene pass samples it under `settings`.
+    fn sampling(&self, settings: &ShadowSettings) -> Sampling;
+    /// The light-space transform of a technique with a map slot (2D and cube maps).
+    fn slot_transform(
+        &self,
+        light: &Light,
+        view: &ShadowView,
+        settings: &ShadowSettings,
+    ) -> Option<SlotTransform>;
+    /// Uniforms of the scene program that are the technique's own (cascades' matrices).
+    fn set_scene_uniforms(&self, _program: &ShaderProgram, _scene: &Scene, _s: &ShadowSettings) {}
+    /// Bytes of GPU memory it holds (a depth texel is 4 bytes on this driver whatever the
+    /// format asks; reported as allocated).
+    fn bytes(&self) -> u64;
+    fn depth_view(&self) -> DepthViewKind;
+    /// The chapters' one 2D map, for reading it back (`--depth-out`); other kinds have none.
+    fn depth_map(&self) -> Option<&ShadowMap> {
+        None
+    }
+}
+
+/// Light `index`'s camera for a depth pass under `settings`, without GL: the chapter's
+/// light camera (fitted to the scene with `fit = "scene"`) or a point light's. The exact
+/// reference traces its [`Rays`].
+pub fn light_camera(scene: &Scene, index: usize, settings: &ShadowSettings) -> ShadowView {
+    match &scene.lights[index] {
+        Light::Point(p) => camera::point_camera(p, settings),
+        _ => map2d::camera(scene, index, settings),
+    }
+}

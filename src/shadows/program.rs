@@ -1,0 +1,256 @@
+//! What the scene program is compiled for, as a typed key, and the one place that key turns
+//! into `#define`s. Branches on these would run for every pixel on a software rasteriser,
+//! so they are compile-time constants; the key is a small `Copy` value compared every frame
+//! without allocating, and its text is made only when a program is compiled.
+
+use super::slots::{self, LightSlot};
+use super::ShadowKind;
+use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram};
+use crate::error::{Error, Result};
+use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
+use crate::settings::{glsl_float, BeyondFar, BiasMode, ShadowSettings};
+use crate::shaders;
+
+/// The shadow test's constants (shaders/lib/bias.glsl and the technique snippets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ShadowTest {
+    pub pcf_radius: u32,
+    pub hardware: bool,
+    pub bias_mode: BiasMode,
+    pub bias_bits: u32,
+    pub bias_min_bits: u32,
+    pub beyond_far_lit: bool,
+    pub normal_offset: bool,
+    pub map_size: u32,
+}
+
+impl ShadowTest {
+    /// The test as the settings apply it ([`ShadowSettings::effective`]).
+    pub fn of(settings: &ShadowSettings) -> ShadowTest {
+        let s = settings.effective();
+        ShadowTest {
+            pcf_radius: s.filter.radius(),
+            hardware: s.filter.hardware(),
+            bias_mode: s.bias_mode,
+            bias_bits: s.bias.to_bits(),
+            bias_min_bits: s.bias_min.to_bits(),
+            beyond_far_lit: s.beyond_far == BeyondFar::Lit,
+            normal_offset: s.normal_offset != 0.0,
+            map_size: s.map_size,
+        }
+    }
+}
+
+/// A cascaded light's constants (shaders/lib/shadow_cascades.glsl).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct CascadeLayout {
+    pub count: u32,
+    pub blend_bits: u32,
+    pub show: bool,
+}
+
+/// Everything a scene program is compiled for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ProgramKey {
+    /// The scene's lights in order (the first `light_count`).
+    lights: [Option<LightSlot>; MAX_LIGHTS],
+    light_count: usize,
+    /// The shadow test, when some light casts.
+    test: Option<ShadowTest>,
+    /// The cascades, when a light has them.
+    cascades: Option<CascadeLayout>,
+    blinn: bool,
+    specular_power_bits: u32,
+    visibility_light: usize,
+    /// The outputs the target has: the others are not computed.
+    outputs: Outputs,
+}
+
+impl ProgramKey {
+    pub fn of(
+        scene: &Scene,
+        settings: &ShadowSettings,
+        kinds: &[ShadowKind],
+        visibility_light: usize,
+        outputs: Outputs,
+    ) -> Result<ProgramKey> {
+        let n = scene.lights.len();
+        if n == 0 || n > MAX_LIGHTS || kinds.len() != n {
+            return Err(Error::Invalid(format!(
+                "{}: {n} lights: expected 1 to {MAX_LIGHTS}",
+                scene.source.display()
+            )));
+        }
+        let mut lights = [None; MAX_LIGHTS];
+        for ((slot, light), &shadow) in lights.iter_mut().zip(&scene.lights).zip(kinds) {
+            let (positional, cone) = match light.shading() {
+                Shading::Direction(_) => (false, false),
+                Shading::Position { cone, .. } => (true, cone.is_some()),
+            };
+            *slot = Some(LightSlot {
+                shadow,
+                positional,
+                cone,
+            });
+        }
+        let casts = kinds.iter().any(|k| *k != ShadowKind::None);
+        let cascaded = kinds.contains(&ShadowKind::Cascades);
+        Ok(ProgramKey {
+            lights,
+            light_count: n,
+            test: casts.then(|| ShadowTest::of(settings)),
+            cascades: cascaded.then_some(CascadeLayout {
+                count: settings.cascades,
+                blend_bits: settings.cascade_blend.to_bits(),
+                show: settings.show_cascades,
+            }),
+            blinn: scene.shading == ShadingModel::BlinnPhong,
+            specular_power_bits: scene.specular_power.to_bits(),
+            visibility_light,
+            outputs,
+        })
+    }
+
+    /// The lights' slots, in the scene's order.
+    pub fn slots(&self) -> Vec<LightSlot> {
+        self.lights[..self.light_count]
+            .iter()
+            .flatten()
+            .copied()
+            .collect()
+    }
+
+    /// The `#define`s for shaders/scene.{vert,frag}; each exists only when a light uses it.
+    pub fn defines(&self) -> Vec<(String, String)> {
+        let mut d: Vec<(String, String)> = Vec::new();
+        let mut set = |k: &str, v: String| d.push((k.to_string(), v));
+        let bit = |b: bool| u32::from(b).to_string();
+        let slots = self.slots();
+        let mapped = slots::map_slots(slots.iter().map(|s| s.shadow))
+            .iter()
+            .flatten()
+            .count();
+        set("LIGHT_COUNT", slots.len().max(1).to_string());
+        set("MAP_COUNT", mapped.to_string());
+        set("MAP_SLOTS", mapped.max(1).to_string());
+        set("VISIBILITY_LIGHT", self.visibility_light.to_string());
+        set("BLINN", bit(self.blinn));
+        set(
+            "SPECULAR_POWER",
+            glsl_float(f32::from_bits(self.specular_power_bits)),
+        );
+        set("OUTPUT_VISIBILITY", bit(self.outputs.visibility));
+        set("OUTPUT_GBUFFER", bit(self.outputs.gbuffer));
+        for (kind, name) in [
+            (ShadowKind::Map, "USES_MAP"),
+            (ShadowKind::Cube, "USES_CUBE"),
+        ] {
+            if slots.iter().any(|s| s.shadow == kind) {
+                set(name, "1".into());
+            }
+        }
+        if let Some(t) = &self.test {
+            set("USES_SHADOWS", "1".into());
+            set("PCF_RADIUS", t.pcf_radius.to_string());
+            set("HW_PCF", bit(t.hardware));
+            let mode = match t.bias_mode {
+                BiasMode::None => 0,
+                BiasMode::Constant => 1,
+                BiasMode::Slope => 2,
+            };
+            set("BIAS_MODE", mode.to_string());
+            set("BIAS", glsl_float(f32::from_bits(t.bias_bits)));
+            set("BIAS_MIN", glsl_float(f32::from_bits(t.bias_min_bits)));
+            set("BEYOND_FAR_LIT", bit(t.beyond_far_lit));
+            set("SHADOW_MAP_SIZE", t.map_size.to_string());
+            if t.normal_offset {
+                set("NORMAL_OFFSET", "1".into());
+            }
+        }
+        if let Some(c) = &self.cascades {
+            set("USES_CASCADES", "1".into());
+            set("CASCADES", c.count.to_string());
+            set("CASCADE_BLEND", glsl_float(f32::from_bits(c.blend_bits)));
+            if c.show {
+                set("SHOW_CASCADES", "1".into());
+            }
+        }
+        d
+    }
+
+    /// Compiles the scene program for this key, first checking that its vertex outputs fit
+    /// the driver's limit (GL 3.3 guarantees 64 components).
+    pub fn compile(&self, gl: &Gl) -> Result<ShaderProgram> {
+        let slots = self.slots();
+        let cascades = self.cascades.map_or(1, |c| c.count);
+        let needed = slots::vertex_outputs(&slots, cascades);
+        let allowed = gl_limits(gl).max_vertex_output_components as usize;
+        if needed > allowed {
+            return Err(Error::Invalid(format!(
+                "{} lights with {cascades} cascades need {needed} vertex shader outputs and this \
+                 driver allows {allowed}: use fewer lights or fewer cascades",
+                slots.len()
+            )));
+        }
+        let fragment = shaders::scene_frag(&slots::snippets(&slots))?;
+        ShaderProgram::new(gl, &shaders::scene_vert(), &fragment, &self.defines())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defines_exist_only_for_what_the_lights_use() {
+        let scene = Scene::load("point-shadows").unwrap();
+        let kinds = ShadowKind::for_lights(&scene.lights, &scene.shadow);
+        let s = ShadowSettings {
+            cascades: 4,
+            ..scene.shadow
+        };
+        let key = ProgramKey::of(&scene, &s, &kinds, 0, Outputs::default()).unwrap();
+        let names: Vec<String> = key.defines().into_iter().map(|(k, _)| k).collect();
+        assert!(names.contains(&"USES_CUBE".to_string()), "{names:?}");
+        for absent in ["USES_MAP", "USES_CASCADES", "CASCADES", "CASCADE_BLEND"] {
+            assert!(
+                !names.contains(&absent.to_string()),
+                "{absent} in {names:?}"
+            );
+        }
+        // A light that does not cast: no shadow test at all.
+        let mut dark = scene.clone();
+        if let crate::scene::Light::Point(p) = &mut dark.lights[0] {
+            p.casts_shadows = false;
+        }
+        let kinds = ShadowKind::for_lights(&dark.lights, &s);
+        let key = ProgramKey::of(&dark, &s, &kinds, 0, Outputs::default()).unwrap();
+        let names: Vec<String> = key.defines().into_iter().map(|(k, _)| k).collect();
+        for absent in ["USES_SHADOWS", "PCF_RADIUS", "BIAS", "USES_CUBE"] {
+            assert!(
+                !names.contains(&absent.to_string()),
+                "{absent} in {names:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn keys_differ_exactly_when_the_program_would() {
+        let scene = Scene::load("dummy").unwrap();
+        let kinds = ShadowKind::for_lights(&scene.lights, &scene.shadow);
+        let key = |s: &ShadowSettings| ProgramKey::of(&scene, s, &kinds, 0, Outputs::default());
+        let base = key(&scene.shadow).unwrap();
+        assert_eq!(base, key(&scene.shadow).unwrap());
+        let biased = ShadowSettings {
+            bias: 0.01,
+            ..scene.shadow
+        };
+        assert_ne!(base, key(&biased).unwrap());
+        // Cascade settings do not touch a program without cascades.
+        let blended = ShadowSettings {
+            cascade_blend: 0.3,
+            ..scene.shadow
+        };
+        assert_eq!(base, key(&blended).unwrap());
+    }
+}

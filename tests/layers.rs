@@ -1,0 +1,172 @@
+//! The library's layers, checked from the source: a module imports only the layers above
+//! it, and no two modules of one folder import each other (directly or round a circle).
+//!
+//! Ranks (lower first): `error`, `transformation`; `settings`, `geometry`, `image_data`;
+//! `scene`, `engine`; `shaders`; `shadows`; `renderer`, `steps`; `measure`. A module may
+//! name `crate::X` only for an X of a lower rank (or itself).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+const RANKS: &[(&str, u32)] = &[
+    ("error", 0),
+    ("transformation", 0),
+    ("settings", 1),
+    ("geometry", 1),
+    ("image_data", 1),
+    ("scene", 2),
+    ("engine", 2),
+    ("shaders", 3),
+    ("shadows", 4),
+    ("renderer", 5),
+    ("steps", 5),
+    ("measure", 6),
+];
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// Every `crate::NAME` the text refers to (outside comments).
+fn crate_refs(text: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        let mut rest = code;
+        while let Some(i) = rest.find("crate::") {
+            rest = &rest[i + "crate::".len()..];
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            if !name.is_empty() {
+                out.insert(name);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn no_module_imports_a_layer_below_it() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let rank = |m: &str| RANKS.iter().find(|(n, _)| *n == m).map(|(_, r)| *r);
+    let mut wrong = Vec::new();
+    let mut checked = 0;
+    for file in &files {
+        let rel = file.strip_prefix(&src).unwrap();
+        let top = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
+        let Some(own) = rank(&top) else {
+            continue; // lib.rs, main.rs and the program (app/) sit above everything
+        };
+        checked += 1;
+        let text = std::fs::read_to_string(file).unwrap();
+        for name in crate_refs(&text) {
+            match rank(&name) {
+                Some(r) if name != top && r >= own => {
+                    wrong.push(format!("{} uses crate::{name}", rel.display()))
+                }
+                _ => {}
+            }
+        }
+    }
+    assert!(checked > 40, "only {checked} files checked");
+    assert!(wrong.is_empty(), "layer violations:\n{}", wrong.join("\n"));
+}
+
+#[test]
+fn no_import_circles_between_modules_of_one_folder() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    // Folder -> module -> the sibling modules it names (`super::x` or `crate::folder::x`).
+    let mut graphs: BTreeMap<PathBuf, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
+    for file in &files {
+        let (Some(dir), Some(stem)) = (file.parent(), file.file_stem()) else {
+            continue;
+        };
+        let stem = stem.to_string_lossy().to_string();
+        if stem == "mod" || stem == "lib" || stem == "main" {
+            continue;
+        }
+        let text = std::fs::read_to_string(file).unwrap();
+        let folder = dir
+            .strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .to_string();
+        let mut names = BTreeSet::new();
+        for line in text.lines() {
+            let code = line.split("//").next().unwrap_or("");
+            for prefix in ["super::".to_string(), format!("crate::{folder}::")] {
+                let mut rest = code;
+                while let Some(i) = rest.find(&prefix) {
+                    rest = &rest[i + prefix.len()..];
+                    let name: String = rest
+                        .chars()
+                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                        .collect();
+                    if !name.is_empty() && name != stem {
+                        names.insert(name);
+                    }
+                }
+            }
+        }
+        graphs
+            .entry(dir.to_path_buf())
+            .or_default()
+            .insert(stem, names);
+    }
+    for (dir, graph) in &graphs {
+        // Keep only edges to sibling files; then look for a circle by depth-first search.
+        let edges: BTreeMap<&String, Vec<&String>> = graph
+            .iter()
+            .map(|(m, names)| (m, names.iter().filter(|n| graph.contains_key(*n)).collect()))
+            .collect();
+        fn visit<'a>(
+            m: &'a String,
+            edges: &BTreeMap<&'a String, Vec<&'a String>>,
+            path: &mut Vec<&'a String>,
+            done: &mut BTreeSet<&'a String>,
+        ) -> Option<String> {
+            if let Some(i) = path.iter().position(|p| *p == m) {
+                let circle: Vec<&str> = path[i..].iter().map(|s| s.as_str()).collect();
+                return Some(format!("{} -> {m}", circle.join(" -> ")));
+            }
+            if done.contains(m) {
+                return None;
+            }
+            path.push(m);
+            for n in edges.get(m).into_iter().flatten() {
+                if let Some(c) = visit(n, edges, path, done) {
+                    return Some(c);
+                }
+            }
+            path.pop();
+            done.insert(m);
+            None
+        }
+        let mut done = BTreeSet::new();
+        for m in edges.keys() {
+            if let Some(circle) = visit(m, &edges, &mut Vec::new(), &mut done) {
+                panic!("import circle in {}: {circle}", dir.display());
+            }
+        }
+    }
+}
