@@ -2,14 +2,16 @@
 //! small `#include` resolver the scene shader's snippets need.
 //!
 //! GLSL has no `#include`. A line `#include "lib/name.glsl"` is replaced by that file's
-//! text between two `#line` directives: `#line 1 K` before it (K numbers the file, GLSL's
-//! "source string number") and `#line N P` after it (back to the includer's next line).
-//! The driver then reports errors as `K:line(column)`, and
-//! [`crate::engine::shader_program::annotate_log`] turns K back into the file's name, so a
-//! mistake in a snippet names the snippet and its own line. Files under `generated/` are
+//! text between two `#line` directives: one before it, starting file K's lines, and one
+//! after it, back to the includer's next line. GLSL's `#line` takes a "source string
+//! number" for K, but Mesa reports every message as source 0, so K also goes into the line
+//! number: file K's line L is numbered `K * LINE_BLOCK + L`.
+//! [`crate::engine::shader_program::annotate_log`] decodes both, so a mistake in a snippet
+//! names the snippet and its own line. Files under `generated/` are
 //! not on disk: the renderer makes them for the scene's lights
 //! ([`crate::shadows::slots`]) and passes them in.
 
+use crate::engine::shader_program::LINE_BLOCK;
 use crate::engine::ShaderSource;
 use crate::error::{Error, Result};
 
@@ -124,14 +126,21 @@ fn include_into(
             })?;
         let child = out.files.len();
         out.files.push(format!("shaders/{target}"));
-        out.text.push_str(&format!("#line 1 {child}\n"));
+        out.text
+            .push_str(&format!("#line {} {child}\n", first_line(child, 1)));
         stack.push(target.to_string());
         include_into(out, body, child, generated, stack)?;
         stack.pop();
         // Back in the includer: its next line keeps its own number.
-        out.text.push_str(&format!("#line {} {index}\n", n + 2));
+        out.text
+            .push_str(&format!("#line {} {index}\n", first_line(index, n + 2)));
     }
     Ok(())
+}
+
+/// The number `#line` gives line `line` of file `file`.
+fn first_line(file: usize, line: usize) -> usize {
+    file * LINE_BLOCK as usize + line
 }
 
 /// The file named by an `#include "..."` line, if the line is one.
@@ -156,7 +165,7 @@ mod tests {
         .unwrap();
         assert_eq!(
             s.text,
-            "#version 330 core\n#line 1 1\nfloat a;\nfloat b;\n#line 3 0\nvoid main() {}\n"
+            "#version 330 core\n#line 100001 1\nfloat a;\nfloat b;\n#line 3 0\nvoid main() {}\n"
         );
         assert_eq!(s.files, ["main.frag", "shaders/generated/a.glsl"]);
     }

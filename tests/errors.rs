@@ -169,3 +169,36 @@ fn help_names_every_built_in_scene_and_the_demo_keys() {
         assert!(demo.contains(key), "`shadowmap demo --help` omits: {key}");
     }
 }
+
+#[test]
+fn an_error_in_an_included_snippet_names_the_snippet_and_its_line() {
+    let ctx = common::context();
+    // The real scene shader with every library snippet, and a generated light snippet
+    // whose second line calls a function that does not exist.
+    let samplers = ("generated/samplers.glsl", String::new());
+    let lights = (
+        "generated/lights.glsl",
+        "void addLights(inout Fragment f)\n{\n    addLightNowhere(0, f);\n}\n".to_string(),
+    );
+    let fragment = shaders::scene_frag(&[samplers, lights]).unwrap();
+    let defines: Vec<(String, String)> = [
+        ("LIGHT_COUNT", "1"),
+        ("MAP_COUNT", "0"),
+        ("MAP_SLOTS", "1"),
+        ("VISIBILITY_LIGHT", "0"),
+        ("BLINN", "0"),
+        ("SPECULAR_POWER", "10.0"),
+        ("OUTPUT_VISIBILITY", "0"),
+        ("OUTPUT_GBUFFER", "0"),
+    ]
+    .iter()
+    .map(|(k, v)| (k.to_string(), v.to_string()))
+    .collect();
+    let err = ShaderProgram::new(ctx.gl(), &shaders::scene_vert(), &fragment, &defines)
+        .err()
+        .expect("an unknown function must not compile");
+    let text = err.to_string();
+    // Line 3 of the generated snippet, not a line of scene.frag.
+    assert!(text.contains("shaders/generated/lights.glsl:3:"), "{text}");
+    assert!(text.contains("addLightNowhere"), "{text}");
+}

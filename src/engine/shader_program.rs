@@ -10,6 +10,10 @@ use glow::HasContext;
 use super::Gl;
 use crate::error::{Error, Result};
 
+/// Lines per file in the numbering of a shader with includes ([`crate::shaders::resolve`]):
+/// file K's line L is `K * LINE_BLOCK + L` (the main file keeps its own numbers).
+pub const LINE_BLOCK: u32 = 100_000;
+
 /// A shader's text and the files it came from, so errors can name them.
 #[derive(Debug, Clone)]
 pub struct ShaderSource {
@@ -85,11 +89,20 @@ fn annotate_line(files: &[String], line: &str) -> Option<String> {
         Some((s[..n].parse().ok()?, n))
     };
     let (string, n) = digits(line)?;
-    let file = files.get(string as usize)?;
     let rest = &line[n..];
+    // The file: the source-string number, or (Mesa reports 0 for every string) the block
+    // its line number falls in ([`LINE_BLOCK`]).
+    let locate = |ln: u32| -> Option<(&str, u32)> {
+        let block = LINE_BLOCK;
+        match (string, ln / block) {
+            (0, k) if k > 0 => Some((files.get(k as usize)?.as_str(), ln % block)),
+            (s, _) => Some((files.get(s as usize)?.as_str(), ln % block)),
+        }
+    };
     if let Some(rest) = rest.strip_prefix(':') {
         // Mesa: <string>:<line>(<col>): message
         let (ln, n) = digits(rest)?;
+        let (file, ln) = locate(ln)?;
         let rest = &rest[n..];
         let (col, rest) = match rest.strip_prefix('(') {
             Some(r) => {
@@ -106,6 +119,7 @@ fn annotate_line(files: &[String], line: &str) -> Option<String> {
     } else if let Some(rest) = rest.strip_prefix('(') {
         // NVIDIA: <string>(<line>) : message
         let (ln, n) = digits(rest)?;
+        let (file, ln) = locate(ln)?;
         let msg = rest[n..]
             .strip_prefix(')')?
             .trim()
@@ -341,6 +355,11 @@ mod tests {
         assert_eq!(
             annotate_log(&included, "2:7(3): error: `x' undeclared"),
             "shaders/lib/b.glsl:7:3: error: `x' undeclared"
+        );
+        // Mesa's way: source 0, the file in the line number's block.
+        assert_eq!(
+            annotate_log(&included, "0:100007(3): error: `x' undeclared"),
+            "shaders/lib/a.glsl:7:3: error: `x' undeclared"
         );
     }
 
