@@ -85,6 +85,12 @@ impl Technique for Cube {
         let to_light = from_light(light);
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         program.set_f32("farPlane", light.far);
+        let meshes = pass.meshes;
+        let draw = || {
+            draw_casters(meshes, scene, program, "modelLightMatrix", to_light, |_| {
+                true
+            })
+        };
         match point_pass {
             PointPass::Layered => {
                 // One pass: the geometry shader draws every triangle into all six faces.
@@ -92,28 +98,14 @@ impl Technique for Cube {
                 state::clear_depth(pass.gl);
                 let faces = face_views().map(|v| projection * v);
                 program.set_mat4_array("faceProjections", &faces);
-                draw_casters(
-                    pass.meshes,
-                    scene,
-                    program,
-                    "modelLightMatrix",
-                    to_light,
-                    |_| true,
-                );
+                draw();
             }
             PointPass::SixPasses => {
                 for (face, view) in face_views().iter().enumerate() {
                     self.cube.bind_face(face as u32);
                     state::clear_depth(pass.gl);
                     program.set_mat4("faceProjection", &(projection * *view));
-                    draw_casters(
-                        pass.meshes,
-                        scene,
-                        program,
-                        "modelLightMatrix",
-                        to_light,
-                        |_| true,
-                    );
+                    draw();
                 }
             }
         }
