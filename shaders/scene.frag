@@ -5,16 +5,19 @@
 //   lib/shadow_2d.glsl        calcShadow: the chapter's test with one 2D map
 //   lib/shadow_cube.glsl      a point light's cube map
 //   lib/shadow_cascades.glsl  a cascaded directional light
+//   lib/bias.glsl             the bias and the comparison they share
 // `#include` is resolved by src/shaders.rs, which keeps each file's own line numbers in
 // compile errors. Two snippets are generated for the scene's lights (src/shadows/slots.rs,
-// because GLSL 3.30 cannot index an array of samplers with a loop index): the samplers'
-// declarations and `addLights`, one add... call per light.
+// because GLSL 3.30 cannot index an array of samplers with a loop index, and each light
+// may have settings of its own): the samplers' declarations, and for each casting light its
+// test's constants and its technique's snippet (functions renamed after the light:
+// calcShadow_0), then `addLights`, one add... call per light.
 //
 // Defines (made in one place, src/shadows/program.rs, from a typed key; each exists only
-// when a light uses it): the shadow test's (see lib/bias.glsl and the snippets), the
-// lighting's (BLINN, SPECULAR_POWER), the lights' layout (LIGHT_COUNT, MAP_SLOTS,
-// VISIBILITY_LIGHT; USES_SHADOWS, USES_MAP, USES_CUBE, USES_CASCADES when some light has
-// that kind of map) and the target's outputs (OUTPUT_VISIBILITY, OUTPUT_GBUFFER).
+// when a light uses it): the lighting's (BLINN, SPECULAR_POWER), the lights' layout
+// (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; USES_CASCADES, CASCADES, CASCADE_BLEND,
+// SHOW_CASCADES for a cascaded light) and the target's outputs (OUTPUT_VISIBILITY,
+// OUTPUT_GBUFFER). The shadow tests' constants are each light's, in the generated snippet.
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -38,19 +41,9 @@ uniform sampler2D textureSampler;  // unit 0; shadow maps on units 1, 2, ... (on
 
 #include "lib/lighting.glsl"
 #include "lib/outputs.glsl"
-#ifdef USES_SHADOWS
-#include "lib/bias.glsl"
-#endif
 #include "generated/samplers.glsl"
-#ifdef USES_MAP
-#include "lib/shadow_2d.glsl"
-#endif
-#ifdef USES_CUBE
-#include "lib/shadow_cube.glsl"
-#endif
-#ifdef USES_CASCADES
-#include "lib/shadow_cascades.glsl"
-#endif
+// Each casting light's test (lib/bias.glsl and its technique's snippet, with the light's
+// own constants), then addLights.
 #include "generated/lights.glsl"
 
 void main()

@@ -236,83 +236,165 @@ pub enum PointPass {
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
 
-/// Every setting of the shadow pipeline. The defaults are the book's final configuration.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ShadowSettings {
-    /// Side of the square shadow map in texels (the book: 1024).
-    pub map_size: u32,
-    pub depth_format: DepthFormat,
-    pub filter: Filter,
-    pub bias_mode: BiasMode,
-    /// Constant bias, or the slope bias' maximum, in [0, 1] depth units.
-    pub bias: f32,
-    /// The slope bias' floor (LearnOpenGL: 0.005).
-    pub bias_min: f32,
-    /// Normal-offset bias: the lookup position moves this many shadow-map texels along the
-    /// surface normal (0 = off). Independent of `bias_mode`.
-    pub normal_offset: f32,
-    /// `glPolygonOffset(factor, units)` in the depth pass ([0, 0] = off).
-    pub polygon_offset: [f32; 2],
-    pub cull: Cull,
-    pub wrap: Wrap,
-    pub beyond_far: BeyondFar,
-    pub light_view: LightView,
-    pub light_projection: LightProjection,
-    /// Field of view of a perspective shadow camera for a directional light, degrees.
-    pub perspective_fov: f32,
-    /// Draw the shadow map on the whole frame instead of the scene (the chapters' debug
-    /// quad), linearised when the projection is perspective.
-    pub show_depth_map: bool,
-    /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene.
-    pub fit: Fit,
-    /// With `fit = "scene"`: snap the box to whole texels so shadows hold still as the
-    /// camera moves.
-    pub snap: bool,
-    /// A point light's cube faces: six passes or one layered pass.
-    pub point_pass: PointPass,
-    /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4 =
-    /// that many `map_size` layers of a depth texture array, one per slice of the view.
-    pub cascades: u32,
-    /// The practical split scheme's blend: 0 = uniform slices, 1 = logarithmic.
-    pub cascade_lambda: f32,
-    /// The last fraction of each cascade's depth range over which it fades into the next,
-    /// hiding the seam (0 = a hard seam at the split).
-    pub cascade_blend: f32,
-    /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
-    pub shadow_distance: f32,
-    /// Tint each cascade (red, green, blue, yellow) to show where it applies.
-    pub show_cascades: bool,
+/// Declares every setting once: its group, its type, its default, its documentation and
+/// any flag options. From that one list come [`ShadowSettings`] (the scene file's
+/// `[shadow]` table), [`ShadowPatch`] (the same fields, each optional: a light's own
+/// `shadow` table and the command line's flags, with the groups as `--help` headings) and
+/// [`SETTING_GROUPS`].
+macro_rules! shadow_settings {
+    ($(
+        $(#[doc = $gdoc:literal])*
+        $group:literal {
+            $(
+                $(#[doc = $doc:literal])*
+                $field:ident : $ty:ty = $default:expr $(, arg($($arg:tt)*))? ;
+            )*
+        }
+    )*) => {
+        /// Every setting of the shadow pipeline. The defaults are the book's final
+        /// configuration.
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+        #[serde(default, deny_unknown_fields)]
+        pub struct ShadowSettings {
+            $($( $(#[doc = $doc])* pub $field: $ty, )*)*
+        }
+
+        impl Default for ShadowSettings {
+            fn default() -> Self {
+                ShadowSettings { $($( $field: $default, )*)* }
+            }
+        }
+
+        /// Settings that replace some of another's: a light's own `shadow` table over the
+        /// scene's `[shadow]`, and the command line's flags over both.
+        #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, clap::Args)]
+        #[serde(deny_unknown_fields)]
+        pub struct ShadowPatch {
+            $($(
+                $(#[doc = $doc])*
+                #[arg(long, help_heading = $group $(, $($arg)*)?)]
+                #[serde(default, skip_serializing_if = "Option::is_none")]
+                pub $field: Option<$ty>,
+            )*)*
+        }
+
+        impl ShadowPatch {
+            /// Writes every given field into `settings`.
+            pub fn apply_to(&self, settings: &mut ShadowSettings) {
+                $($( if let Some(v) = self.$field { settings.$field = v; } )*)*
+            }
+
+            /// This patch without the fields `other` gives (so flags win over a light's
+            /// own table).
+            pub fn without(&self, other: &ShadowPatch) -> ShadowPatch {
+                ShadowPatch {
+                    $($( $field: if other.$field.is_some() { None } else { self.$field }, )*)*
+                }
+            }
+
+            /// The names (as the scene file spells them) of the fields it gives.
+            pub fn given(&self) -> Vec<&'static str> {
+                let mut names = Vec::new();
+                $($( if self.$field.is_some() { names.push(stringify!($field)); } )*)*
+                names
+            }
+        }
+
+        /// The settings by what they govern, in `--help`'s order.
+        pub const SETTING_GROUPS: &[(&str, &[&str])] = &[
+            $( ($group, &[ $( stringify!($field), )* ]), )*
+        ];
+    };
 }
 
-impl Default for ShadowSettings {
-    fn default() -> Self {
-        ShadowSettings {
-            map_size: 1024,
-            depth_format: DepthFormat::D24,
-            filter: Filter::Pcf3x3,
-            bias_mode: BiasMode::Constant,
-            bias: 0.05,
-            bias_min: 0.005,
-            normal_offset: 0.0,
-            polygon_offset: [0.0, 0.0],
-            cull: Cull::None,
-            wrap: Wrap::ClampToEdge,
-            beyond_far: BeyondFar::Shadowed,
-            light_view: LightView::BookAngles,
-            light_projection: LightProjection::Ortho,
-            perspective_fov: 45.0,
-            show_depth_map: false,
-            fit: Fit::Manual,
-            snap: true,
-            point_pass: PointPass::Layered,
-            cascades: 1,
-            cascade_lambda: 0.75,
-            cascade_blend: 0.1,
-            shadow_distance: 0.0,
-            show_cascades: false,
-        }
+shadow_settings! {
+    /// The map itself.
+    "Shadow map" {
+        /// Side of the square shadow map in texels (the book: 1024; at most the driver's
+        /// maximum texture size).
+        map_size: u32 = 1024, arg(value_name = "N");
+        /// Depth-map precision.
+        depth_format: DepthFormat = DepthFormat::D24;
+        /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4
+        /// = that many `map_size` layers of a depth texture array, one per slice of the view.
+        cascades: u32 = 1, arg(value_name = "N");
     }
+    /// How a fragment is tested against the map.
+    "Shadow test" {
+        /// How the shadow map is sampled.
+        filter: Filter = Filter::Pcf3x3;
+        /// How the depth comparison is offset against acne.
+        bias_mode: BiasMode = BiasMode::Constant;
+        /// Constant bias, or the slope bias' maximum, in [0, 1] depth units (a cube map:
+        /// world units).
+        bias: f32 = 0.05, arg(value_name = "B");
+        /// The slope bias' floor (LearnOpenGL: 0.005).
+        bias_min: f32 = 0.005, arg(value_name = "B");
+        /// Normal-offset bias: the lookup moves this many shadow-map texels along the
+        /// surface normal (0 = off); the same meaning for 2D, cube and cascade maps.
+        normal_offset: f32 = 0.0, arg(value_name = "TEXELS");
+        /// Shadow-map wrap mode for lookups outside [0, 1].
+        wrap: Wrap = Wrap::ClampToEdge;
+        /// What fragments beyond the light's far plane get.
+        beyond_far: BeyondFar = BeyondFar::Shadowed;
+    }
+    /// How the map is drawn.
+    "Depth pass" {
+        /// Faces culled in the depth pass.
+        cull: Cull = Cull::None;
+        /// `glPolygonOffset(factor, units)` in the depth pass, e.g. 1.1,4 ([0, 0] = off).
+        polygon_offset: [f32; 2] = [0.0, 0.0],
+            arg(value_name = "FACTOR,UNITS", value_parser = parse_pair);
+        /// How a point light's six cube faces are drawn.
+        point_pass: PointPass = PointPass::Layered;
+    }
+    /// Where the light's camera looks from and what it covers.
+    "Light camera" {
+        /// How a directional light's view matrix is built.
+        light_view: LightView = LightView::BookAngles;
+        /// A directional light's shadow projection.
+        light_projection: LightProjection = LightProjection::Ortho;
+        /// Field of view of a perspective shadow camera for a directional light, degrees.
+        perspective_fov: f32 = 45.0, arg(value_name = "DEG");
+        /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene each
+        /// frame.
+        fit: Fit = Fit::Manual;
+        /// With `fit = "scene"`: snap the box to whole texels so shadows hold still as the
+        /// camera moves.
+        snap: bool = true, arg(value_name = "BOOL");
+        /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
+        /// scheme).
+        cascade_lambda: f32 = 0.75, arg(value_name = "LAMBDA");
+        /// The last fraction of each cascade's depth range that fades into the next
+        /// (0 = a hard seam at the split, at most 0.5).
+        cascade_blend: f32 = 0.1, arg(value_name = "FRACTION");
+        /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
+        shadow_distance: f32 = 0.0, arg(value_name = "DEPTH");
+    }
+    /// Pictures instead of, or over, the scene.
+    "Debug views" {
+        /// Draw the shadow map on the whole frame instead of the scene (the chapters' debug
+        /// quad; a cube map as a panorama, cascades side by side), linearised when the
+        /// projection is perspective.
+        show_depth_map: bool = false,
+            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true");
+        /// Tint each cascade's part of the frame (red, green, blue, yellow from the camera
+        /// out).
+        show_cascades: bool = false,
+            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true");
+    }
+}
+
+/// Parses `A,B` into two finite numbers, e.g. `1.1,4` or `-1,-4`.
+pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
+    let err = || format!("'{s}': expected two numbers separated by a comma, like 1.1,4");
+    let (a, b) = s.split_once(',').ok_or_else(err)?;
+    let a: f32 = a.trim().parse().map_err(|_| err())?;
+    let b: f32 = b.trim().parse().map_err(|_| err())?;
+    if !(a.is_finite() && b.is_finite()) {
+        return Err(err());
+    }
+    Ok([a, b])
 }
 
 impl ShadowSettings {

@@ -188,7 +188,26 @@ mod tests {
 
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        let text = include_str!("../shaders/scene.frag");
+        // Three lights of three kinds, one with cascades: every snippet is included.
+        use crate::shadows::slots::{snippets, LightSlot, ShadowTest};
+        use crate::shadows::ShadowKind;
+        let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
+        let slot = |shadow| LightSlot {
+            shadow,
+            positional: false,
+            cone: false,
+            test: Some(test),
+        };
+        let generated = snippets(&[
+            slot(ShadowKind::Map),
+            slot(ShadowKind::Cube),
+            slot(ShadowKind::Cascades),
+        ]);
+        let text = format!(
+            "{}{}",
+            include_str!("../shaders/scene.frag"),
+            generated[1].1
+        );
         for (name, _) in LIBRARY {
             assert!(
                 text.contains(&format!("#include \"{name}\"")),

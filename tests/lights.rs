@@ -283,3 +283,90 @@ fn the_depth_view_shows_each_lights_own_map() {
     assert_ne!(views[0], views[1]);
     assert_ne!(views[1], views[2]);
 }
+
+#[test]
+fn a_light_with_its_own_shadow_table_gets_its_own_map_and_test() {
+    use shadowmap::engine::{Outputs, RenderTarget};
+    use shadowmap::frame::render_frames_of_light;
+    use shadowmap::renderer::{Renderer, Target};
+    use shadowmap::settings::ShadowPatch;
+    let text = r#"
+        [camera]
+        position = [0.0, 6.0, 8.0]
+        rotation = [35.0, 0.0, 0.0]
+        [[lights]]
+        direction = [0.3, 1.0, 0.4]
+        shadow = { filter = "single", map_size = 256, bias_mode = "none" }
+        [[lights]]
+        kind = "spot"
+        position = [0.0, 4.0, 3.0]
+        target = [0.0, 0.0, 0.0]
+        fov = 60.0
+        near = 1.0
+        far = 20.0
+        [[item]]
+        mesh = "cube"
+        position = [0.0, 1.0, 0.0]
+        [[item]]
+        mesh = "plane"
+        scale = 10.0
+    "#;
+    let scene =
+        shadowmap::scene::file::parse(text, std::path::Path::new("own.toml"), None).unwrap();
+    assert_eq!(
+        *scene.lights[0].shadow_patch(),
+        ShadowPatch {
+            filter: Some(Filter::Single),
+            map_size: Some(256),
+            bias_mode: Some(BiasMode::None),
+            ..ShadowPatch::default()
+        }
+    );
+    let global = scene.shadow;
+    assert_eq!(global.map_size, 1024);
+    // Light 0's map is 256^2 and light 1's the scene's 1024^2.
+    let ctx = common::context();
+    let mut renderer = Renderer::new(ctx.gl(), &scene, &global).unwrap();
+    let target = RenderTarget::new(ctx.gl(), 64, 48, Outputs::default()).unwrap();
+    renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+    assert_eq!(renderer.shadow_memory(), (2, (256 * 256 + 1024 * 1024) * 4));
+    // Light 0's test with its own table equals light 0's test with those settings for the
+    // whole scene; and differs from the scene's own (3 x 3 PCF at 1024^2 with a bias: no
+    // acne).
+    let visibility = |sc: &Scene, s: &ShadowSettings| {
+        let mut sc = sc.clone();
+        let outputs = Outputs {
+            visibility: true,
+            gbuffer: false,
+        };
+        render_frames_of_light(ctx.gl(), &mut sc, s, 320, 240, 1, outputs, 0)
+            .unwrap()
+            .visibility
+            .unwrap()
+    };
+    let own = visibility(&scene, &global);
+    let mut plain = scene.clone();
+    *plain.lights[0].shadow_patch_mut() = ShadowPatch::default();
+    let as_global = ShadowSettings {
+        filter: Filter::Single,
+        map_size: 256,
+        bias_mode: BiasMode::None,
+        ..global
+    };
+    assert_eq!(own, visibility(&plain, &as_global));
+    let differ = own
+        .iter()
+        .zip(visibility(&plain, &global))
+        .filter(|(a, b)| **a != *b)
+        .count();
+    assert!(
+        differ > 1000,
+        "only {differ} pixels differ from the scene's settings"
+    );
+    // An unknown setting in a light's table names it.
+    let bad = text.replace("map_size = 256", "map_sise = 256");
+    let err = shadowmap::scene::file::parse(&bad, std::path::Path::new("own.toml"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("map_sise"), "{err}");
+}

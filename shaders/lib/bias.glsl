@@ -5,6 +5,14 @@
 // BIAS and BIAS_MIN are literals the compiler folds (measured: a few percent of the frame
 // on llvmpipe against uniforms).
 
+// Each casting light includes this file with its own constants (src/shadows/slots.rs), so
+// the macros below are made anew each time.
+#undef SHADOW_SAMPLER_2D
+#undef SHADOW_SAMPLER_ARRAY
+#undef LIT_2D
+#undef LIT_ARRAY
+#undef PCF_TAPS
+
 // The comparison's offset, in the map's own units (depth for 2D maps, world units for a
 // cube map's distances).
 float depthBias(vec3 normal, vec3 toLightDir)

@@ -3,10 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shadowmap::settings::{
-    BeyondFar, BiasMode, Cull, DepthFormat, Filter, Fit, LightProjection, LightView, PointPass,
-    Wrap,
-};
+use shadowmap::settings::ShadowPatch;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
 
@@ -72,83 +69,15 @@ pub struct SceneArgs {
     pub camera_rotation: Option<[f32; 3]>,
 }
 
-/// Every shadow setting; unset flags keep the scene's (or the step's) values.
+/// Every shadow setting; unset flags keep the scene's (or the step's) values. The flags
+/// come from the settings' one description (`shadowmap::settings::ShadowPatch`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct SettingsArgs {
     /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
     pub step: Option<String>,
-    /// Shadow-map side in texels (1 to the driver's maximum texture size).
-    #[arg(long, value_name = "N")]
-    pub map_size: Option<u32>,
-    /// Depth-map precision.
-    #[arg(long, value_enum)]
-    pub depth_format: Option<DepthFormat>,
-    /// How the shadow map is sampled.
-    #[arg(long, value_enum)]
-    pub filter: Option<Filter>,
-    /// How the depth comparison is offset against acne.
-    #[arg(long, value_enum)]
-    pub bias_mode: Option<BiasMode>,
-    /// Constant bias, or the slope bias' maximum, in [0, 1] depth units.
-    #[arg(long, value_name = "B")]
-    pub bias: Option<f32>,
-    /// The slope bias' floor.
-    #[arg(long, value_name = "B")]
-    pub bias_min: Option<f32>,
-    /// Normal-offset bias: move the lookup this many shadow-map texels along the normal.
-    #[arg(long, value_name = "TEXELS")]
-    pub normal_offset: Option<f32>,
-    /// glPolygonOffset in the depth pass, e.g. 1.1,4.
-    #[arg(long, value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_negative_numbers = true)]
-    pub polygon_offset: Option<[f32; 2]>,
-    /// Faces culled in the depth pass.
-    #[arg(long, value_enum)]
-    pub cull: Option<Cull>,
-    /// Shadow-map wrap mode for lookups outside [0, 1].
-    #[arg(long, value_enum)]
-    pub wrap: Option<Wrap>,
-    /// What fragments beyond the light's far plane get.
-    #[arg(long, value_enum)]
-    pub beyond_far: Option<BeyondFar>,
-    /// How the light's view matrix is built.
-    #[arg(long, value_enum)]
-    pub light_view: Option<LightView>,
-    /// A directional light's shadow projection.
-    #[arg(long, value_enum)]
-    pub light_projection: Option<LightProjection>,
-    /// Field of view of a perspective shadow camera for a directional light (degrees).
-    #[arg(long, value_name = "DEG")]
-    pub perspective_fov: Option<f32>,
-    /// A directional light's box: the scene file's by hand, or fitted to the scene each frame.
-    #[arg(long, value_enum)]
-    pub fit: Option<Fit>,
-    /// With --fit scene: snap the box to whole texels (true) or let it slide (false).
-    #[arg(long, value_name = "BOOL")]
-    pub snap: Option<bool>,
-    /// How a point light's cube faces are drawn.
-    #[arg(long, value_enum)]
-    pub point_pass: Option<PointPass>,
-    /// Cascaded shadow maps for directional lights: 2 to 4 layers of --map-size each, one
-    /// per slice of the view (1 = one map, as the chapters).
-    #[arg(long, value_name = "N")]
-    pub cascades: Option<u32>,
-    /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical scheme).
-    #[arg(long, value_name = "LAMBDA")]
-    pub cascade_lambda: Option<f32>,
-    /// The last fraction of each cascade that fades into the next (0 = a hard seam, at most 0.5).
-    #[arg(long, value_name = "FRACTION")]
-    pub cascade_blend: Option<f32>,
-    /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
-    #[arg(long, value_name = "DEPTH")]
-    pub shadow_distance: Option<f32>,
-    /// Draw the first light's shadow map instead of the scene (a cube map as a panorama,
-    /// cascades side by side).
-    #[arg(long)]
-    pub show_depth_map: bool,
-    /// Tint each cascade's part of the frame (red, green, blue, yellow from the camera out).
-    #[arg(long)]
-    pub show_cascades: bool,
+    #[command(flatten)]
+    pub patch: ShadowPatch,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -313,15 +242,6 @@ pub fn parse_triple(s: &str) -> Result<[f32; 3], String> {
     }
 }
 
-/// Parses `A,B` into two numbers, e.g. `1.1,4`.
-pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
-    let err = || format!("'{s}': expected two numbers separated by a comma, like 1.1,4");
-    let (a, b) = s.split_once(',').ok_or_else(err)?;
-    let a: f32 = a.trim().parse().map_err(|_| err())?;
-    let b: f32 = b.trim().parse().map_err(|_| err())?;
-    Ok([a, b])
-}
-
 impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
@@ -380,19 +300,7 @@ impl SettingsArgs {
 
     /// Whether the setting `name` (as the scene file spells it) was given as a flag.
     fn flag_given(&self, name: &str) -> bool {
-        match name {
-            "map_size" => self.map_size.is_some(),
-            "bias" => self.bias.is_some(),
-            "bias_min" => self.bias_min.is_some(),
-            "normal_offset" => self.normal_offset.is_some(),
-            "perspective_fov" => self.perspective_fov.is_some(),
-            "polygon_offset" => self.polygon_offset.is_some(),
-            "cascades" => self.cascades.is_some(),
-            "cascade_lambda" => self.cascade_lambda.is_some(),
-            "cascade_blend" => self.cascade_blend.is_some(),
-            "shadow_distance" => self.shadow_distance.is_some(),
-            _ => false,
-        }
+        self.patch.given().contains(&name)
     }
 
     /// The scene's settings with the given flags applied.
@@ -402,34 +310,7 @@ impl SettingsArgs {
             Some(step) => steps::settings_for(scene, step)?,
             None => scene.shadow,
         };
-        macro_rules! set {
-            ($($f:ident),*) => { $( if let Some(v) = self.$f { s.$f = v; } )* };
-        }
-        set!(
-            map_size,
-            depth_format,
-            filter,
-            bias_mode,
-            bias,
-            bias_min,
-            normal_offset,
-            polygon_offset,
-            cull,
-            wrap,
-            beyond_far,
-            light_view,
-            light_projection,
-            perspective_fov,
-            fit,
-            snap,
-            point_pass,
-            cascades,
-            cascade_lambda,
-            cascade_blend,
-            shadow_distance
-        );
-        s.show_depth_map |= self.show_depth_map;
-        s.show_cascades |= self.show_cascades;
+        self.patch.apply_to(&mut s);
         Ok(s)
     }
 }

@@ -16,7 +16,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
     if let Some(path) = &args.depth_out {
-        if ShadowKind::of(scene.light(), &settings) != ShadowKind::Map {
+        if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
             return Err(shadowmap::Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
                  cascades or casts no shadow): use --show-depth-map to see its map",

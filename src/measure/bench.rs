@@ -104,7 +104,7 @@ pub enum Family {
 
 impl Family {
     pub fn of(light: &Light, s: &ShadowSettings) -> Family {
-        match (ShadowKind::of(light, s), s.point_pass) {
+        match (ShadowKind::of(light, &light.settings(s)), s.point_pass) {
             (ShadowKind::Cascades, _) => Family::Cascades,
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,

@@ -206,13 +206,14 @@ impl Renderer {
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
         self.hook(Pass::Depth, true);
-        let mut pass = DepthPass {
-            gl: &self.gl,
-            meshes: &self.meshes,
-            programs: &mut self.depth_programs,
-            settings: &self.settings,
-        };
         for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
+            let settings = scene.lights[index].settings(&self.settings);
+            let mut pass = DepthPass {
+                gl: &self.gl,
+                meshes: &self.meshes,
+                programs: &mut self.depth_programs,
+                settings: &settings,
+            };
             *view = match shadow {
                 Some(technique) => Some(technique.render_depth(&mut pass, scene, index)?),
                 None => None,
@@ -283,13 +284,14 @@ impl Renderer {
         let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
         self.shadows.resize_with(kinds.len(), || None);
         self.views.resize(kinds.len(), None);
-        for (kind, shadow) in kinds.into_iter().zip(self.shadows.iter_mut()) {
+        for ((kind, shadow), light) in kinds.into_iter().zip(&mut self.shadows).zip(&scene.lights) {
+            let settings = light.settings(&self.settings);
             let fits = match shadow {
-                Some(t) => t.kind() == kind && t.fits(&self.settings),
+                Some(t) => t.kind() == kind && t.fits(&settings),
                 None => kind == ShadowKind::None,
             };
             if !fits {
-                *shadow = kind.create(&self.gl, &self.settings)?;
+                *shadow = kind.create(&self.gl, &settings)?;
             }
         }
         Ok(())

@@ -56,14 +56,15 @@ pub fn draw(
     // Each light's map and sampler on its unit, for the pass; the samplers unbind when
     // `bound` drops.
     let mut bound: Vec<BoundSampler> = Vec::with_capacity(inputs.shadows.len());
-    for (i, shadow) in inputs.shadows.iter().enumerate() {
+    for (i, (shadow, light)) in inputs.shadows.iter().zip(&scene.lights).enumerate() {
         let Some(t) = shadow else { continue };
-        t.set_scene_uniforms(p, scene, inputs.settings);
+        let settings = light.settings(inputs.settings);
+        t.set_scene_uniforms(p, scene, &settings);
         if let Some(name) = slots::sampler_name(i, t.kind()) {
             let unit = slots::texture_unit(i);
             p.set_i32(name, unit as i32);
             t.texture().bind(unit);
-            bound.push(samplers.get(gl, t.sampling(inputs.settings))?.bind(unit));
+            bound.push(samplers.get(gl, t.sampling(&settings))?.bind(unit));
         }
     }
     let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
@@ -162,7 +163,7 @@ impl LightUniforms {
             else {
                 continue;
             };
-            if let Some(s) = t.slot_transform(light, v, inputs.settings) {
+            if let Some(s) = t.slot_transform(light, v, &light.settings(inputs.settings)) {
                 u.normal_offset[p] = s.normal_offset;
                 u.projection[p] = s.projection;
                 u.light_from[p] = s.from;

@@ -15,7 +15,7 @@ use super::{
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
 use crate::image_data::ImageData;
-use crate::settings::{ShadowSettings, Wrap};
+use crate::settings::{ShadowPatch, ShadowSettings, Wrap};
 use crate::transformation::Transformation;
 
 #[derive(Debug, Deserialize)]
@@ -113,6 +113,9 @@ struct LightFile {
     /// Whether it gets a shadow map (a light that does not cast lights all it faces).
     #[serde(default = "yes")]
     casts_shadows: bool,
+    /// Its own shadow settings over the scene's `[shadow]`.
+    #[serde(default)]
+    shadow: ShadowPatch,
 }
 
 #[derive(Debug, Deserialize, Default, Clone, Copy, PartialEq, Eq, Hash)]
@@ -694,6 +697,7 @@ fn build_light(l: &LightFile, prefix: &str, bad: Bad, finite: Finite) -> Result<
                 shadow_pos_mult,
                 shading_position: position,
                 casts_shadows: l.casts_shadows,
+                shadow: l.shadow,
             }))
         }
         LightKindFile::Point => {
@@ -733,6 +737,7 @@ fn build_light(l: &LightFile, prefix: &str, bad: Bad, finite: Finite) -> Result<
                 oscillate,
                 centre: position,
                 casts_shadows: l.casts_shadows,
+                shadow: l.shadow,
             }))
         }
         LightKindFile::Spot => {
@@ -784,6 +789,7 @@ fn build_light(l: &LightFile, prefix: &str, bad: Bad, finite: Finite) -> Result<
                 near,
                 far,
                 casts_shadows: l.casts_shadows,
+                shadow: l.shadow,
             }))
         }
     }

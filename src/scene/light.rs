@@ -6,7 +6,7 @@
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::LightView;
+use crate::settings::{LightView, ShadowPatch, ShadowSettings};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -53,6 +53,8 @@ pub struct DirectionalLight {
     /// Only a light that casts gets a shadow map ("render a separate depth map for each
     /// light"); the others light everything they face.
     pub casts_shadows: bool,
+    /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
+    pub shadow: ShadowPatch,
 }
 
 impl DirectionalLight {
@@ -118,6 +120,8 @@ pub struct SpotLight {
     pub near: f32,
     pub far: f32,
     pub casts_shadows: bool,
+    /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
+    pub shadow: ShadowPatch,
 }
 
 /// A light shining every way from a point, with an omnidirectional shadow in a depth cube
@@ -135,6 +139,8 @@ pub struct PointLight {
     /// The resting position the oscillation is about.
     pub centre: Vec3,
     pub casts_shadows: bool,
+    /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
+    pub shadow: ShadowPatch,
 }
 
 /// A scene's light.
@@ -172,6 +178,30 @@ impl Light {
             Light::Spot(l) => l.intensity,
             Light::Point(l) => l.intensity,
         }
+    }
+
+    /// This light's own settings over the scene's.
+    pub fn shadow_patch(&self) -> &ShadowPatch {
+        match self {
+            Light::Directional(l) => &l.shadow,
+            Light::Spot(l) => &l.shadow,
+            Light::Point(l) => &l.shadow,
+        }
+    }
+
+    pub fn shadow_patch_mut(&mut self) -> &mut ShadowPatch {
+        match self {
+            Light::Directional(l) => &mut l.shadow,
+            Light::Spot(l) => &mut l.shadow,
+            Light::Point(l) => &mut l.shadow,
+        }
+    }
+
+    /// The settings this light's shadow uses: `scene`'s with its own table on top.
+    pub fn settings(&self, scene: &ShadowSettings) -> ShadowSettings {
+        let mut s = *scene;
+        self.shadow_patch().apply_to(&mut s);
+        s
     }
 
     pub fn casts_shadows(&self) -> bool {

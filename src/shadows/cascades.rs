@@ -14,6 +14,7 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::{aabb, corners, item_world_boxes, FittedBox};
+use super::slots::LightGlsl;
 use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
@@ -213,16 +214,27 @@ pub fn camera_relative_matrix(cascade: &Cascade, camera_position: Vec3) -> DMat4
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["cascadeMap0", "cascadeMap1", "cascadeMap2", "cascadeMap3"];
 
-/// Light `i`'s lines in the generated snippets: its sampler and its `addLightCascades` call
-/// (shaders/lib/shadow_cascades.glsl).
-pub fn glsl(i: usize, positional: bool, cone: bool) -> (String, String) {
-    (
-        format!("uniform SHADOW_SAMPLER_ARRAY {};", SAMPLERS[i]),
-        format!(
-            "addLightCascades({i}, {}, {positional}, {cone}, f);",
+/// Light `i`'s part of the generated snippets: shaders/lib/shadow_cascades.glsl, its
+/// sampler and its `addLightCascades` call (one light has cascades).
+pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_cascades.glsl",
+        functions: &[
+            "pcfArray",
+            "cascadeLookup",
+            "calcShadowCascades",
+            "addLightCascades",
+        ],
+        sampler_type: if hardware {
+            "sampler2DArrayShadow"
+        } else {
+            "sampler2DArray"
+        },
+        call: format!(
+            "addLightCascades_{i}({i}, {}, {positional}, {cone}, f);",
             SAMPLERS[i]
         ),
-    )
+    }
 }
 
 /// A cascaded light's storage: the depth array and the cascades of the last depth pass.

@@ -7,6 +7,7 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::camera::point_camera;
 use super::casters::{depth_state, draw_casters};
+use super::slots::LightGlsl;
 use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
 use crate::error::Result;
@@ -17,15 +18,18 @@ use crate::settings::{PointPass, ShadowSettings};
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowCube0", "shadowCube1", "shadowCube2", "shadowCube3"];
 
-/// Light `i`'s lines in the generated snippets: its sampler and its `addLightCube` call.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> (String, String) {
-    (
-        format!("uniform samplerCube {};", SAMPLERS[i]),
-        format!(
-            "addLightCube({i}, {p}, {}, {positional}, {cone}, f);",
+/// Light `i`'s part of the generated snippets: `calcShadowCube`
+/// (shaders/lib/shadow_cube.glsl), its sampler and its `addLightCube` call.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_cube.glsl",
+        functions: &["calcShadowCube", "addLightCube"],
+        sampler_type: "samplerCube",
+        call: format!(
+            "addLightCube_{i}({i}, {p}, {}, {positional}, {cone}, f);",
             SAMPLERS[i]
         ),
-    )
+    }
 }
 
 /// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,

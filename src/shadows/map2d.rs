@@ -13,6 +13,7 @@
 
 use super::camera::{perspective_view, point_camera};
 use super::casters::{depth_state, draw_casters};
+use super::slots::LightGlsl;
 use super::{
     fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
 };
@@ -25,16 +26,22 @@ use crate::settings::{Fit, LightProjection, ShadowSettings};
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowMap0", "shadowMap1", "shadowMap2", "shadowMap3"];
 
-/// Light `i`'s lines in the generated snippets: its sampler and its call of `addLight2D`
-/// (shaders/lib/shadow_2d.glsl) with its map slot `p`.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> (String, String) {
-    (
-        format!("uniform SHADOW_SAMPLER_2D {};", SAMPLERS[i]),
-        format!(
-            "addLight2D({i}, {p}, {}, {positional}, {cone}, f);",
+/// Light `i`'s part of the generated snippets: `calcShadow` (shaders/lib/shadow_2d.glsl),
+/// its sampler and its call of `addLight2D` with its map slot `p`.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_2d.glsl",
+        functions: &["calcShadow", "addLight2D"],
+        sampler_type: if hardware {
+            "sampler2DShadow"
+        } else {
+            "sampler2D"
+        },
+        call: format!(
+            "addLight2D_{i}({i}, {p}, {}, {positional}, {cone}, f);",
             SAMPLERS[i]
         ),
-    )
+    }
 }
 
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).

@@ -42,15 +42,16 @@ pub enum ShadowKind {
 }
 
 impl ShadowKind {
-    /// The kind each of a scene's lights gets: as [`ShadowKind::of`], except that only the
-    /// first casting directional light gets cascades (the sun; its cascades' positions are
-    /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
-    /// others one map each.
+    /// The kind each of a scene's lights gets under the scene's `settings` (with each
+    /// light's own table on top): as [`ShadowKind::of`], except that only the first casting
+    /// directional light gets cascades (the sun; its cascades' positions are computed per
+    /// vertex, and one light's fit among GL 3.3's 64 vertex outputs), the others one map
+    /// each.
     pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
         let mut cascaded = false;
         lights
             .iter()
-            .map(|l| match ShadowKind::of(l, settings) {
+            .map(|l| match ShadowKind::of(l, &l.settings(settings)) {
                 ShadowKind::Cascades if cascaded => ShadowKind::Map,
                 ShadowKind::Cascades => {
                     cascaded = true;
@@ -61,7 +62,7 @@ impl ShadowKind {
             .collect()
     }
 
-    /// The kind a light gets under `settings`, alone in its scene.
+    /// The kind a light gets under its own `settings`, alone in its scene.
     pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
         match light {
             l if !l.casts_shadows() => ShadowKind::None,

@@ -3,43 +3,13 @@
 //! so they are compile-time constants; the key is a small `Copy` value compared every frame
 //! without allocating, and its text is made only when a program is compiled.
 
-use super::slots::{self, LightSlot};
+use super::slots::{self, LightSlot, ShadowTest};
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
-use crate::settings::{glsl_float, BeyondFar, BiasMode, ShadowSettings};
+use crate::settings::{glsl_float, ShadowSettings};
 use crate::shaders;
-
-/// The shadow test's constants (shaders/lib/bias.glsl and the technique snippets).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct ShadowTest {
-    pub pcf_radius: u32,
-    pub hardware: bool,
-    pub bias_mode: BiasMode,
-    pub bias_bits: u32,
-    pub bias_min_bits: u32,
-    pub beyond_far_lit: bool,
-    pub normal_offset: bool,
-    pub map_size: u32,
-}
-
-impl ShadowTest {
-    /// The test as the settings apply it ([`ShadowSettings::effective`]).
-    pub fn of(settings: &ShadowSettings) -> ShadowTest {
-        let s = settings.effective();
-        ShadowTest {
-            pcf_radius: s.filter.radius(),
-            hardware: s.filter.hardware(),
-            bias_mode: s.bias_mode,
-            bias_bits: s.bias.to_bits(),
-            bias_min_bits: s.bias_min.to_bits(),
-            beyond_far_lit: s.beyond_far == BeyondFar::Lit,
-            normal_offset: s.normal_offset != 0.0,
-            map_size: s.map_size,
-        }
-    }
-}
 
 /// A cascaded light's constants (shaders/lib/shadow_cascades.glsl).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -55,8 +25,6 @@ pub struct ProgramKey {
     /// The scene's lights in order (the first `light_count`).
     lights: [Option<LightSlot>; MAX_LIGHTS],
     light_count: usize,
-    /// The shadow test, when some light casts.
-    test: Option<ShadowTest>,
     /// The cascades, when a light has them.
     cascades: Option<CascadeLayout>,
     blinn: bool,
@@ -82,28 +50,31 @@ impl ProgramKey {
             )));
         }
         let mut lights = [None; MAX_LIGHTS];
+        let mut cascades = None;
         for ((slot, light), &shadow) in lights.iter_mut().zip(&scene.lights).zip(kinds) {
             let (positional, cone) = match light.shading() {
                 Shading::Direction(_) => (false, false),
                 Shading::Position { cone, .. } => (true, cone.is_some()),
             };
+            let own = light.settings(settings);
+            if shadow == ShadowKind::Cascades {
+                cascades = Some(CascadeLayout {
+                    count: own.cascades,
+                    blend_bits: own.cascade_blend.to_bits(),
+                    show: own.show_cascades,
+                });
+            }
             *slot = Some(LightSlot {
                 shadow,
                 positional,
                 cone,
+                test: (shadow != ShadowKind::None).then(|| ShadowTest::of(&own)),
             });
         }
-        let casts = kinds.iter().any(|k| *k != ShadowKind::None);
-        let cascaded = kinds.contains(&ShadowKind::Cascades);
         Ok(ProgramKey {
             lights,
             light_count: n,
-            test: casts.then(|| ShadowTest::of(settings)),
-            cascades: cascaded.then_some(CascadeLayout {
-                count: settings.cascades,
-                blend_bits: settings.cascade_blend.to_bits(),
-                show: settings.show_cascades,
-            }),
+            cascades,
             blinn: scene.shading == ShadingModel::BlinnPhong,
             specular_power_bits: scene.specular_power.to_bits(),
             visibility_light,
@@ -121,6 +92,7 @@ impl ProgramKey {
     }
 
     /// The `#define`s for shaders/scene.{vert,frag}; each exists only when a light uses it.
+    /// (The shadow test's constants are defined per light in the generated snippet.)
     pub fn defines(&self) -> Vec<(String, String)> {
         let mut d: Vec<(String, String)> = Vec::new();
         let mut set = |k: &str, v: String| d.push((k.to_string(), v));
@@ -141,31 +113,14 @@ impl ProgramKey {
         );
         set("OUTPUT_VISIBILITY", bit(self.outputs.visibility));
         set("OUTPUT_GBUFFER", bit(self.outputs.gbuffer));
-        for (kind, name) in [
-            (ShadowKind::Map, "USES_MAP"),
-            (ShadowKind::Cube, "USES_CUBE"),
-        ] {
-            if slots.iter().any(|s| s.shadow == kind) {
-                set(name, "1".into());
-            }
-        }
-        if let Some(t) = &self.test {
-            set("USES_SHADOWS", "1".into());
-            set("PCF_RADIUS", t.pcf_radius.to_string());
-            set("HW_PCF", bit(t.hardware));
-            let mode = match t.bias_mode {
-                BiasMode::None => 0,
-                BiasMode::Constant => 1,
-                BiasMode::Slope => 2,
-            };
-            set("BIAS_MODE", mode.to_string());
-            set("BIAS", glsl_float(f32::from_bits(t.bias_bits)));
-            set("BIAS_MIN", glsl_float(f32::from_bits(t.bias_min_bits)));
-            set("BEYOND_FAR_LIT", bit(t.beyond_far_lit));
-            set("SHADOW_MAP_SIZE", t.map_size.to_string());
-            if t.normal_offset {
-                set("NORMAL_OFFSET", "1".into());
-            }
+        // The shadow tests' constants are each light's own: see `slots::snippets`. The
+        // vertex shader offsets along the normal for every mapped light when one asks
+        // (the others get an offset of 0).
+        if slots
+            .iter()
+            .any(|s| s.test.is_some_and(|t| t.normal_offset))
+        {
+            set("NORMAL_OFFSET", "1".into());
         }
         if let Some(c) = &self.cascades {
             set("USES_CASCADES", "1".into());
@@ -211,8 +166,12 @@ mod tests {
         };
         let key = ProgramKey::of(&scene, &s, &kinds, 0, Outputs::default()).unwrap();
         let names: Vec<String> = key.defines().into_iter().map(|(k, _)| k).collect();
-        assert!(names.contains(&"USES_CUBE".to_string()), "{names:?}");
-        for absent in ["USES_MAP", "USES_CASCADES", "CASCADES", "CASCADE_BLEND"] {
+        for absent in [
+            "USES_CASCADES",
+            "CASCADES",
+            "CASCADE_BLEND",
+            "NORMAL_OFFSET",
+        ] {
             assert!(
                 !names.contains(&absent.to_string()),
                 "{absent} in {names:?}"

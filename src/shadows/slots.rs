@@ -13,6 +13,7 @@
 
 use super::{cascades, cube, map2d, ShadowKind};
 use crate::scene::MAX_LIGHTS;
+use crate::settings::{glsl_float, BeyondFar, BiasMode, ShadowSettings};
 
 /// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
 pub const MATERIAL_UNIT: u32 = 0;
@@ -20,6 +21,57 @@ pub const MATERIAL_UNIT: u32 = 0;
 /// The texture unit of light `index`'s shadow map.
 pub fn texture_unit(index: usize) -> u32 {
     1 + index as u32
+}
+
+/// The shadow test's constants (shaders/lib/bias.glsl and the technique snippets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ShadowTest {
+    pub pcf_radius: u32,
+    pub hardware: bool,
+    pub bias_mode: BiasMode,
+    pub bias_bits: u32,
+    pub bias_min_bits: u32,
+    pub beyond_far_lit: bool,
+    pub normal_offset: bool,
+    pub map_size: u32,
+}
+
+impl ShadowTest {
+    /// The test as the settings apply it ([`ShadowSettings::effective`]).
+    pub fn of(settings: &ShadowSettings) -> ShadowTest {
+        let s = settings.effective();
+        ShadowTest {
+            pcf_radius: s.filter.radius(),
+            hardware: s.filter.hardware(),
+            bias_mode: s.bias_mode,
+            bias_bits: s.bias.to_bits(),
+            bias_min_bits: s.bias_min.to_bits(),
+            beyond_far_lit: s.beyond_far == BeyondFar::Lit,
+            normal_offset: s.normal_offset != 0.0,
+            map_size: s.map_size,
+        }
+    }
+}
+
+impl ShadowTest {
+    /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
+    fn defines(&self) -> [(&'static str, String); 7] {
+        let bit = |b: bool| u32::from(b).to_string();
+        let mode = match self.bias_mode {
+            BiasMode::None => 0,
+            BiasMode::Constant => 1,
+            BiasMode::Slope => 2,
+        };
+        [
+            ("PCF_RADIUS", self.pcf_radius.to_string()),
+            ("HW_PCF", bit(self.hardware)),
+            ("BIAS_MODE", mode.to_string()),
+            ("BIAS", glsl_float(f32::from_bits(self.bias_bits))),
+            ("BIAS_MIN", glsl_float(f32::from_bits(self.bias_min_bits))),
+            ("BEYOND_FAR_LIT", bit(self.beyond_far_lit)),
+            ("SHADOW_MAP_SIZE", self.map_size.to_string()),
+        ]
+    }
 }
 
 /// What the scene program is compiled for about one light.
@@ -30,6 +82,18 @@ pub struct LightSlot {
     pub positional: bool,
     /// A spot light's cone limits it.
     pub cone: bool,
+    /// Its shadow test (its own settings), when it casts.
+    pub test: Option<ShadowTest>,
+}
+
+/// A technique's part of the generated snippet for light `i`: the library snippet it
+/// includes, the functions that snippet defines (renamed per light, so each light's test
+/// keeps its own constants), its sampler's GLSL type and its call.
+pub struct LightGlsl {
+    pub snippet: &'static str,
+    pub functions: &'static [&'static str],
+    pub sampler_type: &'static str,
+    pub call: String,
 }
 
 /// The sampler uniform of light `index`'s shadow, if it has one.
@@ -74,49 +138,64 @@ pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
 }
 
 /// The two generated snippets for these lights: `generated/samplers.glsl` (one sampler
-/// declaration per casting light) and `generated/lights.glsl` (`addLights`, one add... call
-/// per light in order, with its map slot).
+/// declaration per casting light) and `generated/lights.glsl`: for each casting light its
+/// test's constants as `#define`s and its technique's library snippet, with the snippet's
+/// functions renamed after the light (`calcShadow` becomes `calcShadow_0`); then
+/// `addLights`, one add... call per light in order.
 pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
     let mut samplers =
         String::from("// Made by src/shadows/slots.rs: one sampler per casting light.\n");
-    let mut calls = String::from(
-        "// Made by src/shadows/slots.rs: each light's call, in the scene's order.\n\
-         void addLights(inout Fragment f)\n{\n",
+    let mut lights = String::from(
+        "// Made by src/shadows/slots.rs: each casting light's shadow test with its own\n\
+         // constants, then each light's call in the scene's order.\n",
     );
+    let mut calls = String::from("void addLights(inout Fragment f)\n{\n");
     let map_slot = map_slots(slots.iter().map(|s| s.shadow));
     for (i, slot) in slots.iter().enumerate() {
         let p = map_slot[i].unwrap_or(0);
         let (positional, cone) = (slot.positional, slot.cone);
-        let (sampler, call) = match slot.shadow {
-            ShadowKind::None => (
-                None,
-                format!("addLightUnshadowed({i}, {positional}, {cone}, f);"),
-            ),
-            ShadowKind::Map => {
-                let (s, c) = map2d::glsl(i, p, positional, cone);
-                (Some(s), c)
-            }
-            ShadowKind::Cube => {
-                let (s, c) = cube::glsl(i, p, positional, cone);
-                (Some(s), c)
-            }
-            ShadowKind::Cascades => {
-                let (s, c) = cascades::glsl(i, positional, cone);
-                (Some(s), c)
-            }
+        let hardware = slot.test.is_some_and(|t| t.hardware);
+        let glsl = match slot.shadow {
+            ShadowKind::None => None,
+            ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
+            ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
+            ShadowKind::Cascades => Some(cascades::glsl(i, positional, cone, hardware)),
         };
-        if let Some(s) = sampler {
-            samplers.push_str(&s);
-            samplers.push('\n');
+        let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
+        else {
+            calls.push_str(&format!(
+                "    addLightUnshadowed({i}, {positional}, {cone}, f);\n"
+            ));
+            continue;
+        };
+        samplers.push_str(&format!("uniform {} {name};\n", glsl.sampler_type));
+        let defines: Vec<(String, String)> = test
+            .defines()
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .chain(
+                std::iter::once("depthBias")
+                    .chain(glsl.functions.iter().copied())
+                    .map(|f| (f.to_string(), format!("{f}_{i}"))),
+            )
+            .collect();
+        lights.push_str(&format!("\n// Light {i}\n"));
+        for (k, v) in &defines {
+            lights.push_str(&format!("#define {k} {v}\n"));
         }
-        calls.push_str("    ");
-        calls.push_str(&call);
-        calls.push('\n');
+        lights.push_str("#include \"lib/bias.glsl\"\n");
+        lights.push_str(&format!("#include \"{}\"\n", glsl.snippet));
+        for (k, _) in &defines {
+            lights.push_str(&format!("#undef {k}\n"));
+        }
+        calls.push_str(&format!("    {}\n", glsl.call));
     }
     calls.push_str("}\n");
+    lights.push('\n');
+    lights.push_str(&calls);
     [
         ("generated/samplers.glsl", samplers),
-        ("generated/lights.glsl", calls),
+        ("generated/lights.glsl", lights),
     ]
 }
 
@@ -157,47 +236,89 @@ mod tests {
     }
 
     #[test]
-    fn every_light_has_its_own_texture_unit_and_call() {
-        let slot = |shadow, positional| LightSlot {
+    fn every_light_has_its_own_texture_unit_sampler_test_and_call() {
+        let hw = ShadowSettings {
+            filter: crate::settings::Filter::Hardware2x2,
+            bias: 0.25,
+            ..ShadowSettings::default()
+        };
+        let slot = |shadow, positional, s: &ShadowSettings| LightSlot {
             shadow,
             positional,
             cone: false,
+            test: (shadow != ShadowKind::None).then(|| ShadowTest::of(s)),
         };
+        let book = ShadowSettings::default();
         let slots = [
-            slot(ShadowKind::Map, false),
-            slot(ShadowKind::None, true),
-            slot(ShadowKind::Cube, true),
-            slot(ShadowKind::Cascades, false),
+            slot(ShadowKind::Map, false, &book),
+            slot(ShadowKind::None, true, &book),
+            slot(ShadowKind::Cube, true, &book),
+            slot(ShadowKind::Cascades, false, &hw),
         ];
         let [(samplers_name, samplers), (lights_name, lights)] = snippets(&slots);
         assert_eq!(samplers_name, "generated/samplers.glsl");
         assert_eq!(lights_name, "generated/lights.glsl");
         let lines = |t: &str| -> Vec<String> {
             t.lines()
-                .filter(|l| !l.starts_with("//"))
+                .filter(|l| !l.starts_with("//") && !l.trim().is_empty())
                 .map(|l| l.trim().to_string())
                 .collect()
         };
+        // Each sampler's type follows its own light's filter.
         assert_eq!(
             lines(&samplers),
             [
-                "uniform SHADOW_SAMPLER_2D shadowMap0;",
+                "uniform sampler2D shadowMap0;",
                 "uniform samplerCube shadowCube2;",
-                "uniform SHADOW_SAMPLER_ARRAY cascadeMap3;"
+                "uniform sampler2DArrayShadow cascadeMap3;"
             ]
         );
+        let lights = lines(&lights);
+        let calls = lights
+            .iter()
+            .position(|l| l == "void addLights(inout Fragment f)")
+            .unwrap();
         assert_eq!(
-            lines(&lights),
+            lights[calls..],
             [
                 "void addLights(inout Fragment f)",
                 "{",
-                "addLight2D(0, 0, shadowMap0, false, false, f);",
+                "addLight2D_0(0, 0, shadowMap0, false, false, f);",
                 "addLightUnshadowed(1, true, false, f);",
-                "addLightCube(2, 1, shadowCube2, true, false, f);",
-                "addLightCascades(3, cascadeMap3, false, false, f);",
+                "addLightCube_2(2, 1, shadowCube2, true, false, f);",
+                "addLightCascades_3(3, cascadeMap3, false, false, f);",
                 "}"
             ]
         );
+        // Light 0's test is the book's, light 3's its own; each snippet's functions are
+        // renamed after its light, and every constant is undone after it.
+        let block = |i: usize| -> Vec<String> {
+            let from = lights
+                .iter()
+                .position(|l| l.starts_with(&format!("#define depthBias depthBias_{i}")))
+                .unwrap();
+            lights[from - 7..from + 1].to_vec()
+        };
+        assert!(
+            block(0).contains(&"#define BIAS 0.05".to_string()),
+            "{:?}",
+            block(0)
+        );
+        assert!(
+            block(3).contains(&"#define BIAS 0.25".to_string()),
+            "{:?}",
+            block(3)
+        );
+        assert!(
+            block(3).contains(&"#define HW_PCF 1".to_string()),
+            "{:?}",
+            block(3)
+        );
+        assert!(lights.contains(&"#define calcShadow calcShadow_0".to_string()));
+        assert!(lights.contains(&"#define calcShadowCube calcShadowCube_2".to_string()));
+        let defined = lights.iter().filter(|l| l.starts_with("#define")).count();
+        let undone = lights.iter().filter(|l| l.starts_with("#undef")).count();
+        assert_eq!(defined, undone);
         let units: Vec<u32> = (0..MAX_LIGHTS).map(texture_unit).collect();
         assert_eq!(units, [1, 2, 3, 4]);
         assert!(!units.contains(&MATERIAL_UNIT));
@@ -209,6 +330,7 @@ mod tests {
             shadow,
             positional: true,
             cone: false,
+            test: Option::None,
         };
         use ShadowKind::*;
         let worst = [slot(Cascades), slot(Map), slot(Cube), slot(Map)];
