@@ -14,6 +14,7 @@ pub mod frame;
 pub mod geometry;
 pub mod image_data;
 pub mod light_slots;
+pub mod output;
 pub mod reference;
 pub mod renderer;
 pub mod scene;
