@@ -65,10 +65,10 @@ pub struct SceneArgs {
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
     /// Move the camera: world position X,Y,Z.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_negative_numbers = true)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_position: Option<[f32; 3]>,
     /// Turn the camera: PITCH,YAW,ROLL in degrees (positive pitch looks down).
-    #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_negative_numbers = true)]
+    #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_rotation: Option<[f32; 3]>,
 }
 
@@ -79,7 +79,7 @@ pub struct SettingsArgs {
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
     pub step: Option<String>,
     /// Shadow-map side in texels (1 to the driver's maximum texture size).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub map_size: Option<u32>,
     /// Depth-map precision.
     #[arg(long, value_enum)]
@@ -91,16 +91,16 @@ pub struct SettingsArgs {
     #[arg(long, value_enum)]
     pub bias_mode: Option<BiasMode>,
     /// Constant bias, or the slope bias' maximum, in [0, 1] depth units.
-    #[arg(long, value_name = "B")]
+    #[arg(long, value_name = "B", value_parser = parse_finite, allow_negative_numbers = true)]
     pub bias: Option<f32>,
     /// The slope bias' floor.
-    #[arg(long, value_name = "B")]
+    #[arg(long, value_name = "B", value_parser = parse_finite, allow_negative_numbers = true)]
     pub bias_min: Option<f32>,
     /// Normal-offset bias: move the lookup this many shadow-map texels along the normal.
-    #[arg(long, value_name = "TEXELS")]
+    #[arg(long, value_name = "TEXELS", value_parser = parse_finite, allow_negative_numbers = true)]
     pub normal_offset: Option<f32>,
     /// glPolygonOffset in the depth pass, e.g. 1.1,4.
-    #[arg(long, value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_negative_numbers = true)]
+    #[arg(long, value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_hyphen_values = true)]
     pub polygon_offset: Option<[f32; 2]>,
     /// Faces culled in the depth pass.
     #[arg(long, value_enum)]
@@ -118,7 +118,7 @@ pub struct SettingsArgs {
     #[arg(long, value_enum)]
     pub light_projection: Option<LightProjection>,
     /// Field of view of a perspective shadow camera for a directional light (degrees).
-    #[arg(long, value_name = "DEG")]
+    #[arg(long, value_name = "DEG", value_parser = parse_finite, allow_negative_numbers = true)]
     pub perspective_fov: Option<f32>,
     /// A directional light's box: the scene file's by hand, or fitted to the scene each frame.
     #[arg(long, value_enum)]
@@ -131,16 +131,16 @@ pub struct SettingsArgs {
     pub point_pass: Option<PointPass>,
     /// Cascaded shadow maps for directional lights: 2 to 4 layers of --map-size each, one
     /// per slice of the view (1 = one map, as the chapters).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub cascades: Option<u32>,
     /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical scheme).
-    #[arg(long, value_name = "LAMBDA")]
+    #[arg(long, value_name = "LAMBDA", value_parser = parse_finite, allow_negative_numbers = true)]
     pub cascade_lambda: Option<f32>,
     /// The last fraction of each cascade that fades into the next (0 = a hard seam, at most 0.5).
-    #[arg(long, value_name = "FRACTION")]
+    #[arg(long, value_name = "FRACTION", value_parser = parse_finite, allow_negative_numbers = true)]
     pub cascade_blend: Option<f32>,
     /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
-    #[arg(long, value_name = "DEPTH")]
+    #[arg(long, value_name = "DEPTH", value_parser = parse_finite, allow_negative_numbers = true)]
     pub shadow_distance: Option<f32>,
     /// Draw the first light's shadow map instead of the scene (a cube map as a panorama,
     /// cascades side by side).
@@ -158,7 +158,7 @@ pub struct DemoArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Close the window after this many frames (for scripted runs).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub exit_after_frames: Option<u64>,
     /// With --exit-after-frames: save the last frame to this PNG.
     #[arg(long, value_name = "FILE", requires = "exit_after_frames")]
@@ -201,7 +201,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
     pub out: PathBuf,
     /// Frames to render (the scene animates between them); the last one is written.
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
     pub frames: u32,
     /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
     #[arg(long, value_name = "FILE.png")]
@@ -223,14 +223,24 @@ pub struct CompareArgs {
     pub out_dir: PathBuf,
     /// Sub-pixel rays per side for the supersampled reference that judges filtered edges
     /// (N x N per pixel; 1 = off).
-    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
     pub band: usize,
     /// Which light to measure, numbered from 0 in the scene file's order (a scene with
     /// several lights is measured one light at a time).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 0,
+        allow_negative_numbers = true
+    )]
     pub light: usize,
 }
 
@@ -249,19 +259,29 @@ pub struct BenchArgs {
     pub quick: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
-    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
     pub frames: u32,
     /// Untimed frames before them.
-    #[arg(long, value_name = "N", default_value_t = 10)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_negative_numbers = true
+    )]
     pub warmup: u32,
     /// Sub-pixel rays per side for the MAE reference (1 = no MAE).
-    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
     pub band: usize,
     /// Print the cheapest configuration whose misclassified fraction is at most E (0.01 = 1%).
-    #[arg(long, value_name = "E")]
+    #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true)]
     pub target_error: Option<f64>,
 }
 
@@ -273,7 +293,7 @@ pub struct StepsArgs {
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
     /// Sub-pixel rays per side for the MAE reference.
-    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
 }
 
@@ -284,7 +304,7 @@ pub struct SoakArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Frames to render.
-    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
     pub frames: u64,
 }
 
@@ -322,6 +342,24 @@ pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
     Ok([a, b])
 }
 
+/// Parses a finite number (NaN and infinities would reach the shaders as garbage).
+pub fn parse_finite(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("'{s}': expected a finite number, like 0.05")),
+    }
+}
+
+/// Parses a fraction from 0 to 1, e.g. `0.01` for 1%.
+pub fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{s}': expected a fraction from 0 to 1 (0.01 = 1% of receiver pixels)"
+        )),
+    }
+}
+
 impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
@@ -333,9 +371,10 @@ impl SceneArgs {
             scene.camera.rotation = r.into();
         }
         if let Some(a) = self.light_angle {
-            if !a.is_finite() {
+            // Outside 0..180 the light would be clamped without a word: refuse instead.
+            if !(0.0..=180.0).contains(&a) {
                 return Err(shadowmap::Error::Invalid(format!(
-                    "--light-angle {a}: expected degrees from 0 to 180"
+                    "--light-angle {a}: expected degrees from 0 to 180 (90 = overhead)"
                 )));
             }
             if !scene.set_light_angle(a) {
@@ -364,18 +403,31 @@ impl SettingsArgs {
         settings: &ShadowSettings,
     ) -> shadowmap::Result<()> {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
-        settings.validate(max).map_err(|e| {
-            // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
-            let text = e.to_string();
-            let name = text
-                .strip_prefix("shadow.")
-                .and_then(|t| t.split(' ').next())
-                .unwrap_or_default();
-            match self.flag_given(name) {
-                true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
-                false => shadowmap::Error::file(&scene.source, text),
-            }
-        })
+        settings
+            .validate(max)
+            .map_err(|e| self.name_source(scene, e))
+    }
+
+    /// Checks every setting that needs no driver (biases, ranges, cascades): run before any
+    /// GL work or file, so a bad flag costs nothing.
+    pub fn check_values(&self, scene: &Scene, settings: &ShadowSettings) -> shadowmap::Result<()> {
+        settings
+            .validate_values()
+            .map_err(|e| self.name_source(scene, e))
+    }
+
+    /// Says where a bad setting came from: its flag, or the scene file.
+    fn name_source(&self, scene: &Scene, e: shadowmap::Error) -> shadowmap::Error {
+        // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
+        let text = e.to_string();
+        let name = text
+            .strip_prefix("shadow.")
+            .and_then(|t| t.split(' ').next())
+            .unwrap_or_default();
+        match self.flag_given(name) {
+            true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
+            false => shadowmap::Error::file(&scene.source, text),
+        }
     }
 
     /// Whether the setting `name` (as the scene file spells it) was given as a flag.
