@@ -8,11 +8,13 @@ use shadowmap::compare::render_visibility;
 use shadowmap::compare::{compute_reference, CompareOptions, Reference};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
+use shadowmap::output::{check_output_dir, create_output_dir, write_file};
 use shadowmap::reference::{error_image, Metrics};
 use shadowmap::settings::LightProjection;
 use shadowmap::{steps, Error, Result};
 
 use super::cli::StepsArgs;
+use super::plot::with_error_legend;
 
 pub fn run(args: &StepsArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
@@ -22,8 +24,15 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         .for_each(|i| i.spin = glam::Vec3::ZERO);
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
+    // Checked before any GL work; the folder is made when the first picture is ready.
+    check_output_dir("--out-dir", dir)?;
+    if !scene.light().casts_shadows() {
+        return Err(Error::Invalid(format!(
+            "{}: the first light does not cast shadows (casts_shadows = false): the steps \
+             measure the first light; expected a scene whose first light casts",
+            scene.source.display()
+        )));
+    }
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     let opts = CompareOptions {
@@ -41,6 +50,9 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         let settings = steps::settings_for(&scene, step.name)?;
         let frame = render_visibility(gl, &scene, &settings, width, height, 0)?;
         let image = format!("{:02}-{}.png", i + 1, step.name);
+        if i == 0 {
+            create_output_dir(dir)?;
+        }
         frame.colour.save_png(&dir.join(&image))?;
         let mut metrics: Option<Metrics> = None;
         let mut error_file = None;
@@ -59,11 +71,11 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 .collect();
             let err = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
             let name = format!("{:02}-{}-error.png", i + 1, step.name);
-            ImageData {
+            with_error_legend(ImageData {
                 width,
                 height,
                 rgba: err.concat(),
-            }
+            })?
             .save_png(&dir.join(&name))?;
             error_file = Some(name);
         }
@@ -152,7 +164,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     }
     html.push_str("</body></html>\n");
     let path = dir.join("index.html");
-    std::fs::write(&path, html).map_err(|e| Error::file(&path, format!("cannot write: {e}")))?;
+    write_file(&path, "the page", html.as_bytes())?;
     println!("wrote {} and {} images", path.display(), rows.len());
     Ok(())
 }

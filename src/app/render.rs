@@ -6,7 +6,8 @@ use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::save_grey_png;
 use shadowmap::light_slots::ShadowKind;
-use shadowmap::Result;
+use shadowmap::output::check_output_image;
+use shadowmap::{Error, Result};
 
 use super::cli::RenderArgs;
 
@@ -15,9 +16,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     let settings = args.settings.apply(&scene)?;
     let (width, height) = args.scene.size(&scene);
+    // Everything that can be checked without the driver, before any GL work or file.
+    args.settings.check_values(&scene, &settings)?;
+    check_outputs(args)?;
     if let Some(path) = &args.depth_out {
         if ShadowKind::of(scene.light(), &settings) != ShadowKind::Map {
-            return Err(shadowmap::Error::Invalid(format!(
+            return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
                  cascades or casts no shadow): use --show-depth-map to see its map",
                 path.display()
@@ -63,6 +67,30 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",
             frame.frame_ms.len() - 1
         );
+    }
+    Ok(())
+}
+
+/// The output files: known extensions, folders that exist and accept files, and three
+/// different paths (a second write to the same file would replace the first).
+fn check_outputs(args: &RenderArgs) -> Result<()> {
+    let outputs = [
+        ("--out", Some(&args.out)),
+        ("--shadow-out", args.shadow_out.as_ref()),
+        ("--depth-out", args.depth_out.as_ref()),
+    ];
+    let given: Vec<_> = outputs
+        .iter()
+        .filter_map(|(flag, path)| Some((*flag, (*path)?)))
+        .collect();
+    for (i, (flag, path)) in given.iter().enumerate() {
+        check_output_image(flag, path)?;
+        if let Some((other, _)) = given[..i].iter().find(|(_, p)| p == path) {
+            return Err(Error::file(
+                path,
+                format!("{flag}: the same file as {other}; expected a different name"),
+            ));
+        }
     }
     Ok(())
 }
