@@ -18,20 +18,56 @@ use crate::error::{Error, Result};
 /// Anything else that already exists (a device such as `/dev/full` or `/dev/stdout`, a FIFO)
 /// is written in place. `what` says what the file is in the message ("the image").
 pub fn write_file(path: &Path, what: &str, bytes: &[u8]) -> Result<()> {
-    let fail = |e: std::io::Error| Error::file(path, format!("cannot write {what}: {e}"));
-    // Follow a symbolic link, so the link keeps pointing at the file it names.
-    let target = match std::fs::symlink_metadata(path) {
-        Ok(m) if m.file_type().is_symlink() => std::fs::canonicalize(path).map_err(fail)?,
-        _ => path.to_path_buf(),
-    };
-    match std::fs::metadata(&target) {
-        Ok(m) if m.is_dir() => Err(Error::file(
-            path,
-            format!("cannot write {what}: it is a folder; expected a file name"),
-        )),
-        Ok(m) if !m.is_file() => write_in_place(&target, bytes).map_err(fail),
-        _ => write_by_rename(&target, bytes).map_err(fail),
+    write_files(&[(path, what, bytes)])
+}
+
+/// Writes several files as one: every regular file is first written in full to its
+/// temporary name, then devices are written, and only when all of that worked are the
+/// temporary files renamed into place. A failure (a full disk, `/dev/full`) leaves none of
+/// the regular files behind; the error names the path that failed.
+pub fn write_files(files: &[(&Path, &str, &[u8])]) -> Result<()> {
+    let mut staged: Vec<(PathBuf, PathBuf, &Path, &str)> = Vec::new();
+    let mut devices = Vec::new();
+    let result = (|| {
+        for &(path, what, bytes) in files {
+            let fail = |e: std::io::Error| Error::file(path, format!("cannot write {what}: {e}"));
+            // Follow a symbolic link, so the link keeps pointing at the file it names.
+            let target = match std::fs::symlink_metadata(path) {
+                Ok(m) if m.file_type().is_symlink() => std::fs::canonicalize(path).map_err(fail)?,
+                _ => path.to_path_buf(),
+            };
+            match std::fs::metadata(&target) {
+                Ok(m) if m.is_dir() => {
+                    return Err(Error::file(
+                        path,
+                        format!("cannot write {what}: it is a folder; expected a file name"),
+                    ))
+                }
+                Ok(m) if !m.is_file() => devices.push((target, path, what, bytes)),
+                _ => {
+                    let temp = temp_path(&target);
+                    // Recorded first, so a half-written temporary file is removed too.
+                    staged.push((temp.clone(), target, path, what));
+                    write_new(&temp, bytes).map_err(fail)?;
+                }
+            }
+        }
+        for (target, path, what, bytes) in &devices {
+            write_in_place(target, bytes)
+                .map_err(|e| Error::file(path, format!("cannot write {what}: {e}")))?;
+        }
+        for (temp, target, path, what) in &staged {
+            std::fs::rename(temp, target)
+                .map_err(|e| Error::file(path, format!("cannot write {what}: {e}")))?;
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        for (temp, ..) in &staged {
+            let _ = std::fs::remove_file(temp);
+        }
     }
+    result
 }
 
 fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
@@ -43,21 +79,13 @@ fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     file.flush()
 }
 
-fn write_by_rename(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let temp = temp_path(path);
-    let result = (|| {
-        let mut file = std::fs::File::create(&temp)?;
-        file.write_all(bytes)?;
-        file.flush()?;
-        // Data that never reached the disk must not look written either.
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+/// Writes a new file and makes sure its bytes reached the disk: some file systems report a
+/// full disk only when the data is synced.
+fn write_new(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut file = std::fs::File::create(path)?;
+    file.write_all(bytes)?;
+    file.flush()?;
+    file.sync_all()
 }
 
 /// A hidden name next to `path` that no other run uses at the same time.
@@ -330,6 +358,30 @@ mod tests {
             text.starts_with("/dev/full: cannot write the image: "),
             "{text}"
         );
+    }
+
+    #[test]
+    fn a_batch_with_one_failure_leaves_none_of_its_files() {
+        let dir = scratch("batch");
+        let (a, b) = (dir.join("a.png"), dir.join("b.json"));
+        std::fs::write(&b, b"old").unwrap();
+        let full = Path::new("/dev/full");
+        let err = write_files(&[
+            (&a, "the image", &[1u8; 100_000]),
+            (&b, "the file", b"new"),
+            (full, "the image", &[2u8; 100_000]),
+        ])
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.starts_with("/dev/full: cannot write the image"),
+            "{err}"
+        );
+        assert!(!a.exists(), "a.png was written");
+        assert_eq!(std::fs::read(&b).unwrap(), b"old", "b.json was replaced");
+        let names: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().collect();
+        assert_eq!(names.len(), 1, "temporary files left: {names:?}");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use shadowmap::bench::{self, BenchOptions};
 use shadowmap::engine::{gl_limits, HeadlessContext};
-use shadowmap::output::{check_output_dir, create_output_dir, write_file, Activity, Counter};
+use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
 use shadowmap::{Error, Result};
 
 use super::cli::BenchArgs;
@@ -109,9 +109,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         ),
     ];
     create_output_dir(dir)?;
-    for (name, bytes, what) in &files {
-        write_file(&dir.join(name), what, bytes)?;
-    }
+    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
+    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .collect();
+    write_files(&batch)?;
     println!("{markdown}");
     println!(
         "wrote {}/bench.csv, bench.md, pareto.png in {:.1} s",

@@ -1,9 +1,11 @@
 //! `shadowmap compare`: one frame scored against the exact reference, with pictures.
 
+use std::path::Path;
+
 use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
-use shadowmap::output::{check_output_dir, create_output_dir, write_file, Activity};
+use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity};
 use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
 use shadowmap::{Error, Result, Scene};
 
@@ -102,13 +104,19 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
     create_output_dir(dir)?;
-    for (name, bytes) in &files {
-        let what = match name.ends_with(".png") {
-            true => "the image",
-            false => "the file",
-        };
-        write_file(&dir.join(name), what, bytes)?;
-    }
+    let paths: Vec<_> = files.iter().map(|(name, _)| dir.join(name)).collect();
+    let batch: Vec<(&Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((name, bytes), path)| {
+            let what = match name.ends_with(".png") {
+                true => "the image",
+                false => "the file",
+            };
+            (path.as_path(), what, bytes.as_slice())
+        })
+        .collect();
+    write_files(&batch)?;
     println!(
         "{}",
         summary(&scene.name, &settings.summary(), &metrics, args.band)

@@ -1,12 +1,15 @@
 //! `shadowmap render`: headless frames through EGL, written as PNGs.
 
+use std::path::Path;
 use std::time::Instant;
+
+use image::ColorType;
 
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
-use shadowmap::image_data::save_grey_png;
+use shadowmap::image_data::encode_png;
 use shadowmap::light_slots::ShadowKind;
-use shadowmap::output::check_output_image;
+use shadowmap::output::{check_output_image, write_files};
 use shadowmap::{Error, Result};
 
 use super::cli::RenderArgs;
@@ -43,15 +46,19 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         args.frames,
         outputs,
     )?;
-    frame.colour.save_png(&args.out)?;
+    // Every image encoded first, then written as one: a failed write leaves none of them.
+    let mut images = vec![(&args.out, frame.colour.encode_png()?)];
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
-        image.save_png(path)?;
+        images.push((path, image.encode_png()?));
     }
-    if let Some(path) = &args.depth_out {
-        if let Some((size, grey)) = frame.depth_grey() {
-            save_grey_png(path, size, size, &grey)?;
-        }
+    if let (Some(path), Some((size, grey))) = (&args.depth_out, frame.depth_grey()) {
+        images.push((path, encode_png(size, size, ColorType::L8, &grey)?));
     }
+    let files: Vec<(&Path, &str, &[u8])> = images
+        .iter()
+        .map(|(path, bytes)| (path.as_path(), "the image", bytes.as_slice()))
+        .collect();
+    write_files(&files)?;
     println!(
         "wrote {} ({}x{}, scene {}, {}, {}) in {:.0} ms",
         args.out.display(),
