@@ -31,20 +31,18 @@ pub fn write_files(files: &[(&Path, &str, &[u8])]) -> Result<()> {
     let result = (|| {
         for &(path, what, bytes) in files {
             let fail = |e: std::io::Error| Error::file(path, format!("cannot write {what}: {e}"));
-            // Follow a symbolic link, so the link keeps pointing at the file it names.
-            let target = match std::fs::symlink_metadata(path) {
-                Ok(m) if m.file_type().is_symlink() => std::fs::canonicalize(path).map_err(fail)?,
-                _ => path.to_path_buf(),
-            };
-            match std::fs::metadata(&target) {
+            match std::fs::metadata(path) {
                 Ok(m) if m.is_dir() => {
                     return Err(Error::file(
                         path,
                         format!("cannot write {what}: it is a folder; expected a file name"),
                     ))
                 }
-                Ok(m) if !m.is_file() => devices.push((target, path, what, bytes)),
+                // A device or a pipe (also behind a link, as /dev/stdout is): in place.
+                Ok(m) if !m.is_file() => devices.push((path.to_path_buf(), path, what, bytes)),
                 _ => {
+                    // Through a symbolic link, replace the file it names, not the link.
+                    let target = link_target(path);
                     let temp = temp_path(&target);
                     // Recorded first, so a half-written temporary file is removed too.
                     staged.push((temp.clone(), target, path, what));
@@ -68,6 +66,22 @@ pub fn write_files(files: &[(&Path, &str, &[u8])]) -> Result<()> {
         }
     }
     result
+}
+
+/// Where the chain of symbolic links at `path` ends (existing or not): the file to replace.
+fn link_target(path: &Path) -> PathBuf {
+    let mut at = path.to_path_buf();
+    // A loop of links is the OS's to report; stop following after as many as it allows.
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&at) {
+            Ok(m) if m.file_type().is_symlink() => match std::fs::read_link(&at) {
+                Ok(next) => at = parent_of(&at).join(next),
+                Err(_) => break,
+            },
+            _ => break,
+        }
+    }
+    at
 }
 
 fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
@@ -358,6 +372,21 @@ mod tests {
             text.starts_with("/dev/full: cannot write the image: "),
             "{text}"
         );
+    }
+
+    #[test]
+    fn a_link_keeps_pointing_at_the_file_it_names() {
+        let dir = scratch("link");
+        let link = dir.join("link.png");
+        std::os::unix::fs::symlink("real.png", &link).unwrap();
+        write_file(&link, "the image", b"one").unwrap();
+        write_file(&link, "the image", b"two").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read(dir.join("real.png")).unwrap(), b"two");
+        std::fs::remove_dir_all(&dir).ok();
     }
 
     #[test]

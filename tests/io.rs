@@ -203,6 +203,16 @@ fn a_device_that_takes_bytes_is_written_in_place() {
     assert!(r.success, "{}", r.stderr);
     assert!(r.stdout.starts_with("wrote /dev/null"), "{}", r.stdout);
     assert!(entries(&dir).is_empty(), "{:?}", entries(&dir));
+    // /dev/stdout is a link to a pipe here: the PNG goes down the pipe.
+    let r = run(&dir, &["render", "--size", "16x16", "--out", "/dev/stdout"]);
+    assert!(r.success, "{}", r.stderr);
+    // (stdout is read as lossy UTF-8: the signature's first byte turns into U+FFFD.)
+    assert!(
+        r.stdout.starts_with("\u{FFFD}PNG\r\n") && r.stdout.contains("IHDR"),
+        "{:?}",
+        r.stdout.chars().take(12).collect::<String>()
+    );
+    assert!(entries(&dir).is_empty(), "{:?}", entries(&dir));
 }
 
 /// A scene whose cube wears the texture at `texture` (absolute, or relative to the scene).
