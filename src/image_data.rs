@@ -1,6 +1,8 @@
-//! CPU-side RGBA images: PNG textures read with limits, and PNG output written with a
-//! clear error when the path is not writable.
+//! CPU-side RGBA images: PNG textures read with limits (a regular file, a bounded size, a
+//! decoded-memory budget checked from the header), and PNG output written through
+//! [`crate::output::write_file`], so a failed write is an error naming the path.
 
+use std::io::Read;
 use std::path::Path;
 
 use crate::error::{Error, Result};
@@ -9,6 +11,13 @@ use crate::error::{Error, Result};
 pub const MAX_TEXTURE_SIDE: u32 = 16384;
 /// The most memory a texture's decoding may allocate.
 pub const MAX_TEXTURE_BYTES: u64 = 512 * 1024 * 1024;
+/// The most a decoded texture may take as RGBA (and its decoder's own buffer): checked from
+/// the PNG header, before anything is decoded.
+pub const TEXTURE_BUDGET_BYTES: u64 = 256 * 1024 * 1024;
+/// The largest PNG file read; more is refused before reading.
+pub const MAX_PNG_FILE_BYTES: u64 = 64 * 1024 * 1024;
+
+const MIB: u64 = 1024 * 1024;
 
 /// An RGBA8 image, rows top to bottom.
 #[derive(Debug, Clone, PartialEq)]
@@ -19,23 +28,17 @@ pub struct ImageData {
 }
 
 impl ImageData {
-    /// Decodes a PNG file, rejecting absurd dimensions before allocating for them.
+    /// Reads and decodes a PNG file. Only a regular file of at most [`MAX_PNG_FILE_BYTES`] is
+    /// read (a FIFO or a device could block or never end).
     pub fn load_png(path: &Path) -> Result<ImageData> {
-        let bytes = std::fs::read(path)
-            .map_err(|e| Error::file(path, format!("cannot read texture: {e}")))?;
+        let bytes = read_png_file(path)?;
         Self::decode_png(path, &bytes)
     }
 
-    /// Decodes PNG bytes; `path` only names the source in errors.
+    /// Decodes PNG bytes; `path` only names the source in errors. The header's size is
+    /// checked against [`MAX_TEXTURE_SIDE`] and [`TEXTURE_BUDGET_BYTES`] before decoding.
     pub fn decode_png(path: &Path, bytes: &[u8]) -> Result<ImageData> {
-        let mut reader =
-            image::ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(MAX_TEXTURE_SIDE);
-        limits.max_image_height = Some(MAX_TEXTURE_SIDE);
-        limits.max_alloc = Some(MAX_TEXTURE_BYTES);
-        reader.limits(limits);
-        let image = reader.decode().map_err(|e| {
+        let unreadable = |e: image::ImageError| {
             let expected = match e {
                 // Only a size problem gets the size limit in its message.
                 image::ImageError::Limits(_) => format!(
@@ -47,13 +50,41 @@ impl ImageData {
                 path,
                 format!("not a readable PNG texture ({e}); {expected}"),
             )
-        })?;
+        };
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+        limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+        limits.max_alloc = Some(MAX_TEXTURE_BYTES);
+        let decoder =
+            image::codecs::png::PngDecoder::with_limits(std::io::Cursor::new(bytes), limits)
+                .map_err(unreadable)?;
+        let (width, height) = image::ImageDecoder::dimensions(&decoder);
+        let rgba_bytes = u64::from(width) * u64::from(height) * 4;
+        let needed = rgba_bytes.max(image::ImageDecoder::total_bytes(&decoder));
+        if needed > TEXTURE_BUDGET_BYTES {
+            return Err(Error::file(
+                path,
+                format!(
+                    "not a usable PNG texture: {width}x{height} pixels take {} MiB decoded, over \
+                     the {} MiB budget for a texture; expected at most {} pixels (e.g. 8192x8192)",
+                    needed.div_ceil(MIB),
+                    TEXTURE_BUDGET_BYTES / MIB,
+                    TEXTURE_BUDGET_BYTES / 4
+                ),
+            ));
+        }
+        let image = image::DynamicImage::from_decoder(decoder).map_err(unreadable)?;
         let rgba = image.to_rgba8();
         Ok(ImageData {
             width: rgba.width(),
             height: rgba.height(),
             rgba: rgba.into_raw(),
         })
+    }
+
+    /// The image as PNG bytes (to write later, with the other outputs of a command).
+    pub fn encode_png(&self) -> Result<Vec<u8>> {
+        encode_png(self.width, self.height, image::ColorType::Rgba8, &self.rgba)
     }
 
     /// Writes the image as a PNG, creating no directories; the error names the path.
@@ -66,6 +97,41 @@ impl ImageData {
             &self.rgba,
         )
     }
+}
+
+/// The bytes of a PNG texture file: a regular file, at most [`MAX_PNG_FILE_BYTES`] long.
+fn read_png_file(path: &Path) -> Result<Vec<u8>> {
+    let cannot = |e: std::io::Error| Error::file(path, format!("cannot read texture: {e}"));
+    let meta = std::fs::metadata(path).map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(Error::file(
+            path,
+            "cannot read texture: not a regular file (a folder, device or pipe); expected a \
+             PNG file",
+        ));
+    }
+    let too_big = || {
+        Error::file(
+            path,
+            format!(
+                "cannot read texture: larger than {} MiB; expected a PNG file of at most that size",
+                MAX_PNG_FILE_BYTES / MIB
+            ),
+        )
+    };
+    if meta.len() > MAX_PNG_FILE_BYTES {
+        return Err(too_big());
+    }
+    // The file may grow after the check: read one byte past the limit at most.
+    let file = std::fs::File::open(path).map_err(cannot)?;
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(MAX_PNG_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_PNG_FILE_BYTES {
+        return Err(too_big());
+    }
+    Ok(bytes)
 }
 
 impl ImageData {
@@ -102,10 +168,21 @@ pub fn save_grey_png(path: &Path, width: u32, height: u32, grey: &[u8]) -> Resul
     save_png(path, width, height, image::ColorType::L8, grey)
 }
 
+/// PNG bytes of an image (`ty` says what `data` holds).
+pub fn encode_png(width: u32, height: u32, ty: image::ColorType, data: &[u8]) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut bytes),
+        data,
+        width,
+        height,
+        ty.into(),
+    )
+    .map_err(|e| Error::Invalid(format!("cannot encode a {width}x{height} PNG: {e}")))?;
+    Ok(bytes)
+}
+
 fn save_png(path: &Path, width: u32, height: u32, ty: image::ColorType, data: &[u8]) -> Result<()> {
-    let file = std::fs::File::create(path)
-        .map_err(|e| Error::file(path, format!("cannot write the image: {e}")))?;
-    let encoder = image::codecs::png::PngEncoder::new(std::io::BufWriter::new(file));
-    image::ImageEncoder::write_image(encoder, data, width, height, ty.into())
-        .map_err(|e| Error::file(path, format!("cannot write the image: {e}")))
+    let bytes = encode_png(width, height, ty, data)?;
+    crate::output::write_file(path, "the image", &bytes)
 }

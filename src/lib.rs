@@ -19,6 +19,7 @@ pub mod error;
 pub mod geometry;
 pub mod image_data;
 pub mod measure;
+pub mod output;
 pub mod renderer;
 pub mod scene;
 pub mod settings;

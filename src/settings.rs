@@ -312,12 +312,12 @@ shadow_settings! {
     "Shadow map" {
         /// Side of the square shadow map in texels (the book: 1024; at most the driver's
         /// maximum texture size).
-        map_size: u32 = 1024, arg(value_name = "N");
+        map_size: u32 = 1024, arg(value_name = "N", allow_negative_numbers = true);
         /// Depth-map precision.
         depth_format: DepthFormat = DepthFormat::D24;
         /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4
         /// = that many `map_size` layers of a depth texture array, one per slice of the view.
-        cascades: u32 = 1, arg(value_name = "N");
+        cascades: u32 = 1, arg(value_name = "N", allow_negative_numbers = true);
     }
     /// How a fragment is tested against the map.
     "Shadow test" {
@@ -327,12 +327,15 @@ shadow_settings! {
         bias_mode: BiasMode = BiasMode::Constant;
         /// Constant bias, or the slope bias' maximum, in [0, 1] depth units (a cube map:
         /// world units).
-        bias: f32 = 0.05, arg(value_name = "B");
+        bias: f32 = 0.05,
+            arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
         /// The slope bias' floor (LearnOpenGL: 0.005).
-        bias_min: f32 = 0.005, arg(value_name = "B");
+        bias_min: f32 = 0.005,
+            arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
         /// Normal-offset bias: the lookup moves this many shadow-map texels along the
         /// surface normal (0 = off); the same meaning for 2D, cube and cascade maps.
-        normal_offset: f32 = 0.0, arg(value_name = "TEXELS");
+        normal_offset: f32 = 0.0,
+            arg(value_name = "TEXELS", value_parser = parse_finite, allow_negative_numbers = true);
         /// Shadow-map wrap mode for lookups outside [0, 1].
         wrap: Wrap = Wrap::ClampToEdge;
         /// What fragments beyond the light's far plane get.
@@ -344,7 +347,7 @@ shadow_settings! {
         cull: Cull = Cull::None;
         /// `glPolygonOffset(factor, units)` in the depth pass, e.g. 1.1,4 ([0, 0] = off).
         polygon_offset: [f32; 2] = [0.0, 0.0],
-            arg(value_name = "FACTOR,UNITS", value_parser = parse_pair);
+            arg(value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_hyphen_values = true);
         /// How a point light's six cube faces are drawn.
         point_pass: PointPass = PointPass::Layered;
     }
@@ -355,7 +358,8 @@ shadow_settings! {
         /// A directional light's shadow projection.
         light_projection: LightProjection = LightProjection::Ortho;
         /// Field of view of a perspective shadow camera for a directional light, degrees.
-        perspective_fov: f32 = 45.0, arg(value_name = "DEG");
+        perspective_fov: f32 = 45.0,
+            arg(value_name = "DEG", value_parser = parse_finite, allow_negative_numbers = true);
         /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene each
         /// frame.
         fit: Fit = Fit::Manual;
@@ -364,12 +368,15 @@ shadow_settings! {
         snap: bool = true, arg(value_name = "BOOL");
         /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
         /// scheme).
-        cascade_lambda: f32 = 0.75, arg(value_name = "LAMBDA");
+        cascade_lambda: f32 = 0.75,
+            arg(value_name = "LAMBDA", value_parser = parse_finite, allow_negative_numbers = true);
         /// The last fraction of each cascade's depth range that fades into the next
         /// (0 = a hard seam at the split, at most 0.5).
-        cascade_blend: f32 = 0.1, arg(value_name = "FRACTION");
+        cascade_blend: f32 = 0.1,
+            arg(value_name = "FRACTION", value_parser = parse_finite, allow_negative_numbers = true);
         /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
-        shadow_distance: f32 = 0.0, arg(value_name = "DEPTH");
+        shadow_distance: f32 = 0.0,
+            arg(value_name = "DEPTH", value_parser = parse_finite, allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {
@@ -382,6 +389,14 @@ shadow_settings! {
         /// out).
         show_cascades: bool = false,
             arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true");
+    }
+}
+
+/// Parses a finite number (NaN and infinities would reach the shaders as garbage).
+pub fn parse_finite(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("'{s}': expected a finite number, like 0.05")),
     }
 }
 
@@ -516,5 +531,46 @@ pub fn glsl_float(v: f32) -> String {
         t
     } else {
         format!("{t}.0")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_patch_gives_only_its_fields_and_yields_to_another() {
+        let own = ShadowPatch {
+            filter: Some(Filter::Single),
+            bias: Some(0.2),
+            ..ShadowPatch::default()
+        };
+        let flags = ShadowPatch {
+            bias: Some(0.01),
+            ..ShadowPatch::default()
+        };
+        let mut s = ShadowSettings::default();
+        own.without(&flags).apply_to(&mut s);
+        flags.apply_to(&mut s);
+        assert_eq!((s.filter, s.bias), (Filter::Single, 0.01));
+        assert_eq!(s.map_size, ShadowSettings::default().map_size);
+        assert_eq!(own.given(), ["filter", "bias"]);
+        // Every setting is in exactly one group.
+        let grouped: Vec<&str> = SETTING_GROUPS
+            .iter()
+            .flat_map(|(_, f)| f.iter().copied())
+            .collect();
+        let all = serde_json::to_value(ShadowSettings::default()).unwrap();
+        let names: Vec<&str> = all
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        assert_eq!(grouped.len(), names.len());
+        assert!(
+            names.iter().all(|n| grouped.contains(n)),
+            "{names:?} vs {grouped:?}"
+        );
     }
 }

@@ -202,3 +202,129 @@ fn an_error_in_an_included_snippet_names_the_snippet_and_its_line() {
     assert!(text.contains("shaders/generated/lights.glsl:3:"), "{text}");
     assert!(text.contains("addLightNowhere"), "{text}");
 }
+
+#[test]
+fn numeric_flags_take_negative_numbers_after_a_space() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("errors-negative");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("x.png");
+    let out = out.to_str().unwrap();
+    // Values that are valid when negative: the frame is rendered.
+    for (flag, value) in [
+        ("--camera-position", "-1,2,5"),
+        ("--camera-rotation", "-10,-20,0"),
+        ("--polygon-offset", "-1,-4"),
+    ] {
+        let (ok, stdout, err) = run(&["render", "--size", "16x16", "--out", out, flag, value]);
+        assert!(ok && stdout.starts_with("wrote "), "{flag} {value}: {err}");
+    }
+    // Values that are not: the message names the flag and what it expected, never
+    // "unexpected argument".
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["render", "--bias", "-0.5"],
+            "--bias: shadow.bias = -0.5: expected a finite number >= 0",
+        ),
+        (
+            &["render", "--bias-min", "-1"],
+            "--bias-min: shadow.bias_min = -1: expected a finite number >= 0",
+        ),
+        (
+            &["render", "--normal-offset", "-2"],
+            "--normal-offset: shadow.normal_offset = -2: expected a finite number >= 0",
+        ),
+        (
+            &["render", "--perspective-fov", "-45"],
+            "--perspective-fov: shadow.perspective_fov = -45: expected degrees between 0 and 180",
+        ),
+        (
+            &["render", "--cascade-lambda", "-0.5"],
+            "--cascade-lambda: shadow.cascade_lambda = -0.5: expected 0 to 1",
+        ),
+        (
+            &["render", "--cascade-blend", "-0.1"],
+            "--cascade-blend: shadow.cascade_blend = -0.1: expected 0 to 0.5",
+        ),
+        (
+            &["render", "--shadow-distance", "-5"],
+            "--shadow-distance: shadow.shadow_distance = -5: expected a finite number >= 0",
+        ),
+        (
+            &["render", "--light-angle", "-10"],
+            "--light-angle -10: expected degrees from 0 to 180",
+        ),
+        (
+            &["render", "--light-angle", "180.5"],
+            "--light-angle 180.5: expected degrees from 0 to 180",
+        ),
+        (
+            &["render", "--map-size", "-1"],
+            "invalid value '-1' for '--map-size <N>'",
+        ),
+        (
+            &["render", "--cascades", "-2"],
+            "invalid value '-2' for '--cascades <N>'",
+        ),
+        (
+            &["render", "--frames", "-1"],
+            "invalid value '-1' for '--frames <N>'",
+        ),
+        (
+            &["render", "--bias", "nan"],
+            "invalid value 'nan' for '--bias <B>': 'nan': expected a finite number",
+        ),
+        (
+            &["compare", "--out-dir", "d", "--supersample", "-1"],
+            "invalid value '-1' for '--supersample <N>'",
+        ),
+        (
+            &["compare", "--out-dir", "d", "--band", "-1"],
+            "invalid value '-1' for '--band <K>'",
+        ),
+        (
+            &["compare", "--out-dir", "d", "--light", "-1"],
+            "invalid value '-1' for '--light <N>'",
+        ),
+        (
+            &["bench", "--out-dir", "d", "--frames", "-3"],
+            "invalid value '-3' for '--frames <N>'",
+        ),
+        (
+            &["bench", "--out-dir", "d", "--warmup", "-3"],
+            "invalid value '-3' for '--warmup <N>'",
+        ),
+        (
+            &["bench", "--out-dir", "d", "--target-error", "-0.1"],
+            "'-0.1': expected a fraction from 0 to 1",
+        ),
+        (
+            &["steps", "--out-dir", "d", "--supersample", "-2"],
+            "invalid value '-2' for '--supersample <N>'",
+        ),
+        (
+            &["demo", "--exit-after-frames", "-1"],
+            "invalid value '-1' for '--exit-after-frames <N>'",
+        ),
+        (
+            &["soak", "--frames", "-1"],
+            "invalid value '-1' for '--frames <N>'",
+        ),
+    ];
+    let mut wrong = Vec::new();
+    for (args, needle) in cases {
+        let (ok, _, err) = run(args);
+        if ok
+            || !err.contains(needle)
+            || err.contains("unexpected argument")
+            || !err.starts_with("error: ")
+        {
+            wrong.push(format!("{args:?}: {err}"));
+        }
+    }
+    assert!(wrong.is_empty(), "\n{}", wrong.join("\n"));
+    assert!(
+        !std::path::Path::new("d").exists(),
+        "a refused command made its folder"
+    );
+}

@@ -363,6 +363,46 @@ fn a_light_with_its_own_shadow_table_gets_its_own_map_and_test() {
         differ > 1000,
         "only {differ} pixels differ from the scene's settings"
     );
+    // A bad value in a light's table names the light's table and the setting.
+    let bad = text.replace("map_size = 256", "bias = -1.0");
+    let err = shadowmap::scene::file::parse(&bad, std::path::Path::new("own.toml"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("lights[0].shadow") && err.contains("shadow.bias = -1"),
+        "{err}"
+    );
+    // Flags win over a light's own table: the fields a flag gives leave the table.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("own-table");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("own.toml");
+    std::fs::write(&file, text).unwrap();
+    let dark_pixels = |extra: &[&str]| -> usize {
+        let out = dir.join("v.png");
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+            .args([
+                "render",
+                "--scene",
+                file.to_str().unwrap(),
+                "--size",
+                "320x240",
+            ])
+            .args(["--out", dir.join("c.png").to_str().unwrap()])
+            .args(["--shadow-out", out.to_str().unwrap()])
+            .args(extra)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let image = image::open(&out).unwrap().to_rgba8();
+        image.pixels().filter(|p| p[3] > 0 && p[0] < 128).count()
+    };
+    // The table's `bias_mode = "none"` covers the floor in acne; `--bias-mode constant`
+    // takes the bias back for that light too.
+    let (acne, cured) = (dark_pixels(&[]), dark_pixels(&["--bias-mode", "constant"]));
+    assert!(
+        acne > 3 * cured && cured > 0,
+        "dark pixels: {acne} with the table's bias mode, {cured} with the flag's"
+    );
     // An unknown setting in a light's table names it.
     let bad = text.replace("map_size = 256", "map_sise = 256");
     let err = shadowmap::scene::file::parse(&bad, std::path::Path::new("own.toml"), None)

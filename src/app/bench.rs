@@ -1,11 +1,11 @@
-//! `shadowmap bench`: the speed-versus-accuracy sweep, with a progress bar, a CSV, a
-//! Markdown table and the Pareto plot.
+//! `shadowmap bench`: the speed-versus-accuracy sweep, with progress on standard error, a
+//! CSV, a Markdown table and the Pareto plot.
 
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use shadowmap::bench::{self, BenchOptions};
 use shadowmap::engine::{gl_limits, HeadlessContext};
+use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
 use shadowmap::{Error, Result};
 
 use super::cli::BenchArgs;
@@ -18,15 +18,26 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         .items
         .iter_mut()
         .for_each(|i| i.spin = glam::Vec3::ZERO);
-    let base = args.settings.apply(&scene)?;
+    let base = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     scene.size = [width, height];
     let dir = &args.out_dir;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
+    // Everything that can be checked without the driver, before any GL work or file
+    // (--target-error is checked as it is parsed).
+    args.settings.check_values(&scene, &base)?;
+    if !scene.light().casts_shadows() {
+        return Err(Error::Invalid(format!(
+            "{}: the first light does not cast shadows (casts_shadows = false): the sweep \
+             measures the first light; expected a scene whose first light casts",
+            scene.source.display()
+        )));
+    }
+    check_output_dir("--out-dir", dir)?;
+    let activity = Activity::start("bench: opening a headless OpenGL context");
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &base)?;
     let gl = context.gl();
+    activity.done(&shadowmap::engine::check::renderer_name(gl));
     let max = gl_limits(gl).max_texture_size;
     let configs = bench::sweep(&base, args.quick, max, scene.light());
     let opts = BenchOptions {
@@ -38,51 +49,79 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         band: args.band,
     };
     eprintln!(
-        "bench: {} configurations of the {} scene at {width}x{height}, {} frames each after {} warm-up \
-         ({}, max texture {max})",
+        "bench: {} configurations of the {} scene at {width}x{height}, {} frames each after {} \
+         warm-up (max texture {max})",
         configs.len(),
         scene.name,
         opts.frames,
         opts.warmup,
-        shadowmap::engine::check::renderer_name(gl),
     );
+    let n = opts.supersample;
+    let activity = Activity::start(format!(
+        "bench: tracing the exact reference at {width}x{height}{}",
+        match n {
+            1 => String::new(),
+            _ => format!(" (and {n}x{n} supersampled)"),
+        }
+    ));
     let reference = bench::bench_reference(gl, &scene, &base, &opts)?;
-    eprintln!(
-        "reference: {} caster triangles traced in {:.0} ms ({}x{} supersampled)",
-        reference.triangles, reference.trace_ms, opts.supersample, opts.supersample
-    );
-    let bar = ProgressBar::new(configs.len() as u64);
-    eprintln!("timing runs in two passes over the sweep (the second in reverse); the bar counts the second");
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} [{elapsed} < {eta}] {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    activity.done(&format!(
+        "{} caster triangles, {:.0} ms of tracing",
+        reference.triangles, reference.trace_ms
+    ));
+    // The library reports each configuration when its second timing block ends; the first
+    // pass over the sweep gets a spinner of its own.
+    let mut first_pass = Some(Activity::start(format!(
+        "bench: timing pass 1 of 2 over {} configurations",
+        configs.len()
+    )));
+    let mut counter: Option<Counter> = None;
     let rows = bench::run(gl, &scene, &configs, &reference, &opts, |row| {
-        bar.set_message(format!(
-            "{}: {:.2} ms, {:.3}% wrong",
-            row.label(),
-            row.wall_ms.median,
-            row.error() * 100.0
-        ));
-        bar.inc(1);
+        if let Some(activity) = first_pass.take() {
+            activity.done("");
+            eprintln!("bench: timing pass 2 of 2 (in reverse order) and scoring");
+        }
+        counter
+            .get_or_insert_with(|| Counter::new(configs.len() as u64))
+            .step(&format!(
+                "{}: {:.2} ms, {:.3}% wrong",
+                row.label(),
+                row.wall_ms.median,
+                row.error() * 100.0
+            ));
     })?;
-    bar.finish_and_clear();
+    if let Some(counter) = counter {
+        counter.finish();
+    }
 
-    let write = |name: &str, text: String| {
-        let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|e| Error::file(&path, format!("cannot write: {e}")))
-    };
-    write("bench.csv", bench::to_csv(&rows))?;
-    write("bench.md", bench::to_markdown(&rows))?;
-    super::plot::pareto_png(
-        &dir.join("pareto.png"),
-        &format!(
-            "{}: shadow error against frame time ({width}x{height})",
-            scene.name
+    let markdown = bench::to_markdown(&rows);
+    let title = format!(
+        "{}: shadow error against frame time ({width}x{height})",
+        scene.name
+    );
+    let files = [
+        ("bench.csv", bench::to_csv(&rows).into_bytes(), "the table"),
+        ("bench.md", markdown.clone().into_bytes(), "the table"),
+        (
+            "pareto.png",
+            super::plot::pareto_png(&title, &rows)?,
+            "the plot",
         ),
-        &rows,
-    )?;
-    println!("{}", bench::to_markdown(&rows));
+    ];
+    create_output_dir(dir)?;
+    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
+    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .collect();
+    write_files(&batch)?;
+    println!("{markdown}");
+    println!(
+        "wrote {}/bench.csv, bench.md, pareto.png in {:.1} s",
+        dir.display(),
+        start.elapsed().as_secs_f64()
+    );
     if let Some(target) = args.target_error {
         match bench::cheapest_under(&rows, target) {
             Some(r) => println!(
@@ -106,17 +145,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             ),
             None => {
                 return Err(Error::Invalid(format!(
-                    "no configuration reached an error of {:.3}% or less (best: {:.3}%)",
+                    "--target-error {target}: no configuration reached an error of {:.3}% or \
+                     less (best: {:.3}%); the tables and plot above were written",
                     target * 100.0,
                     rows.iter().map(|r| r.error()).fold(f64::INFINITY, f64::min) * 100.0
                 )))
             }
         }
     }
-    println!(
-        "wrote {}/bench.csv, bench.md, pareto.png in {:.1} s",
-        dir.display(),
-        start.elapsed().as_secs_f64()
-    );
     Ok(())
 }

@@ -62,10 +62,10 @@ pub struct SceneArgs {
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
     /// Move the camera: world position X,Y,Z.
-    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_negative_numbers = true)]
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_position: Option<[f32; 3]>,
     /// Turn the camera: PITCH,YAW,ROLL in degrees (positive pitch looks down).
-    #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_negative_numbers = true)]
+    #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_rotation: Option<[f32; 3]>,
 }
 
@@ -87,7 +87,7 @@ pub struct DemoArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Close the window after this many frames (for scripted runs).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub exit_after_frames: Option<u64>,
     /// With --exit-after-frames: save the last frame to this PNG.
     #[arg(long, value_name = "FILE", requires = "exit_after_frames")]
@@ -130,7 +130,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
     pub out: PathBuf,
     /// Frames to render (the scene animates between them); the last one is written.
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
     pub frames: u32,
     /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
     #[arg(long, value_name = "FILE.png")]
@@ -152,14 +152,24 @@ pub struct CompareArgs {
     pub out_dir: PathBuf,
     /// Sub-pixel rays per side for the supersampled reference that judges filtered edges
     /// (N x N per pixel; 1 = off).
-    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
     pub band: usize,
     /// Which light to measure, numbered from 0 in the scene file's order (a scene with
     /// several lights is measured one light at a time).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 0,
+        allow_negative_numbers = true
+    )]
     pub light: usize,
 }
 
@@ -178,19 +188,29 @@ pub struct BenchArgs {
     pub quick: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
-    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
     pub frames: u32,
     /// Untimed frames before them.
-    #[arg(long, value_name = "N", default_value_t = 10)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 10,
+        allow_negative_numbers = true
+    )]
     pub warmup: u32,
     /// Sub-pixel rays per side for the MAE reference (1 = no MAE).
-    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
     /// Pixels around the reference's shadow edges left out of the "outside band" figures.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
     pub band: usize,
     /// Print the cheapest configuration whose misclassified fraction is at most E (0.01 = 1%).
-    #[arg(long, value_name = "E")]
+    #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true)]
     pub target_error: Option<f64>,
 }
 
@@ -202,7 +222,7 @@ pub struct StepsArgs {
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
     /// Sub-pixel rays per side for the MAE reference.
-    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8))]
+    #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
 }
 
@@ -213,7 +233,7 @@ pub struct SoakArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Frames to render.
-    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
     pub frames: u64,
 }
 
@@ -242,6 +262,16 @@ pub fn parse_triple(s: &str) -> Result<[f32; 3], String> {
     }
 }
 
+/// Parses a fraction from 0 to 1, e.g. `0.01` for 1%.
+pub fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{s}': expected a fraction from 0 to 1 (0.01 = 1% of receiver pixels)"
+        )),
+    }
+}
+
 impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
@@ -253,9 +283,10 @@ impl SceneArgs {
             scene.camera.rotation = r.into();
         }
         if let Some(a) = self.light_angle {
-            if !a.is_finite() {
+            // Outside 0..180 the light would be clamped without a word: refuse instead.
+            if !(0.0..=180.0).contains(&a) {
                 return Err(shadowmap::Error::Invalid(format!(
-                    "--light-angle {a}: expected degrees from 0 to 180"
+                    "--light-angle {a}: expected degrees from 0 to 180 (90 = overhead)"
                 )));
             }
             if !scene.set_light_angle(a) {
@@ -284,18 +315,31 @@ impl SettingsArgs {
         settings: &ShadowSettings,
     ) -> shadowmap::Result<()> {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
-        settings.validate(max).map_err(|e| {
-            // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
-            let text = e.to_string();
-            let name = text
-                .strip_prefix("shadow.")
-                .and_then(|t| t.split(' ').next())
-                .unwrap_or_default();
-            match self.flag_given(name) {
-                true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
-                false => shadowmap::Error::file(&scene.source, text),
-            }
-        })
+        settings
+            .validate(max)
+            .map_err(|e| self.name_source(scene, e))
+    }
+
+    /// Checks every setting that needs no driver (biases, ranges, cascades): run before any
+    /// GL work or file, so a bad flag costs nothing.
+    pub fn check_values(&self, scene: &Scene, settings: &ShadowSettings) -> shadowmap::Result<()> {
+        settings
+            .validate_values()
+            .map_err(|e| self.name_source(scene, e))
+    }
+
+    /// Says where a bad setting came from: its flag, or the scene file.
+    fn name_source(&self, scene: &Scene, e: shadowmap::Error) -> shadowmap::Error {
+        // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
+        let text = e.to_string();
+        let name = text
+            .strip_prefix("shadow.")
+            .and_then(|t| t.split(' ').next())
+            .unwrap_or_default();
+        match self.flag_given(name) {
+            true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
+            false => shadowmap::Error::file(&scene.source, text),
+        }
     }
 
     /// Whether the setting `name` (as the scene file spells it) was given as a flag.
@@ -303,9 +347,13 @@ impl SettingsArgs {
         self.patch.given().contains(&name)
     }
 
-    /// The scene's settings with the given flags applied.
-    /// The scene's settings, then the step's preset, then the flags.
-    pub fn apply(&self, scene: &Scene) -> shadowmap::Result<ShadowSettings> {
+    /// The scene's settings, then the step's preset, then the flags. The flags also win
+    /// over the lights' own `shadow` tables: the fields they give are taken out of those.
+    pub fn apply(&self, scene: &mut Scene) -> shadowmap::Result<ShadowSettings> {
+        for light in &mut scene.lights {
+            let own = light.shadow_patch().without(&self.patch);
+            *light.shadow_patch_mut() = own;
+        }
         let mut s = match &self.step {
             Some(step) => steps::settings_for(scene, step)?,
             None => scene.shadow,

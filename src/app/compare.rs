@@ -2,21 +2,24 @@
 
 use std::path::Path;
 
-use shadowmap::compare::{compare, CompareOptions};
+use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
-use shadowmap::reference::{error_image, write_npy_f32_hw3, Metrics, RefPixel};
-use shadowmap::{Error, Result};
+use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity};
+use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
+use shadowmap::{Error, Result, Scene};
 
 use super::cli::CompareArgs;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene)?;
+    let mut scene = args.scene.load()?;
+    let settings = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
+    // Everything that can be checked without the driver, before any GL work or file.
+    args.settings.check_values(&scene, &settings)?;
+    check_light(&scene, args.light)?;
+    check_output_dir("--out-dir", dir)?;
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &settings)?;
     let opts = CompareOptions {
@@ -26,41 +29,66 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         band: args.band,
         light: args.light,
     };
-    let c = compare(context.gl(), &scene, &settings, &opts)?;
-    let vis = c.frame.visibility.as_deref().unwrap_or_default();
+    // The steps of `shadowmap::compare::compare`, one at a time so each can be shown.
+    let n = args.supersample;
+    let activity = Activity::start(format!(
+        "compare: tracing the exact reference for the {} scene at {width}x{height}{}",
+        scene.name,
+        match n {
+            1 => String::new(),
+            _ => format!(" (and {n}x{n} supersampled)"),
+        }
+    ));
+    let reference = compute_reference(context.gl(), &scene, &settings, &opts)?;
+    activity.done(&format!(
+        "{} caster triangles, {:.0} ms of tracing",
+        reference.triangles, reference.trace_ms
+    ));
+    let activity = Activity::start(format!(
+        "compare: rendering light {}'s shadow test ({})",
+        args.light,
+        settings.summary()
+    ));
+    let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
+    let vis = frame.visibility.as_deref().unwrap_or_default();
+    let metrics = reference.score(vis, args.band);
+    activity.done("");
 
-    if let Some(image) = c.frame.visibility_image() {
-        image.save_png(&dir.join("visibility.png"))?;
+    let mut files: Vec<(&str, Vec<u8>)> = Vec::new();
+    if let Some(image) = frame.visibility_image() {
+        files.push(("visibility.png", image.encode_png()?));
     }
-    reference_image(width, height, &c.reference.hard).save_png(&dir.join("reference.png"))?;
-    let grey: Vec<u8> = c
-        .frame
+    files.push((
+        "reference.png",
+        reference_image(width, height, &reference.hard).encode_png()?,
+    ));
+    let grey: Vec<u8> = frame
         .colour
         .rgba
         .chunks_exact(4)
         .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
         .collect();
-    let error = error_image(
-        width as usize,
-        height as usize,
-        vis,
-        &c.reference.hard,
-        &grey,
-    );
-    ImageData {
+    let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+    let error = super::plot::with_error_legend(ImageData {
         width,
         height,
         rgba: error.concat(),
-    }
-    .save_png(&dir.join("error.png"))?;
-    let g = &c.reference.gbuffer;
+    })?;
+    files.push(("error.png", error.encode_png()?));
+    let g = &reference.gbuffer;
     let world: Vec<[f32; 3]> = (0..g.positions.len())
-        .map(|i| c.reference.world_position(i).as_vec3().to_array())
+        .map(|i| reference.world_position(i).as_vec3().to_array())
         .collect();
     for (name, data) in [("positions.npy", &world), ("normals.npy", &g.normals)] {
-        let path = dir.join(name);
-        write_npy_f32_hw3(&path, g.width, g.height, data)
-            .map_err(|e| Error::file(&path, format!("cannot write: {e}")))?;
+        if data.len() != g.width * g.height {
+            return Err(Error::Invalid(format!(
+                "{name}: {} pixels for a {}x{} G-buffer",
+                data.len(),
+                g.width,
+                g.height
+            )));
+        }
+        files.push((name, npy_bytes_f32_hw3(g.width, g.height, data)));
     }
     let json = serde_json::json!({
         "scene": scene.name,
@@ -70,16 +98,57 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         "settings": settings,
         "supersample": args.supersample,
         "band": args.band,
-        "reference_triangles": c.reference.triangles,
-        "reference_ms": c.reference.trace_ms,
-        "metrics": c.metrics,
+        "reference_triangles": reference.triangles,
+        "reference_ms": reference.trace_ms,
+        "metrics": metrics,
     });
-    write_text(&dir.join("metrics.json"), &format!("{json:#}\n"))?;
+    files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
+    create_output_dir(dir)?;
+    let paths: Vec<_> = files.iter().map(|(name, _)| dir.join(name)).collect();
+    let batch: Vec<(&Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((name, bytes), path)| {
+            let what = match name.ends_with(".png") {
+                true => "the image",
+                false => "the file",
+            };
+            (path.as_path(), what, bytes.as_slice())
+        })
+        .collect();
+    write_files(&batch)?;
     println!(
         "{}",
-        summary(&scene.name, &settings.summary(), &c.metrics, args.band)
+        summary(&scene.name, &settings.summary(), &metrics, args.band)
+    );
+    println!("{ERROR_COLOURS}");
+    println!(
+        "wrote {}: {}",
+        dir.display(),
+        files.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
     );
     Ok(())
+}
+
+/// What error.png's colours mean, printed with every comparison.
+pub const ERROR_COLOURS: &str = "error.png: red = false shadow (shadowed here, lit in the \
+    reference), blue = false light (lit here, shadowed in the reference), grey = agrees";
+
+/// The measured light must exist and cast shadows; checked before any work.
+fn check_light(scene: &Scene, light: usize) -> Result<()> {
+    match scene.lights.get(light) {
+        None => Err(Error::Invalid(format!(
+            "--light {light}: the scene {} has {} light(s), numbered from 0",
+            scene.source.display(),
+            scene.lights.len()
+        ))),
+        Some(l) if !l.casts_shadows() => Err(Error::Invalid(format!(
+            "--light {light}: that light of {} does not cast shadows (casts_shadows = false); \
+             expected a light that casts",
+            scene.source.display()
+        ))),
+        Some(_) => Ok(()),
+    }
 }
 
 /// The one-line summary printed by `compare`.
@@ -114,8 +183,4 @@ fn reference_image(width: u32, height: u32, hard: &[RefPixel]) -> ImageData {
         height,
         rgba,
     }
-}
-
-fn write_text(path: &Path, text: &str) -> Result<()> {
-    std::fs::write(path, text).map_err(|e| Error::file(path, format!("cannot write: {e}")))
 }

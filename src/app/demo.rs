@@ -35,7 +35,7 @@ const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 
 pub fn run(args: &DemoArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene)?;
+    let settings = args.settings.apply(&mut scene)?;
     if args.no_animation {
         scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
         for light in &mut scene.lights {
@@ -234,7 +234,7 @@ impl Demo {
     fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
         let settings = match step {
             Some(name) => steps::settings_for(&self.scene, name),
-            None => self.args.settings.apply(&self.scene),
+            None => self.args.settings.apply(&mut self.scene),
         };
         let result = settings.and_then(|s| {
             if let Some(r) = &mut self.running {

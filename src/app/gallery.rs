@@ -8,11 +8,13 @@ use shadowmap::compare::render_visibility;
 use shadowmap::compare::{compute_reference, CompareOptions, Reference};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
+use shadowmap::output::{check_output_dir, create_output_dir, write_files};
 use shadowmap::reference::{error_image, Metrics};
 use shadowmap::settings::LightProjection;
 use shadowmap::{steps, Error, Result};
 
 use super::cli::StepsArgs;
+use super::plot::with_error_legend;
 
 pub fn run(args: &StepsArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
@@ -22,8 +24,15 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         .for_each(|i| i.spin = glam::Vec3::ZERO);
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
-    std::fs::create_dir_all(dir)
-        .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))?;
+    // Checked before any GL work; the folder is made when the first picture is ready.
+    check_output_dir("--out-dir", dir)?;
+    if !scene.light().casts_shadows() {
+        return Err(Error::Invalid(format!(
+            "{}: the first light does not cast shadows (casts_shadows = false): the steps \
+             measure the first light; expected a scene whose first light casts",
+            scene.source.display()
+        )));
+    }
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     let opts = CompareOptions {
@@ -37,11 +46,13 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     // rays to a point).
     let mut references: HashMap<LightProjection, Reference> = HashMap::new();
     let mut rows = Vec::new();
+    // Every picture and the page, written together at the end.
+    let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     for (i, step) in steps::STEPS.iter().enumerate() {
         let settings = steps::settings_for(&scene, step.name)?;
         let frame = render_visibility(gl, &scene, &settings, width, height, 0)?;
         let image = format!("{:02}-{}.png", i + 1, step.name);
-        frame.colour.save_png(&dir.join(&image))?;
+        files.push((image.clone(), frame.colour.encode_png()?));
         let mut metrics: Option<Metrics> = None;
         let mut error_file = None;
         if !settings.show_depth_map {
@@ -59,12 +70,12 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 .collect();
             let err = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
             let name = format!("{:02}-{}-error.png", i + 1, step.name);
-            ImageData {
+            let err = with_error_legend(ImageData {
                 width,
                 height,
                 rgba: err.concat(),
-            }
-            .save_png(&dir.join(&name))?;
+            })?;
+            files.push((name.clone(), err.encode_png()?));
             error_file = Some(name);
         }
         println!(
@@ -152,7 +163,21 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     }
     html.push_str("</body></html>\n");
     let path = dir.join("index.html");
-    std::fs::write(&path, html).map_err(|e| Error::file(&path, format!("cannot write: {e}")))?;
+    files.push(("index.html".into(), html.into_bytes()));
+    let paths: Vec<_> = files.iter().map(|(name, _)| dir.join(name)).collect();
+    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((name, bytes), path)| {
+            let what = match name.ends_with(".png") {
+                true => "the image",
+                false => "the page",
+            };
+            (path.as_path(), what, bytes.as_slice())
+        })
+        .collect();
+    create_output_dir(dir)?;
+    write_files(&batch)?;
     println!("wrote {} and {} images", path.display(), rows.len());
     Ok(())
 }

@@ -1,23 +1,30 @@
 //! `shadowmap render`: headless frames through EGL, written as PNGs.
 
+use std::path::Path;
 use std::time::Instant;
+
+use image::ColorType;
 
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
-use shadowmap::image_data::save_grey_png;
+use shadowmap::image_data::encode_png;
+use shadowmap::output::{check_output_image, write_files};
 use shadowmap::shadows::ShadowKind;
-use shadowmap::Result;
+use shadowmap::{Error, Result};
 
 use super::cli::RenderArgs;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&scene)?;
+    let settings = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
+    // Everything that can be checked without the driver, before any GL work or file.
+    args.settings.check_values(&scene, &settings)?;
+    check_outputs(args)?;
     if let Some(path) = &args.depth_out {
         if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
-            return Err(shadowmap::Error::Invalid(format!(
+            return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
                  cascades or casts no shadow): use --show-depth-map to see its map",
                 path.display()
@@ -39,15 +46,19 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         args.frames,
         outputs,
     )?;
-    frame.colour.save_png(&args.out)?;
+    // Every image encoded first, then written as one: a failed write leaves none of them.
+    let mut images = vec![(&args.out, frame.colour.encode_png()?)];
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
-        image.save_png(path)?;
+        images.push((path, image.encode_png()?));
     }
-    if let Some(path) = &args.depth_out {
-        if let Some((size, grey)) = frame.depth_grey() {
-            save_grey_png(path, size, size, &grey)?;
-        }
+    if let (Some(path), Some((size, grey))) = (&args.depth_out, frame.depth_grey()) {
+        images.push((path, encode_png(size, size, ColorType::L8, &grey)?));
     }
+    let files: Vec<(&Path, &str, &[u8])> = images
+        .iter()
+        .map(|(path, bytes)| (path.as_path(), "the image", bytes.as_slice()))
+        .collect();
+    write_files(&files)?;
     println!(
         "wrote {} ({}x{}, scene {}, {}, {}) in {:.0} ms",
         args.out.display(),
@@ -63,6 +74,30 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",
             frame.frame_ms.len() - 1
         );
+    }
+    Ok(())
+}
+
+/// The output files: known extensions, folders that exist and accept files, and three
+/// different paths (a second write to the same file would replace the first).
+fn check_outputs(args: &RenderArgs) -> Result<()> {
+    let outputs = [
+        ("--out", Some(&args.out)),
+        ("--shadow-out", args.shadow_out.as_ref()),
+        ("--depth-out", args.depth_out.as_ref()),
+    ];
+    let given: Vec<_> = outputs
+        .iter()
+        .filter_map(|(flag, path)| Some((*flag, (*path)?)))
+        .collect();
+    for (i, (flag, path)) in given.iter().enumerate() {
+        check_output_image(flag, path)?;
+        if let Some((other, _)) = given[..i].iter().find(|(_, p)| p == path) {
+            return Err(Error::file(
+                path,
+                format!("{flag}: the same file as {other}; expected a different name"),
+            ));
+        }
     }
     Ok(())
 }

@@ -21,7 +21,7 @@ const WARM_FRAMES: u64 = 600;
 
 pub fn run(args: &SoakArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
-    let base = args.settings.apply(&scene)?;
+    let base = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     scene.size = [width, height];
     let context = HeadlessContext::new()?;

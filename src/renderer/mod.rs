@@ -94,6 +94,8 @@ pub struct Renderer {
     samplers: Samplers,
     depth_view: depth_view::DepthView,
     hooks: Option<Rc<dyn PassHooks>>,
+    /// The driver's limit, for the lights' own settings.
+    max_texture_size: u32,
     /// The light whose shadow test the visibility output carries.
     visibility_light: usize,
     /// The light whose map the depth view shows.
@@ -103,7 +105,8 @@ pub struct Renderer {
 impl Renderer {
     /// Uploads the scene's meshes and textures and builds the pipeline for `settings`.
     pub fn new(gl: &Gl, scene: &Scene, settings: &ShadowSettings) -> Result<Renderer> {
-        settings.validate(gl_limits(gl).max_texture_size)?;
+        let max_texture_size = gl_limits(gl).max_texture_size;
+        settings.validate(max_texture_size)?;
         let meshes = scene
             .meshes
             .iter()
@@ -133,6 +136,7 @@ impl Renderer {
             samplers: Samplers::default(),
             depth_view: depth_view::DepthView::new(gl)?,
             hooks: None,
+            max_texture_size,
             visibility_light: 0,
             depth_view_light: 0,
         };
@@ -149,7 +153,7 @@ impl Renderer {
 
     /// Switches settings; what they change (programs, maps) is rebuilt on the next frame.
     pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
-        settings.validate(gl_limits(&self.gl).max_texture_size)?;
+        settings.validate(self.max_texture_size)?;
         self.settings = *settings;
         Ok(())
     }
@@ -284,8 +288,18 @@ impl Renderer {
         let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
         self.shadows.resize_with(kinds.len(), || None);
         self.views.resize(kinds.len(), None);
-        for ((kind, shadow), light) in kinds.into_iter().zip(&mut self.shadows).zip(&scene.lights) {
+        for (i, ((kind, shadow), light)) in kinds
+            .into_iter()
+            .zip(&mut self.shadows)
+            .zip(&scene.lights)
+            .enumerate()
+        {
             let settings = light.settings(&self.settings);
+            if !light.shadow_patch().given().is_empty() {
+                settings
+                    .validate(self.max_texture_size)
+                    .map_err(|e| Error::Invalid(format!("light {i}'s own shadow table: {e}")))?;
+            }
             let fits = match shadow {
                 Some(t) => t.kind() == kind && t.fits(&settings),
                 None => kind == ShadowKind::None,

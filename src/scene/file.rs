@@ -354,6 +354,14 @@ fn build(file: SceneFile, source: &Path, base: Option<&Path>) -> Result<Scene> {
     // map_size is checked against the driver's maximum once there is a driver.
     s.validate_values()
         .map_err(|e| Error::file(source, e.to_string()))?;
+    for (i, light) in lights.iter().enumerate() {
+        if !light.shadow_patch().given().is_empty() {
+            light
+                .settings(s)
+                .validate_values()
+                .map_err(|e| bad(&format!("lights[{i}].shadow"), e.to_string()))?;
+        }
+    }
 
     let mut meshes: Vec<MeshData> = Vec::new();
     type MeshKey = (String, u32, Winding, bool, Option<[u32; 2]>);

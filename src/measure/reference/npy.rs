@@ -38,24 +38,24 @@ pub fn npy_bytes_f32_hw3(width: usize, height: usize, data: &[[f32; 3]]) -> Vec<
 }
 
 /// Writes `data` (row-major, rows top to bottom) as an `(height, width, 3)`
-/// f32 `.npy` file. Fails with `InvalidInput` if `data` does not hold
-/// exactly `width * height` pixels.
+/// f32 `.npy` file through [`crate::output::write_file`]. Refuses `data` that
+/// does not hold exactly `width * height` pixels; errors name the path.
 pub fn write_npy_f32_hw3(
     path: &Path,
     width: usize,
     height: usize,
     data: &[[f32; 3]],
-) -> std::io::Result<()> {
+) -> crate::Result<()> {
     if Some(data.len()) != width.checked_mul(height) {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
+        return Err(crate::Error::file(
+            path,
             format!(
                 "npy: {} pixels given for a {width}x{height} image",
                 data.len()
             ),
         ));
     }
-    std::fs::write(path, npy_bytes_f32_hw3(width, height, data))
+    crate::output::write_file(path, "the array", &npy_bytes_f32_hw3(width, height, data))
 }
 
 #[cfg(test)]
@@ -114,13 +114,17 @@ mod tests {
         let dir = std::env::temp_dir();
         let path = dir.join(format!("npy_test_{}.npy", std::process::id()));
         let err = write_npy_f32_hw3(&path, 2, 2, &[[0.0; 3]; 3]);
-        assert_eq!(
-            err.map_err(|e| e.kind()),
-            Err(std::io::ErrorKind::InvalidInput)
+        let text = err.map(|_| ()).unwrap_err().to_string();
+        assert!(
+            text.contains("npy: 3 pixels given for a 2x2 image"),
+            "{text}"
         );
+        assert!(!path.exists(), "a refused array writes nothing");
         let data = [[1.0, 2.0, 3.0]; 4];
-        let written = write_npy_f32_hw3(&path, 2, 2, &data).and_then(|_| std::fs::read(&path));
+        let written = write_npy_f32_hw3(&path, 2, 2, &data)
+            .ok()
+            .and_then(|_| std::fs::read(&path).ok());
         let _ = std::fs::remove_file(&path);
-        assert_eq!(written.ok(), Some(npy_bytes_f32_hw3(2, 2, &data)));
+        assert_eq!(written, Some(npy_bytes_f32_hw3(2, 2, &data)));
     }
 }
