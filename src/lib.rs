@@ -13,6 +13,7 @@ pub mod error;
 pub mod frame;
 pub mod geometry;
 pub mod image_data;
+pub mod input;
 pub mod light_slots;
 pub mod reference;
 pub mod renderer;
