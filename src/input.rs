@@ -67,10 +67,11 @@ pub fn utf8_text(path: &Path, bytes: Vec<u8>, what: &str) -> Result<String> {
             .chars()
             .count()
             + 1;
-        let shown = bytes.get(good).map_or(
-            String::from("the file ends inside a UTF-8 character"),
-            |b| format!("byte {b:#04x} is not UTF-8 text"),
-        );
+        // error_len() is None when the text stops in the middle of a character.
+        let shown = match (e.utf8_error().error_len(), bytes.get(good)) {
+            (Some(_), Some(b)) => format!("byte {b:#04x} is not UTF-8 text"),
+            _ => String::from("the file ends inside a UTF-8 character"),
+        };
         Error::file(
             path,
             format!("cannot read {what}: line {line}, column {column}: {shown}"),
@@ -85,7 +86,7 @@ pub fn read_text_file(path: &Path, limit: u64, what: &str) -> Result<String> {
 
 /// "64 MiB" for whole mebibytes, bytes otherwise.
 fn size_text(bytes: u64) -> String {
-    if bytes >= 1 << 20 && bytes % (1 << 20) == 0 {
+    if bytes >= 1 << 20 && bytes.is_multiple_of(1 << 20) {
         format!("{} MiB", bytes >> 20)
     } else {
         format!("{bytes} bytes")
