@@ -382,8 +382,13 @@ fn check_face(
                 return Err(format!("'{w}': too many '/' in a face corner"));
             };
             let out_of_range = || {
+                let corner = if part == w {
+                    String::new()
+                } else {
+                    format!(" in '{w}'")
+                };
                 format!(
-                    "face index out of range: '{part}' in '{w}', but there are {count} '{}' \
+                    "face index out of range: '{part}'{corner}, but there are {count} '{}' \
                      lines before it (indices start at 1 and must refer to an earlier line)",
                     KINDS[k]
                 )
@@ -467,5 +472,39 @@ mod tests {
             .to_string();
         assert!(e.starts_with("bad.obj: "), "{e}");
         assert!(e.contains("line 4"), "{e}");
+    }
+
+    #[test]
+    fn obj_short_faces_and_wrapping_indices_are_refused() {
+        let err = |obj: &str| {
+            MeshData::parse_obj(Path::new("m.obj"), obj)
+                .unwrap_err()
+                .to_string()
+        };
+        let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        assert_eq!(
+            err(&format!("{tri}f 1 2\n")),
+            "m.obj: not a valid OBJ model at line 4: a face with 2 corners: expected at least \
+             three (faces of one or two vertices are refused, not dropped)"
+        );
+        assert!(err(&format!("{tri}f 3\n")).contains("a face with 1 corner: "));
+        // 2^32 + 1 (wraps to 1 in u32), 2^64 + 1 (does not fit i64), a huge negative one.
+        for index in ["4294967297", "18446744073709551617", "-9223372036854775808"] {
+            let e = err(&format!("{tri}f 1 2 {index}\n"));
+            assert!(
+                e.contains(&format!(
+                    "line 4: face index out of range: '{index}', but there are 3 'v' lines"
+                )),
+                "{e}"
+            );
+        }
+        let e = err(&format!("{tri}vt 0 0\nf 1/1 2/1 3/9\n"));
+        assert!(
+            e.contains("line 5: face index out of range: '9' in '3/9', but there are 1 'vt' lines"),
+            "{e}"
+        );
+        // Relative indices that stay in range are fine.
+        let m = MeshData::parse_obj(Path::new("m.obj"), &format!("{tri}f -3 -2 -1\n")).unwrap();
+        assert_eq!(m.indices.len(), 3);
     }
 }
