@@ -260,8 +260,18 @@ impl MeshData {
         let mut mesh = MeshData::empty(&name);
         for model in &models {
             let m = &model.mesh;
-            let base = mesh.positions.len() as u32;
             let count = m.positions.len() / 3;
+            // Every index below is base + i < base + count: checked once here, so adding
+            // base cannot wrap.
+            let too_many = || {
+                Error::file(
+                    path,
+                    "the OBJ model has 2^32 vertices or more: expected fewer (32-bit indices)",
+                )
+            };
+            let base = u32::try_from(mesh.positions.len()).map_err(|_| too_many())?;
+            let added = u32::try_from(count).map_err(|_| too_many())?;
+            base.checked_add(added).ok_or_else(too_many)?;
             let has_normals = m.normals.len() == m.positions.len();
             let has_uv = m.texcoords.len() / 2 == count;
             for i in 0..count {

@@ -650,7 +650,10 @@ fn friendly(message: &str) -> String {
     [
         ("expected f32", "expected a number"),
         ("expected f64", "expected a number"),
-        ("expected u32", "expected a whole number >= 0"),
+        (
+            "expected u32",
+            "expected a whole number from 0 to 4294967295",
+        ),
         ("expected u64", "expected a whole number >= 0"),
         ("expected a boolean", "expected true or false"),
         ("expected a map", "expected a table"),
@@ -1731,7 +1734,7 @@ mod tests {
         refuses(
             &format!("size = [1.5, 2]\n{LIGHT}"),
             "size",
-            "expected a whole number >= 0",
+            "expected a whole number from 0 to 4294967295",
         );
         refuses(
             &format!("{LIGHT}[[item]]\nmesh = \"cueb\"\n"),
