@@ -977,89 +977,110 @@ fn light_fields(kind: &str) -> Vec<&'static str> {
 
 /// Reads one light table by its kind. `index` is None for `[light]`, i for `lights[i]`.
 fn read_light(mut table: toml::Table, index: Option<usize>, cx: &Context) -> Result<LightFile> {
-    let prefix = match index {
-        None => "light".to_string(),
-        Some(i) => format!("lights[{i}]"),
-    };
-    let (table_start, raw) = match cx.raw_light(index) {
-        Some((start, t)) => (Some(start), Some(t)),
-        None => (None, None),
-    };
-    // " (the table at line L)", to find a light whose table lacks something.
-    let at_table = table_start.map_or(String::new(), |s| {
-        format!(" (the table at line {})", line_col(cx.text, s).0)
-    });
-    let at = |keys: &str| {
-        cx.where_in(raw, keys)
-            .map_or(String::new(), |w| format!(" ({w})"))
-    };
+    let at = LightAt::new(index, cx);
     let kind = match table.remove("kind") {
         None => "directional".to_string(),
         Some(toml::Value::String(k)) if LIGHT_KINDS.contains(&k.as_str()) => k,
         Some(other) => {
             return Err(cx.bad(
-                format!("{prefix}.kind"),
+                format!("{}.kind", at.prefix),
                 format!(
                     "{other}: expected \"directional\" (the default), \"spot\" or \"point\"{}",
-                    at("kind")
+                    at.key("kind")
                 ),
             ))
         }
     };
-    let takes = light_fields(&kind);
-    let takes_text = takes.join(", ");
-    for key in table.keys() {
-        if takes.contains(&key.as_str()) {
-            continue;
-        }
-        let message = if LIGHT_KINDS
-            .iter()
-            .any(|k| light_fields(k).contains(&key.as_str()))
-        {
-            format!(
-                "not used by a {kind} light{}; it takes {takes_text}",
-                at(key)
-            )
-        } else {
-            format!(
-                "unknown field{}; a {kind} light takes {takes_text}",
-                at(key)
-            )
-        };
-        return Err(cx.bad(format!("{prefix}.{key}"), message));
-    }
+    refuse_other_fields(&table, &kind, &at, cx)?;
     let value = toml::Value::Table(table);
     let read = match kind.as_str() {
         "spot" => SpotFile::deserialize(value).map(LightFile::Spot),
         "point" => PointFile::deserialize(value).map(LightFile::Point),
         _ => DirectionalFile::deserialize(value).map(LightFile::Directional),
     };
-    read.map_err(|e| {
-        // Without a span, the toml crate's message ends with "in `key.path`".
-        let shown = e.to_string();
-        let keys = shown
-            .lines()
-            .find_map(|l| l.strip_prefix("in `")?.strip_suffix('`'))
-            .unwrap_or("");
-        if let (Some(missing), "") = (backticked(e.message(), "missing field `"), keys) {
-            return cx.bad(
-                format!("{prefix}.{missing}"),
-                format!("a {kind} light needs it{at_table}"),
-            );
+    read.map_err(|e| light_error(&e, &kind, &at, cx))
+}
+
+/// Where a light is, for its messages: its name and its raw table.
+struct LightAt<'a> {
+    /// `light` or `lights[i]`.
+    prefix: String,
+    raw: Option<&'a RawEntries>,
+    cx: &'a Context<'a>,
+    /// " (the table at line L)", to find a light whose table lacks something.
+    table: String,
+}
+
+impl<'a> LightAt<'a> {
+    fn new(index: Option<usize>, cx: &'a Context<'a>) -> Self {
+        let found = cx.raw_light(index);
+        LightAt {
+            prefix: index.map_or("light".to_string(), |i| format!("lights[{i}]")),
+            raw: found.map(|(_, t)| t),
+            cx,
+            table: found.map_or(String::new(), |(start, _)| {
+                format!(" (the table at line {})", line_col(cx.text, start).0)
+            }),
         }
-        let mut field = match keys {
-            "" => prefix.clone(),
-            k => format!("{prefix}.{k}"),
-        };
-        // A table inside the light (`ortho`) lacking a key: name the key.
-        if let Some(missing) = backticked(e.message(), "missing field `") {
-            field = format!("{field}.{missing}");
-        }
-        let located = cx
-            .where_in(raw, keys)
-            .map_or(String::new(), |w| format!("{w}: "));
-        cx.bad(field, format!("{located}{}", friendly(e.message())))
-    })
+    }
+
+    /// " (line L, column C)" of the value of `keys` (dotted) in this light, if found.
+    fn key(&self, keys: &str) -> String {
+        self.cx
+            .where_in(self.raw, keys)
+            .map_or(String::new(), |w| format!(" ({w})"))
+    }
+}
+
+/// A field of another kind: "not used by a point light"; one of no kind: "unknown field".
+/// Both list what this kind takes (the names serde derives, so the list cannot go stale).
+fn refuse_other_fields(table: &toml::Table, kind: &str, at: &LightAt, cx: &Context) -> Result<()> {
+    let takes = light_fields(kind);
+    let Some(key) = table.keys().find(|k| !takes.contains(&k.as_str())) else {
+        return Ok(());
+    };
+    let takes = takes.join(", ");
+    let elsewhere = LIGHT_KINDS
+        .iter()
+        .any(|k| light_fields(k).contains(&key.as_str()));
+    let message = if elsewhere {
+        format!(
+            "not used by a {kind} light{}; it takes {takes}",
+            at.key(key)
+        )
+    } else {
+        format!("unknown field{}; a {kind} light takes {takes}", at.key(key))
+    };
+    Err(cx.bad(format!("{}.{key}", at.prefix), message))
+}
+
+/// A serde error reading a light's table, with its field and line.
+fn light_error(e: &toml::de::Error, kind: &str, at: &LightAt, cx: &Context) -> Error {
+    // Read from a `toml::Value` there is no span, and the message ends with "in `keys`".
+    let shown = e.to_string();
+    let keys = shown
+        .lines()
+        .find_map(|l| l.strip_prefix("in `")?.strip_suffix('`'))
+        .unwrap_or("");
+    let missing = backticked(e.message(), "missing field `");
+    if let (Some(missing), "") = (missing, keys) {
+        return cx.bad(
+            format!("{}.{missing}", at.prefix),
+            format!("a {kind} light needs it{}", at.table),
+        );
+    }
+    let mut field = match keys {
+        "" => at.prefix.clone(),
+        k => format!("{}.{k}", at.prefix),
+    };
+    // A table inside the light (`ortho`) lacking a key: name the key.
+    if let Some(missing) = missing {
+        field = format!("{field}.{missing}");
+    }
+    let located = cx
+        .where_in(at.raw, keys)
+        .map_or(String::new(), |w| format!("{w}: "));
+    cx.bad(field, format!("{located}{}", friendly(e.message())))
 }
 
 fn build_light(light: LightFile, prefix: &str, cx: &Context) -> Result<Light> {
