@@ -40,9 +40,24 @@ pub enum Error {
     #[error("{path}: {message}")]
     File { path: PathBuf, message: String },
 
+    /// A value in a file is wrong: `field` is its dotted name as the file spells it
+    /// (`camera.far`, `item[2] ("cube").scale`), so callers and tests can ask which field
+    /// failed without reading the message.
+    /// (`path`, not `source`: thiserror would take a field named `source` for the cause.)
+    #[error("{path}: {field}: {message}")]
+    Field {
+        path: PathBuf,
+        field: String,
+        message: String,
+    },
+
     /// A scene or setting is invalid; the message names the field.
     #[error("{0}")]
     Invalid(String),
+
+    /// Something the program itself should have made impossible (a bug, not bad input).
+    #[error("internal error: {0} (please report this)")]
+    Internal(String),
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
@@ -53,6 +68,28 @@ impl Error {
         Error::File {
             path: path.into(),
             message: message.into(),
+        }
+    }
+
+    /// An error about one field of a file; renders as `{path}: {field}: {message}`, the
+    /// text `Error::file(path, format!("{field}: {message}"))` gives.
+    pub fn in_field(
+        path: impl Into<PathBuf>,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Error::Field {
+            path: path.into(),
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// The field the error is about, when it is about one.
+    pub fn field(&self) -> Option<&str> {
+        match self {
+            Error::Field { field, .. } => Some(field),
+            _ => None,
         }
     }
 }

@@ -6,6 +6,7 @@ use std::path::Path;
 use glam::Vec3;
 
 use crate::error::{Error, Result};
+use crate::input::{read_text_file, OBJ_LIMIT};
 
 /// The largest coordinate magnitude accepted in a model; beyond it f32 precision is gone.
 pub const MAX_COORDINATE: f32 = 1.0e7;
@@ -221,16 +222,27 @@ impl MeshData {
         self
     }
 
-    /// Loads an OBJ file: polygons are triangulated, missing normals are computed, missing
-    /// texture coordinates are zero. Errors name the file and, where possible, the line.
+    /// Loads an OBJ file (a regular file of at most [`OBJ_LIMIT`] bytes): polygons are
+    /// triangulated, missing normals are computed, missing texture coordinates are zero.
+    /// Errors name the file and, where possible, the line.
     pub fn load_obj(path: &Path) -> Result<MeshData> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::file(path, format!("cannot read OBJ model: {e}")))?;
+        let text = read_text_file(path, OBJ_LIMIT, "OBJ model")?;
         Self::parse_obj(path, &text)
     }
 
     /// Parses OBJ text; `path` names the source in errors.
+    ///
+    /// Every line is checked here before `tobj` sees it: faces need three corners or more
+    /// (shorter ones are refused, not dropped, so a model never loses faces without a
+    /// word), and every index must name an earlier `v`/`vt`/`vn` line, compared in
+    /// checked arithmetic so that no huge index can wrap around onto a valid one.
     pub fn parse_obj(path: &Path, text: &str) -> Result<MeshData> {
+        if let Some((line, why)) = first_bad_obj_line(text) {
+            return Err(Error::file(
+                path,
+                format!("not a valid OBJ model at line {line}: {why}"),
+            ));
+        }
         let options = tobj::LoadOptions {
             single_index: true,
             triangulate: true,
@@ -240,12 +252,7 @@ impl MeshData {
         let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
             Err(tobj::LoadError::GenericFailure)
         })
-        .map_err(|e| {
-            let at = first_bad_obj_line(text)
-                .map(|(line, why)| format!(" at line {line}: {why}"))
-                .unwrap_or_default();
-            Error::file(path, format!("not a valid OBJ model ({e}){at}"))
-        })?;
+        .map_err(|e| Error::file(path, format!("not a valid OBJ model ({e})")))?;
         let name = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -253,8 +260,18 @@ impl MeshData {
         let mut mesh = MeshData::empty(&name);
         for model in &models {
             let m = &model.mesh;
-            let base = mesh.positions.len() as u32;
             let count = m.positions.len() / 3;
+            // Every index below is base + i < base + count: checked once here, so adding
+            // base cannot wrap.
+            let too_many = || {
+                Error::file(
+                    path,
+                    "the OBJ model has 2^32 vertices or more: expected fewer (32-bit indices)",
+                )
+            };
+            let base = u32::try_from(mesh.positions.len()).map_err(|_| too_many())?;
+            let added = u32::try_from(count).map_err(|_| too_many())?;
+            base.checked_add(added).ok_or_else(too_many)?;
             let has_normals = m.normals.len() == m.positions.len();
             let has_uv = m.texcoords.len() / 2 == count;
             for i in 0..count {
@@ -318,9 +335,10 @@ impl MeshData {
     }
 }
 
-/// Finds the first line an OBJ reader would reject, to point the user at it.
+/// Finds the first line an OBJ reader would reject, or that `tobj` would take wrongly (a
+/// face of fewer than three corners, an index beyond the vertices), to point the user at it.
 fn first_bad_obj_line(text: &str) -> Option<(usize, String)> {
-    let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
+    let mut counts = [0u64; 3]; // v, vt, vn lines so far
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let floats = |w: std::str::SplitWhitespace, min: usize| {
@@ -329,39 +347,40 @@ fn first_bad_obj_line(text: &str) -> Option<(usize, String)> {
         };
         let ok = match words.next() {
             Some("v") => {
-                v += 1;
+                counts[0] += 1;
                 floats(words, 3)
                     .then_some(())
-                    .ok_or("expected 'v x y z' with numbers")
+                    .ok_or_else(|| "expected 'v x y z' with numbers".to_string())
             }
             Some("vt") => {
-                vt += 1;
+                counts[1] += 1;
                 floats(words, 1)
                     .then_some(())
-                    .ok_or("expected 'vt u v' with numbers")
+                    .ok_or_else(|| "expected 'vt u v' with numbers".to_string())
             }
             Some("vn") => {
-                vn += 1;
+                counts[2] += 1;
                 floats(words, 3)
                     .then_some(())
-                    .ok_or("expected 'vn x y z' with numbers")
+                    .ok_or_else(|| "expected 'vn x y z' with numbers".to_string())
             }
-            Some("f") => check_face(words, v, vt, vn),
+            Some("f") => check_face(words, counts),
             _ => Ok(()),
         };
         if let Err(why) = ok {
-            return Some((i + 1, why.to_string()));
+            return Some((i + 1, why));
         }
     }
     None
 }
 
+/// Checks one face's corners (`a`, `a/b`, `a//c`, `a/b/c`, negative = relative) against
+/// the `v`, `vt` and `vn` lines before it.
 fn check_face(
     words: std::str::SplitWhitespace,
-    v: i64,
-    vt: i64,
-    vn: i64,
-) -> std::result::Result<(), &'static str> {
+    counts: [u64; 3],
+) -> std::result::Result<(), String> {
+    const KINDS: [&str; 3] = ["v", "vt", "vn"];
     let mut corners = 0;
     for w in words {
         corners += 1;
@@ -369,21 +388,52 @@ fn check_face(
             if part.is_empty() && k > 0 {
                 continue;
             }
-            let idx: i64 = part
-                .parse()
-                .map_err(|_| "expected face indices 'f a b c'")?;
-            let count = [v, vt, vn]
-                .get(k)
-                .copied()
-                .ok_or("too many '/' in a face corner")?;
-            let resolved = if idx < 0 { count + idx + 1 } else { idx };
-            if resolved < 1 || resolved > count {
-                return Err("face index out of range (indices start at 1 and must refer to an earlier v/vt/vn line)");
+            let Some(&count) = counts.get(k) else {
+                return Err(format!("'{w}': too many '/' in a face corner"));
+            };
+            let out_of_range = || {
+                let corner = if part == w {
+                    String::new()
+                } else {
+                    format!(" in '{w}'")
+                };
+                format!(
+                    "face index out of range: '{part}'{corner}, but there are {count} '{}' \
+                     lines before it (indices start at 1 and must refer to an earlier line)",
+                    KINDS[k]
+                )
+            };
+            // Digits that do not fit an i64 are an index far beyond any count.
+            let idx: i64 = match part.parse() {
+                Ok(v) => v,
+                Err(e) => {
+                    use std::num::IntErrorKind::{NegOverflow, PosOverflow};
+                    return Err(match e.kind() {
+                        PosOverflow | NegOverflow => out_of_range(),
+                        _ => format!("'{w}': expected face indices 'f a b c' (whole numbers)"),
+                    });
+                }
+            };
+            let count = i64::try_from(count).unwrap_or(i64::MAX);
+            // -1 is the last line so far: count + idx + 1, which cannot overflow for
+            // count >= 0 and idx < 0.
+            let resolved = if idx < 0 {
+                count.checked_add(idx).and_then(|v| v.checked_add(1))
+            } else {
+                Some(idx)
+            };
+            match resolved {
+                Some(r) if (1..=count).contains(&r) => {}
+                _ => return Err(out_of_range()),
             }
         }
     }
     if corners < 3 {
-        return Err("a face needs at least three vertices");
+        return Err(format!(
+            "a face with {corners} corner{}: expected at least three (faces of one or two \
+             vertices are refused, not dropped)",
+            if corners == 1 { "" } else { "s" }
+        ));
     }
     Ok(())
 }
@@ -432,5 +482,39 @@ mod tests {
             .to_string();
         assert!(e.starts_with("bad.obj: "), "{e}");
         assert!(e.contains("line 4"), "{e}");
+    }
+
+    #[test]
+    fn obj_short_faces_and_wrapping_indices_are_refused() {
+        let err = |obj: &str| {
+            MeshData::parse_obj(Path::new("m.obj"), obj)
+                .unwrap_err()
+                .to_string()
+        };
+        let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        assert_eq!(
+            err(&format!("{tri}f 1 2\n")),
+            "m.obj: not a valid OBJ model at line 4: a face with 2 corners: expected at least \
+             three (faces of one or two vertices are refused, not dropped)"
+        );
+        assert!(err(&format!("{tri}f 3\n")).contains("a face with 1 corner: "));
+        // 2^32 + 1 (wraps to 1 in u32), 2^64 + 1 (does not fit i64), a huge negative one.
+        for index in ["4294967297", "18446744073709551617", "-9223372036854775808"] {
+            let e = err(&format!("{tri}f 1 2 {index}\n"));
+            assert!(
+                e.contains(&format!(
+                    "line 4: face index out of range: '{index}', but there are 3 'v' lines"
+                )),
+                "{e}"
+            );
+        }
+        let e = err(&format!("{tri}vt 0 0\nf 1/1 2/1 3/9\n"));
+        assert!(
+            e.contains("line 5: face index out of range: '9' in '3/9', but there are 1 'vt' lines"),
+            "{e}"
+        );
+        // Relative indices that stay in range are fine.
+        let m = MeshData::parse_obj(Path::new("m.obj"), &format!("{tri}f -3 -2 -1\n")).unwrap();
+        assert_eq!(m.indices.len(), 3);
     }
 }

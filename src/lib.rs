@@ -18,6 +18,7 @@ pub mod engine;
 pub mod error;
 pub mod geometry;
 pub mod image_data;
+pub mod input;
 pub mod measure;
 pub mod output;
 pub mod renderer;

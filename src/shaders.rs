@@ -62,6 +62,11 @@ const LIBRARY: &[(&str, &str)] = &[
     ),
 ];
 
+/// The names of the library's snippets.
+pub fn library() -> impl Iterator<Item = &'static str> {
+    LIBRARY.iter().map(|(name, _)| *name)
+}
+
 /// The scene pass' fragment shader with its snippets included; `generated` are the
 /// `generated/...` files made for the scene's lights.
 pub fn scene_frag(generated: &[(&str, String)]) -> Result<ShaderSource> {
@@ -184,35 +189,5 @@ mod tests {
         )];
         let e = resolve("m.frag", "#include \"generated/loop.glsl\"\n", &gen).unwrap_err();
         assert!(e.to_string().contains("includes itself"), "{e}");
-    }
-
-    #[test]
-    fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        // Three lights of three kinds, one with cascades: every snippet is included.
-        use crate::shadows::slots::{snippets, LightSlot, ShadowTest};
-        use crate::shadows::ShadowKind;
-        let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
-        let slot = |shadow| LightSlot {
-            shadow,
-            positional: false,
-            cone: false,
-            test: Some(test),
-        };
-        let generated = snippets(&[
-            slot(ShadowKind::Map),
-            slot(ShadowKind::Cube),
-            slot(ShadowKind::Cascades),
-        ]);
-        let text = format!(
-            "{}{}",
-            include_str!("../shaders/scene.frag"),
-            generated[1].1
-        );
-        for (name, _) in LIBRARY {
-            assert!(
-                text.contains(&format!("#include \"{name}\"")),
-                "{name} is never included"
-            );
-        }
     }
 }

@@ -809,3 +809,254 @@ fn a_short_soak_reports_memory_and_no_error() {
     );
     assert!(stdout.contains("no error; resident memory"), "{stdout}");
 }
+
+#[test]
+fn scene_values_that_were_silently_accepted_give_one_clear_error() {
+    report(vec![
+        bad_scene(
+            "toml size with a third number",
+            "toml_size_three.toml",
+            &["size: line 2, column 8: 3 values given: expected exactly 2 numbers"],
+        ),
+        bad_scene(
+            "toml colour with a fifth number",
+            "toml_colour_five.toml",
+            &["item[0].colour: line 6, column 10: 5 values given: expected exactly 4 numbers"],
+        ),
+        bad_scene(
+            "toml camera position of four",
+            "toml_camera_four.toml",
+            &["camera.position: line 5, column 12: 4 values given: expected exactly 3 numbers"],
+        ),
+        bad_scene(
+            "toml polygon_offset of three",
+            "toml_polygon_offset_three.toml",
+            &["shadow.polygon_offset: 3 values given: expected exactly 2 numbers [factor, units] (line 5)"],
+        ),
+        bad_generated(
+            "toml sphere detail of three",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\n\n[[item]]\nname = \"ball\"\nmesh = \"sphere\"\ndetail = [8, 8, 8]\n",
+            )],
+            &["item[0] (\"ball\").detail: line 7, column 10: 3 values given: expected exactly 2 numbers"],
+        ),
+        bad_generated(
+            "toml scatter area of five",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"cube\"\n\
+                  scatter = { count = 2, area = [0.0, 1.0, 0.0, 1.0, 5.0] }\n",
+            )],
+            &["item[0].scatter.area: line 6, column 31: 5 values given: expected exactly 4 numbers"],
+        ),
+        bad_scene(
+            "toml NaN in [steps]",
+            "toml_steps_nan.toml",
+            &["steps.bias: NaN is not a finite number (line 5)"],
+        ),
+        bad_generated(
+            "toml NaN in [shadow]",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\n\n[shadow]\ncascade_lambda = nan\n",
+            )],
+            &["shadow.cascade_lambda: NaN is not a finite number (line 5)"],
+        ),
+        bad_scene(
+            "toml negative ambient",
+            "toml_negative_ambient.toml",
+            &["ambient: [0.3, -0.2, 0.3]: expected numbers >= 0"],
+        ),
+        bad_generated(
+            "toml negative specular power",
+            &[(
+                "scene.toml",
+                b"specular_power = -4.0\n\n[light]\nangle = 45.0\n",
+            )],
+            &["specular_power: -4: expected a number > 0"],
+        ),
+        bad_generated(
+            "toml negative intensity",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\nintensity = -0.5\n",
+            )],
+            &["light.intensity: -0.5: expected a number >= 0"],
+        ),
+        bad_scene(
+            "toml ortho width overflows f32",
+            "toml_ortho_overflow.toml",
+            &["light.ortho: ", "right - left overflows 32-bit floats: expected a box less than"],
+        ),
+        bad_scene(
+            "toml scale is a word",
+            "toml_scale_word.toml",
+            &["item[0] (\"crate\").scale: line 7, column 9: invalid type: string \"large\", \
+               expected a number > 0 or three of them, [x, y, z]"],
+        ),
+        bad_generated(
+            "toml number is a word",
+            &[(
+                "scene.toml",
+                b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"cube\"\ntiles = \"many\"\n",
+            )],
+            &["item[0].tiles: line 6, column 9: invalid type: string \"many\", expected a number"],
+        ),
+        bad_scene(
+            "toml misspelt built-in mesh",
+            "toml_misspelt_mesh.toml",
+            &[
+                "item[0].mesh: 'cueb' is not a built-in mesh (cube, plane, sphere, terrain), \
+                 and there is no OBJ file at ",
+                "tests/data/bad/cueb",
+            ],
+        ),
+        bad_scene(
+            "toml field of another light kind",
+            "toml_light_field_of_another_kind.toml",
+            &["lights[1].fov: not used by a point light (line 7, column 7); it takes kind, \
+               colour, intensity, position, near, far, oscillate, casts_shadows"],
+        ),
+        bad_generated(
+            "toml invalid UTF-8",
+            &[(
+                "scene.toml",
+                b"name = \"caf\xc3\xa9\"\n[light]\nangle = \xff45.0\n",
+            )],
+            &["scene.toml: cannot read scene file: line 3, column 9: byte 0xff is not UTF-8 text"],
+        ),
+    ]);
+}
+
+/// `mkfifo path`: a named pipe, which blocks whoever opens it for reading until a writer
+/// comes (none will).
+fn mkfifo(path: &Path) {
+    let status = Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(status.success(), "mkfifo {}", path.display());
+}
+
+/// Runs `render` on a scene in `dir` (made by the caller) and checks the error.
+fn bad_prepared(case: &str, dir: &Path, needles: &[&str]) -> Option<String> {
+    let scene = dir.join("scene.toml");
+    let (run, out) = render(case, Path::new("."), scene.to_str().unwrap(), &[]);
+    check_error(case, &run, &out, needles)
+}
+
+#[test]
+fn unreadable_inputs_are_refused_without_blocking() {
+    let obj_scene = b"[light]\nangle = 45.0\n\n[[item]]\nmesh = \"model.obj\"\n";
+
+    let fifo_scene = case_dir("fifo-scene-input");
+    mkfifo(&fifo_scene.join("scene.toml"));
+
+    let zero_scene = case_dir("zero-scene-input");
+    std::os::unix::fs::symlink("/dev/zero", zero_scene.join("scene.toml")).unwrap();
+
+    // 65 MiB without writing them: a sparse file.
+    let huge_scene = case_dir("huge-scene-input");
+    std::fs::File::create(huge_scene.join("scene.toml"))
+        .unwrap()
+        .set_len(65 << 20)
+        .unwrap();
+
+    let folder_scene = case_dir("folder-scene-input");
+    std::fs::create_dir(folder_scene.join("scene.toml")).unwrap();
+
+    let fifo_obj = case_dir("fifo-obj-input");
+    std::fs::write(fifo_obj.join("scene.toml"), obj_scene).unwrap();
+    mkfifo(&fifo_obj.join("model.obj"));
+
+    let zero_obj = case_dir("zero-obj-input");
+    std::fs::write(zero_obj.join("scene.toml"), obj_scene).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", zero_obj.join("model.obj")).unwrap();
+
+    let huge_obj = case_dir("huge-obj-input");
+    std::fs::write(huge_obj.join("scene.toml"), obj_scene).unwrap();
+    std::fs::File::create(huge_obj.join("model.obj"))
+        .unwrap()
+        .set_len(513 << 20)
+        .unwrap();
+
+    let not_regular = "it is not a regular file but";
+    report(vec![
+        bad_prepared(
+            "scene is a FIFO",
+            &fifo_scene,
+            &[
+                "scene.toml: cannot read scene file: ",
+                not_regular,
+                "a FIFO",
+            ],
+        ),
+        bad_prepared(
+            "scene is /dev/zero",
+            &zero_scene,
+            &[
+                "scene.toml: cannot read scene file: ",
+                not_regular,
+                "a character device",
+            ],
+        ),
+        bad_prepared(
+            "scene over 64 MiB",
+            &huge_scene,
+            &["scene.toml: cannot read scene file: it is larger than the limit of 64 MiB"],
+        ),
+        bad_prepared(
+            "scene is a folder",
+            &folder_scene,
+            &[
+                "scene.toml: cannot read scene file: ",
+                not_regular,
+                "a folder",
+            ],
+        ),
+        bad_prepared(
+            "obj is a FIFO",
+            &fifo_obj,
+            &[
+                "item[0].mesh: ",
+                "model.obj: cannot read OBJ model: ",
+                not_regular,
+                "a FIFO",
+            ],
+        ),
+        bad_prepared(
+            "obj is /dev/zero",
+            &zero_obj,
+            &[
+                "item[0].mesh: ",
+                "model.obj: cannot read OBJ model: ",
+                not_regular,
+                "a character device",
+            ],
+        ),
+        bad_prepared(
+            "obj over 512 MiB",
+            &huge_obj,
+            &["model.obj: cannot read OBJ model: it is larger than the limit of 512 MiB"],
+        ),
+        bad_scene(
+            "obj face of two vertices",
+            "obj_degenerate_face.toml",
+            &[
+                "item[0].mesh: ",
+                "obj_degenerate_face.obj: not a valid OBJ model at line 5: a face with 2 \
+                 corners: expected at least three",
+                "refused, not dropped",
+            ],
+        ),
+        bad_scene(
+            "obj index that wraps in 32 bits",
+            "obj_index_wrap.toml",
+            &[
+                "obj_index_wrap.obj: not a valid OBJ model at line 5: face index out of \
+                 range: '4294967297', but there are 3 'v' lines before it",
+            ],
+        ),
+    ]);
+}

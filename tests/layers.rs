@@ -1,7 +1,8 @@
 //! The library's layers, checked from the source: a module imports only the layers above
 //! it, and no two modules of one folder import each other (directly or round a circle).
 //!
-//! Ranks (lower first): `error`, `transformation`; `settings`, `geometry`, `image_data`;
+//! Ranks (lower first): `error`, `transformation`; `input`, `output`, `settings`,
+//! `geometry`, `image_data`;
 //! `scene`, `engine`; `shaders`; `shadows`; `renderer`, `steps`; `measure`. A module may
 //! name `crate::X` only for an X of a lower rank (or itself).
 
@@ -11,16 +12,18 @@ use std::path::{Path, PathBuf};
 const RANKS: &[(&str, u32)] = &[
     ("error", 0),
     ("transformation", 0),
-    ("settings", 1),
-    ("geometry", 1),
-    ("image_data", 1),
-    ("scene", 2),
-    ("engine", 2),
-    ("shaders", 3),
-    ("shadows", 4),
-    ("renderer", 5),
-    ("steps", 5),
-    ("measure", 6),
+    ("input", 1),
+    ("output", 1),
+    ("settings", 2),
+    ("geometry", 2),
+    ("image_data", 2),
+    ("scene", 3),
+    ("engine", 3),
+    ("shaders", 4),
+    ("shadows", 5),
+    ("renderer", 6),
+    ("steps", 6),
+    ("measure", 7),
 ];
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {

@@ -343,4 +343,32 @@ mod tests {
             [Option::None, Some(0), Option::None, Some(1)]
         );
     }
+
+    #[test]
+    fn every_library_snippet_is_reachable_from_the_scene_shader() {
+        // Three lights of three kinds, one with cascades: every snippet is included.
+        let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
+        let slot = |shadow| LightSlot {
+            shadow,
+            positional: false,
+            cone: false,
+            test: Some(test),
+        };
+        let generated = snippets(&[
+            slot(ShadowKind::Map),
+            slot(ShadowKind::Cube),
+            slot(ShadowKind::Cascades),
+        ]);
+        let text = format!(
+            "{}{}",
+            include_str!("../../shaders/scene.frag"),
+            generated[1].1
+        );
+        for name in crate::shaders::library() {
+            assert!(
+                text.contains(&format!("#include \"{name}\"")),
+                "{name} is never included"
+            );
+        }
+    }
 }
