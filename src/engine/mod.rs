@@ -11,6 +11,7 @@ pub mod mesh;
 pub mod render_target;
 pub mod shader_program;
 pub mod shadow_map;
+pub mod text;
 pub mod texture;
 pub mod timer;
 pub mod window_context;
