@@ -30,15 +30,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         visibility: args.shadow_out.is_some(),
         gbuffer: false,
     };
-    let frame = render_frames(
-        context.gl(),
-        &mut scene,
-        &settings,
-        width,
-        height,
-        args.frames,
-        outputs,
-    )?;
+    let frame = match args.hud {
+        true => super::hud::render_frames_with_hud(
+            &context,
+            &mut scene,
+            &settings,
+            args.settings.step.as_deref(),
+            (width, height),
+            args.frames,
+            outputs,
+        )?,
+        false => render_frames(
+            context.gl(),
+            &mut scene,
+            &settings,
+            width,
+            height,
+            args.frames,
+            outputs,
+        )?,
+    };
     frame.colour.save_png(&args.out)?;
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {
         image.save_png(path)?;

@@ -63,7 +63,7 @@ pub struct FontAtlas {
 impl FontAtlas {
     /// Rasterises printable ASCII (and a few symbols) of a TrueType font at `px` pixels per em.
     pub fn new(font_bytes: &[u8], px: f32) -> Result<FontAtlas> {
-        if !(px.is_finite() && px >= 4.0 && px <= 128.0) {
+        if !(4.0..=128.0).contains(&px) {
             return Err(Error::Invalid(format!(
                 "font size {px}: expected 4 to 128 pixels"
             )));
