@@ -481,10 +481,11 @@ impl Demo {
         if let Err(e) = running.context.swap_buffers() {
             return self.fail(event_loop, e);
         }
-        self.frame_ms = if self.frame_ms == 0.0 {
-            dt * 1000.0
-        } else {
-            0.9 * self.frame_ms + 0.1 * dt * 1000.0
+        // The first frame's dt runs from the window's opening, not from a frame.
+        self.frame_ms = match (self.frames, self.frame_ms == 0.0) {
+            (0 | 1, _) => self.frame_ms,
+            (_, true) => dt * 1000.0,
+            (_, false) => 0.9 * self.frame_ms + 0.1 * dt * 1000.0,
         };
         if self.args.stress_window {
             // Let the storm's sizes arrive between frames.
@@ -492,7 +493,7 @@ impl Demo {
         }
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
-            self.shown_ms = Some(self.frame_ms);
+            self.shown_ms = (self.frame_ms > 0.0).then_some(self.frame_ms);
             running.context.window().set_title(&format!(
                 "shadowmap: {} | step {} | {}{} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
