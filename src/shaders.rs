@@ -36,6 +36,8 @@ shader!(depth_point_vert, "depth_point.vert");
 shader!(depth_point_frag, "depth_point.frag");
 shader!(depth_point_layered_vert, "depth_point_layered.vert");
 shader!(depth_point_layered_geom, "depth_point_layered.geom");
+shader!(text_vert, "text.vert");
+shader!(text_frag, "text.frag");
 
 /// The snippets a shader may `#include`, by the name it includes them with.
 const LIBRARY: &[(&str, &str)] = &[

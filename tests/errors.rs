@@ -161,10 +161,12 @@ fn help_names_every_built_in_scene_and_the_demo_keys() {
             "`shadowmap demo --help` omits the scene {name}"
         );
     }
+    // The key table (the same list the HUD's key panel shows).
     for key in [
-        "M shows each casting light's shadow map",
-        "C tints the cascades",
-        "K cycles",
+        "each casting light's shadow map",
+        "tint the cascades",
+        "cascades: 1, 2, 3, 4",
+        "show / hide these keys",
     ] {
         assert!(demo.contains(key), "`shadowmap demo --help` omits: {key}");
     }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{bin, stdout_of};
+use common::{bin, hud_difference, stdout_of};
 
 fn load(path: &std::path::Path) -> image::RgbaImage {
     image::open(path)
@@ -46,6 +46,7 @@ fn window_shows_the_scene_and_its_shadow() {
             .args([
                 "demo",
                 "--no-animation",
+                "--no-hud",
                 "--size",
                 "640x360",
                 "--exit-after-frames",
@@ -138,6 +139,7 @@ fn window_draws_several_lights_and_cascades_as_headless_does() {
                 .args([
                     "demo",
                     "--no-animation",
+                    "--no-hud",
                     "--scene",
                     name,
                     "--size",
@@ -165,5 +167,30 @@ fn window_draws_several_lights_and_cascades_as_headless_does() {
             .collect();
         assert!(colours.len() > 100, "{name}: {} colours", colours.len());
     }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_screenshots_carry_the_hud_in_the_top_left_corner() {
+    let dir = display_and_dir("hud");
+    let shot = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        stdout_of(
+            bin()
+                .args(["demo", "--no-animation", "--size", "640x360"])
+                .args(extra)
+                .args(["--exit-after-frames", "5", "--screenshot"])
+                .arg(&path),
+        );
+        load(&path)
+    };
+    let with = shot("hud.png", &[]);
+    let without = shot("no-hud.png", &["--no-hud"]);
+    // Five lines of 15-pixel text in a panel at (8, 8): well inside 420 x 130.
+    let d = hud_difference(&with, &without, (0, 0, 420, 130));
+    assert_eq!(d.outside, 0, "the HUD drew outside its corner: {d:?}");
+    assert!(d.inside > 3000, "too little of the HUD: {d:?}");
+    assert!(d.glyphs > 800, "too few bright glyph pixels: {d:?}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -31,10 +31,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Open the interactive window (the default).
-    ///
-    /// Keys: arrows turn the light, WASD/Z/X move, right-drag looks, 1..9 0 - = pick a chapter
-    /// step (Backspace: the scene's own), M shows each casting light's shadow map in turn,
-    /// C tints the cascades, K cycles 1..4 cascades, F12 saves a screenshot, ESC quits.
+    #[command(after_help = super::demo::keys_help())]
     Demo(DemoArgs),
     /// Render frames headless (EGL, no display needed) and write PNG files.
     Render(RenderArgs),
@@ -99,6 +96,9 @@ pub struct DemoArgs {
     /// running (use with --exit-after-frames 40 or more).
     #[arg(long)]
     pub stress_window: bool,
+    /// Leave the HUD (light angle, step, settings, frame time) out of the frame.
+    #[arg(long)]
+    pub no_hud: bool,
 }
 
 impl Default for DemoArgs {
@@ -116,6 +116,7 @@ impl Default for DemoArgs {
             screenshot: None,
             no_animation: false,
             stress_window: false,
+            no_hud: false,
         }
     }
 }
@@ -138,6 +139,9 @@ pub struct RenderArgs {
     /// Also write the shadow map as a grey image (black = near the light).
     #[arg(long, value_name = "FILE.png")]
     pub depth_out: Option<PathBuf>,
+    /// Draw the demo's HUD (light, step, settings, frame time) over the image.
+    #[arg(long)]
+    pub hud: bool,
 }
 
 #[derive(Args, Debug, Clone)]

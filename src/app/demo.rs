@@ -20,6 +20,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::cli::DemoArgs;
+use super::hud::{render_frames_with_hud, Hud, HudInfo};
 
 /// The book's fixed update rate.
 const UPDATES_PER_SECOND: f64 = 30.0;
@@ -32,6 +33,35 @@ const ANGLE_STEP: f32 = 0.05;
 
 /// Where the no-display fallback writes its picture.
 const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
+
+/// The demo's keys, as `window_event` and `update` handle them: the HUD's key panel (H) and
+/// `shadowmap demo --help` both list this, so a key added there belongs here too.
+pub const KEYS: &[(&str, &str)] = &[
+    ("UP / RIGHT", "raise the light angle (faster while held)"),
+    ("DOWN / LEFT", "lower the light angle (0 to 180 degrees)"),
+    ("W / S", "move forward / back"),
+    ("A / D", "move left / right"),
+    ("Z / X", "move down / up"),
+    ("right drag", "look around"),
+    ("1..9, 0, -, =", "chapter step 1 to 12"),
+    ("Backspace", "the scene's own settings"),
+    ("M", "each casting light's shadow map, then the scene"),
+    ("C", "tint the cascades"),
+    ("K", "cascades: 1, 2, 3, 4, 1, ..."),
+    ("H", "show / hide these keys"),
+    ("F12", "save a screenshot (PNG, current folder)"),
+    ("ESC", "quit"),
+];
+
+/// [`KEYS`] as a table for the terminal.
+pub fn keys_help() -> String {
+    let width = KEYS.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    let rows: Vec<String> = KEYS
+        .iter()
+        .map(|(k, d)| format!("  {k:<width$}  {d}"))
+        .collect();
+    format!("Keys:\n{}", rows.join("\n"))
+}
 
 pub fn run(args: &DemoArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
@@ -74,6 +104,8 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         last_frame: Instant::now(),
         update_debt: 0.0,
         frame_ms: 0.0,
+        shown_ms: None,
+        show_keys: false,
         last_title: Instant::now() - Duration::from_secs(1),
         screenshot_requested: false,
         screenshots: 0,
@@ -112,15 +144,26 @@ fn headless_fallback(
     let (w, h) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, settings)?;
-    let frame = render_frames(
-        context.gl(),
-        &mut scene,
-        settings,
-        w,
-        h,
-        1,
-        Outputs::default(),
-    )?;
+    let frame = match args.no_hud {
+        false => render_frames_with_hud(
+            &context,
+            &mut scene,
+            settings,
+            args.settings.step.as_deref(),
+            (w, h),
+            1,
+            Outputs::default(),
+        )?,
+        true => render_frames(
+            context.gl(),
+            &mut scene,
+            settings,
+            w,
+            h,
+            1,
+            Outputs::default(),
+        )?,
+    };
     let path = Path::new(FALLBACK_IMAGE);
     frame.colour.save_png(path)?;
     let shown = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
@@ -134,9 +177,12 @@ fn headless_fallback(
     Ok(())
 }
 
-/// Window, GL context and renderer; the renderer is declared first so it drops first.
+/// Window, GL context, renderer and HUD; the GL users are declared first so they drop
+/// before the context.
 struct Running {
     renderer: Renderer,
+    /// `None` with `--no-hud`.
+    hud: Option<Hud>,
     context: WindowContext,
 }
 
@@ -156,6 +202,10 @@ struct Demo {
     last_frame: Instant,
     update_debt: f64,
     frame_ms: f64,
+    /// The frame time the HUD shows, refreshed with the title so it can be read.
+    shown_ms: Option<f64>,
+    /// Whether the HUD's key panel is open (H).
+    show_keys: bool,
     last_title: Instant,
     screenshot_requested: bool,
     screenshots: u32,
@@ -305,7 +355,15 @@ impl Demo {
         let mut renderer = Renderer::new(context.gl(), &self.scene, &self.settings)?;
         // A window made again (after a suspend) keeps showing the light M had picked.
         renderer.set_depth_view_light(self.depth_light);
-        Ok(Running { renderer, context })
+        let hud = match self.args.no_hud {
+            true => None,
+            false => Some(Hud::new(context.gl())?),
+        };
+        Ok(Running {
+            renderer,
+            hud,
+            context,
+        })
     }
 
     /// One fixed update: the book's `input` and `update`.
@@ -379,6 +437,23 @@ impl Demo {
         ) {
             return self.fail(event_loop, e);
         }
+        // The shadow-map inset goes here, between the scene and the HUD, once the renderer
+        // can draw a map into a corner of the frame (see `hud.rs`).
+        if let Some(hud) = &mut running.hud {
+            running.context.bind_default_framebuffer();
+            let info = HudInfo {
+                scene: &self.scene,
+                settings: &self.settings,
+                step: self.step,
+                frame_ms: self.shown_ms,
+                depth_light: self.depth_light,
+                keys: Some(KEYS),
+                show_keys: self.show_keys,
+            };
+            if let Err(e) = hud.draw(&info, w, h) {
+                return self.fail(event_loop, e);
+            }
+        }
         self.frames += 1;
         let last = self
             .args
@@ -406,10 +481,11 @@ impl Demo {
         if let Err(e) = running.context.swap_buffers() {
             return self.fail(event_loop, e);
         }
-        self.frame_ms = if self.frame_ms == 0.0 {
-            dt * 1000.0
-        } else {
-            0.9 * self.frame_ms + 0.1 * dt * 1000.0
+        // The first frame's dt runs from the window's opening, not from a frame.
+        self.frame_ms = match (self.frames, self.frame_ms == 0.0) {
+            (0 | 1, _) => self.frame_ms,
+            (_, true) => dt * 1000.0,
+            (_, false) => 0.9 * self.frame_ms + 0.1 * dt * 1000.0,
         };
         if self.args.stress_window {
             // Let the storm's sizes arrive between frames.
@@ -417,6 +493,7 @@ impl Demo {
         }
         if now.duration_since(self.last_title) > Duration::from_millis(250) {
             self.last_title = now;
+            self.shown_ms = (self.frame_ms > 0.0).then_some(self.frame_ms);
             running.context.window().set_title(&format!(
                 "shadowmap: {} | step {} | {}{} | {} | {:.2} ms ({}x{})",
                 self.scene.name,
@@ -480,6 +557,7 @@ impl ApplicationHandler for Demo {
                                 self.select_step(event_loop, None)
                             }
                             KeyCode::KeyM if !event.repeat => self.next_depth_view(event_loop),
+                            KeyCode::KeyH if !event.repeat => self.show_keys = !self.show_keys,
                             KeyCode::KeyC if !event.repeat => self
                                 .change_settings(event_loop, |s| {
                                     s.show_cascades = !s.show_cascades

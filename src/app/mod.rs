@@ -5,6 +5,7 @@ pub mod cli;
 pub mod compare;
 pub mod demo;
 pub mod gallery;
+pub mod hud;
 pub mod plot;
 pub mod render;
 pub mod soak;

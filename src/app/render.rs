@@ -37,15 +37,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         visibility: args.shadow_out.is_some(),
         gbuffer: false,
     };
-    let frame = render_frames(
-        context.gl(),
-        &mut scene,
-        &settings,
-        width,
-        height,
-        args.frames,
-        outputs,
-    )?;
+    let frame = match args.hud {
+        true => super::hud::render_frames_with_hud(
+            &context,
+            &mut scene,
+            &settings,
+            args.settings.step.as_deref(),
+            (width, height),
+            args.frames,
+            outputs,
+        )?,
+        false => render_frames(
+            context.gl(),
+            &mut scene,
+            &settings,
+            width,
+            height,
+            args.frames,
+            outputs,
+        )?,
+    };
     // Every image encoded first, then written as one: a failed write leaves none of them.
     let mut images = vec![(&args.out, frame.colour.encode_png()?)];
     if let (Some(path), Some(image)) = (&args.shadow_out, frame.visibility_image()) {

@@ -13,6 +13,7 @@ pub mod sampler;
 pub mod shader_program;
 pub mod shadow_map;
 pub mod state;
+pub mod text;
 pub mod texture;
 pub mod timer;
 pub mod window_context;

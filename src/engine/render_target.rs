@@ -153,6 +153,16 @@ impl RenderTarget {
         }
     }
 
+    /// Binds the framebuffer and sets the viewport to its size without clearing, for what
+    /// is drawn over a finished frame (the HUD).
+    pub fn bind(&self) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
+            self.gl
+                .viewport(0, 0, self.width as i32, self.height as i32);
+        }
+    }
+
     pub fn framebuffer(&self) -> glow::Framebuffer {
         self.fbo
     }

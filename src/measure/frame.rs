@@ -114,6 +114,36 @@ pub fn render_frames_of_light(
     outputs: Outputs,
     light: usize,
 ) -> Result<Frame> {
+    let mut nothing = |_: &RenderTarget, _: &Scene, _: Option<f64>| Ok(());
+    let size = (width, height);
+    render_frames_with(
+        gl,
+        scene,
+        settings,
+        size,
+        frames,
+        outputs,
+        light,
+        &mut nothing,
+    )
+}
+
+/// Drawn over each frame after the scene, before it is timed to its end: gets the target
+/// (to bind), the scene and the previous frame's time (the HUD of `render --hud`).
+pub type AfterScene<'a> = &'a mut dyn FnMut(&RenderTarget, &Scene, Option<f64>) -> Result<()>;
+
+/// [`render_frames_of_light`] with `after_scene` drawn over every frame.
+#[allow(clippy::too_many_arguments)]
+pub fn render_frames_with(
+    gl: &Gl,
+    scene: &mut Scene,
+    settings: &ShadowSettings,
+    (width, height): (u32, u32),
+    frames: u32,
+    outputs: Outputs,
+    light: usize,
+    after_scene: AfterScene,
+) -> Result<Frame> {
     let limits = crate::engine::gl_limits(gl);
     let max = limits
         .max_renderbuffer_size
@@ -136,6 +166,7 @@ pub fn render_frames_of_light(
         }
         let start = std::time::Instant::now();
         renderer.render(scene, Target::Offscreen(&target))?;
+        after_scene(&target, scene, frame_ms.last().copied())?;
         renderer.finish();
         frame_ms.push(start.elapsed().as_secs_f64() * 1000.0);
     }

@@ -100,3 +100,42 @@ pub fn shimmer(
         })
         .fold(0.0, f64::max)
 }
+
+/// How a frame with the HUD differs from the same frame without it, split at a rectangle
+/// (x0, y0, x1, y1) in pixels where the HUD must stay.
+#[derive(Debug)]
+pub struct HudDifference {
+    /// Pixels that changed inside the rectangle.
+    pub inside: usize,
+    /// Of those, pixels that became bright white (glyph cores) where the scene was not.
+    pub glyphs: usize,
+    /// Pixels that changed outside the rectangle (there should be none).
+    pub outside: usize,
+}
+
+pub fn hud_difference(
+    with: &image::RgbaImage,
+    without: &image::RgbaImage,
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+) -> HudDifference {
+    assert_eq!(with.dimensions(), without.dimensions());
+    let bright = |p: &image::Rgba<u8>| p[0] > 200 && p[1] > 200 && p[2] > 200;
+    let mut d = HudDifference {
+        inside: 0,
+        glyphs: 0,
+        outside: 0,
+    };
+    for (x, y, p) in with.enumerate_pixels() {
+        let q = without.get_pixel(x, y);
+        if p == q {
+            continue;
+        }
+        if (x0..x1).contains(&x) && (y0..y1).contains(&y) {
+            d.inside += 1;
+            d.glyphs += usize::from(bright(p) && !bright(q));
+        } else {
+            d.outside += 1;
+        }
+    }
+    d
+}

@@ -1,0 +1,284 @@
+//! The HUD: the text the book's demo shows over the frame (the light angle), with the chapter
+//! step, the settings and the frame time, and on request the demo's keys. A window title is
+//! invisible full-screen and in screenshots; this is drawn into the frame itself.
+//!
+//! This file decides what the lines say and where they go; the glyphs and the GL drawing
+//! are `engine::text`'s. The status panel sits in the top-left corner and the key panel
+//! under it; the bottom-right corner is left free for the shadow-map inset (a small picture
+//! of the map, toggled by a key), which needs a renderer pass of its own.
+//!
+//! The shadow-map inset (to come): the renderer draws the map into the bottom-right corner,
+//! a quarter of the frame's height on each side, after the scene and before the HUD; the
+//! demo's place for the call is marked "shadow-map inset" in `demo.rs`.
+
+use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
+use shadowmap::engine::{Gl, HeadlessContext, Outputs, RenderTarget};
+use shadowmap::frame::{render_frames_with, Frame};
+use shadowmap::{steps, Result, Scene, ShadowSettings};
+
+/// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
+const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+/// Pixels per em: readable at 1280 x 720 without covering the DummyGame's cube.
+const FONT_PX: f32 = 15.0;
+/// Space between the frame's edge and a panel, and between panels.
+const MARGIN: f32 = 8.0;
+/// Space between a panel's edge and its text.
+const PADDING: f32 = 6.0;
+/// Space between the key column and its description in the key panel.
+const COLUMN_GAP: f32 = 12.0;
+const TEXT_COLOUR: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+const KEY_COLOUR: [f32; 4] = [1.0, 0.85, 0.35, 1.0];
+/// Dark and half transparent: the text stays readable over a lit plane and the scene still
+/// shows through.
+const PANEL_COLOUR: [f32; 4] = [0.0, 0.0, 0.0, 0.6];
+
+/// What the HUD reports about one frame.
+pub struct HudInfo<'a> {
+    pub scene: &'a Scene,
+    pub settings: &'a ShadowSettings,
+    /// The chapter step shown, `None` for the scene's own settings.
+    pub step: Option<&'a str>,
+    /// The time of the frame before, if there was one.
+    pub frame_ms: Option<f64>,
+    /// The light whose map is shown when the settings show a depth map.
+    pub depth_light: usize,
+    /// The keys to offer (the demo's); `None` where there are no keys (`render`).
+    pub keys: Option<&'a [(&'a str, &'a str)]>,
+    /// Whether the key panel is open.
+    pub show_keys: bool,
+}
+
+/// The status lines, top to bottom.
+pub fn status_lines(info: &HudInfo) -> Vec<String> {
+    let scene = info.scene;
+    let light = match scene.light().as_directional() {
+        // The DummyGame's light turns in the YZ plane: the book shows its angle.
+        Some(l) if l.direction.x == 0.0 => format!("Light angle: {:.1}", l.angle_deg()),
+        _ => upper_first(&scene.light().describe()),
+    };
+    let more = match scene.lights.len() {
+        0 | 1 => String::new(),
+        n => format!(" (+{} more)", n - 1),
+    };
+    let step = match info.step {
+        Some(name) => match steps::STEPS.iter().position(|s| s.name == name) {
+            Some(i) => format!("Step {} of {}: {name}", i + 1, steps::STEPS.len()),
+            None => format!("Step: {name}"),
+        },
+        None => format!("Settings: the {} scene's own", scene.name),
+    };
+    let mut lines = vec![format!("{light}{more}"), step, info.settings.summary()];
+    if info.settings.show_depth_map {
+        lines.push(format!("Showing light {}'s shadow map", info.depth_light));
+    }
+    lines.push(match info.frame_ms {
+        Some(ms) => format!("Frame time: {ms:.2} ms"),
+        None => "Frame time: -".to_string(),
+    });
+    if info.keys.is_some() && !info.show_keys {
+        lines.push("H: keys".to_string());
+    }
+    lines
+}
+
+fn upper_first(s: &str) -> String {
+    let mut chars = s.chars();
+    match chars.next() {
+        Some(c) => c.to_uppercase().chain(chars).collect(),
+        None => String::new(),
+    }
+}
+
+/// The quads of the whole HUD (pixels from the frame's top-left corner, y down).
+pub fn layout(atlas: &FontAtlas, info: &HudInfo) -> Vec<TextQuad> {
+    let mut quads = Vec::new();
+    let line = atlas.line_height();
+    let status = status_lines(info);
+    let status_width = status
+        .iter()
+        .map(|l| atlas.text_width(l))
+        .fold(0.0, f32::max);
+    let bottom = panel(
+        atlas,
+        &mut quads,
+        (MARGIN, MARGIN),
+        (status_width, line * status.len() as f32),
+    );
+    let mut y = MARGIN + PADDING;
+    for text in &status {
+        atlas.push_text(&mut quads, text, MARGIN + PADDING, y, TEXT_COLOUR);
+        y += line;
+    }
+    if let (true, Some(keys)) = (info.show_keys, info.keys) {
+        let key_width = keys
+            .iter()
+            .map(|(k, _)| atlas.text_width(k))
+            .fold(0.0, f32::max)
+            .ceil();
+        let text_width = keys
+            .iter()
+            .map(|(_, d)| atlas.text_width(d))
+            .fold(0.0, f32::max);
+        let top = bottom + MARGIN;
+        panel(
+            atlas,
+            &mut quads,
+            (MARGIN, top),
+            (
+                key_width + COLUMN_GAP + text_width,
+                line * keys.len() as f32,
+            ),
+        );
+        let mut y = top + PADDING;
+        let x = MARGIN + PADDING;
+        for (key, does) in keys {
+            atlas.push_text(&mut quads, key, x, y, KEY_COLOUR);
+            atlas.push_text(&mut quads, does, x + key_width + COLUMN_GAP, y, TEXT_COLOUR);
+            y += line;
+        }
+    }
+    quads
+}
+
+/// A panel around text of the given size whose top-left corner is `at`; returns its bottom.
+fn panel(atlas: &FontAtlas, quads: &mut Vec<TextQuad>, at: (f32, f32), text: (f32, f32)) -> f32 {
+    let right = (at.0 + text.0 + 2.0 * PADDING).ceil();
+    let bottom = (at.1 + text.1 + 2.0 * PADDING).ceil();
+    atlas.push_rect(quads, [at.0, at.1, right, bottom], PANEL_COLOUR);
+    bottom
+}
+
+/// The HUD's glyphs and their GL side, made once per GL context.
+pub struct Hud {
+    atlas: FontAtlas,
+    text: TextRenderer,
+}
+
+impl Hud {
+    pub fn new(gl: &Gl) -> Result<Hud> {
+        let atlas = FontAtlas::new(FONT, FONT_PX)?;
+        let text = TextRenderer::new(gl, &atlas)?;
+        Ok(Hud { atlas, text })
+    }
+
+    /// Draws the HUD over the frame in the bound framebuffer.
+    pub fn draw(&mut self, info: &HudInfo, width: u32, height: u32) -> Result<()> {
+        let quads = layout(&self.atlas, info);
+        self.text.draw(&quads, width, height)
+    }
+}
+
+/// Headless frames with the HUD drawn over each (`frame::render_frames_with` and its
+/// after-scene hook), for `render --hud` and the demo's fallback.
+/// The HUD is timed with its frame, and it writes colour only: the other outputs read as
+/// they would without it.
+pub fn render_frames_with_hud(
+    context: &HeadlessContext,
+    scene: &mut Scene,
+    settings: &ShadowSettings,
+    step: Option<&str>,
+    size: (u32, u32),
+    frames: u32,
+    outputs: Outputs,
+) -> Result<Frame> {
+    let gl = context.gl();
+    let mut hud = Hud::new(gl)?;
+    let mut draw = |target: &RenderTarget, scene: &Scene, frame_ms: Option<f64>| {
+        target.bind();
+        let info = HudInfo {
+            scene,
+            settings,
+            step,
+            frame_ms,
+            depth_light: 0,
+            keys: None,
+            show_keys: false,
+        };
+        hud.draw(&info, target.width(), target.height())
+    };
+    render_frames_with(gl, scene, settings, size, frames, outputs, 0, &mut draw)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dummy_at(angle: f32) -> Scene {
+        let mut scene = Scene::load("dummy").unwrap();
+        assert!(scene.set_light_angle(angle));
+        scene
+    }
+
+    const KEYS: &[(&str, &str)] = &[("H", "these keys"), ("ESC", "quit")];
+
+    fn info<'a>(
+        scene: &'a Scene,
+        settings: &'a ShadowSettings,
+        step: Option<&'a str>,
+    ) -> HudInfo<'a> {
+        HudInfo {
+            scene,
+            settings,
+            step,
+            frame_ms: Some(3.25),
+            depth_light: 0,
+            keys: Some(KEYS),
+            show_keys: false,
+        }
+    }
+
+    #[test]
+    fn the_dummy_game_at_45_degrees_shows_angle_step_summary_and_time() {
+        let scene = dummy_at(45.0);
+        let settings = steps::settings_for(&scene, "pcf").unwrap();
+        let lines = status_lines(&info(&scene, &settings, Some("pcf")));
+        assert_eq!(lines[0], "Light angle: 45.0");
+        assert!(
+            lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
+            "{lines:?}"
+        );
+        assert_eq!(lines[2], settings.summary());
+        assert!(
+            lines.contains(&"Frame time: 3.25 ms".to_string()),
+            "{lines:?}"
+        );
+        assert_eq!(lines.last().map(String::as_str), Some("H: keys"));
+
+        let own = status_lines(&info(&scene, &scene.shadow, None));
+        assert_eq!(own[1], "Settings: the dummy scene's own");
+        assert_eq!(own[2], scene.shadow.summary());
+    }
+
+    #[test]
+    fn other_lights_are_described_and_counted() {
+        let scene = Scene::load("three-lights").unwrap();
+        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        let first = upper_first(&scene.light().describe());
+        assert_eq!(lines[0], format!("{first} (+3 more)"));
+        let scene = Scene::load("point-shadows").unwrap();
+        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        assert!(lines[0].starts_with("Point light at"), "{lines:?}");
+    }
+
+    #[test]
+    fn panels_stay_in_the_top_left_and_the_key_panel_lists_every_key() {
+        let atlas = FontAtlas::new(FONT, FONT_PX).unwrap();
+        let scene = dummy_at(45.0);
+        let mut hud = info(&scene, &scene.shadow, None);
+        let closed = layout(&atlas, &hud);
+        hud.show_keys = true;
+        let open = layout(&atlas, &hud);
+        assert!(open.len() > closed.len());
+        // The key panel replaces the hint with the keys and their descriptions.
+        let glyphs = |s: &str| s.chars().filter(|c| !c.is_whitespace()).count();
+        let keys: usize = KEYS.iter().map(|(k, d)| glyphs(k) + glyphs(d)).sum();
+        assert_eq!(open.len(), closed.len() - glyphs("H: keys") + keys + 1);
+        for q in &open {
+            let [x0, y0, x1, y1] = q.rect;
+            assert!(
+                x0 >= 0.0 && y0 >= 0.0 && x1 <= 640.0 && y1 <= 360.0,
+                "{q:?}"
+            );
+        }
+    }
+}
