@@ -350,6 +350,11 @@ shadow_settings! {
             arg(value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_hyphen_values = true);
         /// How a point light's six cube faces are drawn.
         point_pass: PointPass = PointPass::Layered;
+        /// Draw a light's map again only when what it sees changed (the light, its settings,
+        /// a caster, and for a box fitted to the view the camera); `off` draws every map every
+        /// frame, as the chapters do. A cached frame is the same, pixel for pixel.
+        shadow_cache: bool = true,
+            arg(value_name = "on|off", value_parser = clap::builder::BoolishValueParser::new());
     }
     /// Where the light's camera looks from and what it covers.
     "Light camera" {

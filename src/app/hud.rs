@@ -14,7 +14,7 @@
 use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
 use shadowmap::engine::{Gl, HeadlessContext, Outputs, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
-use shadowmap::{steps, Result, Scene, ShadowSettings};
+use shadowmap::{shaders, steps, Result, Scene, ShadowSettings};
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -157,7 +157,7 @@ pub struct Hud {
 impl Hud {
     pub fn new(gl: &Gl) -> Result<Hud> {
         let atlas = FontAtlas::new(FONT, FONT_PX)?;
-        let text = TextRenderer::new(gl, &atlas)?;
+        let text = TextRenderer::new(gl, &atlas, &shaders::text_vert(), &shaders::text_frag())?;
         Ok(Hud { atlas, text })
     }
 

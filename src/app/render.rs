@@ -85,6 +85,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",
             frame.frame_ms.len() - 1
         );
+        let p = frame.depth_passes;
+        println!(
+            "shadow maps: {} depth passes drawn, {} reused (shadow_cache {}); casters drawn {} of {} offered",
+            p.drawn,
+            p.skipped,
+            if settings.shadow_cache { "on" } else { "off" },
+            frame.casters.drawn,
+            frame.casters.total
+        );
     }
     Ok(())
 }

@@ -10,10 +10,9 @@ use std::collections::HashMap;
 use glow::HasContext;
 
 use super::check::check_gl;
-use super::shader_program::ShaderProgram;
+use super::shader_program::{ShaderProgram, ShaderSource};
 use super::Gl;
 use crate::error::{Error, Result};
-use crate::shaders;
 
 /// Characters rasterised besides printable ASCII; anything else is drawn as '?'.
 const EXTRA_CHARS: &[char] = &['°', '×', '²', '…'];
@@ -229,8 +228,15 @@ pub struct TextRenderer {
 
 impl TextRenderer {
     /// Uploads the atlas as an R8 texture and builds the program and vertex layout.
-    pub fn new(gl: &Gl, atlas: &FontAtlas) -> Result<TextRenderer> {
-        let program = ShaderProgram::new(gl, &shaders::text_vert(), &shaders::text_frag(), &[])?;
+    /// `vertex` and `fragment` are the text shaders (`crate::shaders::text_vert` and
+    /// `text_frag`; the GL layer does not reach up for them).
+    pub fn new(
+        gl: &Gl,
+        atlas: &FontAtlas,
+        vertex: &ShaderSource,
+        fragment: &ShaderSource,
+    ) -> Result<TextRenderer> {
+        let program = ShaderProgram::new(gl, vertex, fragment, &[])?;
         unsafe {
             let vao = gl
                 .create_vertex_array()

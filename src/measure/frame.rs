@@ -7,7 +7,7 @@ use crate::engine::render_target::Outputs;
 use crate::engine::{Gl, RenderTarget};
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
-use crate::renderer::{Renderer, Target};
+use crate::renderer::{DepthPasses, Renderer, Target};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 
@@ -28,6 +28,10 @@ pub struct Frame {
     pub frame_ms: Vec<f64>,
     /// The camera position the G-buffer positions are relative to.
     pub origin: DVec3,
+    /// Depth passes drawn and skipped over the frames (the shadow cache).
+    pub depth_passes: DepthPasses,
+    /// Casters drawn into maps against casters offered, over the frames.
+    pub casters: crate::shadows::CasterCounts,
 }
 
 impl Frame {
@@ -208,5 +212,7 @@ pub fn render_frames_with(
         depth_map,
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
+        depth_passes: renderer.depth_passes(),
+        casters: renderer.caster_counts(),
     })
 }

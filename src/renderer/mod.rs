@@ -22,7 +22,7 @@ use crate::scene::{Scene, MAX_LIGHTS};
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::program::ProgramKey;
-use crate::shadows::{DepthPass, ShadowKind, ShadowView, Technique};
+use crate::shadows::{cache, CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
 /// offscreen [`RenderTarget`].
@@ -60,6 +60,14 @@ impl Target<'_> {
     }
 }
 
+/// How many lights' depth passes were drawn, and how many were skipped because the map
+/// still held what the light sees (`shadow_cache`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DepthPasses {
+    pub drawn: u64,
+    pub skipped: u64,
+}
+
 /// The passes of a frame, for [`PassHooks`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pass {
@@ -87,6 +95,12 @@ pub struct Renderer {
     shadows: Vec<Option<Box<dyn Technique>>>,
     /// Each light's camera in the last depth pass.
     views: Vec<Option<ShadowView>>,
+    /// What each light's map holds ([`cache::content_key`]); `None`: draw it again.
+    drawn: Vec<Option<u64>>,
+    /// Depth passes drawn and skipped (the map was still right) so far.
+    passes: DepthPasses,
+    /// Casters drawn into maps against casters offered, so far.
+    casters: CasterCounts,
     depth_programs: DepthPrograms,
     /// Scene programs by what they were compiled for, the last used first (a bench
     /// alternates a timed target without extra outputs and a scored one with them).
@@ -131,6 +145,9 @@ impl Renderer {
             white: Texture::from_image(gl, &white)?,
             shadows: Vec::new(),
             views: Vec::new(),
+            drawn: Vec::new(),
+            passes: DepthPasses::default(),
+            casters: CasterCounts::default(),
             depth_programs: DepthPrograms::default(),
             scene_programs: Vec::new(),
             samplers: Samplers::default(),
@@ -184,6 +201,17 @@ impl Renderer {
         self.views.first()?.as_ref()
     }
 
+    /// Depth passes drawn and skipped so far ([`DepthPasses`]).
+    pub fn depth_passes(&self) -> DepthPasses {
+        self.passes
+    }
+
+    /// Casters drawn into maps against casters offered so far (culled per light volume;
+    /// cascades cull per cascade and count only in the passes).
+    pub fn caster_counts(&self) -> CasterCounts {
+        self.casters
+    }
+
     /// Shadow maps in use and the bytes they take.
     pub fn shadow_memory(&self) -> (usize, u64) {
         let techniques = self.shadows.iter().flatten();
@@ -211,17 +239,36 @@ impl Renderer {
         self.prepare_shadows(scene)?;
         self.hook(Pass::Depth, true);
         for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
-            let settings = scene.lights[index].settings(&self.settings);
+            let light = &scene.lights[index];
+            let settings = light.settings(&self.settings);
+            let Some(technique) = shadow else {
+                *view = None;
+                continue;
+            };
+            let key = settings.shadow_cache.then(|| {
+                cache::content_key(
+                    scene,
+                    index,
+                    &settings,
+                    cache::follows_camera(light, &settings),
+                )
+            });
+            if key.is_some() && key == self.drawn[index] && view.is_some() {
+                self.passes.skipped += 1;
+                continue;
+            }
             let mut pass = DepthPass {
                 gl: &self.gl,
                 meshes: &self.meshes,
                 programs: &mut self.depth_programs,
                 settings: &settings,
+                casters: &mut self.casters,
             };
-            *view = match shadow {
-                Some(technique) => Some(technique.render_depth(&mut pass, scene, index)?),
-                None => None,
-            };
+            // Forget the key first: a failed pass leaves the map to be drawn again.
+            self.drawn[index] = None;
+            *view = Some(technique.render_depth(&mut pass, scene, index)?);
+            self.drawn[index] = key;
+            self.passes.drawn += 1;
         }
         self.hook(Pass::Depth, false);
         check_gl(&self.gl, "the depth-map pass")
@@ -288,6 +335,7 @@ impl Renderer {
         let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
         self.shadows.resize_with(kinds.len(), || None);
         self.views.resize(kinds.len(), None);
+        self.drawn.resize(kinds.len(), None);
         for (i, ((kind, shadow), light)) in kinds
             .into_iter()
             .zip(&mut self.shadows)
@@ -306,6 +354,7 @@ impl Renderer {
             };
             if !fits {
                 *shadow = kind.create(&self.gl, &settings)?;
+                self.drawn[i] = None;
             }
         }
         Ok(())

@@ -2,13 +2,15 @@
 //! draws the shadow casters ("Shadows": the depth pass draws every game item with the
 //! light's matrices).
 
-use glam::DMat4;
+use glam::{DMat4, DVec3};
 
 use crate::engine::{DepthState, Gl, Mesh, ShaderProgram};
 use crate::error::Result;
-use crate::scene::Scene;
+use crate::scene::{Light, Scene};
 use crate::settings::{PointPass, ShadowSettings};
 use crate::shaders;
+
+use super::ShadowView;
 
 /// The depth programs, each compiled when a technique first needs it.
 #[derive(Default)]
@@ -66,6 +68,11 @@ impl DepthPrograms {
     }
 }
 
+/// The scene's shadow casters.
+pub fn casters(scene: &Scene) -> u64 {
+    scene.items.iter().filter(|i| i.casts_shadows).count() as u64
+}
+
 /// The depth pass' state under `settings`: culling and polygon offset.
 pub fn depth_state(settings: &ShadowSettings) -> DepthState {
     DepthState {
@@ -74,8 +81,29 @@ pub fn depth_state(settings: &ShadowSettings) -> DepthState {
     }
 }
 
+/// Whether a caster whose world box is `lo..hi` can land in the map of `light` seen through
+/// `camera`: a point light's cube sees a ball of radius `far`; a 2D map its view volume
+/// (conservatively: the box's corners are not all beyond one of the clip planes).
+pub fn may_land(light: &Light, camera: &ShadowView, lo: DVec3, hi: DVec3) -> bool {
+    if let Light::Point(p) = light {
+        let nearest = p.position.as_dvec3().clamp(lo, hi);
+        return nearest.distance(p.position.as_dvec3()) <= f64::from(p.far);
+    }
+    let clip = camera.projection.as_dmat4() * camera.view64;
+    let corners = super::fitted::corners(lo, hi).map(|c| clip * c.extend(1.0));
+    // A plane all eight corners are beyond: x < -w, x > w, y < -w, y > w, z < -w, z > w.
+    let beyond = |f: &dyn Fn(&glam::DVec4) -> bool| corners.iter().all(f);
+    !(beyond(&|c| c.x < -c.w)
+        || beyond(&|c| c.x > c.w)
+        || beyond(&|c| c.y < -c.w)
+        || beyond(&|c| c.y > c.w)
+        || beyond(&|c| c.z < -c.w)
+        || beyond(&|c| c.z > c.w))
+}
+
 /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a
-/// time, with `uniform` set to `light * model` (composed in double precision).
+/// time, with `uniform` set to `light * model` (composed in double precision); returns how
+/// many it drew.
 pub fn draw_casters(
     meshes: &[Mesh],
     scene: &Scene,
@@ -83,7 +111,8 @@ pub fn draw_casters(
     uniform: &'static str,
     light: DMat4,
     keep: impl Fn(usize) -> bool,
-) {
+) -> usize {
+    let mut drawn = 0;
     for (mesh_id, mesh) in meshes.iter().enumerate() {
         let items = scene
             .items
@@ -92,7 +121,9 @@ pub fn draw_casters(
             .filter(|(k, i)| i.mesh == mesh_id && i.casts_shadows && keep(*k))
             .map(|(_, i)| i);
         mesh.render_list(items, |item| {
+            drawn += 1;
             program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
         });
     }
+    drawn
 }

@@ -6,7 +6,8 @@
 use glam::{DMat4, Mat4, Vec3};
 
 use super::camera::point_camera;
-use super::casters::{depth_state, draw_casters};
+use super::casters::{casters, depth_state, draw_casters, may_land};
+use super::fitted;
 use super::slots::LightGlsl;
 use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
@@ -90,10 +91,13 @@ impl Technique for Cube {
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         program.set_f32("farPlane", light.far);
         let meshes = pass.meshes;
-        let draw = || {
-            draw_casters(meshes, scene, program, "modelLightMatrix", to_light, |_| {
-                true
-            })
+        // Only casters within the light's reach (`far`): the rest would be clipped.
+        let boxes = fitted::item_world_boxes(scene);
+        let camera = point_camera(light, pass.settings);
+        let near = |k: usize| may_land(&scene.lights[index], &camera, boxes[k].0, boxes[k].1);
+        let mut drawn = 0;
+        let mut draw = || {
+            drawn = draw_casters(meshes, scene, program, "modelLightMatrix", to_light, near);
         };
         match point_pass {
             PointPass::Layered => {
@@ -113,7 +117,9 @@ impl Technique for Cube {
                 }
             }
         }
-        Ok(point_camera(light, pass.settings))
+        pass.casters.drawn += drawn as u64;
+        pass.casters.total += casters(scene);
+        Ok(camera)
     }
 
     fn texture(&self) -> &Texture {

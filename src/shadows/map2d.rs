@@ -12,7 +12,7 @@
 //! frustum, or a box fitted to the scene ([`super::fitted`]).
 
 use super::camera::{perspective_view, point_camera};
-use super::casters::{depth_state, draw_casters};
+use super::casters::{casters, depth_state, draw_casters, may_land};
 use super::slots::LightGlsl;
 use super::{
     fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
@@ -79,14 +79,20 @@ impl Technique for Map2d {
         self.map.bind_for_writing();
         state::clear_depth(pass.gl);
         program.set_mat4("orthoProjectionMatrix", &view.projection);
-        draw_casters(
+        // Only casters that can land in the map: the rest would be clipped anyway.
+        let boxes = fitted::item_world_boxes(scene);
+        let light = &scene.lights[index];
+        let keep = |k: usize| may_land(light, &view, boxes[k].0, boxes[k].1);
+        let drawn = draw_casters(
             pass.meshes,
             scene,
             program,
             "modelLightViewMatrix",
             view.view64,
-            |_| true,
+            keep,
         );
+        pass.casters.drawn += drawn as u64;
+        pass.casters.total += casters(scene);
         Ok(view)
     }
 

@@ -12,6 +12,7 @@
 //! scene pass its uniforms. The renderer only asks; [`slots`] lays the lights out in the
 //! scene shader and [`program`] turns what the shader is compiled for into `#define`s.
 
+pub mod cache;
 pub mod camera;
 pub mod cascades;
 pub mod casters;
@@ -142,6 +143,16 @@ pub struct DepthPass<'a> {
     pub meshes: &'a [Mesh],
     pub programs: &'a mut casters::DepthPrograms,
     pub settings: &'a ShadowSettings,
+    /// Casters drawn, and casters there were, over the passes so far.
+    pub casters: &'a mut CasterCounts,
+}
+
+/// Casters drawn into maps against casters offered (those outside a light's volume are
+/// culled), summed over depth passes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CasterCounts {
+    pub drawn: u64,
+    pub total: u64,
 }
 
 /// One shadow technique for one light.

@@ -1,0 +1,91 @@
+//! Cached shadow maps (past the chapters, which redraw every map every frame): a light's
+//! map is drawn again only when what it sees changed. What it sees is summed up in a
+//! [`content_key`]: the light, its settings, every caster's mesh and placement, and, for a
+//! map that follows the camera (a fitted box, cascades), the camera and the frame's shape.
+//! An unchanged key means the depth pass would write the same texels, so it is skipped.
+
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+
+use crate::scene::{Light, Scene};
+use crate::settings::ShadowSettings;
+
+/// A number that changes whenever light `index`'s depth pass could draw something else.
+/// `follows_camera`: the technique's box depends on the viewer (then every caster counts);
+/// otherwise only the casters that can land in the light's volume count, so a caster
+/// turning out of its sight does not make it draw again.
+pub fn content_key(
+    scene: &Scene,
+    index: usize,
+    settings: &ShadowSettings,
+    follows_camera: bool,
+) -> u64 {
+    let light = &scene.lights[index];
+    let camera = (!follows_camera).then(|| super::light_camera(scene, index, settings));
+    let boxes = super::fitted::item_world_boxes(scene);
+    let mut h = DefaultHasher::new();
+    // Debug text hashes every field of the light and the settings, floats bit for bit
+    // (their `Debug` prints the shortest exact form), without a Hash impl on each type.
+    format!("{light:?}").hash(&mut h);
+    format!("{settings:?}").hash(&mut h);
+    for (item, (lo, hi)) in scene.items.iter().zip(&boxes) {
+        let seen = match &camera {
+            Some(c) => super::casters::may_land(light, c, *lo, *hi),
+            None => true,
+        };
+        if !item.casts_shadows || !seen {
+            continue;
+        }
+        item.mesh.hash(&mut h);
+        for v in [item.position, item.rotation, item.scale] {
+            v.to_array().map(f32::to_bits).hash(&mut h);
+        }
+    }
+    if follows_camera {
+        format!("{:?}", scene.fitting_camera()).hash(&mut h);
+        scene.size.hash(&mut h);
+    }
+    h.finish()
+}
+
+/// Whether `light`'s map under `settings` follows the camera (its box is fitted to what the
+/// camera sees).
+pub fn follows_camera(light: &Light, settings: &ShadowSettings) -> bool {
+    matches!(light, Light::Directional(_))
+        && (settings.cascades > 1 || settings.fit == crate::settings::Fit::Scene)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_key_changes_with_what_the_light_sees_and_only_then() {
+        let mut scene = Scene::load("dummy").unwrap();
+        let s = scene.shadow;
+        let key = |sc: &Scene, s: &ShadowSettings| {
+            content_key(sc, 0, s, follows_camera(&sc.lights[0], s))
+        };
+        let k0 = key(&scene, &s);
+        assert_eq!(k0, key(&scene, &s));
+        // The camera does not matter to the book's hand-set box ...
+        scene.camera.position.x += 1.0;
+        assert_eq!(k0, key(&scene, &s));
+        // ... but does to a fitted one.
+        let fitted = ShadowSettings {
+            fit: crate::settings::Fit::Scene,
+            ..s
+        };
+        let f0 = key(&scene, &fitted);
+        scene.camera.position.x += 1.0;
+        assert_ne!(f0, key(&scene, &fitted));
+        // A turning caster, a setting and the light all change it.
+        let k1 = key(&scene, &s);
+        scene.update();
+        assert_ne!(k1, key(&scene, &s));
+        let k2 = key(&scene, &s);
+        assert_ne!(k2, key(&scene, &ShadowSettings { bias: 0.01, ..s }));
+        scene.set_light_angle(60.0);
+        assert_ne!(k2, key(&scene, &s));
+    }
+}

@@ -1,0 +1,99 @@
+//! Cached shadow maps: a light's map is drawn again only when what it sees changed, and a
+//! cached frame is the same, pixel for pixel, as one drawn from scratch.
+
+mod common;
+
+use shadowmap::engine::Outputs;
+use shadowmap::frame::render_frames;
+use shadowmap::settings::ShadowSettings;
+use shadowmap::Scene;
+
+const FRAMES: u32 = 6;
+
+/// The last of `FRAMES` animated frames with the cache on or off, and the passes drawn.
+fn last_frame(name: &str, cache: bool, extra: impl Fn(&mut ShadowSettings)) -> (Vec<u8>, u64, u64) {
+    let ctx = common::context();
+    let mut scene = Scene::load(name).unwrap();
+    let mut s = ShadowSettings {
+        shadow_cache: cache,
+        ..scene.shadow
+    };
+    extra(&mut s);
+    let outputs = Outputs {
+        visibility: true,
+        gbuffer: false,
+    };
+    let frame = render_frames(ctx.gl(), &mut scene, &s, 240, 160, FRAMES, outputs)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let mut bytes = frame.colour.rgba.clone();
+    bytes.extend(
+        frame
+            .visibility
+            .unwrap()
+            .iter()
+            .map(|v| v.map_or(0, |v| (v * 255.0) as u8)),
+    );
+    (bytes, frame.depth_passes.drawn, frame.depth_passes.skipped)
+}
+
+#[test]
+fn a_cached_frame_equals_an_uncached_one_on_every_built_in_scene() {
+    for name in Scene::builtin_names() {
+        let (cached, drawn, skipped) = last_frame(name, true, |_| {});
+        let (fresh, fresh_drawn, fresh_skipped) = last_frame(name, false, |_| {});
+        assert!(cached == fresh, "{name}: the cached frame differs");
+        let lights = Scene::load(name)
+            .unwrap()
+            .lights
+            .iter()
+            .filter(|l| l.casts_shadows())
+            .count() as u64;
+        assert_eq!(
+            (fresh_drawn, fresh_skipped),
+            (lights * u64::from(FRAMES), 0),
+            "{name}: without the cache every map is drawn every frame"
+        );
+        assert_eq!(drawn + skipped, lights * u64::from(FRAMES), "{name}");
+        assert!(drawn >= lights, "{name}: each map is drawn at least once");
+    }
+}
+
+#[test]
+fn only_maps_whose_light_sees_a_change_are_drawn_again() {
+    // LearnOpenGL's scene does not move: its one map is drawn once.
+    let (_, drawn, skipped) = last_frame("learnopengl", true, |_| {});
+    assert_eq!((drawn, skipped), (1, u64::from(FRAMES) - 1));
+    // The DummyGame's cube turns: its map is drawn every frame.
+    let (_, drawn, skipped) = last_frame("dummy", true, |_| {});
+    assert_eq!((drawn, skipped), (u64::from(FRAMES), 0));
+    // A caster turning outside the light's box does not make it draw again: LearnOpenGL's
+    // light with a spinning cube 50 units away, beyond its +-10 box.
+    let ctx = common::context();
+    let mut scene = Scene::load("learnopengl").unwrap();
+    let mut far = scene.items[1].clone();
+    far.position = glam::Vec3::new(50.0, 0.0, 0.0);
+    far.spin = glam::Vec3::new(0.0, 3.0, 0.0);
+    scene.items.push(far);
+    let s = scene.shadow;
+    let frame = render_frames(
+        ctx.gl(),
+        &mut scene,
+        &s,
+        120,
+        90,
+        FRAMES,
+        Outputs::default(),
+    )
+    .unwrap();
+    assert_eq!(frame.depth_passes.drawn, 1);
+    // Nor is it drawn into the map: the casters drawn leave it out.
+    let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &s).unwrap();
+    renderer.render_depth_map(&scene).unwrap();
+    let c = renderer.caster_counts();
+    assert_eq!((c.drawn, c.total), (4, 5), "{c:?}");
+    // A box fitted to the view follows the camera, which stays put: drawn once.
+    let (_, drawn, _) = last_frame("learnopengl", true, |s| {
+        s.fit = shadowmap::settings::Fit::Scene
+    });
+    assert_eq!(drawn, 1);
+}
