@@ -31,7 +31,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Open the interactive window (the default).
-    #[command(after_help = super::demo::keys_help())]
+    #[command(after_help = super::keys::keys_help())]
     Demo(DemoArgs),
     /// Render frames headless (EGL, no display needed) and write PNG files.
     Render(RenderArgs),

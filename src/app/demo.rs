@@ -34,35 +34,6 @@ const ANGLE_STEP: f32 = 0.05;
 /// Where the no-display fallback writes its picture.
 const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 
-/// The demo's keys, as `window_event` and `update` handle them: the HUD's key panel (H) and
-/// `shadowmap demo --help` both list this, so a key added there belongs here too.
-pub const KEYS: &[(&str, &str)] = &[
-    ("UP / RIGHT", "raise the light angle (faster while held)"),
-    ("DOWN / LEFT", "lower the light angle (0 to 180 degrees)"),
-    ("W / S", "move forward / back"),
-    ("A / D", "move left / right"),
-    ("Z / X", "move down / up"),
-    ("right drag", "look around"),
-    ("1..9, 0, -, =", "chapter step 1 to 12"),
-    ("Backspace", "the scene's own settings"),
-    ("M", "each casting light's shadow map, then the scene"),
-    ("C", "tint the cascades"),
-    ("K", "cascades: 1, 2, 3, 4, 1, ..."),
-    ("H", "show / hide these keys"),
-    ("F12", "save a screenshot (PNG, current folder)"),
-    ("ESC", "quit"),
-];
-
-/// [`KEYS`] as a table for the terminal.
-pub fn keys_help() -> String {
-    let width = KEYS.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
-    let rows: Vec<String> = KEYS
-        .iter()
-        .map(|(k, d)| format!("  {k:<width$}  {d}"))
-        .collect();
-    format!("Keys:\n{}", rows.join("\n"))
-}
-
 pub fn run(args: &DemoArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     let settings = args.settings.apply(&mut scene)?;
@@ -447,7 +418,7 @@ impl Demo {
                 step: self.step,
                 frame_ms: self.shown_ms,
                 depth_light: self.depth_light,
-                keys: Some(KEYS),
+                keys: Some(super::keys::KEYS),
                 show_keys: self.show_keys,
             };
             if let Err(e) = hud.draw(&info, w, h) {

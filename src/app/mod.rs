@@ -6,6 +6,7 @@ pub mod compare;
 pub mod demo;
 pub mod gallery;
 pub mod hud;
+pub mod keys;
 pub mod plot;
 pub mod render;
 pub mod soak;
