@@ -2,11 +2,13 @@
 //! `LearnOpenGlBaseline`, a plain implementation of the tutorial's frame, in the same run:
 //! both draw 800x600 frames in alternating blocks, each frame timed as wall time around
 //! render + glFinish. Run with `cargo bench --bench learnopengl_baseline`;
-//! `SHADOWMAP_BENCH_BLOCKS=N` changes the number of blocks per side (default 10).
+//! `SHADOWMAP_BENCH_BLOCKS=N` changes the number of blocks per side (default 10). Two more
+//! sides give the shadows' overhead: `plain` (no shadows) and `cached` (the map kept while
+//! nothing moves, `shadow_cache`); ours draws its map every frame, as the baseline does.
 //!
 //! Wall time on this machine drifts by more than the difference measured, so the frames
 //! can also be counted in instructions, which do not drift: `SHADOWMAP_BENCH_ONLY=baseline`
-//! (or `ours`) with `SHADOWMAP_BENCH_FRAMES=N` draws N frames of one side and nothing else;
+//! (or `ours`, `cached`, `plain`) with `SHADOWMAP_BENCH_FRAMES=N` draws N frames of one side and nothing else;
 //! run it under `valgrind --tool=callgrind` with `LP_NUM_THREADS=0` (llvmpipe rasterising
 //! on the calling thread) for two values of N, and the difference over the difference in
 //! N is the instructions per frame.
@@ -16,6 +18,7 @@ use std::time::Instant;
 use glam::Vec3;
 use shadowmap::engine::baseline::LearnOpenGlBaseline;
 use shadowmap::engine::{HeadlessContext, Outputs, RenderTarget};
+use shadowmap::settings::ShadowSettings;
 use shadowmap::{Renderer, Scene, Target};
 
 const WARM_UP: usize = 20;
@@ -55,10 +58,45 @@ fn main() -> shadowmap::Result<()> {
     for item in &mut scene.items {
         item.spin = Vec3::ZERO;
     }
-    let settings = scene.shadow;
+    // Ours draws its map every frame, as the baseline does; `cached` reuses it (nothing
+    // moves) and `plain` draws no shadows: the shadows' overhead is a frame minus `plain`.
+    let settings = ShadowSettings {
+        shadow_cache: false,
+        ..scene.shadow
+    };
     let baseline = LearnOpenGlBaseline::new(gl)?;
     let mut renderer = Renderer::new(gl, &scene, &settings)?;
     let target = RenderTarget::new(gl, WIDTH, HEIGHT, Outputs::default())?;
+    let mut cached = Renderer::new(
+        gl,
+        &scene,
+        &ShadowSettings {
+            shadow_cache: true,
+            ..settings
+        },
+    )?;
+    let mut plain = Renderer::new(
+        gl,
+        &scene,
+        &ShadowSettings {
+            shadows: false,
+            ..settings
+        },
+    )?;
+    let mut side_error = None;
+    let mut cached_frame = || {
+        if let Err(e) = cached.render(&scene, Target::Offscreen(&target)) {
+            side_error.get_or_insert(e);
+        }
+        cached.finish();
+    };
+    let mut plain_error = None;
+    let mut plain_frame = || {
+        if let Err(e) = plain.render(&scene, Target::Offscreen(&target)) {
+            plain_error.get_or_insert(e);
+        }
+        plain.finish();
+    };
 
     let mut base_frame = || {
         baseline.render_frame();
@@ -79,7 +117,11 @@ fn main() -> shadowmap::Result<()> {
         match side.as_str() {
             "baseline" => time_block(frames, &mut base_frame),
             "ours" => time_block(frames, &mut ours_frame),
-            other => panic!("SHADOWMAP_BENCH_ONLY={other}: expected baseline or ours"),
+            "cached" => time_block(frames, &mut cached_frame),
+            "plain" => time_block(frames, &mut plain_frame),
+            other => {
+                panic!("SHADOWMAP_BENCH_ONLY={other}: expected baseline, ours, cached or plain")
+            }
         };
         if let Some(e) = ours_error {
             return Err(e);
@@ -89,15 +131,24 @@ fn main() -> shadowmap::Result<()> {
     }
     time_block(WARM_UP, &mut base_frame);
     time_block(WARM_UP, &mut ours_frame);
+    time_block(WARM_UP, &mut cached_frame);
+    time_block(WARM_UP, &mut plain_frame);
     let (mut base_all, mut ours_all, mut pair_ratios) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut cached_all, mut plain_all, mut overhead_ratios) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..blocks {
         let base = time_block(BLOCK, &mut base_frame);
         let ours = time_block(BLOCK, &mut ours_frame);
+        let plain = time_block(BLOCK, &mut plain_frame);
+        let cached = time_block(BLOCK, &mut cached_frame);
         pair_ratios.push(quantile(&ours, 0.5) / quantile(&base, 0.5));
+        let p = quantile(&plain, 0.5);
+        overhead_ratios.push((quantile(&cached, 0.5) - p) / (quantile(&ours, 0.5) - p));
         base_all.extend(base);
         ours_all.extend(ours);
+        plain_all.extend(plain);
+        cached_all.extend(cached);
     }
-    if let Some(e) = ours_error {
+    if let Some(e) = ours_error.or(side_error).or(plain_error) {
         return Err(e);
     }
 
@@ -115,7 +166,12 @@ fn main() -> shadowmap::Result<()> {
          (wall time to glFinish), on {}",
         ctx.device_name()
     );
-    for (name, t) in [("baseline", &base_all), ("ours", &ours_all)] {
+    for (name, t) in [
+        ("baseline", &base_all),
+        ("ours", &ours_all),
+        ("cached", &cached_all),
+        ("plain", &plain_all),
+    ] {
         println!(
             "  {name:9} median {:7.3} ms   p95 {:7.3} ms",
             quantile(t, 0.5),
@@ -128,6 +184,16 @@ fn main() -> shadowmap::Result<()> {
         quantile(&pair_ratios, 0.0),
         quantile(&pair_ratios, 0.5),
         quantile(&pair_ratios, 1.0)
+    );
+    let plain_median = quantile(&plain_all, 0.5);
+    println!(
+        "  shadow overhead (frame minus plain): ours {:.3} ms, cached {:.3} ms; cached / ours \
+         per block: min {:.3} median {:.3} max {:.3}",
+        quantile(&ours_all, 0.5) - plain_median,
+        quantile(&cached_all, 0.5) - plain_median,
+        quantile(&overhead_ratios, 0.0),
+        quantile(&overhead_ratios, 0.5),
+        quantile(&overhead_ratios, 1.0)
     );
     println!("  image difference: {diff:.3} mean absolute per channel (0..255)");
     Ok(())

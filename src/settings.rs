@@ -310,6 +310,10 @@ macro_rules! shadow_settings {
 shadow_settings! {
     /// The map itself.
     "Shadow map" {
+        /// Shadows at all: `off` lets every light light all it faces, the frame a shadow
+        /// technique's cost (its overhead) is measured against.
+        shadows: bool = true,
+            arg(value_name = "on|off", value_parser = clap::builder::BoolishValueParser::new());
         /// Side of the square shadow map in texels (the book: 1024; at most the driver's
         /// maximum texture size).
         map_size: u32 = 1024, arg(value_name = "N", allow_negative_numbers = true);
@@ -420,6 +424,9 @@ pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
 impl ShadowSettings {
     /// A short human summary, for window titles and reports.
     pub fn summary(&self) -> String {
+        if !self.shadows {
+            return "no shadows".to_string();
+        }
         let bias = match self.bias_mode {
             BiasMode::None => "no bias".to_string(),
             BiasMode::Constant => format!("bias {}", self.bias),

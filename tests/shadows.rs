@@ -129,3 +129,47 @@ fn moving_the_light_moves_the_shadow_where_rays_say() {
     assert!(centres[1].1 < 0.0 && centres[2].1 > 0.0, "{centres:?}");
     assert!(centres[2].1 < centres[3].1, "{centres:?}");
 }
+
+#[test]
+fn with_shadows_off_no_map_is_made_and_everything_facing_the_light_is_lit() {
+    use shadowmap::engine::{Outputs, RenderTarget};
+    use shadowmap::renderer::{Renderer, Target};
+    let ctx = common::context();
+    let scene = common::dummy(45.0);
+    let off = shadowmap::ShadowSettings {
+        shadows: false,
+        ..scene.shadow
+    };
+    let mut renderer = Renderer::new(ctx.gl(), &scene, &off).unwrap();
+    let target = RenderTarget::new(
+        ctx.gl(),
+        160,
+        90,
+        Outputs {
+            visibility: true,
+            gbuffer: false,
+        },
+    )
+    .unwrap();
+    renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+    assert_eq!(renderer.shadow_memory(), (0, 0));
+    let vis = target.read_visibility().unwrap();
+    let on_geometry: Vec<f32> = vis.iter().flatten().copied().collect();
+    assert!(
+        on_geometry.len() > 1000,
+        "{} pixels of geometry",
+        on_geometry.len()
+    );
+    assert!(on_geometry.iter().all(|v| *v == 1.0));
+    // With shadows on, the same frame has shadowed pixels.
+    renderer.set_settings(&scene.shadow).unwrap();
+    renderer.render(&scene, Target::Offscreen(&target)).unwrap();
+    let shadowed = target
+        .read_visibility()
+        .unwrap()
+        .iter()
+        .flatten()
+        .filter(|v| **v < 0.5)
+        .count();
+    assert!(shadowed > 100, "{shadowed} shadowed pixels");
+}

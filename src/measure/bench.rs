@@ -363,6 +363,10 @@ impl Stat {
 pub struct BenchRow {
     pub config: BenchConfig,
     pub wall_ms: Stat,
+    /// The shadows' cost: the median frame minus the median frame without shadows, timed
+    /// just before it (the figure a technique can change; the scene pass' shading is in
+    /// both).
+    pub overhead_ms: f64,
     /// Wall time of each pass, with glFinish between them. All timings come from the
     /// quieter of two blocks of frames (see [`run`]).
     pub depth_wall_ms: Stat,
@@ -434,7 +438,21 @@ pub fn run(
     let Some(first) = configs.first() else {
         return Ok(Vec::new());
     };
-    let mut renderer = Renderer::new(gl, scene, &first.settings)?;
+    // The bench measures the cost of drawing each map, so no map is reused from the cache.
+    let uncached = |s: &ShadowSettings| ShadowSettings {
+        shadow_cache: false,
+        ..*s
+    };
+    let mut renderer = Renderer::new(gl, scene, &uncached(&first.settings))?;
+    // The same frame without shadows, for each configuration's overhead.
+    let mut plain = Renderer::new(
+        gl,
+        scene,
+        &ShadowSettings {
+            shadows: false,
+            ..uncached(&first.settings)
+        },
+    )?;
     let timer = std::rc::Rc::new(GpuPassTimes::new(gl)?);
     renderer.set_hooks(timer.clone());
     let target = RenderTarget::new(gl, opts.width, opts.height, Outputs::default())?;
@@ -462,12 +480,19 @@ pub fn run(
     let order: Vec<usize> = (0..configs.len()).chain((0..configs.len()).rev()).collect();
     for (step, &i) in order.iter().enumerate() {
         let config = &configs[i];
-        renderer.set_settings(&config.settings)?;
+        renderer.set_settings(&uncached(&config.settings))?;
         for _ in 0..opts.warmup {
             renderer.render(scene, Target::Offscreen(&target))?;
         }
         renderer.finish();
         let mut t = Timings::default();
+        // The unshadowed frame, right before the configuration's own block.
+        for _ in 0..block.div_ceil(2) {
+            let start = Instant::now();
+            plain.render(scene, Target::Offscreen(&target))?;
+            plain.finish();
+            t.plain.push(ms(start.elapsed()));
+        }
         for _ in 0..block {
             // glFinish after each pass splits the wall time per pass. A software driver like
             // llvmpipe rasterises the depth pass only when its result is needed, so its GPU
@@ -500,6 +525,7 @@ pub fn run(
         let row = BenchRow {
             config: config.clone(),
             wall_ms: Stat::of(&quieter.wall),
+            overhead_ms: Stat::of(&quieter.wall).median - Stat::of(&quieter.plain).median,
             depth_wall_ms: Stat::of(&quieter.depth_wall),
             scene_wall_ms: Stat::of(&quieter.scene_wall),
             depth_gpu_ms: Stat::of(&quieter.depth_gpu),
@@ -518,6 +544,8 @@ pub fn run(
 #[derive(Default)]
 struct Timings {
     wall: Vec<f64>,
+    /// Frames without shadows, next to the block.
+    plain: Vec<f64>,
     depth_wall: Vec<f64>,
     scene_wall: Vec<f64>,
     depth_gpu: Vec<f64>,
@@ -549,7 +577,7 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
 /// The CSV columns, in order.
 pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
-wall_ms_median,wall_ms_p95,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
+wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
 misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto";
 
@@ -580,6 +608,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             format!("{:?}", s.beyond_far).to_lowercase(),
             format!("{:.4}", r.wall_ms.median),
             format!("{:.4}", r.wall_ms.p95),
+            format!("{:.4}", r.overhead_ms),
             format!("{:.4}", r.depth_wall_ms.median),
             format!("{:.4}", r.scene_wall_ms.median),
             format!("{:.4}", r.depth_gpu_ms.median),
@@ -605,8 +634,8 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
 /// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first.
 pub fn to_markdown(rows: &[BenchRow]) -> String {
     let mut out = String::from(
-        "| configuration | wall ms (median / p95) | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut shown: Vec<&BenchRow> = rows
         .iter()
@@ -626,9 +655,10 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
             r.wall_ms.median,
             r.wall_ms.p95,
+            r.overhead_ms,
             r.depth_wall_ms.median,
             r.scene_wall_ms.median,
             pct(m.misclassified_rate),

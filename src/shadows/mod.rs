@@ -66,7 +66,7 @@ impl ShadowKind {
     /// The kind a light gets under its own `settings`, alone in its scene.
     pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
         match light {
-            l if !l.casts_shadows() => ShadowKind::None,
+            l if !l.casts_shadows() || !settings.shadows => ShadowKind::None,
             Light::Point(_) => ShadowKind::Cube,
             Light::Directional(_)
                 if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
