@@ -65,49 +65,31 @@ fn main() -> shadowmap::Result<()> {
         ..scene.shadow
     };
     let baseline = LearnOpenGlBaseline::new(gl)?;
-    let mut renderer = Renderer::new(gl, &scene, &settings)?;
     let target = RenderTarget::new(gl, WIDTH, HEIGHT, Outputs::default())?;
-    let mut cached = Renderer::new(
-        gl,
-        &scene,
-        &ShadowSettings {
-            shadow_cache: true,
-            ..settings
-        },
-    )?;
-    let mut plain = Renderer::new(
-        gl,
-        &scene,
-        &ShadowSettings {
-            shadows: false,
-            ..settings
-        },
-    )?;
-    let mut side_error = None;
-    let mut cached_frame = || {
-        if let Err(e) = cached.render(&scene, Target::Offscreen(&target)) {
-            side_error.get_or_insert(e);
+    let side = |s: ShadowSettings| Renderer::new(gl, &scene, &s);
+    let mut renderer = side(settings)?;
+    let mut cached = side(ShadowSettings {
+        shadow_cache: true,
+        ..settings
+    })?;
+    let mut plain = side(ShadowSettings {
+        shadows: false,
+        ..settings
+    })?;
+    // The first error of any side; checked after timing.
+    let error = std::cell::RefCell::new(None);
+    let frame_of = |r: &mut Renderer| {
+        if let Err(e) = r.render(&scene, Target::Offscreen(&target)) {
+            error.borrow_mut().get_or_insert(e);
         }
-        cached.finish();
+        r.finish();
     };
-    let mut plain_error = None;
-    let mut plain_frame = || {
-        if let Err(e) = plain.render(&scene, Target::Offscreen(&target)) {
-            plain_error.get_or_insert(e);
-        }
-        plain.finish();
-    };
-
+    let mut ours_frame = || frame_of(&mut renderer);
+    let mut cached_frame = || frame_of(&mut cached);
+    let mut plain_frame = || frame_of(&mut plain);
     let mut base_frame = || {
         baseline.render_frame();
         baseline.finish();
-    };
-    let mut ours_error = None;
-    let mut ours_frame = || {
-        if let Err(e) = renderer.render(&scene, Target::Offscreen(&target)) {
-            ours_error.get_or_insert(e);
-        }
-        renderer.finish();
     };
     if let Ok(side) = std::env::var("SHADOWMAP_BENCH_ONLY") {
         let frames: usize = std::env::var("SHADOWMAP_BENCH_FRAMES")
@@ -123,7 +105,7 @@ fn main() -> shadowmap::Result<()> {
                 panic!("SHADOWMAP_BENCH_ONLY={other}: expected baseline, ours, cached or plain")
             }
         };
-        if let Some(e) = ours_error {
+        if let Some(e) = error.borrow_mut().take() {
             return Err(e);
         }
         println!("drew {frames} frames of {side}");
@@ -148,7 +130,7 @@ fn main() -> shadowmap::Result<()> {
         plain_all.extend(plain);
         cached_all.extend(cached);
     }
-    if let Some(e) = ours_error.or(side_error).or(plain_error) {
+    if let Some(e) = error.borrow_mut().take() {
         return Err(e);
     }
 

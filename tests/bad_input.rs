@@ -6,10 +6,11 @@
 //! `shadowmap render --scene tests/data/bad/<case>.toml`); binary ones (PNGs, a binary OBJ) are
 //! made here, in a folder under CARGO_TARGET_TMPDIR.
 
-use std::io::Read;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
+use std::time::Duration;
 
 /// No case may take longer than this (a hang is a failure).
 const TIMEOUT: Duration = Duration::from_secs(120);
@@ -30,48 +31,11 @@ fn case_dir(case: &str) -> PathBuf {
     dir
 }
 
-struct Run {
-    success: bool,
-    stdout: String,
-    stderr: String,
-}
+use common::Run;
 
 /// Runs the binary in `cwd` with a time limit; a hang kills it and fails the case.
 fn run_in(case: &str, cwd: &Path, args: &[&str]) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    let drain = |mut r: Box<dyn Read + Send>| {
-        std::thread::spawn(move || {
-            let mut s = Vec::new();
-            let _ = r.read_to_end(&mut s);
-            String::from_utf8_lossy(&s).into_owned()
-        })
-    };
-    let out = drain(Box::new(child.stdout.take().unwrap()));
-    let err = drain(Box::new(child.stderr.take().unwrap()));
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if start.elapsed() > TIMEOUT {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("[{case}] hangs: no exit after {TIMEOUT:?} (shadowmap {args:?})");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    Run {
-        success: status.success(),
-        stdout: out.join().unwrap(),
-        stderr: err.join().unwrap(),
-    }
+    common::run_binary(case, cwd, args, TIMEOUT)
 }
 
 /// `shadowmap render --scene <scene> --out <dir>/x.png --size 64x36 <extra>`.

@@ -4,10 +4,11 @@
 //! doing. (Tests may run as root, so a read-only folder is no test: /dev/full and a path
 //! under a regular file are.)
 
-use std::io::Read;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
+use std::time::Duration;
 
 /// A fresh folder for one case.
 fn case_dir(case: &str) -> PathBuf {
@@ -19,49 +20,12 @@ fn case_dir(case: &str) -> PathBuf {
     dir
 }
 
-struct Run {
-    success: bool,
-    stdout: String,
-    stderr: String,
-}
+use common::Run;
 
 /// Runs the binary in `cwd`; a run that does not end in two minutes (a FIFO read, say) is
 /// killed and fails the test.
 fn run(cwd: &Path, args: &[&str]) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    let drain = |mut r: Box<dyn Read + Send>| {
-        std::thread::spawn(move || {
-            let mut s = Vec::new();
-            let _ = r.read_to_end(&mut s);
-            String::from_utf8_lossy(&s).into_owned()
-        })
-    };
-    let out = drain(Box::new(child.stdout.take().unwrap()));
-    let err = drain(Box::new(child.stderr.take().unwrap()));
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if start.elapsed() > Duration::from_secs(120) {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("shadowmap {args:?} hangs");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    Run {
-        success: status.success(),
-        stdout: out.join().unwrap(),
-        stderr: err.join().unwrap(),
-    }
+    common::run_binary("io", cwd, args, Duration::from_secs(120))
 }
 
 /// Checks a run that must fail: exit status, one "error: " message holding every needle,
