@@ -52,7 +52,15 @@ pub struct SceneArgs {
     /// three-lights) or a .toml scene file.
     #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
     pub scene: String,
-    /// The DummyGame light angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
+    /// The first light's angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
+    ///
+    /// The light turns about the horizontal axis across its azimuth: 0 is the horizon
+    /// towards the azimuth, 90 overhead, 180 the opposite horizon; the azimuth stays. A light
+    /// in the YZ plane (the DummyGame's) has the azimuth +Z: the direction is the book's
+    /// (0, sin a, cos a). Any other directional light's azimuth is its own horizontal
+    /// direction (LearnOpenGL's light at (-2, 4, -1): about 60.8 degrees towards (-2, 0, -1)),
+    /// and a light given by `position` keeps its distance from the origin. Spot and point
+    /// lights have no angle: the flag is refused for them.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub light_angle: Option<f32>,
     /// Frame size in pixels; default: the scene's size.
