@@ -186,3 +186,20 @@ fn light_angle_help_says_what_the_angle_means() {
         );
     }
 }
+
+#[test]
+fn demo_help_lists_the_angle_keys_and_the_inset() {
+    // The key table is the one the HUD's key panel shows.
+    let demo = common::stdout_of(bin().args(["demo", "--help"]));
+    for fragment in [
+        "lower it (0 to 180, about its azimuth)",
+        "the shadow-map inset (bottom-right)",
+        "--inset",
+        "0 is the horizon",
+    ] {
+        assert!(
+            demo.contains(fragment),
+            "demo --help lacks {fragment:?}:\n{demo}"
+        );
+    }
+}

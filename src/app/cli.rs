@@ -107,6 +107,11 @@ pub struct DemoArgs {
     /// Leave the HUD (light angle, step, settings, frame time) out of the frame.
     #[arg(long)]
     pub no_hud: bool,
+    /// Start with the shadow-map inset shown (the I key toggles it): the map in the
+    /// bottom-right corner, a quarter of the frame's height on a side. Also drawn by the
+    /// no-display fallback.
+    #[arg(long)]
+    pub inset: bool,
 }
 
 impl Default for DemoArgs {
@@ -125,6 +130,7 @@ impl Default for DemoArgs {
             no_animation: false,
             stress_window: false,
             no_hud: false,
+            inset: false,
         }
     }
 }
@@ -150,6 +156,12 @@ pub struct RenderArgs {
     /// Draw the demo's HUD (light, step, settings, frame time) over the image.
     #[arg(long)]
     pub hud: bool,
+    /// Draw the shadow-map inset over the image, as the demo's I key does: the first
+    /// casting light's map in the bottom-right corner, a quarter of the frame's height on a
+    /// side (under the HUD when both are given). The other outputs are the same with it as
+    /// without.
+    #[arg(long)]
+    pub inset: bool,
 }
 
 #[derive(Args, Debug, Clone)]
