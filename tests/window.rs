@@ -194,3 +194,44 @@ fn window_screenshots_carry_the_hud_in_the_top_left_corner() {
     assert!(d.glyphs > 800, "too few bright glyph pixels: {d:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_draws_the_shadow_map_inset_in_its_corner_as_headless_does() {
+    let dir = display_and_dir("inset");
+    let shot = |name: &str, extra: &[&str]| {
+        let path = dir.join(name);
+        stdout_of(
+            bin()
+                .args(["demo", "--no-animation", "--no-hud", "--size", "640x360"])
+                .args(extra)
+                .args(["--exit-after-frames", "5", "--screenshot"])
+                .arg(&path),
+        );
+        load(&path)
+    };
+    let with = shot("inset.png", &["--inset"]);
+    let without = shot("plain.png", &[]);
+    // 640 x 360: a 90-pixel square 8 pixels from the right and bottom edges.
+    let inside = |x: u32, y: u32| (542..632).contains(&x) && (262..352).contains(&y);
+    let (mut outside, mut changed) = (0, 0);
+    for (x, y, p) in with.enumerate_pixels() {
+        match (inside(x, y), p == without.get_pixel(x, y)) {
+            (false, false) => outside += 1,
+            (true, false) => changed += 1,
+            _ => {}
+        }
+    }
+    assert_eq!(outside, 0, "the inset drew outside its corner");
+    assert!(changed > 6000, "only {changed} inset pixels differ");
+    // The same picture as `render --inset`.
+    let headless = dir.join("headless.png");
+    stdout_of(
+        bin()
+            .args(["render", "--size", "640x360", "--inset", "--out"])
+            .arg(&headless),
+    );
+    let mean = mean_difference(&with, &load(&headless));
+    assert!(mean < 1.0, "window and headless insets differ by {mean}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -52,7 +52,15 @@ pub struct SceneArgs {
     /// three-lights) or a .toml scene file.
     #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
     pub scene: String,
-    /// The DummyGame light angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
+    /// The first light's angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
+    ///
+    /// The light turns about the horizontal axis across its azimuth: 0 is the horizon
+    /// towards the azimuth, 90 overhead, 180 the opposite horizon; the azimuth stays. A light
+    /// in the YZ plane (the DummyGame's) has the azimuth +Z: the direction is the book's
+    /// (0, sin a, cos a). Any other directional light's azimuth is its own horizontal
+    /// direction (LearnOpenGL's light at (-2, 4, -1): about 60.8 degrees towards (-2, 0, -1)),
+    /// and a light given by `position` keeps its distance from the origin. Spot and point
+    /// lights have no angle: the flag is refused for them.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub light_angle: Option<f32>,
     /// Frame size in pixels; default: the scene's size.
@@ -99,6 +107,11 @@ pub struct DemoArgs {
     /// Leave the HUD (light angle, step, settings, frame time) out of the frame.
     #[arg(long)]
     pub no_hud: bool,
+    /// Start with the shadow-map inset shown (the I key toggles it): the map in the
+    /// bottom-right corner, a quarter of the frame's height on a side. Also drawn by the
+    /// no-display fallback.
+    #[arg(long)]
+    pub inset: bool,
 }
 
 impl Default for DemoArgs {
@@ -117,6 +130,7 @@ impl Default for DemoArgs {
             no_animation: false,
             stress_window: false,
             no_hud: false,
+            inset: false,
         }
     }
 }
@@ -142,6 +156,12 @@ pub struct RenderArgs {
     /// Draw the demo's HUD (light, step, settings, frame time) over the image.
     #[arg(long)]
     pub hud: bool,
+    /// Draw the shadow-map inset over the image, as the demo's I key does: the first
+    /// casting light's map in the bottom-right corner, a quarter of the frame's height on a
+    /// side (under the HUD when both are given). The other outputs are the same with it as
+    /// without.
+    #[arg(long)]
+    pub inset: bool,
 }
 
 #[derive(Args, Debug, Clone)]

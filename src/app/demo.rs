@@ -10,6 +10,7 @@ use shadowmap::engine::window_context::WindowContext;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
+use shadowmap::output::check_output_image;
 use shadowmap::settings::MAX_CASCADES;
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
@@ -20,7 +21,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::cli::DemoArgs;
-use super::hud::{render_frames_with_hud, Hud, HudInfo};
+use super::hud::{inset_rect, render_frames_with_overlays, Hud, HudInfo, Overlays};
 
 /// The book's fixed update rate.
 const UPDATES_PER_SECOND: f64 = 30.0;
@@ -37,6 +38,11 @@ const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 pub fn run(args: &DemoArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     let settings = args.settings.apply(&mut scene)?;
+    // What needs no window or driver is checked before anything opens.
+    args.settings.check_values(&scene, &settings)?;
+    if let Some(path) = &args.screenshot {
+        check_output_image("--screenshot", path)?;
+    }
     if args.no_animation {
         scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
         for light in &mut scene.lights {
@@ -47,16 +53,8 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     }
     let event_loop = match EventLoop::new() {
         Ok(l) => l,
-        Err(e) => {
-            if args.exit_after_frames.is_some() {
-                // A scripted window run must not quietly turn into a headless one.
-                return Err(Error::Context(format!(
-                    "cannot open a window: {e}. A window needs an X11 display (set DISPLAY, e.g. \
-                     run `Xvfb :99 &` and `DISPLAY=:99`)"
-                )));
-            }
-            return headless_fallback(args, scene, &settings, &e.to_string());
-        }
+        // winit's own error names its source file and line: the fallback says what it means.
+        Err(_) => return headless_fallback(args, scene, &settings),
     };
     let size = args.scene.size(&scene);
     let mut demo = Demo {
@@ -89,7 +87,12 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         minimised: false,
         skipped: 0,
         depth_light: 0,
+        azimuth: None,
+        angle_keys_idle: false,
+        show_inset: args.inset,
     };
+    // Taken once: past the overhead a light's own horizontal part points the other way.
+    demo.azimuth = demo.scene.light_azimuth();
     event_loop
         .run_app(&mut demo)
         .map_err(|e| Error::Context(format!("window event loop: {e}")))?;
@@ -105,45 +108,99 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     }
 }
 
-/// No display: render the same frame headless and say what a window would need.
-fn headless_fallback(
-    args: &DemoArgs,
-    mut scene: Scene,
-    settings: &ShadowSettings,
-    why: &str,
-) -> Result<()> {
+/// Why there is no window, from the environment winit read (its own error names a source
+/// file of winit's, not the cause).
+fn no_display_reason() -> String {
+    let var = |name| std::env::var(name).ok().filter(|v| !v.is_empty());
+    match (var("DISPLAY"), var("WAYLAND_DISPLAY")) {
+        (None, None) => "DISPLAY and WAYLAND_DISPLAY are not set".to_string(),
+        (Some(d), _) => format!("the X server at DISPLAY={d} refused the connection"),
+        (None, Some(w)) => format!("the Wayland compositor at WAYLAND_DISPLAY={w} refused"),
+    }
+}
+
+/// The one line the no-display fallback prints: why, what was written, how to get a window.
+pub fn fallback_message(
+    reason: &str,
+    scene: &str,
+    frames: u32,
+    path: &Path,
+    replaced: bool,
+) -> String {
+    format!(
+        "No display for a window ({reason}): rendered {frames} frame{} of the {scene} scene \
+         headless to {}{} instead. For a window, run under X11: `apt-get install xvfb`, \
+         `Xvfb :99 &`, then `DISPLAY=:99 shadowmap`.",
+        if frames == 1 { "" } else { "s" },
+        path.display(),
+        if replaced {
+            " (replacing the file there)"
+        } else {
+            ""
+        },
+    )
+}
+
+/// No display: render what the window would have shown headless, the same way with or
+/// without `--exit-after-frames` (N frames, the scene animating between them, else one),
+/// to `--screenshot` if given, else [`FALLBACK_IMAGE`]; the path is checked before any
+/// rendering.
+fn headless_fallback(args: &DemoArgs, mut scene: Scene, settings: &ShadowSettings) -> Result<()> {
+    let path = args
+        .screenshot
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(FALLBACK_IMAGE));
+    check_output_image(
+        match args.screenshot {
+            Some(_) => "--screenshot",
+            None => "the no-display fallback",
+        },
+        &path,
+    )?;
+    let frames = match args.exit_after_frames {
+        None => 1,
+        Some(n) => u32::try_from(n.max(1)).map_err(|_| {
+            Error::Invalid(format!(
+                "--exit-after-frames {n}: without a display the frames are rendered headless; \
+                 expected at most {}",
+                u32::MAX
+            ))
+        })?,
+    };
     let (w, h) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, settings)?;
-    let frame = match args.no_hud {
-        false => render_frames_with_hud(
+    let overlays = Overlays {
+        hud: !args.no_hud,
+        inset: args.inset,
+    };
+    let frame = match overlays.hud || overlays.inset {
+        true => render_frames_with_overlays(
             &context,
             &mut scene,
             settings,
             args.settings.step.as_deref(),
             (w, h),
-            1,
+            frames,
             Outputs::default(),
+            overlays,
         )?,
-        true => render_frames(
+        false => render_frames(
             context.gl(),
             &mut scene,
             settings,
             w,
             h,
-            1,
+            frames,
             Outputs::default(),
         )?,
     };
-    let path = Path::new(FALLBACK_IMAGE);
-    frame.colour.save_png(path)?;
-    let shown = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let replaced = std::fs::metadata(&path).is_ok_and(|m| m.is_file());
+    frame.colour.save_png(&path)?;
+    let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
     println!(
-        "No display for a window ({why}).\nRendered the {} scene headless instead: {}\n\
-         For the interactive window, run under an X11 display: set DISPLAY (on a headless \
-         machine: `apt-get install xvfb`, `Xvfb :99 &`, `DISPLAY=:99 cargo run --release`).",
-        scene.name,
-        shown.display()
+        "{}",
+        fallback_message(&no_display_reason(), &scene.name, frames, &shown, replaced)
     );
     Ok(())
 }
@@ -187,6 +244,12 @@ struct Demo {
     skipped: u64,
     /// The light whose map M shows.
     depth_light: usize,
+    /// The azimuth the angle keys turn the first light about; `None`: not directional.
+    azimuth: Option<Vec3>,
+    /// The angle keys were pressed on a light they cannot turn (said once).
+    angle_keys_idle: bool,
+    /// Whether the shadow-map inset is drawn (I).
+    show_inset: bool,
 }
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
@@ -309,6 +372,18 @@ impl Demo {
         self.change_settings(event_loop, |s| s.show_depth_map = next.is_some());
     }
 
+    /// The angle keys on a spot or point light: said once, on the terminal and in the HUD.
+    fn angle_keys_idle(&mut self) {
+        if !std::mem::replace(&mut self.angle_keys_idle, true) {
+            println!(
+                "note: the arrow keys turn a directional light's angle; the {} scene's first \
+                 light is a {}, so they do nothing here",
+                self.scene.name,
+                self.scene.light().describe()
+            );
+        }
+    }
+
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
         self.error.get_or_insert(e);
         self.running = None;
@@ -348,12 +423,14 @@ impl Demo {
         } else {
             self.angle_inc = 0.0;
         }
-        if let (true, Some(light)) = (
+        // The book's `lightAngle += angleInc`, clamped to 0..180, about the light's azimuth.
+        if let (true, Some(azimuth), Some(light)) = (
             self.angle_inc != 0.0,
-            self.scene.light_mut().as_directional_mut(),
+            self.azimuth,
+            self.scene.light().as_directional(),
         ) {
-            let angle = light.angle_deg() + self.angle_inc;
-            self.scene.set_light_angle(angle);
+            let angle = light.angle_about(azimuth) + self.angle_inc;
+            self.scene.set_light_angle_about(azimuth, angle);
         }
         let mut step = Vec3::ZERO;
         let axis = |neg, pos| f32::from(u8::from(held(pos))) - f32::from(u8::from(held(neg)));
@@ -408,8 +485,23 @@ impl Demo {
         ) {
             return self.fail(event_loop, e);
         }
-        // The shadow-map inset goes here, between the scene and the HUD, once the renderer
-        // can draw a map into a corner of the frame (see `hud.rs`).
+        // The shadow-map inset, between the scene and the HUD (not over the map itself).
+        if let (true, false, Some(rect)) = (
+            self.show_inset,
+            self.settings.show_depth_map,
+            inset_rect(w, h),
+        ) {
+            let target = Target::Window {
+                width: w,
+                height: h,
+            };
+            if let Err(e) = running
+                .renderer
+                .render_depth_inset(&self.scene, target, rect)
+            {
+                return self.fail(event_loop, e);
+            }
+        }
         if let Some(hud) = &mut running.hud {
             running.context.bind_default_framebuffer();
             let info = HudInfo {
@@ -420,6 +512,8 @@ impl Demo {
                 depth_light: self.depth_light,
                 keys: Some(super::keys::KEYS),
                 show_keys: self.show_keys,
+                azimuth: self.azimuth,
+                angle_keys_idle: self.angle_keys_idle,
             };
             if let Err(e) = hud.draw(&info, w, h) {
                 return self.fail(event_loop, e);
@@ -446,6 +540,8 @@ impl Demo {
             };
             match image.save_png(&path) {
                 Ok(()) => println!("screenshot: {}", path.display()),
+                // The scripted run's screenshot is what it was for: a failed write fails it.
+                Err(e) if last => return self.fail(event_loop, e),
                 Err(e) => eprintln!("error: {e}"),
             }
         }
@@ -529,6 +625,15 @@ impl ApplicationHandler for Demo {
                             }
                             KeyCode::KeyM if !event.repeat => self.next_depth_view(event_loop),
                             KeyCode::KeyH if !event.repeat => self.show_keys = !self.show_keys,
+                            KeyCode::KeyI if !event.repeat => self.show_inset = !self.show_inset,
+                            KeyCode::ArrowUp
+                            | KeyCode::ArrowDown
+                            | KeyCode::ArrowLeft
+                            | KeyCode::ArrowRight
+                                if self.azimuth.is_none() =>
+                            {
+                                self.angle_keys_idle()
+                            }
                             KeyCode::KeyC if !event.repeat => self
                                 .change_settings(event_loop, |s| {
                                     s.show_cascades = !s.show_cascades

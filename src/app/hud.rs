@@ -4,17 +4,15 @@
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
 //! are `engine::text`'s. The status panel sits in the top-left corner and the key panel
-//! under it; the bottom-right corner is left free for the shadow-map inset (a small picture
-//! of the map, toggled by a key), which needs a renderer pass of its own.
-//!
-//! The shadow-map inset (to come): the renderer draws the map into the bottom-right corner,
-//! a quarter of the frame's height on each side, after the scene and before the HUD; the
-//! demo's place for the call is marked "shadow-map inset" in `demo.rs`.
+//! under it; the bottom-right corner holds the shadow-map inset ([`inset_rect`]: the
+//! light's map beside the shadows it makes, LearnOpenGL's debug quad made small), which
+//! the renderer draws (`Renderer::render_depth_inset`) after the scene and before the HUD.
 
+use glam::Vec3;
 use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
-use shadowmap::engine::{Gl, HeadlessContext, Outputs, RenderTarget};
+use shadowmap::engine::{Gl, HeadlessContext, Outputs, PixelRect, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
-use shadowmap::{shaders, steps, Result, Scene, ShadowSettings};
+use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -46,15 +44,35 @@ pub struct HudInfo<'a> {
     pub keys: Option<&'a [(&'a str, &'a str)]>,
     /// Whether the key panel is open.
     pub show_keys: bool,
+    /// The azimuth the angle keys turn the first light about (the demo keeps it, since past
+    /// the overhead the light's own horizontal part points the other way); `None`: the
+    /// light's own.
+    pub azimuth: Option<Vec3>,
+    /// The angle keys were pressed but the first light is a spot or point light.
+    pub angle_keys_idle: bool,
 }
+
+/// Said once when the angle keys are pressed on a scene whose first light has no angle.
+pub const ANGLE_KEYS_IDLE: &str =
+    "Arrow keys: the first light is not directional; they turn nothing here";
 
 /// The status lines, top to bottom.
 pub fn status_lines(info: &HudInfo) -> Vec<String> {
     let scene = info.scene;
     let light = match scene.light().as_directional() {
-        // The DummyGame's light turns in the YZ plane: the book shows its angle.
-        Some(l) if l.direction.x == 0.0 => format!("Light angle: {:.1}", l.angle_deg()),
-        _ => upper_first(&scene.light().describe()),
+        Some(l) => {
+            let azimuth = info.azimuth.unwrap_or_else(|| l.azimuth());
+            match azimuth == Vec3::Z {
+                // The DummyGame's light turns in the YZ plane: the book shows its angle.
+                true => format!("Light angle: {:.1}", l.angle_about(azimuth)),
+                false => format!(
+                    "Light angle: {:.1} over azimuth {:.2}",
+                    l.angle_about(azimuth),
+                    azimuth
+                ),
+            }
+        }
+        None => upper_first(&scene.light().describe()),
     };
     let more = match scene.lights.len() {
         0 | 1 => String::new(),
@@ -68,6 +86,9 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         None => format!("Settings: the {} scene's own", scene.name),
     };
     let mut lines = vec![format!("{light}{more}"), step, info.settings.summary()];
+    if info.angle_keys_idle {
+        lines.push(ANGLE_KEYS_IDLE.to_string());
+    }
     if info.settings.show_depth_map {
         lines.push(format!("Showing light {}'s shadow map", info.depth_light));
     }
@@ -168,11 +189,36 @@ impl Hud {
     }
 }
 
-/// Headless frames with the HUD drawn over each (`frame::render_frames_with` and its
-/// after-scene hook), for `render --hud` and the demo's fallback.
-/// The HUD is timed with its frame, and it writes colour only: the other outputs read as
-/// they would without it.
-pub fn render_frames_with_hud(
+/// Where the shadow-map inset goes in a `width` x `height` frame: the bottom-right corner,
+/// a quarter of the frame's height on a side, [`MARGIN`] from the edges (GL's rectangle,
+/// y from the bottom). `None` when the frame is too small to hold one.
+pub fn inset_rect(width: u32, height: u32) -> Option<PixelRect> {
+    let side = height / 4;
+    let margin = MARGIN as u32;
+    (side > 0 && side + 2 * margin <= width && side + 2 * margin <= height).then(|| PixelRect {
+        x: width - side - margin,
+        y: margin,
+        width: side,
+        height: side,
+    })
+}
+
+/// What is drawn over a headless frame.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Overlays {
+    /// The HUD (`render --hud`, the demo's fallback).
+    pub hud: bool,
+    /// The shadow-map inset (`render --inset`).
+    pub inset: bool,
+}
+
+/// Headless frames with the overlays drawn over each (`frame::render_frames_with` and its
+/// after-scene hook), for `render --hud --inset` and the demo's fallback: the inset first,
+/// the HUD over it. Both are timed with their frame, and both write colour only: the other
+/// outputs read as they would without them.
+/// The inset shows the frame's own maps (the hook hands over the frame's renderer).
+#[allow(clippy::too_many_arguments)]
+pub fn render_frames_with_overlays(
     context: &HeadlessContext,
     scene: &mut Scene,
     settings: &ShadowSettings,
@@ -180,22 +226,33 @@ pub fn render_frames_with_hud(
     size: (u32, u32),
     frames: u32,
     outputs: Outputs,
+    overlays: Overlays,
 ) -> Result<Frame> {
     let gl = context.gl();
-    let mut hud = Hud::new(gl)?;
-    let mut draw = |target: &RenderTarget, scene: &Scene, frame_ms: Option<f64>| {
-        target.bind();
-        let info = HudInfo {
-            scene,
-            settings,
-            step,
-            frame_ms,
-            depth_light: 0,
-            keys: None,
-            show_keys: false,
+    let mut hud = overlays.hud.then(|| Hud::new(gl)).transpose()?;
+    let mut draw =
+        |renderer: &mut Renderer, target: &RenderTarget, scene: &Scene, frame_ms: Option<f64>| {
+            let rect = inset_rect(target.width(), target.height());
+            if let (true, Some(rect)) = (overlays.inset, rect) {
+                renderer.render_depth_inset(scene, Target::Offscreen(target), rect)?;
+            }
+            let Some(hud) = &mut hud else {
+                return Ok(());
+            };
+            target.bind();
+            let info = HudInfo {
+                scene,
+                settings,
+                step,
+                frame_ms,
+                depth_light: 0,
+                keys: None,
+                show_keys: false,
+                azimuth: None,
+                angle_keys_idle: false,
+            };
+            hud.draw(&info, target.width(), target.height())
         };
-        hud.draw(&info, target.width(), target.height())
-    };
     render_frames_with(gl, scene, settings, size, frames, outputs, 0, &mut draw)
 }
 
@@ -224,6 +281,8 @@ mod tests {
             depth_light: 0,
             keys: Some(KEYS),
             show_keys: false,
+            azimuth: None,
+            angle_keys_idle: false,
         }
     }
 
@@ -253,11 +312,54 @@ mod tests {
     fn other_lights_are_described_and_counted() {
         let scene = Scene::load("three-lights").unwrap();
         let lines = status_lines(&info(&scene, &scene.shadow, None));
-        let first = upper_first(&scene.light().describe());
-        assert_eq!(lines[0], format!("{first} (+3 more)"));
-        let scene = Scene::load("point-shadows").unwrap();
+        // The sun has an azimuth of its own: the angle is measured from it, and shown.
+        let sun = scene.light().as_directional().unwrap();
+        let angle = sun.angle_deg();
+        assert_eq!(
+            lines[0],
+            format!(
+                "Light angle: {angle:.1} over azimuth {:.2} (+3 more)",
+                sun.azimuth()
+            )
+        );
+        let mut scene = Scene::load("point-shadows").unwrap();
         let lines = status_lines(&info(&scene, &scene.shadow, None));
         assert!(lines[0].starts_with("Point light at"), "{lines:?}");
+        assert!(!lines.iter().any(|l| l == ANGLE_KEYS_IDLE), "{lines:?}");
+        // The angle keys pressed on it: said in the HUD.
+        let mut hud = info(&scene, &scene.shadow, None);
+        hud.angle_keys_idle = true;
+        assert!(status_lines(&hud).iter().any(|l| l == ANGLE_KEYS_IDLE));
+        assert!(!scene.set_light_angle(30.0));
+    }
+
+    #[test]
+    fn past_the_overhead_the_hud_keeps_the_demos_azimuth() {
+        let mut scene = Scene::load("learnopengl").unwrap();
+        let azimuth = scene.light_azimuth().unwrap();
+        assert!(scene.set_light_angle_about(azimuth, 120.0));
+        let mut hud = info(&scene, &scene.shadow, None);
+        hud.azimuth = Some(azimuth);
+        assert_eq!(
+            status_lines(&hud)[0],
+            "Light angle: 120.0 over azimuth [-0.89, 0.00, -0.45]"
+        );
+        // Measured from its own horizontal part, the light would read 60 the other way.
+        hud.azimuth = None;
+        assert_eq!(
+            status_lines(&hud)[0],
+            "Light angle: 60.0 over azimuth [0.89, 0.00, 0.45]"
+        );
+    }
+
+    #[test]
+    fn the_inset_sits_in_the_bottom_right_corner() {
+        let r = inset_rect(640, 360).unwrap();
+        assert_eq!((r.x, r.y, r.width, r.height), (542, 8, 90, 90));
+        let r = inset_rect(1280, 720).unwrap();
+        assert_eq!((r.x, r.y, r.width, r.height), (1092, 8, 180, 180));
+        assert!(inset_rect(16, 16).is_none());
+        assert!(inset_rect(1, 720).is_none());
     }
 
     #[test]

@@ -4,7 +4,7 @@
 /// The keys, as the demo handles them: a key added there belongs here too.
 pub const KEYS: &[(&str, &str)] = &[
     ("UP / RIGHT", "raise the light angle (faster while held)"),
-    ("DOWN / LEFT", "lower the light angle (0 to 180 degrees)"),
+    ("DOWN / LEFT", "lower it (0 to 180, about its azimuth)"),
     ("W / S", "move forward / back"),
     ("A / D", "move left / right"),
     ("Z / X", "move down / up"),
@@ -14,6 +14,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("M", "each casting light's shadow map, then the scene"),
     ("C", "tint the cascades"),
     ("K", "cascades: 1, 2, 3, 4, 1, ..."),
+    ("I", "the shadow-map inset (bottom-right)"),
     ("H", "show / hide these keys"),
     ("F12", "save a screenshot (PNG, current folder)"),
     ("ESC", "quit"),

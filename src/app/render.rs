@@ -13,6 +13,7 @@ use shadowmap::shadows::ShadowKind;
 use shadowmap::{Error, Result};
 
 use super::cli::RenderArgs;
+use super::hud::{inset_rect, render_frames_with_overlays, Overlays};
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
@@ -31,14 +32,34 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             )));
         }
     }
+    if args.inset {
+        // Legal but it would do nothing: say so once, naming the flag.
+        let kinds = ShadowKind::for_lights(&scene.lights, &settings);
+        if kinds.iter().all(|k| *k == ShadowKind::None) {
+            eprintln!(
+                "warning: --inset: no light of the {} scene casts a shadow, so there is no \
+                 map to show; the image is drawn without it",
+                scene.name
+            );
+        } else if inset_rect(width, height).is_none() {
+            eprintln!(
+                "warning: --inset: a {width}x{height} frame is too small for the inset (a \
+                 quarter of the height on a side, 8 pixels from the edges); drawn without it"
+            );
+        }
+    }
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &settings)?;
     let outputs = Outputs {
         visibility: args.shadow_out.is_some(),
         gbuffer: false,
     };
-    let frame = match args.hud {
-        true => super::hud::render_frames_with_hud(
+    let overlays = Overlays {
+        hud: args.hud,
+        inset: args.inset,
+    };
+    let frame = match overlays.hud || overlays.inset {
+        true => render_frames_with_overlays(
             &context,
             &mut scene,
             &settings,
@@ -46,6 +67,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             (width, height),
             args.frames,
             outputs,
+            overlays,
         )?,
         false => render_frames(
             context.gl(),

@@ -37,6 +37,8 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames [{elapsed} < {eta}] {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
+    // Taken once: past the overhead a light's own horizontal part points the other way.
+    let azimuth = scene.light_azimuth();
     for frame in 0..args.frames {
         if frame % 50 == 0 {
             // Every 50 frames: the next step and the next map size.
@@ -47,7 +49,9 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             renderer.set_settings(&s)?;
         }
         let angle = 10.0 + (frame as f32 * 0.7) % 160.0;
-        scene.set_light_angle(angle);
+        if let Some(azimuth) = azimuth {
+            scene.set_light_angle_about(azimuth, angle);
+        }
         scene.update();
         renderer
             .render(&scene, Target::Offscreen(&target))

@@ -30,6 +30,6 @@ pub use render_target::{Outputs, RenderTarget};
 pub use sampler::{BoundSampler, Sampler, Samplers, Sampling};
 pub use shader_program::{ShaderProgram, ShaderSource};
 pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
-pub use state::{DepthPassGuard, DepthState};
+pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use texture::Texture;
 pub use timer::PassTimer;

@@ -98,6 +98,78 @@ impl Drop for NoDepthTest {
     }
 }
 
+/// A rectangle of the bound framebuffer in pixels, GL's way: `x`, `y` from the bottom-left
+/// corner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PixelRect {
+    pub x: u32,
+    pub y: u32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// Drawing into part of the bound framebuffer (the shadow-map inset): while it lives the
+/// viewport is `rect` and only the first colour output is written, so a headless target's
+/// extra outputs (visibility, positions) keep the scene's values under the picture. Dropping
+/// it puts back the viewport and draw buffers it found.
+pub struct OverlayViewport {
+    gl: Gl,
+    viewport: [i32; 4],
+    /// The draw buffers it found, trailing NONEs left out; restored only if it cut them.
+    draw_buffers: Vec<u32>,
+}
+
+impl OverlayViewport {
+    pub fn begin(gl: &Gl, rect: PixelRect) -> OverlayViewport {
+        let mut viewport = [0i32; 4];
+        let mut draw_buffers = Vec::new();
+        unsafe {
+            gl.get_parameter_i32_slice(glow::VIEWPORT, &mut viewport);
+            let max = gl.get_parameter_i32(glow::MAX_DRAW_BUFFERS).clamp(1, 16) as u32;
+            draw_buffers
+                .extend((0..max).map(|i| gl.get_parameter_i32(glow::DRAW_BUFFER0 + i) as u32));
+            while draw_buffers.last() == Some(&glow::NONE) {
+                draw_buffers.pop();
+            }
+            if draw_buffers.len() > 1 {
+                gl.draw_buffers(&draw_buffers[..1]);
+            }
+            gl.viewport(
+                rect.x as i32,
+                rect.y as i32,
+                rect.width as i32,
+                rect.height as i32,
+            );
+        }
+        OverlayViewport {
+            gl: gl.clone(),
+            viewport,
+            draw_buffers,
+        }
+    }
+}
+
+impl Drop for OverlayViewport {
+    fn drop(&mut self) {
+        let [x, y, w, h] = self.viewport;
+        unsafe {
+            self.gl.viewport(x, y, w, h);
+            if self.draw_buffers.len() > 1 {
+                self.gl.draw_buffers(&self.draw_buffers);
+            }
+        }
+    }
+}
+
+/// Binds the window's framebuffer and sets the viewport to its size, without clearing (to
+/// draw over a frame already there).
+pub fn bind_window(gl: &Gl, width: u32, height: u32) {
+    unsafe {
+        gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        gl.viewport(0, 0, width as i32, height as i32);
+    }
+}
+
 /// Blocks until the GPU has finished (wall-time measurements).
 pub fn finish(gl: &Gl) {
     unsafe { gl.finish() };

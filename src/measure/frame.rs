@@ -118,7 +118,7 @@ pub fn render_frames_of_light(
     outputs: Outputs,
     light: usize,
 ) -> Result<Frame> {
-    let mut nothing = |_: &RenderTarget, _: &Scene, _: Option<f64>| Ok(());
+    let mut nothing = |_: &mut Renderer, _: &RenderTarget, _: &Scene, _: Option<f64>| Ok(());
     let size = (width, height);
     render_frames_with(
         gl,
@@ -132,9 +132,11 @@ pub fn render_frames_of_light(
     )
 }
 
-/// Drawn over each frame after the scene, before it is timed to its end: gets the target
-/// (to bind), the scene and the previous frame's time (the HUD of `render --hud`).
-pub type AfterScene<'a> = &'a mut dyn FnMut(&RenderTarget, &Scene, Option<f64>) -> Result<()>;
+/// Drawn over each frame after the scene, before it is timed to its end: gets the frame's
+/// renderer (its maps, for the inset), the target (to bind), the scene and the previous
+/// frame's time (the HUD and inset of `render --hud --inset`).
+pub type AfterScene<'a> =
+    &'a mut dyn FnMut(&mut Renderer, &RenderTarget, &Scene, Option<f64>) -> Result<()>;
 
 /// [`render_frames_of_light`] with `after_scene` drawn over every frame.
 #[allow(clippy::too_many_arguments)]
@@ -170,7 +172,7 @@ pub fn render_frames_with(
         }
         let start = std::time::Instant::now();
         renderer.render(scene, Target::Offscreen(&target))?;
-        after_scene(&target, scene, frame_ms.last().copied())?;
+        after_scene(&mut renderer, &target, scene, frame_ms.last().copied())?;
         renderer.finish();
         frame_ms.push(start.elapsed().as_secs_f64() * 1000.0);
     }

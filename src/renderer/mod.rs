@@ -48,6 +48,15 @@ impl Target<'_> {
         }
     }
 
+    /// Binds the target and sets the viewport to its size, keeping what is drawn there (to
+    /// draw over a frame).
+    fn bind(&self, gl: &Gl) {
+        match self {
+            Target::Offscreen(t) => t.bind(),
+            Target::Window { width, height } => state::bind_window(gl, *width, *height),
+        }
+    }
+
     /// Binds the target, sets the viewport to its size in pixels (not the window's logical
     /// size) and clears it.
     fn bind_and_clear(&self, gl: &Gl, colour: [f32; 4]) {
@@ -322,6 +331,54 @@ impl Renderer {
             )?;
         }
         check_gl(&self.gl, "the depth-map view")
+    }
+
+    /// The shadow-map inset: the depth view (LearnOpenGL's debug quad, [`depth_view`]) drawn
+    /// into `rect` of `target` over the frame already there, so the map and the shadows it
+    /// makes are seen together. Shows the light the depth view is set to
+    /// ([`Renderer::set_depth_view_light`]) or, if that one has no map, the first light
+    /// with one; with no map at all it draws nothing. Writes colour only; call after
+    /// [`Renderer::render`] (it needs this frame's maps).
+    pub fn render_depth_inset(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        rect: state::PixelRect,
+    ) -> Result<()> {
+        if self.shadows.len() != scene.lights.len() {
+            return Err(Error::Invalid(
+                "render_depth_inset before render_depth_map: there are no shadow maps yet".into(),
+            ));
+        }
+        let (width, height) = target.size();
+        let inside = rect.width > 0
+            && rect.height > 0
+            && u64::from(rect.x) + u64::from(rect.width) <= u64::from(width)
+            && u64::from(rect.y) + u64::from(rect.height) <= u64::from(height);
+        if !inside {
+            return Err(Error::Invalid(format!(
+                "shadow-map inset {rect:?}: expected a non-empty rectangle inside the \
+                 {width}x{height} frame"
+            )));
+        }
+        let has_map = |i: &usize| self.shadows.get(*i).is_some_and(Option::is_some);
+        let Some(index) = std::iter::once(self.depth_view_light)
+            .chain(0..self.shadows.len())
+            .find(has_map)
+        else {
+            return Ok(());
+        };
+        target.bind(&self.gl);
+        if let Some(technique) = self.shadows[index].as_deref() {
+            let _overlay = state::OverlayViewport::begin(&self.gl, rect);
+            self.depth_view.draw(
+                &self.gl,
+                &mut self.samplers,
+                technique,
+                self.views[index].as_ref(),
+            )?;
+        }
+        check_gl(&self.gl, "the shadow-map inset")
     }
 
     /// Blocks until the GPU has finished (for wall-time measurements).

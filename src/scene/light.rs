@@ -59,15 +59,62 @@ pub struct DirectionalLight {
 
 impl DirectionalLight {
     /// The DummyGame's direction for a light angle in degrees: (0, sin a, cos a), so 90 is
-    /// overhead, 0 and 180 are at the horizon along +Z and -Z.
+    /// overhead, 0 and 180 are at the horizon along +Z and -Z. The book's light turns
+    /// about the X axis; this is [`Self::direction_about`] with the azimuth +Z.
     pub fn direction_from_angle(angle_deg: f32) -> Vec3 {
-        let a = angle_deg.to_radians();
-        Vec3::new(0.0, a.sin(), a.cos()).normalize()
+        Self::direction_about(Vec3::Z, angle_deg)
     }
 
-    /// The inverse of [`Self::direction_from_angle`] for directions in the YZ plane.
+    /// The direction at `angle_deg` in the vertical plane through `azimuth` (a horizontal
+    /// unit vector): 0 is the horizon towards `azimuth`, 90 overhead, 180 the opposite
+    /// horizon. The book's angle keys generalised: the light turns about the horizontal
+    /// axis across its azimuth, so the azimuth stays and only the elevation changes.
+    pub fn direction_about(azimuth: Vec3, angle_deg: f32) -> Vec3 {
+        let a = angle_deg.to_radians();
+        // With azimuth +Z every product below is exact: (0, sin a, cos a), the book's.
+        (azimuth * a.cos() + Vec3::Y * a.sin()).normalize()
+    }
+
+    /// The horizontal unit vector this light's angle is measured from. A direction in the
+    /// YZ plane (x = 0) is the DummyGame's: +Z, so its angle is the book's `atan2(y, z)`
+    /// from 0 to 180 through the overhead. Any other direction's azimuth is its own
+    /// horizontal part (LearnOpenGL's light at (-2, 4, -1) has the azimuth (-2, 0, -1)).
+    pub fn azimuth(&self) -> Vec3 {
+        let d = self.direction;
+        match d.x == 0.0 {
+            true => Vec3::Z,
+            // Straight overhead (no horizontal part to speak of): the book's azimuth.
+            false => Vec3::new(d.x, 0.0, d.z).try_normalize().unwrap_or(Vec3::Z),
+        }
+    }
+
+    /// The light's angle in degrees measured from `azimuth` (see [`Self::direction_about`]),
+    /// from -90 to 270: a light just below the opposite horizon reads a little over 180, not
+    /// near -180. (In f32, sin 180 degrees is -8.7e-8: the book's light at 180 sits a hair
+    /// below the horizon, and read as -180 the keys' clamp would throw it back to 0.)
+    pub fn angle_about(&self, azimuth: Vec3) -> f32 {
+        let d = self.direction;
+        let a = d.y.atan2(d.dot(azimuth)).to_degrees();
+        match a < -90.0 {
+            true => a + 360.0,
+            false => a,
+        }
+    }
+
+    /// The light's angle from its own azimuth ([`Self::azimuth`]); for the DummyGame's
+    /// light the book's angle (the inverse of [`Self::direction_from_angle`]).
     pub fn angle_deg(&self) -> f32 {
-        self.direction.y.atan2(self.direction.z).to_degrees()
+        self.angle_about(self.azimuth())
+    }
+
+    /// Turns the light to `angle_deg` about `azimuth`. A light given by a position
+    /// (LearnOpenGL's) keeps its distance from the origin: the point it shades from moves
+    /// with the shadow camera, so shading and shadow still agree.
+    pub fn set_angle_about(&mut self, azimuth: Vec3, angle_deg: f32) {
+        self.direction = Self::direction_about(azimuth, angle_deg);
+        if let Some(p) = &mut self.shading_position {
+            *p = self.direction * p.length();
+        }
     }
 
     /// The shadow camera's position.
@@ -234,7 +281,12 @@ impl Light {
             Light::Directional(l) if l.direction.x == 0.0 => {
                 format!("light {:.1} deg", l.angle_deg())
             }
-            Light::Directional(l) => format!("light towards {:.2}", l.direction),
+            Light::Directional(l) => format!(
+                "light {:.1} deg over azimuth {:.2} (towards {:.2})",
+                l.angle_deg(),
+                l.azimuth(),
+                l.direction
+            ),
             Light::Spot(l) => format!("spot at {:.1}", l.position),
             Light::Point(l) => format!("point light at {:.1}", l.position),
         }

@@ -133,12 +133,33 @@ impl Scene {
         }
     }
 
-    /// Sets the DummyGame's light angle in degrees, clamped to [0, 180] as the book does.
-    /// Only a directional light has an angle; returns false for other lights.
+    /// Sets the first light's angle in degrees, clamped to [0, 180] as the book does, about
+    /// the light's own azimuth ([`DirectionalLight::azimuth`]: +Z for the DummyGame, whose
+    /// direction becomes (0, sin a, cos a)). Only a directional light has an angle; returns
+    /// false for other lights.
     pub fn set_light_angle(&mut self, angle_deg: f32) -> bool {
+        match self.light_azimuth() {
+            Some(azimuth) => self.set_light_angle_about(azimuth, angle_deg),
+            None => false,
+        }
+    }
+
+    /// The first light's azimuth, if it is directional. Past the overhead a light's own
+    /// horizontal part points the other way, so whatever turns a light step by step (the
+    /// demo's keys) takes the azimuth once and turns about it with
+    /// [`Scene::set_light_angle_about`].
+    pub fn light_azimuth(&self) -> Option<Vec3> {
+        self.lights
+            .first()
+            .and_then(Light::as_directional)
+            .map(DirectionalLight::azimuth)
+    }
+
+    /// [`Scene::set_light_angle`] about a given azimuth (a horizontal unit vector).
+    pub fn set_light_angle_about(&mut self, azimuth: Vec3, angle_deg: f32) -> bool {
         match self.lights.first_mut().and_then(Light::as_directional_mut) {
             Some(l) => {
-                l.direction = DirectionalLight::direction_from_angle(angle_deg.clamp(0.0, 180.0));
+                l.set_angle_about(azimuth, angle_deg.clamp(0.0, 180.0));
                 true
             }
             None => false,
