@@ -64,6 +64,11 @@ pub struct SceneArgs {
     /// Turn the camera: PITCH,YAW,ROLL in degrees (positive pitch looks down).
     #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_rotation: Option<[f32; 3]>,
+    /// Aim the camera at the world point X,Y,Z (from its position, after
+    /// --camera-position): the pitch and yaw that look at it, roll 0. Not with
+    /// --camera-rotation.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    pub camera_target: Option<[f32; 3]>,
 }
 
 /// Every shadow setting; unset flags keep the scene's (or the step's) values. The flags
@@ -110,6 +115,7 @@ impl Default for DemoArgs {
                 size: None,
                 camera_position: None,
                 camera_rotation: None,
+                camera_target: None,
             },
             settings: SettingsArgs::default(),
             exit_after_frames: None,
@@ -279,12 +285,30 @@ pub fn parse_fraction(s: &str) -> Result<f64, String> {
 impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
+        if self.camera_rotation.is_some() && self.camera_target.is_some() {
+            return Err(shadowmap::Error::Invalid(
+                "--camera-rotation and --camera-target are both given: the camera takes one \
+                 (angles, or a point to look at)"
+                    .into(),
+            ));
+        }
         let mut scene = Scene::load(&self.scene)?;
         if let Some(p) = self.camera_position {
             scene.camera.position = p.into();
         }
         if let Some(r) = self.camera_rotation {
             scene.camera.rotation = r.into();
+        }
+        if let Some(t) = self.camera_target {
+            let at = shadowmap::scene::Camera::look_at(scene.camera.position, t.into())
+                .ok_or_else(|| {
+                    shadowmap::Error::Invalid(format!(
+                        "--camera-target {},{},{}: the camera's own position ({}); it must \
+                         look somewhere else",
+                        t[0], t[1], t[2], scene.camera.position
+                    ))
+                })?;
+            scene.camera.rotation = at.rotation;
         }
         if let Some(a) = self.light_angle {
             // Outside 0..180 the light would be clamped without a word: refuse instead.
