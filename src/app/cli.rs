@@ -193,8 +193,7 @@ pub struct BenchArgs {
     /// Folder for bench.csv, bench.md and pareto.png (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
-    /// A representative subset (27 configurations plus the tutorials') instead of the full sweep.
-    #[arg(long)]
+    #[arg(long, help = quick_help())]
     pub quick: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
@@ -245,6 +244,25 @@ pub struct SoakArgs {
     /// Frames to render.
     #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
     pub frames: u64,
+}
+
+/// The help of `bench --quick`, its counts taken from the sweep itself.
+pub fn quick_help() -> String {
+    // llvmpipe's largest texture; a driver's own limit changes the full count by one or so.
+    let counts = shadowmap::bench::configuration_counts(16384);
+    let list = |pick: fn(&(&str, usize, usize)) -> usize| {
+        counts
+            .iter()
+            .map(|c| format!("{} for a {} light", pick(c), c.0))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!(
+        "A representative subset instead of the full sweep: {} (the full sweep: {}; both \
+         with the tutorials' two, the full one with a driver's 16384^2 map)",
+        list(|c| c.1),
+        list(|c| c.2)
+    )
 }
 
 /// Parses `WxH`, e.g. `1280x720`.
