@@ -330,3 +330,50 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
         "a refused command made its folder"
     );
 }
+
+#[test]
+fn camera_target_aims_the_camera_and_refuses_rotation_beside_it() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("errors-camera-target");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let (a, b) = (path("target.png"), path("angles.png"));
+    // Negative numbers after a space; the same frame as the angles it stands for.
+    let camera = shadowmap::scene::Camera::look_at(
+        glam::Vec3::new(-3.0, 2.0, 4.0),
+        glam::Vec3::new(0.5, -1.0, -0.5),
+    )
+    .unwrap();
+    let r = camera.rotation;
+    let angles = format!("{},{},{}", r.x, r.y, r.z);
+    let common = ["render", "--size", "64x36", "--camera-position", "-3,2,4"];
+    let (ok, _, err) = run(&[
+        &common[..],
+        &["--out", &a, "--camera-target", "0.5,-1,-0.5"],
+    ]
+    .concat());
+    assert!(ok, "{err}");
+    let (ok, _, err) = run(&[&common[..], &["--out", &b, "--camera-rotation", &angles]].concat());
+    assert!(ok, "{err}");
+    let (fa, fb) = (std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    assert_eq!(fa, fb, "--camera-target and its angles render differently");
+    // The default view would differ: the target did something.
+    let (ok, _, err) = run(&[&common[..], &["--out", &b]].concat());
+    assert!(ok, "{err}");
+    assert_ne!(fa, std::fs::read(&b).unwrap());
+    for (args, expected) in [
+        (
+            &["--camera-rotation", "0,0,0", "--camera-target", "0,0,0"][..],
+            "--camera-rotation and --camera-target are both given",
+        ),
+        (
+            &["--camera-target", "-3,2,4"][..],
+            "--camera-target -3,2,4: the camera's own position",
+        ),
+        (&["--camera-target", "1,2"][..], "expected three numbers"),
+    ] {
+        let (ok, _, err) = run(&[&common[..], &["--out", &a], args].concat());
+        assert!(!ok && err.contains(expected), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}

@@ -110,7 +110,8 @@ fn spot_light_shadows_match_the_reference_inside_its_cone() {
         m.misclassified_rate * 100.0,
         m.misclassified_outside_band
     );
-    assert!(m.receivers > 20_000);
+    // Receivers are inside the bulb's full cone only (18,415 at 400 x 300).
+    assert!(m.receivers > 15_000, "{m:?}");
     assert!(
         m.false_shadow_outside_band * 1000 <= m.outside_band_receivers,
         "{m:?}"
@@ -159,7 +160,9 @@ fn each_of_several_lights_matches_its_own_reference() {
             m.misclassified_outside_band_rate * 100.0,
             m.receivers
         );
-        assert!(m.receivers > 50_000, "light {light}: {m:?}");
+        // The spot (light 1) lights only its cone: fewer receivers (43,538).
+        let least = if light == 1 { 35_000 } else { 50_000 };
+        assert!(m.receivers > least, "light {light}: {m:?}");
         assert!(m.misclassified_rate < 0.005, "light {light}: {m:?}");
         assert!(
             m.misclassified_outside_band_rate < 0.001,

@@ -72,6 +72,11 @@ pub struct SceneArgs {
     /// Turn the camera: PITCH,YAW,ROLL in degrees (positive pitch looks down).
     #[arg(long, value_name = "P,Y,R", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_rotation: Option<[f32; 3]>,
+    /// Aim the camera at the world point X,Y,Z (from its position, after
+    /// --camera-position): the pitch and yaw that look at it, roll 0. Not with
+    /// --camera-rotation.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
+    pub camera_target: Option<[f32; 3]>,
 }
 
 /// Every shadow setting; unset flags keep the scene's (or the step's) values. The flags
@@ -123,6 +128,7 @@ impl Default for DemoArgs {
                 size: None,
                 camera_position: None,
                 camera_rotation: None,
+                camera_target: None,
             },
             settings: SettingsArgs::default(),
             exit_after_frames: None,
@@ -207,8 +213,7 @@ pub struct BenchArgs {
     /// Folder for bench.csv, bench.md and pareto.png (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
-    /// A representative subset (27 configurations plus the tutorials') instead of the full sweep.
-    #[arg(long)]
+    #[arg(long, help = quick_help())]
     pub quick: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
@@ -261,6 +266,25 @@ pub struct SoakArgs {
     pub frames: u64,
 }
 
+/// The help of `bench --quick`, its counts taken from the sweep itself.
+pub fn quick_help() -> String {
+    // llvmpipe's largest texture; a driver's own limit changes the full count by one or so.
+    let counts = shadowmap::bench::configuration_counts(16384);
+    let list = |pick: fn(&(&str, usize, usize)) -> usize| {
+        counts
+            .iter()
+            .map(|c| format!("{} for a {} light", pick(c), c.0))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!(
+        "A representative subset instead of the full sweep: {} (the full sweep: {}; both \
+         with the tutorials' two, the full one with a driver's 16384^2 map)",
+        list(|c| c.1),
+        list(|c| c.2)
+    )
+}
+
 /// Parses `WxH`, e.g. `1280x720`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
@@ -299,12 +323,30 @@ pub fn parse_fraction(s: &str) -> Result<f64, String> {
 impl SceneArgs {
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
+        if self.camera_rotation.is_some() && self.camera_target.is_some() {
+            return Err(shadowmap::Error::Invalid(
+                "--camera-rotation and --camera-target are both given: the camera takes one \
+                 (angles, or a point to look at)"
+                    .into(),
+            ));
+        }
         let mut scene = Scene::load(&self.scene)?;
         if let Some(p) = self.camera_position {
             scene.camera.position = p.into();
         }
         if let Some(r) = self.camera_rotation {
             scene.camera.rotation = r.into();
+        }
+        if let Some(t) = self.camera_target {
+            let at = shadowmap::scene::Camera::look_at(scene.camera.position, t.into())
+                .ok_or_else(|| {
+                    shadowmap::Error::Invalid(format!(
+                        "--camera-target {},{},{}: the camera's own position ({}); it must \
+                         look somewhere else",
+                        t[0], t[1], t[2], scene.camera.position
+                    ))
+                })?;
+            scene.camera.rotation = at.rotation;
         }
         if let Some(a) = self.light_angle {
             // Outside 0..180 the light would be clamped without a word: refuse instead.

@@ -5,6 +5,7 @@
 
 use std::time::Instant;
 
+use glam::Vec3;
 use serde::Serialize;
 
 use super::compare::{compute_reference, CompareOptions, Reference};
@@ -13,9 +14,11 @@ use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
 use crate::renderer::{Renderer, Target};
-use crate::scene::Light;
 use crate::scene::Scene;
-use crate::settings::{BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowSettings};
+use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
+use crate::settings::{
+    BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowPatch, ShadowSettings,
+};
 use crate::shadows::ShadowKind;
 
 /// The bias configurations the sweep tries, by name.
@@ -237,6 +240,56 @@ pub fn sweep(
     let mid = rest.len() / 2;
     rest.splice(mid..mid, tutorials);
     rest
+}
+
+/// How many configurations [`sweep`] tries for each kind of light, with the default
+/// settings: (the kind, quick, full). The help and the README state these; `max_texture_size`
+/// decides whether the driver's largest map joins the full sweep.
+pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usize); 3] {
+    let base = ShadowSettings::default();
+    let count = |light: &Light, quick| sweep(&base, quick, max_texture_size, light).len();
+    let directional = Light::Directional(DirectionalLight {
+        colour: Vec3::ONE,
+        direction: Vec3::Y,
+        intensity: 1.0,
+        ortho: OrthoCoords::default(),
+        shadow_pos_mult: 5.0,
+        shading_position: None,
+        casts_shadows: true,
+        shadow: ShadowPatch::default(),
+    });
+    let spot = Light::Spot(SpotLight {
+        colour: Vec3::ONE,
+        intensity: 1.0,
+        position: Vec3::Y * 10.0,
+        target: Vec3::ZERO,
+        up: None,
+        fov: 45.0,
+        near: 1.0,
+        far: 20.0,
+        casts_shadows: true,
+        shadow: ShadowPatch::default(),
+    });
+    let point = Light::Point(PointLight {
+        colour: Vec3::ONE,
+        intensity: 1.0,
+        position: Vec3::ZERO,
+        near: 1.0,
+        far: 25.0,
+        oscillate: Vec3::ZERO,
+        centre: Vec3::ZERO,
+        casts_shadows: true,
+        shadow: ShadowPatch::default(),
+    });
+    [
+        (
+            "directional",
+            count(&directional, true),
+            count(&directional, false),
+        ),
+        ("spot", count(&spot, true), count(&spot, false)),
+        ("point", count(&point, true), count(&point, false)),
+    ]
 }
 
 fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<BenchConfig> {

@@ -8,12 +8,12 @@ use glam::{DMat4, DVec3};
 
 use super::frame::{render_frames, render_frames_of_light, Frame};
 use super::reference::{
-    compute_metrics, reference_visibility, reference_visibility_supersampled, Bvh, GBuffer,
-    LightKind, Metrics, RefPixel, Triangle,
+    compute_metrics, face_normals, reference_visibility, reference_visibility_supersampled, Bvh,
+    GBuffer, LightKind, Metrics, RefPixel, Triangle,
 };
 use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
-use crate::scene::Scene;
+use crate::scene::{GameItem, Scene, Shading};
 use crate::settings::ShadowSettings;
 use crate::shadows::Rays;
 
@@ -56,19 +56,46 @@ pub fn light_kind(
     settings: &ShadowSettings,
     origin: DVec3,
 ) -> LightKind {
-    match crate::shadows::light_camera(scene, index, settings).rays {
-        Rays::FromPoint { position } => LightKind::Point {
+    let cone = scene.lights.get(index).and_then(|l| match l.shading() {
+        Shading::Position { cone, .. } => cone,
+        Shading::Direction(_) => None,
+    });
+    match (
+        crate::shadows::light_camera(scene, index, settings).rays,
+        cone,
+    ) {
+        (Rays::FromPoint { position }, None) => LightKind::Point {
             position: (position.as_dvec3() - origin).as_vec3(),
         },
-        Rays::Parallel { to_light } => LightKind::Directional { to_light },
+        (Rays::FromPoint { position }, Some((cos, axis))) => LightKind::Spot {
+            position: (position.as_dvec3() - origin).as_vec3(),
+            axis,
+            cos_full: cos + CONE_RIM,
+        },
+        (Rays::Parallel { to_light }, _) => LightKind::Directional { to_light },
     }
+}
+
+/// The width, in cosine, of a spot's soft rim: the scene shader's
+/// `smoothstep(lightConeCos, lightConeCos + CONE_RIM, c)` (shaders/lib/lighting.glsl).
+/// Only inside the rim is the light full, so only there are receivers scored.
+pub const CONE_RIM: f32 = 0.01;
+
+/// A BVH over every drawn triangle (casters or not), relative to `origin`: what the
+/// camera's rays meet, to find the face under each G-buffer pixel.
+pub fn surface_bvh(scene: &Scene, origin: DVec3) -> Bvh {
+    bvh_of(scene, origin, |_| true)
 }
 
 /// A BVH over the scene's shadow casters, in world space minus `origin` (computed in double
 /// precision).
 pub fn caster_bvh(scene: &Scene, origin: DVec3) -> Bvh {
+    bvh_of(scene, origin, |i| i.casts_shadows)
+}
+
+fn bvh_of(scene: &Scene, origin: DVec3, keep: impl Fn(&GameItem) -> bool) -> Bvh {
     let mut triangles = Vec::new();
-    for item in scene.items.iter().filter(|i| i.casts_shadows) {
+    for item in scene.items.iter().filter(|i| keep(i)) {
         let m = DMat4::from_translation(-origin) * item.model_matrix64();
         triangles.extend(scene.meshes[item.mesh].triangles().map(|t| {
             let [a, b, c] = t.map(|p| m.transform_point3(p.as_dvec3()).as_vec3());
@@ -104,9 +131,9 @@ pub fn compute_reference(
         1,
         gbuffer_only,
     )?;
-    let gbuffer = gbuffer_of(&frame)?;
+    let mut gbuffer = gbuffer_of(&frame)?;
     let n = opts.supersample;
-    let hi = if n > 1 {
+    let mut hi = if n > 1 {
         let frame = render_frames(
             gl,
             &mut scene.clone(),
@@ -124,6 +151,15 @@ pub fn compute_reference(
     let start = Instant::now();
     let origin = frame.origin;
     let bvh = caster_bvh(scene, origin);
+    // Receivers are judged by the face under each pixel too (see `GBuffer::face_normals`).
+    let all_cast = scene.items.iter().all(|i| i.casts_shadows);
+    let surfaces = (!all_cast).then(|| surface_bvh(scene, origin));
+    let surfaces = surfaces.as_ref().unwrap_or(&bvh);
+    let eye = (scene.camera.position.as_dvec3() - origin).as_vec3();
+    gbuffer.face_normals = face_normals(surfaces, &gbuffer, eye);
+    if let Some(hi) = hi.as_mut() {
+        hi.face_normals = face_normals(surfaces, hi, eye);
+    }
     check_light(scene, opts.light)?;
     let light = light_kind(scene, opts.light, settings, origin);
     let hard = reference_visibility(&bvh, &light, &gbuffer);
@@ -149,6 +185,7 @@ fn gbuffer_of(frame: &Frame) -> Result<GBuffer> {
             height: frame.height as usize,
             positions: p.clone(),
             normals: n.clone(),
+            face_normals: Vec::new(),
         }),
         _ => Err(Error::Invalid("the frame has no G-buffer".into())),
     }
@@ -238,5 +275,17 @@ fn check_light(scene: &Scene, light: usize) -> Result<()> {
             scene.source.display()
         ))),
         Some(_) => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::CONE_RIM;
+
+    #[test]
+    fn the_cone_rim_is_the_shaders() {
+        let shader = include_str!("../../shaders/lib/lighting.glsl");
+        let rim = format!("smoothstep(lightConeCos[i], lightConeCos[i] + {CONE_RIM}, c)");
+        assert!(shader.contains(&rim), "lighting.glsl no longer has {rim}");
     }
 }

@@ -67,7 +67,10 @@ struct SceneFile {
 #[serde(default, deny_unknown_fields)]
 struct CameraFile {
     position: Fixed<f32, 3>,
-    rotation: Fixed<f32, 3>,
+    /// The book's angles; default 0, 0, 0. Not with `target`.
+    rotation: Option<Fixed<f32, 3>>,
+    /// A look-at camera: the point it looks at, turned into the book's pitch and yaw.
+    target: Option<Fixed<f32, 3>>,
     fov: f32,
     near: f32,
     far: f32,
@@ -78,7 +81,8 @@ impl Default for CameraFile {
         let c = Camera::default();
         CameraFile {
             position: Fixed(c.position.to_array()),
-            rotation: Fixed(c.rotation.to_array()),
+            rotation: None,
+            target: None,
             fov: c.fov,
             near: c.near,
             far: c.far,
@@ -882,7 +886,33 @@ fn check_globals(file: &SceneFile, cx: &Context) -> Result<()> {
 
 fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
     cx.finite("camera.position", &c.position.0)?;
-    cx.finite("camera.rotation", &c.rotation.0)?;
+    let position = Vec3::from(c.position.0);
+    let rotation = match (&c.rotation, &c.target) {
+        (Some(_), Some(_)) => {
+            return Err(cx.bad(
+                "camera",
+                "rotation and target are both given: a camera takes one (rotation = angles, \
+                 target = a point to look at)",
+            ))
+        }
+        (Some(r), None) => {
+            cx.finite("camera.rotation", &r.0)?;
+            Vec3::from(r.0)
+        }
+        (None, Some(t)) => {
+            cx.finite("camera.target", &t.0)?;
+            let target = Vec3::from(t.0);
+            Camera::look_at(position, target)
+                .ok_or_else(|| {
+                    cx.bad(
+                        "camera.target",
+                        format!("{target}: the camera's own position; it must look somewhere else"),
+                    )
+                })?
+                .rotation
+        }
+        (None, None) => Vec3::ZERO,
+    };
     cx.finite("camera.fov", &[c.fov])?;
     cx.finite("camera.near", &[c.near])?;
     cx.finite("camera.far", &[c.far])?;
@@ -902,8 +932,8 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
         ));
     }
     Ok(Camera {
-        position: Vec3::from(c.position.0),
-        rotation: Vec3::from(c.rotation.0),
+        position,
+        rotation,
         fov: c.fov,
         near: c.near,
         far: c.far,
@@ -1630,6 +1660,33 @@ mod tests {
             let s = parse(text, Path::new("s.toml"), None).unwrap();
             assert!(matches!(s.lights[..], [Light::Directional(_)]), "{text}");
         }
+    }
+
+    #[test]
+    fn a_camera_target_becomes_the_books_angles() {
+        let text =
+            format!("{LIGHT}[camera]\nposition = [0.0, 4.0, 9.0]\ntarget = [0.0, 0.0, 0.0]\n");
+        let s = parse(&text, Path::new("s.toml"), None).unwrap();
+        let want = Camera::look_at(Vec3::new(0.0, 4.0, 9.0), Vec3::ZERO).unwrap();
+        assert_eq!(s.camera.rotation, want.rotation);
+        // Looking down at the origin from above and behind: pitch down, no yaw, no roll.
+        assert!((s.camera.rotation.x - (4.0f32 / 9.0).atan().to_degrees()).abs() < 1e-4);
+        assert_eq!((s.camera.rotation.y, s.camera.rotation.z), (0.0, 0.0));
+        refuses(
+            &format!("{LIGHT}[camera]\nrotation = [10.0, 0.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n"),
+            "camera",
+            "rotation and target are both given",
+        );
+        refuses(
+            &format!("{LIGHT}[camera]\nposition = [1.0, 2.0, 3.0]\ntarget = [1.0, 2.0, 3.0]\n"),
+            "camera.target",
+            "the camera's own position",
+        );
+        refuses(
+            &format!("{LIGHT}[camera]\ntarget = [1.0, 2.0]\n"),
+            "camera.target",
+            "expected exactly 3 numbers",
+        );
     }
 
     #[test]

@@ -1,6 +1,7 @@
-//! Bounding volume hierarchy over triangles, answering only "is anything in
-//! the way?" (any-hit). That is all a hard-shadow reference needs, and it lets
-//! traversal stop at the first hit instead of searching for the nearest one.
+//! Bounding volume hierarchy over triangles. Shadow rays ask only "is anything
+//! in the way?" (any-hit), so traversal stops at the first hit; the one other
+//! query, [`Bvh::face_normal_near`], finds which triangle a camera ray meets
+//! at a known distance (the face under a G-buffer pixel).
 
 use glam::Vec3;
 
@@ -63,26 +64,32 @@ impl Triangle {
 /// Double-sided Moller-Trumbore on a prepared triangle `[v0, e1, e2]`.
 #[inline(always)]
 fn hit(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> bool {
+    hit_t(tri, origin, dir, t_min, t_max).is_some()
+}
+
+/// [`hit`], giving the distance of the hit.
+#[inline(always)]
+fn hit_t(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
     let [v0, e1, e2] = *tri;
     let p = dir.cross(e2);
     let det = e1.dot(p);
     // Parallel rays (and NaN input) give a zero or unusable determinant.
     if det.is_nan() || det.abs() < f32::MIN_POSITIVE {
-        return false;
+        return None;
     }
     let inv_det = 1.0 / det;
     let s = origin - v0;
     let u = s.dot(p) * inv_det;
     if !((-EDGE_TOL..=1.0 + EDGE_TOL).contains(&u)) {
-        return false;
+        return None;
     }
     let q = s.cross(e1);
     let v = dir.dot(q) * inv_det;
     if !(v >= -EDGE_TOL && u + v <= 1.0 + EDGE_TOL) {
-        return false;
+        return None;
     }
     let t = e2.dot(q) * inv_det;
-    t > t_min && t < t_max
+    (t > t_min && t < t_max).then_some(t)
 }
 
 /// Flat node. Leaves have `count > 0` and own `tris[start..start + count]`;
@@ -287,6 +294,63 @@ impl Bvh {
             sp -= 1;
             ni = stack[sp] as usize;
         }
+    }
+}
+
+impl Bvh {
+    /// The geometric normal (unit, in the triangle's winding) of the triangle the ray
+    /// meets within (t_min, t_max) whose normal lines up best with `like`, if any. A
+    /// G-buffer pixel's camera ray, cut to a thin window around the pixel's distance, finds
+    /// the face the rasteriser drew there whatever lies in front of it; where another
+    /// surface passes through the window too (two items that meet), the drawn face is the
+    /// one whose normal its interpolated normal `like` follows.
+    pub fn face_normal_near(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_min: f32,
+        t_max: f32,
+        like: Vec3,
+    ) -> Option<Vec3> {
+        if self.nodes.is_empty() || t_min.is_nan() || t_max.is_nan() || t_max <= t_min {
+            return None;
+        }
+        let inv = Vec3::ONE / dir;
+        let mut best: Option<(f32, Vec3)> = None;
+        // Both children are pushed, so the stack holds at most depth + 1 nodes.
+        let mut stack = [0u32; STACK_SIZE + 2];
+        let mut sp = 0usize;
+        if slab_entry(&self.nodes[0], origin, inv, t_min, t_max).is_some() {
+            stack[0] = 0;
+            sp = 1;
+        }
+        while sp > 0 {
+            sp -= 1;
+            let node = &self.nodes[stack[sp] as usize];
+            if node.count > 0 {
+                let first = node.start as usize;
+                for t in &self.tris[first..first + node.count as usize] {
+                    if hit_t(t, origin, dir, t_min, t_max).is_some() {
+                        let n = t[1].cross(t[2]).normalize_or_zero();
+                        let agree = n.dot(like).abs();
+                        if best.is_none_or(|(a, _)| agree > a) {
+                            best = Some((agree, n));
+                        }
+                    }
+                }
+            } else {
+                // Every child the window reaches: the best hit is wanted, not the first
+                // one, and the window is thin, so few boxes qualify.
+                for child in [node.start, node.start + 1] {
+                    if slab_entry(&self.nodes[child as usize], origin, inv, t_min, t_max).is_some()
+                    {
+                        stack[sp] = child;
+                        sp += 1;
+                    }
+                }
+            }
+        }
+        best.map(|(_, n)| n)
     }
 }
 
@@ -510,6 +574,52 @@ mod tests {
         }
         // Both outcomes must be well represented for the check to mean much.
         assert!(hits > 500 && misses > 500, "hits {hits} misses {misses}");
+    }
+
+    #[test]
+    fn face_normal_near_takes_the_face_the_normal_follows() {
+        // A floor at y = 1 and a steep wall crossing it, met by an upward ray at the same
+        // height; a ceiling at y = 3 facing down.
+        let quad =
+            |a: Vec3, b: Vec3, c: Vec3, d: Vec3| [Triangle { a, b, c }, Triangle { a, b: c, c: d }];
+        let v = Vec3::new;
+        let mut tris = quad(
+            v(-1., 1., 1.),
+            v(1., 1., 1.),
+            v(1., 1., -1.),
+            v(-1., 1., -1.),
+        )
+        .to_vec();
+        tris.extend(quad(
+            v(-1., 0., -1.),
+            v(-1., 2., 1.),
+            v(1., 2., 1.),
+            v(1., 0., -1.),
+        ));
+        tris.extend(quad(
+            v(-1., 3., -1.),
+            v(1., 3., -1.),
+            v(1., 3., 1.),
+            v(-1., 3., 1.),
+        ));
+        // Many distant triangles so the tree has inner nodes.
+        let mut rng = Rng(3);
+        tris.extend(random_scene(&mut rng, 300).into_iter().map(|t| Triangle {
+            a: t.a + Vec3::X * 40.0,
+            b: t.b + Vec3::X * 40.0,
+            c: t.c + Vec3::X * 40.0,
+        }));
+        let bvh = Bvh::build(tris);
+        let o = Vec3::new(0.2, 0.0, 0.0);
+        let near = |t0: f32, t1: f32, like: Vec3| bvh.face_normal_near(o, Vec3::Y, t0, t1, like);
+        let wall = v(0.0, 1.0, -1.0).normalize();
+        let is = |n: Option<Vec3>, want: Vec3| n.is_some_and(|n| n.abs_diff_eq(want, 1e-6));
+        assert!(is(near(0.99, 1.01, Vec3::Y), Vec3::Y));
+        assert!(is(near(0.99, 1.01, wall), wall));
+        assert!(is(near(2.9, 3.1, Vec3::Y), -Vec3::Y));
+        // A window that holds no face, and a ray that meets nothing.
+        assert_eq!(near(1.5, 2.5, Vec3::Y), None);
+        assert_eq!(bvh.face_normal_near(o, -Vec3::Y, 0.0, 9.0, Vec3::Y), None);
     }
 
     #[test]

@@ -18,6 +18,6 @@ pub use bvh::{Bvh, Triangle};
 pub use metrics::{compute_metrics, error_image, Metrics};
 pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
 pub use visibility::{
-    reference_visibility, reference_visibility_supersampled, GBuffer, LightKind, RefPixel,
-    RAY_EPSILON,
+    face_normals, reference_visibility, reference_visibility_supersampled, GBuffer, LightKind,
+    RefPixel, RAY_EPSILON,
 };

@@ -15,6 +15,25 @@ pub enum LightKind {
     Directional { to_light: Vec3 },
     /// Light at a point in world space.
     Point { position: Vec3 },
+    /// A spot: light at `position`, but only inside its cone. A surface receives its full
+    /// light where the direction from the light makes a cosine of at least `cos_full` with
+    /// `axis` (the shader's `lightConeCos` plus its soft rim); the rim and beyond are not
+    /// receivers, since the light there is partial or none.
+    Spot {
+        position: Vec3,
+        axis: Vec3,
+        cos_full: f32,
+    },
+}
+
+impl LightKind {
+    /// The point the shadow rays go to, for lights at a point.
+    fn position(&self) -> Option<Vec3> {
+        match *self {
+            LightKind::Directional { .. } => None,
+            LightKind::Point { position } | LightKind::Spot { position, .. } => Some(position),
+        }
+    }
 }
 
 /// A G-buffer read back from the GPU: world positions and normals,
@@ -26,7 +45,13 @@ pub struct GBuffer {
     pub width: usize,
     pub height: usize,
     pub positions: Vec<[f32; 3]>,
+    /// Interpolated (smooth) normals, as the shader lights with.
     pub normals: Vec<[f32; 3]>,
+    /// The normal of the triangle under each pixel, turned to the side of `normals`
+    /// (see [`face_normals`]); empty when unknown, and a zero entry is unknown too. On a
+    /// smooth mesh the interpolated normal can face the light while the triangle does
+    /// not; such a pixel is no receiver (its truth would hang on the ray's offset).
+    pub face_normals: Vec<[f32; 3]>,
 }
 
 impl GBuffer {
@@ -38,6 +63,7 @@ impl GBuffer {
             height,
             positions: vec![[f32::NAN; 3]; n],
             normals: vec![[0.0; 3]; n],
+            face_normals: Vec::new(),
         }
     }
 
@@ -51,6 +77,39 @@ impl GBuffer {
             }
         }
     }
+}
+
+/// The triangle normal under every pixel of `gbuf`, found by the reference's own hit
+/// test: the pixel's camera ray from `eye` (relative to the same origin as the positions)
+/// is cast into `surfaces` (every drawn triangle), kept to a thin window around the
+/// pixel's distance; the face met there (where two items meet, the one the interpolated
+/// normal follows) gives the normal, turned to the side of the interpolated normal (the
+/// side the shader lights). Pixels whose ray
+/// finds no face (none expected; the window is 1e-3 of the distance) get a zero entry
+/// and are judged by the interpolated normal alone.
+pub fn face_normals(surfaces: &Bvh, gbuf: &GBuffer, eye: Vec3) -> Vec<[f32; 3]> {
+    let width = gbuf.width;
+    par_rows(width, gbuf.height, [0.0; 3], |x, y| {
+        face_normal(surfaces, gbuf, eye, y * width + x)
+    })
+}
+
+fn face_normal(surfaces: &Bvh, gbuf: &GBuffer, eye: Vec3, i: usize) -> [f32; 3] {
+    let (Some(&p), Some(&n)) = (gbuf.positions.get(i), gbuf.normals.get(i)) else {
+        return [0.0; 3];
+    };
+    let (p, n) = (Vec3::from(p), Vec3::from(n));
+    let d = p - eye;
+    let t = d.length();
+    if !(t.is_finite() && t > 0.0) {
+        return [0.0; 3];
+    }
+    let slack = t * 1e-3 + RAY_EPSILON * p.abs().max_element().max(1.0);
+    let Some(face) = surfaces.face_normal_near(eye, d / t, t - slack, t + slack, n) else {
+        return [0.0; 3];
+    };
+    let face = if face.dot(n) < 0.0 { -face } else { face };
+    face.to_array()
 }
 
 /// Offset of the shadow-ray origin along the normal, relative to the size of
@@ -72,7 +131,8 @@ pub const RAY_EPSILON: f32 = 1e-4;
 pub struct RefPixel {
     /// The pixel holds geometry.
     pub covered: bool,
-    /// Covered, with a usable normal, and facing the light (N.L > 0).
+    /// What the light lights: covered, with a usable normal, facing the light by both its
+    /// interpolated normal and its triangle's (N.L > 0), and inside a spot's full cone.
     pub receiver: bool,
     /// 1.0 lit, 0.0 shadowed; fractional in the supersampled reference.
     pub visibility: f32,
@@ -90,7 +150,7 @@ impl RefPixel {
 /// over all available cores. Output has `width * height` entries.
 pub fn reference_visibility(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer) -> Vec<RefPixel> {
     let width = gbuf.width;
-    par_rows(width, gbuf.height, |x, y| {
+    par_rows(width, gbuf.height, RefPixel::EMPTY, |x, y| {
         sample(bvh, light, gbuf, y * width + x)
     })
 }
@@ -114,7 +174,7 @@ pub fn reference_visibility_supersampled(
     }
     let (width, height) = (hi.width / n, hi.height / n);
     let half = n * n / 2;
-    par_rows(width, height, |x, y| {
+    par_rows(width, height, RefPixel::EMPTY, |x, y| {
         let (mut covered, mut receivers, mut lit) = (0usize, 0usize, 0.0f32);
         for sy in 0..n {
             let row = (y * n + sy) * hi.width;
@@ -158,19 +218,37 @@ fn sample(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer, i: usize) -> RefPixel {
         .get(i)
         .map(|&n| Vec3::from(n).normalize_or_zero())
         .unwrap_or(Vec3::ZERO);
-    let to_light = match *light {
-        LightKind::Directional { to_light } => to_light.normalize_or_zero(),
-        LightKind::Point { position } => (position - p).normalize_or_zero(),
+    let to_light = match (*light, light.position()) {
+        (LightKind::Directional { to_light }, _) => to_light.normalize_or_zero(),
+        (_, Some(position)) => (position - p).normalize_or_zero(),
+        (_, None) => Vec3::ZERO,
     };
     // A zero normal or light direction gives 0 here and is not a receiver.
     let cos = n.dot(to_light);
     if cos.is_nan() || cos <= 0.0 {
         return not_receiver;
     }
+    // The triangle itself must face the light too, where it is known.
+    let face = gbuf
+        .face_normals
+        .get(i)
+        .map_or(Vec3::ZERO, |&f| Vec3::from(f));
+    // (Written so that NaN counts as facing away.)
+    let face_cos = face.dot(to_light);
+    if face != Vec3::ZERO && (face_cos.is_nan() || face_cos <= 0.0) {
+        return not_receiver;
+    }
+    if let LightKind::Spot { axis, cos_full, .. } = *light {
+        let c = (-to_light).dot(axis.normalize_or_zero());
+        if c.is_nan() || c < cos_full {
+            return not_receiver;
+        }
+    }
     let origin = p + n * (RAY_EPSILON * p.abs().max_element().max(1.0));
-    let blocked = match *light {
-        LightKind::Directional { .. } => bvh.occluded(origin, to_light, 0.0, f32::INFINITY),
-        LightKind::Point { position } => {
+    let blocked = match (*light, light.position()) {
+        (LightKind::Directional { .. }, _) => bvh.occluded(origin, to_light, 0.0, f32::INFINITY),
+        (_, None) => false,
+        (_, Some(position)) => {
             let d = position - origin;
             let dist = d.length();
             // Stop just short of the light so geometry the light sits on
@@ -189,11 +267,12 @@ fn sample(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer, i: usize) -> RefPixel {
 /// Evaluates `f(x, y)` for every pixel, handing rows to
 /// `available_parallelism()` scoped threads on demand, so expensive rows
 /// (deep shadow regions) do not leave other cores idle.
-fn par_rows<F>(width: usize, height: usize, f: F) -> Vec<RefPixel>
+fn par_rows<T, F>(width: usize, height: usize, empty: T, f: F) -> Vec<T>
 where
-    F: Fn(usize, usize) -> RefPixel + Sync,
+    T: Copy + Send,
+    F: Fn(usize, usize) -> T + Sync,
 {
-    let mut out = vec![RefPixel::EMPTY; width.saturating_mul(height)];
+    let mut out = vec![empty; width.saturating_mul(height)];
     if out.is_empty() {
         return out;
     }
@@ -528,6 +607,36 @@ mod tests {
         }
         assert_eq!(inside_n, 32 * 32);
         assert_eq!(inside_n + outside_n, 3600);
+    }
+
+    #[test]
+    fn a_spot_lights_only_its_cone_and_faces_must_face_it() {
+        let bvh = cube_on_plane();
+        // Straight down from y = 3 with a 30-degree half angle: the full cone on the plane
+        // (4 below) has radius 4 tan 30 = 2.31, a little less inside the rim.
+        let cos_full = 30f32.to_radians().cos();
+        let light = LightKind::Spot {
+            position: Vec3::new(0.0, 3.0, 0.0),
+            axis: -Vec3::Y,
+            cos_full,
+        };
+        let mut g = plane_gbuf(-1.0, -4.0, -4.0, 0.1, 80, 80);
+        let r = reference_visibility(&bvh, &light, &g);
+        for (i, px) in r.iter().enumerate() {
+            let p = point_of(&g, i);
+            let c = (p - Vec3::new(0.0, 3.0, 0.0)).normalize().dot(-Vec3::Y);
+            assert_eq!(px.receiver, c >= cos_full, "at {p}");
+        }
+        assert!(r.iter().filter(|p| p.receiver).count() > 1000);
+        // A triangle facing away takes the pixel out, whatever its interpolated normal.
+        g.face_normals = vec![[0.0, -1.0, 0.0]; g.positions.len()];
+        g.face_normals[0] = [0.0; 3];
+        let r = reference_visibility(&bvh, &DOWN_LIGHT, &g);
+        assert!(
+            r[0].receiver,
+            "an unknown face leaves the interpolated normal to decide"
+        );
+        assert!(r[1..].iter().all(|p| p.covered && !p.receiver));
     }
 
     #[test]
