@@ -227,7 +227,8 @@ pub enum PointPass {
     /// One pass per face, the face attached in turn.
     SixPasses,
     /// One pass: a geometry shader sends each triangle to every face with gl_Layer. The
-    /// default: 2 to 3% faster per frame on llvmpipe (README, "Point lights").
+    /// default: one draw per caster instead of six; on llvmpipe both cost the same within
+    /// 0.3% of instructions (README, "Point lights").
     #[default]
     Layered,
 }
