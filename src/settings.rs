@@ -423,7 +423,11 @@ pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
 }
 
 impl ShadowSettings {
-    /// A short human summary, for window titles and reports.
+    /// A short human summary, for window titles and reports: the map and its test, then
+    /// every other field that differs from the defaults (the book's final configuration),
+    /// so two settings that render differently never read the same. Fields that do nothing
+    /// with the others (the fov of an orthographic light, the cascades' split of one map)
+    /// are left out.
     pub fn summary(&self) -> String {
         if !self.shadows {
             return "no shadows".to_string();
@@ -443,13 +447,21 @@ impl ShadowSettings {
                 self.polygon_offset[0], self.polygon_offset[1]
             ));
         }
+        let defaults = ShadowSettings::default();
         if self.cascades > 1 {
             extra.push_str(&format!(
-                ", {} cascades (lambda {})",
+                ", {} cascades (lambda {}",
                 self.cascades, self.cascade_lambda
             ));
+            if self.cascade_blend != defaults.cascade_blend {
+                extra.push_str(&format!(", blend {}", self.cascade_blend));
+            }
+            if self.shadow_distance != defaults.shadow_distance {
+                extra.push_str(&format!(", to depth {}", self.shadow_distance));
+            }
+            extra.push(')');
         }
-        format!(
+        let mut line = format!(
             "{}^2 {} {}, {}{}, cull {}",
             self.map_size,
             self.depth_format.name(),
@@ -457,7 +469,48 @@ impl ShadowSettings {
             bias,
             extra,
             self.cull.name()
-        )
+        );
+        // The rest by their serialised names and values, alphabetically (a new field shows
+        // up here without being listed).
+        let (Ok(serde_json::Value::Object(mine)), Ok(serde_json::Value::Object(base))) =
+            (serde_json::to_value(self), serde_json::to_value(defaults))
+        else {
+            return line;
+        };
+        let perspective = self.light_projection == LightProjection::Perspective;
+        let fitted = self.fit == Fit::Scene || self.cascades > 1;
+        for (key, value) in &mine {
+            if base.get(key) == Some(value) {
+                continue;
+            }
+            let v = match value {
+                serde_json::Value::String(s) => s.clone(),
+                other => other.to_string(),
+            };
+            let part = match key.as_str() {
+                "map_size" | "depth_format" | "filter" | "bias_mode" | "bias" | "bias_min"
+                | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "cascade_lambda"
+                | "cascade_blend" | "shadow_distance" => continue,
+                "perspective_fov" => continue,
+                "light_projection" if perspective => {
+                    format!("perspective light, fov {}", self.perspective_fov)
+                }
+                "light_projection" => format!("{v} light"),
+                "light_view" => format!("{v} view"),
+                "wrap" => format!("wrap {v}"),
+                "beyond_far" => format!("beyond far {v}"),
+                "fit" => format!("box fitted to the {v}"),
+                "snap" if !fitted => continue,
+                "snap" => "unsnapped".to_string(),
+                "point_pass" => format!("point pass {v}"),
+                "show_depth_map" => "showing the depth map".to_string(),
+                "show_cascades" => "cascades tinted".to_string(),
+                _ => format!("{} {v}", key.replace('_', " ")),
+            };
+            line.push_str(", ");
+            line.push_str(&part);
+        }
+        line
     }
 
     /// Checks values against each other and the driver's maximum texture size.

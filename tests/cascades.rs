@@ -71,6 +71,7 @@ fn every_cascade_holds_its_slice_of_the_view() {
             far: f32::INFINITY,
             map_size: 1024,
             snap: true,
+            light_depth: 21.0,
         };
         let boxes = shadowmap::shadows::fitted::item_world_boxes(&scene);
         let cascades = fit_cascades(&scene, &boxes, to_light, &spec);
@@ -194,4 +195,76 @@ fn the_debug_view_tints_cascades_from_the_camera_out() {
     assert!(after > before + 20.0, "{before} -> {after}");
     // The shadow test itself is untouched by the tint.
     assert_eq!(plain.visibility, debug.visibility);
+}
+
+/// The DummyGame's camera reaches 1000 units over a scene 5 across: cascades cut from the
+/// far plane made each texel and the book's depth-unit bias huge and lost the shadow (6.9%
+/// of the receivers falsely lit with 2 cascades). Cut from the scene's bounds, with the
+/// bias meaning what it does for one map, cascades do about as well as one map.
+#[test]
+fn cascades_on_the_dummy_game_keep_the_shadow() {
+    let ctx = common::context();
+    let scene = Scene::load("dummy").unwrap();
+    let opts = CompareOptions {
+        width: 640,
+        height: 360,
+        supersample: 1,
+        band: 1,
+        light: 0,
+    };
+    let measure = |cascades: u32| {
+        let s = ShadowSettings {
+            cascades,
+            ..scene.shadow
+        };
+        compare(ctx.gl(), &scene, &s, &opts).unwrap().metrics
+    };
+    let one = measure(1);
+    for cascades in 2..=MAX_CASCADES {
+        let many = measure(cascades);
+        eprintln!(
+            "dummy, 640x360: one map {:.3}% misclassified, {cascades} cascades {:.3}% \
+             (false light {:.3}%)",
+            one.misclassified_rate * 100.0,
+            many.misclassified_rate * 100.0,
+            many.false_light_rate * 100.0
+        );
+        assert!(one.receivers > 50_000, "the plane must fill the view");
+        assert!(
+            many.misclassified <= 2 * one.misclassified,
+            "{cascades} cascades misclassify {} pixels, one map {}",
+            many.misclassified,
+            one.misclassified
+        );
+    }
+}
+
+#[test]
+fn cascades_cover_the_scene_not_the_far_plane() {
+    use shadowmap::shadows::cascades::scene_depth_range;
+    let scene = Scene::load("dummy").unwrap();
+    let boxes = shadowmap::shadows::fitted::item_world_boxes(&scene);
+    let aspect = 16.0 / 9.0;
+    // The camera at z = 2 looking down -z over a plane reaching to z = -2.5: 4.5 deep
+    // (rounded up to the next 1/8 of 4), whatever the far plane says.
+    let (near, far) = scene_depth_range(&scene.camera, aspect, &boxes, f64::INFINITY);
+    assert_eq!(near, scene.camera.near as f64);
+    assert_eq!(far, 5.0);
+    // A small move keeps the range (and so the boxes' sizes).
+    let mut moved = scene.camera;
+    moved.position += Vec3::new(0.01, 0.0, 0.005);
+    moved.rotation.y += 0.1;
+    assert_eq!(
+        scene_depth_range(&moved, aspect, &boxes, f64::INFINITY),
+        (near, far)
+    );
+    // A shadow distance nearer than the scene wins.
+    let (_, far) = scene_depth_range(&scene.camera, aspect, &boxes, 3.0);
+    assert_eq!(far, 3.0);
+    // Looking away from everything: a short range, all lit, still increasing.
+    let mut away = scene.camera;
+    away.rotation = Vec3::new(0.0, 180.0, 0.0);
+    away.position = Vec3::new(0.0, 0.0, 10.0);
+    let (near, far) = scene_depth_range(&away, aspect, &boxes, f64::INFINITY);
+    assert!(near < far && far <= 2.0 * near, "{near} {far}");
 }

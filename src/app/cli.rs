@@ -3,7 +3,9 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shadowmap::settings::ShadowPatch;
+use shadowmap::scene::Light;
+use shadowmap::settings::{Fit, LightProjection, ShadowPatch};
+use shadowmap::shadows::ShadowKind;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
 
@@ -156,7 +158,8 @@ pub struct RenderArgs {
     /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
     #[arg(long, value_name = "FILE.png")]
     pub shadow_out: Option<PathBuf>,
-    /// Also write the shadow map as a grey image (black = near the light).
+    /// Also write the shadow map as a grey image (black = near the light, white = its far
+    /// plane; a perspective map is linearised to eye distance, as the depth view shows it).
     #[arg(long, value_name = "FILE.png")]
     pub depth_out: Option<PathBuf>,
     /// Draw the demo's HUD (light, step, settings, frame time) over the image.
@@ -394,6 +397,21 @@ impl SettingsArgs {
             .map_err(|e| self.name_source(scene, e))
     }
 
+    /// The flags given here whose legal values do nothing in this scene, as one warning
+    /// each: "--cascades 4: ...". Unset flags are left alone (the defaults and the scene
+    /// file's own values are not the user's doing here).
+    pub fn warnings(&self, scene: &Scene, settings: &ShadowSettings) -> Vec<String> {
+        let given = self.patch.given();
+        idle_settings(scene, settings)
+            .into_iter()
+            .filter(|(name, _)| given.contains(name))
+            .map(|(name, why)| {
+                let value = setting_value(settings, name);
+                format!("--{} {value}: {why}", name.replace('_', "-"))
+            })
+            .collect()
+    }
+
     /// Says where a bad setting came from: its flag, or the scene file.
     fn name_source(&self, scene: &Scene, e: shadowmap::Error) -> shadowmap::Error {
         // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
@@ -425,6 +443,102 @@ impl SettingsArgs {
             None => scene.shadow,
         };
         self.patch.apply_to(&mut s);
+        // Once per run, every command (values that are refused get their error instead).
+        if s.validate_values().is_ok() {
+            for w in self.warnings(scene, &s) {
+                eprintln!("warning: {w}");
+            }
+        }
         Ok(s)
+    }
+}
+
+/// The settings that are legal but do nothing for this scene's lights: (field, why). The
+/// one place that knows which setting needs which light; the warnings and [`in_use`] read it.
+pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static str, String)> {
+    let kinds = ShadowKind::for_lights(&scene.lights, settings);
+    // The casting directional lights, each under its own settings.
+    let suns: Vec<ShadowSettings> = scene
+        .lights
+        .iter()
+        .filter(|l| l.casts_shadows() && matches!(l, Light::Directional(_)))
+        .map(|l| l.settings(settings))
+        .collect();
+    let mut idle = Vec::new();
+    if settings.cascades > 1 && !kinds.contains(&ShadowKind::Cascades) {
+        let why = match suns.is_empty() {
+            true => "no directional light casts shadows in this scene, and only one gets \
+                     cascades; each light keeps one map"
+                .to_string(),
+            false => "cascades need an orthographic light projection (--light-projection \
+                      perspective is set); the light keeps one map"
+                .to_string(),
+        };
+        idle.push(("cascades", why));
+    }
+    if !kinds.contains(&ShadowKind::Cube) {
+        idle.push((
+            "point_pass",
+            "no point light casts shadows in this scene; it says how a cube map's faces are \
+             drawn"
+                .to_string(),
+        ));
+    }
+    if !suns
+        .iter()
+        .any(|s| s.light_projection == LightProjection::Perspective)
+    {
+        idle.push((
+            "perspective_fov",
+            "no directional light has a perspective projection (--light-projection \
+             perspective); spot lights use their own fov"
+                .to_string(),
+        ));
+    }
+    let snapped = |s: &ShadowSettings| {
+        s.light_projection == LightProjection::Ortho && (s.fit == Fit::Scene || s.cascades > 1)
+    };
+    if !suns.iter().any(snapped) {
+        idle.push((
+            "snap",
+            "no light's box is fitted (--fit scene) or cascaded, so there is nothing to snap"
+                .to_string(),
+        ));
+    }
+    idle
+}
+
+/// The settings as they act on this scene: those that do nothing set back to their
+/// defaults, so a summary says what is used (no "4 cascades" for a point light).
+pub fn in_use(scene: &Scene, settings: &ShadowSettings) -> ShadowSettings {
+    let idle = idle_settings(scene, settings);
+    let (Ok(serde_json::Value::Object(mut used)), Ok(serde_json::Value::Object(base))) = (
+        serde_json::to_value(settings),
+        serde_json::to_value(ShadowSettings::default()),
+    ) else {
+        return *settings;
+    };
+    for (name, _) in &idle {
+        if let Some(v) = base.get(*name) {
+            used.insert((*name).to_string(), v.clone());
+        }
+    }
+    serde_json::from_value(serde_json::Value::Object(used)).unwrap_or(*settings)
+}
+
+/// A setting's value as its flag takes it (`4`, `six-passes`, `true`).
+fn setting_value(settings: &ShadowSettings, name: &str) -> String {
+    match serde_json::to_value(settings) {
+        Ok(serde_json::Value::Object(map)) => match map.get(name) {
+            Some(serde_json::Value::String(s)) => s.clone(),
+            // As f32 prints it: 60, not 60.0.
+            Some(serde_json::Value::Number(n)) => match n.as_f64() {
+                Some(v) => format!("{}", v as f32),
+                None => n.to_string(),
+            },
+            Some(v) => v.to_string(),
+            None => String::new(),
+        },
+        _ => String::new(),
     }
 }

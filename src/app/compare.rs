@@ -47,7 +47,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let activity = Activity::start(format!(
         "compare: rendering light {}'s shadow test ({})",
         args.light,
-        settings.summary()
+        super::cli::in_use(&scene, &settings).summary()
     ));
     let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
     let vis = frame.visibility.as_deref().unwrap_or_default();
@@ -119,7 +119,12 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     write_files(&batch)?;
     println!(
         "{}",
-        summary(&scene.name, &settings.summary(), &metrics, args.band)
+        summary(
+            &scene.name,
+            &super::cli::in_use(&scene, &settings).summary(),
+            &metrics,
+            args.band
+        )
     );
     println!("{ERROR_COLOURS}");
     println!(

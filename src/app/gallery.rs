@@ -11,7 +11,7 @@ use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, create_output_dir, write_files};
 use shadowmap::reference::{error_image, Metrics};
 use shadowmap::settings::LightProjection;
-use shadowmap::{steps, Error, Result};
+use shadowmap::{steps, Error, Result, ShadowSettings};
 
 use super::cli::StepsArgs;
 use super::plot::with_error_legend;
@@ -48,8 +48,15 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let mut rows = Vec::new();
     // Every picture and the page, written together at the end.
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
+    // The first step is told against the chapter's start, each other against the one before.
+    let mut previous = steps::start(&scene);
     for (i, step) in steps::STEPS.iter().enumerate() {
         let settings = steps::settings_for(&scene, step.name)?;
+        let changed = match changed_fields(&previous, &settings) {
+            c if c.is_empty() => "nothing on this scene (the settings of the step before)".into(),
+            c => c.join(", "),
+        };
+        previous = settings;
         let frame = render_visibility(gl, &scene, &settings, width, height, 0)?;
         let image = format!("{:02}-{}.png", i + 1, step.name);
         files.push((image.clone(), frame.colour.encode_png()?));
@@ -79,7 +86,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
             error_file = Some(name);
         }
         println!(
-            "{:>2} {:<22} {}",
+            "{:>2} {:<22} {}; changed: {changed}",
             i + 1,
             step.name,
             metrics
@@ -92,7 +99,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 ))
                 .unwrap_or_else(|| "(depth map)".into())
         );
-        rows.push((step, settings, image, error_file, metrics));
+        rows.push((step, settings, image, error_file, metrics, changed));
     }
     let mut html = String::new();
     let _ = write!(
@@ -109,7 +116,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         scene.name, args.supersample
     );
     html.push_str("<table><tr><th class=n>step</th><th>false shadow</th><th>false light</th><th>outside 1-px edge band</th><th>MAE</th></tr>\n");
-    for (step, _, _, _, m) in &rows {
+    for (step, _, _, _, m, _) in &rows {
         match m {
             Some(m) => {
                 let _ = writeln!(
@@ -132,7 +139,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         }
     }
     html.push_str("</table>\n");
-    for (i, (step, settings, image, error_file, m)) in rows.iter().enumerate() {
+    for (i, (step, settings, image, error_file, m, changed)) in rows.iter().enumerate() {
         let figures = m
             .as_ref()
             .map(|m| {
@@ -151,7 +158,8 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         let _ = writeln!(
             html,
             "<figure><img src=\"{image}\" alt=\"{name}\">{err}<figcaption><b>{n}. {name}</b>{variant}<br>\
-             <i>Changed:</i> {change}<br><i>Look for:</i> {look}<br><i>Measured:</i> {figures}<br>\
+             <i>Changed:</i> {change}<br><i>Settings changed:</i> {changed}<br>\
+             <i>Look for:</i> {look}<br><i>Measured:</i> {figures}<br>\
              <small>{summary}</small></figcaption></figure>",
             n = i + 1,
             name = step.name,
@@ -180,4 +188,52 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     write_files(&batch)?;
     println!("wrote {} and {} images", path.display(), rows.len());
     Ok(())
+}
+
+/// The settings that differ between two steps, as "name old -> new": both serialised
+/// with serde_json and compared key by key, so every field counts, new ones included.
+pub fn changed_fields(before: &ShadowSettings, after: &ShadowSettings) -> Vec<String> {
+    let (Ok(serde_json::Value::Object(a)), Ok(serde_json::Value::Object(b))) =
+        (serde_json::to_value(before), serde_json::to_value(after))
+    else {
+        return Vec::new();
+    };
+    let show = |v: &serde_json::Value| match v {
+        serde_json::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
+    b.iter()
+        .filter(|(key, value)| a.get(*key) != Some(*value))
+        .map(|(key, value)| {
+            let old = a.get(key).map(show).unwrap_or_default();
+            format!("{} {old} -> {}", key.replace('_', " "), show(value))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn changed_fields_name_each_difference() {
+        let scene = shadowmap::Scene::load("learnopengl").unwrap();
+        let cull = steps::settings_for(&scene, "cull-front").unwrap();
+        let repeat = steps::settings_for(&scene, "over-sampling-repeat").unwrap();
+        let book = steps::settings_for(&scene, "over-sampling-book").unwrap();
+        let fixed = steps::settings_for(&scene, "over-sampling").unwrap();
+        // LearnOpenGL already wraps with REPEAT before its over-sampling steps.
+        assert_eq!(changed_fields(&cull, &repeat), Vec::<String>::new());
+        assert_eq!(
+            changed_fields(&repeat, &book),
+            vec!["wrap repeat -> clamp-to-edge"]
+        );
+        assert_eq!(
+            changed_fields(&book, &fixed),
+            vec![
+                "beyond far shadowed -> lit",
+                "wrap clamp-to-edge -> clamp-to-border"
+            ]
+        );
+    }
 }

@@ -99,9 +99,21 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         height,
         scene.name,
         scene.light().describe(),
-        settings.summary(),
+        super::cli::in_use(&scene, &settings).summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );
+    if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
+        let shown = match frame.depth_perspective {
+            Some((near, far)) => format!(
+                "a perspective light's depth, linearised to eye distance as the depth view \
+                 does: black at its near plane ({near}), white at its far plane ({far})"
+            ),
+            None => "an orthographic light's depth as stored: black at its near plane, white at \
+                     its far plane"
+                .to_string(),
+        };
+        println!("wrote {} ({size}^2 shadow map: {shown})", path.display());
+    }
     if let Some((median, p95)) = frame.frame_time_stats() {
         println!(
             "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",

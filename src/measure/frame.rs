@@ -24,6 +24,9 @@ pub struct Frame {
     /// The first light's 2D shadow map: its size and depth values (rows top to bottom);
     /// `None` when that light has a cube map, cascades or no map.
     pub depth_map: Option<(u32, Vec<f32>)>,
+    /// The light camera's near and far planes when that map is perspective (its depths
+    /// are then not linear in distance); `None` for an orthographic map.
+    pub depth_perspective: Option<(f32, f32)>,
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
     /// The camera position the G-buffer positions are relative to.
@@ -81,15 +84,31 @@ impl Frame {
         Some((at(0.5), at(0.95)))
     }
 
-    /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane).
+    /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane). A
+    /// perspective map is linearised first, as the depth view does, or all but the surfaces
+    /// next to the light would be white.
     pub fn depth_grey(&self) -> Option<(u32, Vec<u8>)> {
         let (size, depth) = self.depth_map.as_ref()?;
         let grey = depth
             .iter()
-            .map(|d| (d.clamp(0.0, 1.0) * 255.0).round() as u8)
+            .map(|&d| {
+                let shown = match self.depth_perspective {
+                    Some((near, far)) => linear_depth(d, near, far),
+                    None => d,
+                };
+                (shown.clamp(0.0, 1.0) * 255.0).round() as u8
+            })
             .collect();
         Some((*size, grey))
     }
+}
+
+/// A perspective depth in [0, 1] back to eye distance, then scaled to [0, 1] over
+/// [near, far] (shaders/depth_view.frag's `linearDepth`).
+pub fn linear_depth(depth: f32, near: f32, far: f32) -> f32 {
+    let z = depth * 2.0 - 1.0;
+    let eye = (2.0 * near * far) / (far + near - z * (far - near));
+    (eye - near) / (far - near)
 }
 
 /// Renders `frames` frames (updating the scene before each one after the first) at
@@ -203,6 +222,10 @@ pub fn render_frames_with(
         }
         (size, depth)
     });
+    let depth_perspective = renderer
+        .shadow_view()
+        .filter(|v| v.perspective && depth_map.is_some())
+        .map(|v| (v.near, v.far));
     crate::engine::check_gl(gl, "reading the frame back")?;
     Ok(Frame {
         width,
@@ -212,9 +235,27 @@ pub fn render_frames_with(
         positions,
         normals,
         depth_map,
+        depth_perspective,
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),
         casters: renderer.caster_counts(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::linear_depth;
+
+    #[test]
+    fn linear_depth_maps_the_planes_to_the_ends() {
+        let (near, far) = (1.0, 25.0);
+        assert!(linear_depth(0.0, near, far).abs() < 1e-6);
+        assert!((linear_depth(1.0, near, far) - 1.0).abs() < 1e-6);
+        // Halfway in eye distance (13) is far past halfway in stored depth.
+        let z = (far + near - 2.0 * near * far / 13.0) / (far - near);
+        let stored = (z + 1.0) * 0.5;
+        assert!(stored > 0.9, "{stored}");
+        assert!((linear_depth(stored, near, far) - 0.5).abs() < 1e-4);
+    }
 }

@@ -9,6 +9,9 @@
 //! - Boxes: each slice's smallest bounding sphere. Its radius depends only on the slice's
 //!   shape, not on where the camera looks, so the box keeps its size as the camera turns;
 //!   its centre moves in whole texels (snapping), so shadow edges do not crawl.
+//! - Reach: unless `shadow_distance` is set, the cascades cover the view depths the scene's
+//!   receivers occupy, not the camera's whole far plane (the DummyGame's camera reaches
+//!   1000 units over a scene 5 across: cascades that size lose the shadow).
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
@@ -79,11 +82,15 @@ pub struct CascadeSpec {
     pub map_size: u32,
     /// Move boxes in whole texels.
     pub snap: bool,
+    /// The depth range (far - near) of the light's own ortho box: each cascade's depth
+    /// range is at least this (see [`depth_reach`]).
+    pub light_depth: f32,
 }
 
 impl CascadeSpec {
-    /// The cascade fields of the shadow settings (`shadow_distance = 0`: no limit).
-    pub fn of(s: &ShadowSettings) -> CascadeSpec {
+    /// The cascade fields of the shadow settings (`shadow_distance = 0`: as far as the
+    /// scene reaches) for a light whose ortho box is `light_depth` deep.
+    pub fn of(s: &ShadowSettings, light_depth: f32) -> CascadeSpec {
         CascadeSpec {
             count: s.cascades,
             lambda: s.cascade_lambda,
@@ -95,8 +102,57 @@ impl CascadeSpec {
             },
             map_size: s.map_size,
             snap: s.snap,
+            light_depth,
         }
     }
+}
+
+/// The view depths (near, far) the cascades cover for `camera`: the depths of the
+/// receivers' boxes (every item receives) inside the view frustum's box, within the
+/// camera's near plane and `far` (at most the camera's far plane). A box
+/// is cut by the frustum's box first, so a floor reaching far to the sides does not push
+/// the far end out; with nothing in view, a short range at the near plane (all lit).
+pub fn scene_depth_range(
+    camera: &Camera,
+    aspect: f64,
+    boxes: &[(DVec3, DVec3)],
+    far: f64,
+) -> (f64, f64) {
+    let near = f64::from(camera.near).max(f64::MIN_POSITIVE);
+    let far = far.min(f64::from(camera.far)).max(near);
+    let view = camera.view_matrix64();
+    let inverse_view = view.inverse();
+    let tan = (f64::from(camera.fov).to_radians() * 0.5).tan();
+    let frustum = aabb((0..8).map(|i| {
+        let d = if i & 4 == 0 { near } else { far };
+        let x = if i & 1 == 0 { -1.0 } else { 1.0 } * d * tan * aspect;
+        let y = if i & 2 == 0 { -1.0 } else { 1.0 } * d * tan;
+        inverse_view.transform_point3(DVec3::new(x, y, -d))
+    }));
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (blo, bhi) in boxes {
+        let (clo, chi) = (blo.max(frustum.0), bhi.min(frustum.1));
+        if !clo.cmple(chi).all() {
+            continue;
+        }
+        for p in corners(clo, chi) {
+            let depth = -view.transform_point3(p).z;
+            lo = lo.min(depth);
+            hi = hi.max(depth);
+        }
+    }
+    if hi < near || lo > far {
+        return (near, near * 2.0);
+    }
+    // Both ends move in steps of 1/8 of their power of two (outwards, with a little room
+    // past the farthest corner), so a camera that moves or turns a little keeps its
+    // splits, and with them the boxes' sizes: snapped cascades then do not shimmer.
+    let step = |d: f64| 2f64.powf(d.abs().max(f64::MIN_POSITIVE).log2().floor()) / 8.0;
+    let lo = lo.clamp(near, far);
+    let lo = ((lo / step(lo)).floor() * step(lo)).max(near);
+    let hi = hi * (1.0 + 1e-3);
+    let hi = ((hi / step(hi)).ceil() * step(hi)).min(far);
+    (lo, hi.max(lo * (1.0 + 1e-3)).max(lo + 1e-6))
 }
 
 /// The cascades of a light shining from `to_light` for the scene's fitting camera (the
@@ -115,25 +171,30 @@ pub fn fit_cascades(
         far,
         map_size,
         snap,
+        light_depth,
     } = *spec;
     let camera = scene.fitting_camera();
     let aspect = f64::from(scene.size[0].max(1)) / f64::from(scene.size[1].max(1));
-    let splits = practical_splits(
-        f64::from(camera.near),
-        f64::from(far.min(camera.far)),
-        count,
-        f64::from(lambda),
-    );
+    // A shadow distance is taken as given; without one, the scene says how far.
+    let (near, far) = match far.is_finite() {
+        true => (f64::from(camera.near), f64::from(far.min(camera.far))),
+        false => scene_depth_range(camera, aspect, boxes, f64::from(camera.far)),
+    };
+    let splits = practical_splits(near, far, count, f64::from(lambda));
     let basis = light_basis(to_light.as_dvec3());
-    // How far towards the light casters reach, in light space (z points at the light).
-    let caster_top = scene
+    // The casters' boxes in light space (z points at the light).
+    let casters: Vec<(DVec3, DVec3)> = scene
         .items
         .iter()
         .zip(boxes)
         .filter(|(i, _)| i.casts_shadows)
-        .flat_map(|(_, (lo, hi))| corners(*lo, *hi))
-        .map(|p| (basis.transpose() * p).z)
-        .fold(f64::NEG_INFINITY, f64::max);
+        .map(|(_, (lo, hi))| aabb(corners(*lo, *hi).map(|p| basis.transpose() * p).into_iter()))
+        .collect();
+    let light = LightSpace {
+        basis,
+        casters: &casters,
+        depth: f64::from(light_depth),
+    };
     splits
         .windows(2)
         .enumerate()
@@ -144,23 +205,58 @@ pub fn fit_cascades(
                 0 => near,
                 _ => near - f64::from(blend) * (near - splits[c - 1]),
             };
-            let fitted = fit_slice(camera, aspect, from, far, basis, caster_top, map_size, snap);
+            let fitted = fit_slice(camera, aspect, from, far, &light, map_size, snap);
             Cascade { fitted, near, far }
         })
         .collect()
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The light's side of a fit: its basis, the casters' light-space boxes and its own box's
+/// depth range.
+struct LightSpace<'a> {
+    basis: glam::DMat3,
+    casters: &'a [(DVec3, DVec3)],
+    depth: f64,
+}
+
+/// How far a cascade's box reaches towards the light from its centre `c` (light space, the
+/// box `radius` across each way), so that its depth range is `reach + radius`.
+///
+/// A depth-unit bias (`bias`, the slope bias, polygon offset units) is a fraction of the
+/// depth range, so it means `bias * range` world units. The one map's range is the light's
+/// own ortho box (`far - near`: 21 units in the DummyGame, so the book's 0.05 is 1.05 units);
+/// a cascade's range depends on its slice and on the casters. Each cascade therefore
+/// reaches to the highest caster over its footprint (only those can shadow it along
+/// parallel rays), and when that is shallower than the light's box it is deepened to the
+/// box's depth, so the bias means the same world distance in every cascade as with one
+/// map. A cascade whose casters need more depth keeps what it needs (its bias grows, as the
+/// one map's would in a deeper box). Deepening rather than a bias per cascade keeps the
+/// shader's bias a literal, shared with the other maps.
+fn depth_reach(c: DVec3, radius: f64, light: &LightSpace) -> f64 {
+    let top = light
+        .casters
+        .iter()
+        .filter(|(lo, hi)| {
+            lo.x <= c.x + radius
+                && hi.x >= c.x - radius
+                && lo.y <= c.y + radius
+                && hi.y >= c.y - radius
+        })
+        .map(|(_, hi)| hi.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    (top - c.z).max(radius).max(light.depth - radius)
+}
+
 fn fit_slice(
     camera: &Camera,
     aspect: f64,
     near: f64,
     far: f64,
-    basis: glam::DMat3,
-    caster_top: f64,
+    light: &LightSpace,
     map_size: u32,
     snap: bool,
 ) -> FittedBox {
+    let basis = light.basis;
     let tan = (f64::from(camera.fov).to_radians() * 0.5).tan();
     let k = tan * (1.0 + aspect * aspect).sqrt();
     let (z, radius) = slice_sphere(near, far, k);
@@ -173,9 +269,9 @@ fn fit_slice(
         c.x = (c.x / texel).round() * texel;
         c.y = (c.y / texel).round() * texel;
     }
-    // The box reaches from the sphere's back to the highest caster, so everything that can
-    // shadow the slice is drawn into the cascade.
-    let reach = (caster_top - c.z).max(radius);
+    // The box reaches from the sphere's back to the highest caster over it, so everything
+    // that can shadow the slice is drawn into the cascade.
+    let reach = depth_reach(c, radius, light);
     let eye = basis * c;
     FittedBox {
         view: light_view(eye, basis),
@@ -277,7 +373,8 @@ impl Technique for Cascades {
         };
         // Items' world boxes, once: the cascades are fitted above them and culled by them.
         let boxes = item_world_boxes(scene);
-        self.cascades = fit_cascades(scene, &boxes, l.direction, &CascadeSpec::of(pass.settings));
+        let spec = CascadeSpec::of(pass.settings, l.ortho.far - l.ortho.near);
+        self.cascades = fit_cascades(scene, &boxes, l.direction, &spec);
         let program = pass.programs.flat(pass.gl)?;
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         for (layer, c) in self.cascades.iter().enumerate() {
