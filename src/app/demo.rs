@@ -571,7 +571,7 @@ impl Demo {
                     (false, 1) => String::new(),
                     (false, n) => format!(" (+{} more)", n - 1),
                 },
-                self.settings.summary(),
+                super::cli::in_use(&self.scene, &self.settings).summary(),
                 self.frame_ms,
                 w,
                 h

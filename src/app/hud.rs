@@ -85,7 +85,11 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         },
         None => format!("Settings: the {} scene's own", scene.name),
     };
-    let mut lines = vec![format!("{light}{more}"), step, info.settings.summary()];
+    let mut lines = vec![
+        format!("{light}{more}"),
+        step,
+        super::cli::in_use(info.scene, info.settings).summary(),
+    ];
     if info.angle_keys_idle {
         lines.push(ANGLE_KEYS_IDLE.to_string());
     }
