@@ -377,3 +377,40 @@ fn camera_target_aims_the_camera_and_refuses_rotation_beside_it() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+#[test]
+fn a_frame_size_too_large_names_where_it_came_from() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("errors-size");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("wide.toml");
+    std::fs::write(
+        &scene,
+        "size = [200000, 100]\n[light]\nangle = 45.0\n[[item]]\nmesh = \"cube\"\n",
+    )
+    .unwrap();
+    let out = dir.join("x.png");
+    let run = |extra: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+            .args(["render", "--scene", scene.to_str().unwrap()])
+            .args(["--out", out.to_str().unwrap()])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let from_file = run(&[]);
+    let text = String::from_utf8_lossy(&from_file.stderr);
+    assert!(!from_file.status.success());
+    assert!(
+        text.contains("wide.toml: size: [200000, 100]: expected each side from 1 to"),
+        "{text}"
+    );
+    let from_flag = run(&["--size", "100x300000"]);
+    let text = String::from_utf8_lossy(&from_flag.stderr);
+    assert!(!from_flag.status.success());
+    assert!(
+        text.contains("--size 100x300000: expected each side from 1 to"),
+        "{text}"
+    );
+    assert!(!out.exists(), "nothing is written");
+}

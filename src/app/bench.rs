@@ -36,6 +36,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let activity = Activity::start("bench: opening a headless OpenGL context");
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &base)?;
+    args.scene.check_size(context.gl(), &scene)?;
     let gl = context.gl();
     activity.done(&shadowmap::engine::check::renderer_name(gl));
     let max = gl_limits(gl).max_texture_size;

@@ -372,6 +372,27 @@ impl SceneArgs {
     pub fn size(&self, scene: &Scene) -> (u32, u32) {
         self.size.unwrap_or((scene.size[0], scene.size[1]))
     }
+
+    /// Checks the frame size against the driver, naming where it came from: `--size`, or
+    /// the scene file's `size`.
+    pub fn check_size(&self, gl: &shadowmap::engine::Gl, scene: &Scene) -> shadowmap::Result<()> {
+        let limits = shadowmap::engine::gl_limits(gl);
+        let max = limits
+            .max_renderbuffer_size
+            .min(limits.max_viewport[0])
+            .min(limits.max_viewport[1]);
+        let (w, h) = self.size(scene);
+        if (1..=max).contains(&w) && (1..=max).contains(&h) {
+            return Ok(());
+        }
+        let expected = format!("expected each side from 1 to {max} (the driver's maximum)");
+        Err(match self.size {
+            Some(_) => shadowmap::Error::Invalid(format!("--size {w}x{h}: {expected}")),
+            None => {
+                shadowmap::Error::in_field(&scene.source, "size", format!("[{w}, {h}]: {expected}"))
+            }
+        })
+    }
 }
 
 impl SettingsArgs {

@@ -22,6 +22,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     check_output_dir("--out-dir", dir)?;
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &settings)?;
+    args.scene.check_size(context.gl(), &scene)?;
     let opts = CompareOptions {
         width,
         height,

@@ -170,6 +170,7 @@ fn headless_fallback(args: &DemoArgs, mut scene: Scene, settings: &ShadowSetting
     let (w, h) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, settings)?;
+    args.scene.check_size(context.gl(), &scene)?;
     let overlays = Overlays {
         hud: !args.no_hud,
         inset: args.inset,

@@ -50,6 +50,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &settings)?;
+    args.scene.check_size(context.gl(), &scene)?;
     let outputs = Outputs {
         visibility: args.shadow_out.is_some(),
         gbuffer: false,

@@ -27,6 +27,7 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     args.settings.check(gl, &scene, &base)?;
+    args.scene.check_size(gl, &scene)?;
     let target = RenderTarget::new(gl, width, height, Outputs::default())?;
     let mut renderer = Renderer::new(gl, &scene, &base)?;
     let sizes = [256, 512, 1024, 2048];
