@@ -6,7 +6,7 @@ use glam::{Mat4, Vec3};
 use super::{Rays, ShadowView};
 use crate::scene::PointLight;
 use crate::settings::ShadowSettings;
-use crate::transformation::Transformation;
+use crate::transformation::{light_view, look_at_basis};
 
 /// The camera reported for a point light: its +Z face (the reference casts rays to the
 /// point; a texel is about 2 far / size at the far plane).
@@ -49,16 +49,13 @@ pub fn perspective_view(
     }
 }
 
-/// A right-handed look-at. With an up vector (the slides' +Z) it is the usual look-at; when
-/// there is none, or it lines up with the view direction (where the usual look-at gives
-/// NaN), the basis comes from [`crate::transformation::light_basis`] and is finite
-/// everywhere.
+/// A right-handed look-at with `up` (+Y when there is none): glm's `lookAt`, except within
+/// a few degrees of the poles (the view direction near `up` or its opposite, where glm's
+/// gives NaN), where the up turns smoothly to another
+/// ([`crate::transformation::look_at_basis`]); finite everywhere.
 pub fn look_at(eye: Vec3, target: Vec3, up: Option<Vec3>) -> Mat4 {
-    let d = (target - eye).normalize_or_zero();
-    match up {
-        Some(u) if u.normalize_or_zero().cross(d).length_squared() > 1e-6 => {
-            Mat4::look_at_rh(eye, target, u)
-        }
-        _ => Transformation::light_look_at(eye.as_dvec3(), -d.as_dvec3()).as_mat4(),
-    }
+    let to_light = (eye - target).as_dvec3();
+    let to_light = to_light.try_normalize().unwrap_or(glam::DVec3::Z);
+    let up = up.unwrap_or(Vec3::Y).as_dvec3();
+    light_view(eye.as_dvec3(), look_at_basis(to_light, up)).as_mat4()
 }
