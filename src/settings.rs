@@ -184,10 +184,12 @@ pub enum BeyondFar {
 #[serde(rename_all = "kebab-case")]
 pub enum LightView {
     /// The book: Euler angles from the direction (acos z, asin x). Right only while the
-    /// direction has no x component.
-    #[default]
+    /// direction has no x component (refused otherwise); the DummyGame's file asks for it.
     BookAngles,
-    /// A look-at from `direction * shadow_pos_mult` towards the origin.
+    /// glm's `lookAt` from `direction * shadow_pos_mult` towards the origin with up +Y (a
+    /// smooth turn to another up within a few degrees of the poles). The default: it works
+    /// for every direction.
+    #[default]
     LookAt,
 }
 
@@ -353,8 +355,9 @@ shadow_settings! {
     }
     /// Where the light's camera looks from and what it covers.
     "Light camera" {
-        /// How a directional light's view matrix is built.
-        light_view: LightView = LightView::BookAngles;
+        /// How a directional light's view matrix is built (scene files without it get
+        /// look-at; the DummyGame's asks for the book's angles).
+        light_view: LightView = LightView::LookAt;
         /// A directional light's shadow projection.
         light_projection: LightProjection = LightProjection::Ortho;
         /// Field of view of a perspective shadow camera for a directional light, degrees.

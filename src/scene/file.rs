@@ -831,6 +831,24 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
                 .map_err(|e| cx.bad(field, e.to_string()))?;
         }
     }
+    // The book's angle view only where it can stand for the light (it says nothing when
+    // it cannot, so say it here).
+    for (i, light) in lights.iter().enumerate() {
+        let Light::Directional(l) = light else {
+            continue;
+        };
+        let prefix = match lights.len() {
+            1 => "light".to_string(),
+            _ => format!("lights[{i}]"),
+        };
+        if let Some(problem) = l.book_angles_problem(&prefix, &light.settings(&file.shadow)) {
+            let field = match light.shadow_patch().light_view {
+                Some(_) => format!("{prefix}.shadow.light_view"),
+                None => "shadow.light_view".to_string(),
+            };
+            return Err(cx.bad(field, problem));
+        }
+    }
     let steps = build_steps(&file.steps, cx)?;
     let mut items = Items::default();
     for (i, item) in file.items.into_iter().enumerate() {

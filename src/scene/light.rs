@@ -6,7 +6,7 @@
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{LightView, ShadowPatch, ShadowSettings};
+use crate::settings::{Fit, LightProjection, LightView, ShadowPatch, ShadowSettings};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -36,6 +36,10 @@ impl Default for OrthoCoords {
         }
     }
 }
+
+/// The largest |x| of a (unit) direction the book's angle view represents: its two angles,
+/// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane.
+pub const BOOK_ANGLES_MAX_X: f32 = 1e-6;
 
 /// A light infinitely far away. `direction` points from the scene TOWARDS the light (the
 /// book's convention), so (0, 1, 0) is the sun straight overhead.
@@ -96,6 +100,26 @@ impl DirectionalLight {
                 Transformation::light_look_at(self.position().as_dvec3(), d.as_dvec3()).as_mat4()
             }
         }
+    }
+
+    /// Why the book's angle view cannot stand for this light (`name` names it in the
+    /// message), if `settings` would build its view that way: its direction has an x
+    /// component, and the angles would turn the map away from the light without a word.
+    pub fn book_angles_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+        let uses_angles = settings.light_view == LightView::BookAngles
+            && settings.light_projection == LightProjection::Ortho
+            && settings.fit == Fit::Manual
+            && settings.cascades <= 1
+            && self.casts_shadows;
+        let d = self.direction.normalize();
+        (uses_angles && d.x.abs() > BOOK_ANGLES_MAX_X).then(|| {
+            format!(
+                "\"book-angles\" cannot build the view of {name} (direction [{:.3}, {:.3}, {:.3}]): \
+                 the book's angles (acos z, asin x) are right only for directions in the YZ \
+                 plane (|x| <= {BOOK_ANGLES_MAX_X:e}); expected \"look-at\" for this light",
+                d.x, d.y, d.z
+            )
+        })
     }
 
     /// The orthographic projection of the ortho box.

@@ -155,6 +155,21 @@ impl Scene {
         &mut self.lights[0]
     }
 
+    /// Refuses settings under which a light's view cannot be built: the book's angle view
+    /// (`light_view = "book-angles"`) for a directional light with an x component. `settings`
+    /// are the scene's; each light's own table goes on top.
+    pub fn check_light_views(&self, settings: &ShadowSettings) -> Result<()> {
+        for (i, light) in self.lights.iter().enumerate() {
+            if let Light::Directional(l) = light {
+                let name = format!("light {i}");
+                if let Some(problem) = l.book_angles_problem(&name, &light.settings(settings)) {
+                    return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// The camera that shadow fitting follows: `fit_camera` when set, else the viewer.
     pub fn fitting_camera(&self) -> &Camera {
         self.fit_camera.as_ref().unwrap_or(&self.camera)

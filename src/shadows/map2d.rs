@@ -18,7 +18,7 @@ use super::{
     fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
 };
 use crate::engine::{state, DepthPassGuard, Gl, Sampling, ShadowMap, Texture};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
 
@@ -73,6 +73,13 @@ impl Technique for Map2d {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView> {
+        // Scene files and flags are checked before any frame; this guards scenes built in
+        // code (the book's angles would turn the map away from the light without a word).
+        if let Light::Directional(l) = &scene.lights[index] {
+            if let Some(problem) = l.book_angles_problem(&format!("light {index}"), pass.settings) {
+                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
+            }
+        }
         let view = camera(scene, index, pass.settings);
         let program = pass.programs.flat(pass.gl)?;
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
