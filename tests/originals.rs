@@ -5,9 +5,10 @@
 mod common;
 
 use glam::{Mat4, Vec2, Vec3};
+use shadowmap::compare::{compare, CompareOptions};
 use shadowmap::geometry::MeshData;
 use shadowmap::scene::Light;
-use shadowmap::settings::LightView;
+use shadowmap::settings::{LightView, MapSize};
 use shadowmap::Scene;
 
 /// The largest difference between two matrices' entries.
@@ -179,4 +180,120 @@ fn book_angles_are_refused_where_they_cannot_work() {
         LightView::BookAngles
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn playground_light_is_the_demos_bulb() {
+    // js/cube-scene.js: lookAt((0, 10, 30), (0, 0, 18), +Y), perspective(30 degrees, the
+    // canvas' aspect 4:3, near 10, far 30); the basic demo's depth map is the canvas' size,
+    // 400 x 300; clear colour (0.8, 0.9, 0.8).
+    let scene = Scene::load("playground").unwrap();
+    let Light::Spot(l) = scene.light() else {
+        panic!("the playground's light is a spot");
+    };
+    assert_eq!((l.fov, l.near, l.far, l.up), (30.0, 10.0, 30.0, None));
+    assert!((l.aspect - 4.0 / 3.0).abs() < 1e-6, "aspect {}", l.aspect);
+    assert!(!l.cone, "the bulb has no cone");
+    assert_eq!(
+        scene.shadow.map_size,
+        MapSize {
+            width: 400,
+            height: 300
+        }
+    );
+    assert_eq!(scene.clear_colour.truncate(), Vec3::new(0.8, 0.9, 0.8));
+    let camera = shadowmap::shadows::light_camera(&scene, 0, &scene.shadow);
+    let glm = Mat4::perspective_rh_gl(30f32.to_radians(), 4.0 / 3.0, 10.0, 30.0);
+    assert!(
+        max_diff(camera.projection, glm) < 1e-6,
+        "{}",
+        camera.projection
+    );
+}
+
+#[test]
+fn playground_bulb_lights_its_whole_frustum_where_rays_say() {
+    let ctx = common::context();
+    let scene = Scene::load("playground").unwrap();
+    let opts = CompareOptions {
+        width: 400,
+        height: 300,
+        supersample: 1,
+        band: 1,
+        light: 0,
+    };
+    let c = compare(ctx.gl(), &scene, &scene.shadow, &opts).unwrap_or_else(|e| panic!("{e}"));
+    let m = &c.metrics;
+    eprintln!(
+        "playground: {} receivers, {:.3}% misclassified ({} outside the edge band)",
+        m.receivers,
+        m.misclassified_rate * 100.0,
+        m.misclassified_outside_band
+    );
+    assert!(m.receivers > 20_000, "the slab and the cube face the bulb");
+    assert!(m.misclassified_rate < 0.01, "{m:?}");
+    assert_eq!(m.misclassified_outside_band, 0, "{m:?}");
+
+    let (checked, dark_pixels) = left_at_ambient(&ctx, &scene, &c);
+    eprintln!("{checked} lit receivers in the frustum, {dark_pixels} left at ambient");
+    assert!(checked > 10_000, "{checked}");
+    assert_eq!(dark_pixels, 0, "receivers left at the ambient colour");
+    // The check sees a cone: the same bulb with a 30-degree cone leaves a part of the slab
+    // that rays and the test call lit at the ambient colour.
+    let mut coned = scene.clone();
+    if let Light::Spot(l) = &mut coned.lights[0] {
+        l.cone = true;
+    }
+    let c = compare(ctx.gl(), &coned, &coned.shadow, &opts).unwrap_or_else(|e| panic!("{e}"));
+    let (_, dark_pixels) = left_at_ambient(&ctx, &coned, &c);
+    eprintln!("with a cone: {dark_pixels} left at ambient");
+    assert!(dark_pixels > 500, "{dark_pixels}");
+}
+
+/// Of the receivers inside the light's frustum that rays and the test both call lit and
+/// that face the bulb by more than a glancing angle: how many, and how many show no more
+/// than ambient light (the same frame with the bulb switched off).
+fn left_at_ambient(
+    ctx: &shadowmap::engine::HeadlessContext,
+    scene: &Scene,
+    c: &shadowmap::compare::Comparison,
+) -> (usize, usize) {
+    let mut dark = scene.clone();
+    if let Light::Spot(l) = &mut dark.lights[0] {
+        l.colour = Vec3::ZERO;
+    }
+    let ambient = shadowmap::compare::render_visibility(ctx.gl(), &dark, &dark.shadow, 400, 300, 0)
+        .unwrap()
+        .colour;
+    let light = shadowmap::shadows::light_camera(scene, 0, &scene.shadow);
+    let to_clip = light.projection * light.view;
+    let Light::Spot(bulb) = scene.light() else {
+        unreachable!()
+    };
+    let positions = c.frame.world_positions().unwrap();
+    let normals = c.frame.normals.as_ref().unwrap();
+    let visibility = c.frame.visibility.as_ref().unwrap();
+    let (mut checked, mut dark_pixels) = (0, 0);
+    for (i, r) in c.reference.hard.iter().enumerate() {
+        let Some(v) = visibility[i] else { continue };
+        if !(r.receiver && r.visibility == 1.0 && v == 1.0) {
+            continue;
+        }
+        let p = Vec3::from(positions[i]);
+        let ndc = to_clip.project_point3(p);
+        if ndc.abs().max_element() > 1.0 {
+            continue;
+        }
+        let n_dot_l = Vec3::from(normals[i]).dot((bulb.position - p).normalize());
+        if n_dot_l < 0.2 {
+            continue;
+        }
+        checked += 1;
+        let lit = &c.frame.colour.rgba[i * 4..i * 4 + 3];
+        let amb = &ambient.rgba[i * 4..i * 4 + 3];
+        if lit.iter().zip(amb).all(|(a, b)| a.abs_diff(*b) <= 2) {
+            dark_pixels += 1;
+        }
+    }
+    (checked, dark_pixels)
 }

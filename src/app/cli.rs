@@ -321,7 +321,7 @@ impl SettingsArgs {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
         settings
             .validate(max)
-            .and_then(|()| scene.check_light_views(settings))
+            .and_then(|()| scene.check_light_settings(settings))
             .map_err(|e| self.name_source(scene, e))
     }
 
@@ -330,7 +330,7 @@ impl SettingsArgs {
     pub fn check_values(&self, scene: &Scene, settings: &ShadowSettings) -> shadowmap::Result<()> {
         settings
             .validate_values()
-            .and_then(|()| scene.check_light_views(settings))
+            .and_then(|()| scene.check_light_settings(settings))
             .map_err(|e| self.name_source(scene, e))
     }
 

@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::renderer::{Renderer, Target};
 use crate::scene::Light;
 use crate::scene::Scene;
-use crate::settings::{BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowSettings};
+use crate::settings::{BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowSettings};
 use crate::shadows::ShadowKind;
 
 /// The bias configurations the sweep tries, by name.
@@ -135,7 +135,7 @@ pub struct BenchConfig {
 /// The tutorials' own final configurations, on top of the scene's settings.
 pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
     let mut book = *base;
-    book.map_size = 1024;
+    book.map_size = MapSize::square(1024);
     book.filter = Filter::Pcf3x3;
     book.cull = Cull::None;
     book.depth_format = DepthFormat::D24;
@@ -194,8 +194,8 @@ pub fn sweep(
                     && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
                     && s.cull == Cull::None
                     && s.depth_format == DepthFormat::D24
-                    && (512..=2048).contains(&s.map_size)
-                    && (!quick || s.map_size == 1024);
+                    && (512..=2048).contains(&s.map_size.max_side())
+                    && (!quick || s.map_size == MapSize::square(1024));
                 let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
                 match keep {
                     true => counts
@@ -258,7 +258,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
             for &filter in filters {
                 for &bias in biases {
                     let mut s = *base;
-                    s.map_size = map_size;
+                    s.map_size = MapSize::square(map_size);
                     s.filter = filter;
                     s.cull = Cull::None;
                     s.depth_format = DepthFormat::D24;
@@ -294,7 +294,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         for format in DepthFormat::ALL {
             for bias in BiasPreset::ALL {
                 let mut s = *base;
-                s.map_size = 1024;
+                s.map_size = MapSize::square(1024);
                 s.filter = Filter::Pcf3x3;
                 s.cull = cull;
                 s.depth_format = format;
@@ -306,7 +306,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     for format in [DepthFormat::D16, DepthFormat::D32F] {
         for bias in BiasPreset::ALL {
             let mut s = *base;
-            s.map_size = 1024;
+            s.map_size = MapSize::square(1024);
             s.filter = Filter::Pcf3x3;
             s.cull = Cull::None;
             s.depth_format = format;
@@ -316,7 +316,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     }
     if max_texture_size > 8192 {
         let mut s = tutorial_configs(base)[0].settings;
-        s.map_size = max_texture_size;
+        s.map_size = MapSize::square(max_texture_size);
         push(s, BiasPreset::Book);
     }
     out

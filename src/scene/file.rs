@@ -176,9 +176,15 @@ struct SpotFile {
     intensity: f32,
     position: Fixed<f32, 3>,
     target: Fixed<f32, 3>,
-    /// The shadow camera's up vector; `None` picks one.
+    /// The shadow camera's up vector; `None` is +Y.
     up: Option<Fixed<f32, 3>>,
     fov: f32,
+    /// The frustum's width over height.
+    #[serde(default = "one")]
+    aspect: f32,
+    /// Whether a cone of `fov` limits the light (false: the whole frustum is lit).
+    #[serde(default = "yes")]
+    cone: bool,
     near: f32,
     far: f32,
     #[serde(default = "yes")]
@@ -831,22 +837,25 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
                 .map_err(|e| cx.bad(field, e.to_string()))?;
         }
     }
-    // The book's angle view only where it can stand for the light (it says nothing when
-    // it cannot, so say it here).
+    // What a light cannot be drawn with (the book's angle view off the YZ plane, which
+    // would say nothing; a non-square map for a cube map or cascades): the setting named.
     for (i, light) in lights.iter().enumerate() {
-        let Light::Directional(l) = light else {
-            continue;
-        };
         let prefix = match lights.len() {
             1 => "light".to_string(),
             _ => format!("lights[{i}]"),
         };
-        if let Some(problem) = l.book_angles_problem(&prefix, &light.settings(&file.shadow)) {
-            let field = match light.shadow_patch().light_view {
-                Some(_) => format!("{prefix}.shadow.light_view"),
-                None => "shadow.light_view".to_string(),
+        let own = light.shadow_patch();
+        if let Some(problem) = light.settings_problem(&prefix, &light.settings(&file.shadow)) {
+            let setting = problem.split(' ').next().unwrap_or_default();
+            let given_by_light = match setting {
+                "shadow.light_view" => own.light_view.is_some(),
+                "shadow.map_size" => own.map_size.is_some(),
+                _ => false,
             };
-            return Err(cx.bad(field, problem));
+            return Err(match given_by_light {
+                true => cx.bad(format!("{prefix}.{setting}"), problem),
+                false => Error::file(cx.source, problem),
+            });
         }
     }
     let steps = build_steps(&file.steps, cx)?;
@@ -1264,8 +1273,24 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
     cx.finite(&field("target"), &l.target.0)?;
     if let Some(up) = &l.up {
         cx.finite(&field("up"), &up.0)?;
+        if Vec3::from(up.0).length() < 1e-6 {
+            return Err(cx.bad(
+                field("up"),
+                format!("{:?}: expected a non-zero vector", up.0),
+            ));
+        }
     }
     cx.finite(&field("fov"), &[l.fov])?;
+    cx.finite(&field("aspect"), &[l.aspect])?;
+    if !(l.aspect > 0.0 && l.aspect <= 1e3) {
+        return Err(cx.bad(
+            field("aspect"),
+            format!(
+                "{}: expected a width over height between 0 and 1000 (1 = square, 4:3 = 1.3333)",
+                l.aspect
+            ),
+        ));
+    }
     let (position, target) = (Vec3::from(l.position.0), Vec3::from(l.target.0));
     if (target - position).length() < 1e-6 {
         return Err(cx.bad(
@@ -1287,6 +1312,8 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
         target,
         up: l.up.map(|u| Vec3::from(u.0)),
         fov: l.fov,
+        aspect: l.aspect,
+        cone: l.cone,
         near: l.near,
         far: l.far,
         casts_shadows: l.casts_shadows,

@@ -137,10 +137,15 @@ pub struct SpotLight {
     pub intensity: f32,
     pub position: Vec3,
     pub target: Vec3,
-    /// The up vector of the shadow camera (the slides use +Z); `None` picks one.
+    /// The up vector of the shadow camera (the slides use +Z); `None` is +Y.
     pub up: Option<Vec3>,
-    /// Full cone angle and the shadow frustum's vertical field of view, degrees.
+    /// The shadow frustum's vertical field of view, degrees (and the full cone angle).
     pub fov: f32,
+    /// The shadow frustum's width over height (the shadow-playground's 4:3 canvas).
+    pub aspect: f32,
+    /// Whether a cone of `fov` limits the light; without one (the shadow-playground's bulb)
+    /// it lights its whole frustum (and beyond, unshadowed).
+    pub cone: bool,
     pub near: f32,
     pub far: f32,
     pub casts_shadows: bool,
@@ -252,6 +257,38 @@ impl Light {
         }
     }
 
+    /// What is wrong with drawing this light (named `name` in the message) under its own
+    /// `settings`, if anything: see [`crate::Scene::check_light_settings`]. The message
+    /// starts with the setting (`shadow.NAME = VALUE: ...`).
+    pub fn settings_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+        if !self.casts_shadows() {
+            return None;
+        }
+        if let Light::Directional(l) = self {
+            if let Some(problem) = l.book_angles_problem(name, settings) {
+                return Some(format!("shadow.light_view = {problem}"));
+            }
+        }
+        let square = match self {
+            Light::Point(_) => Some("a point light's cube map"),
+            Light::Directional(_)
+                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
+            {
+                Some("cascades")
+            }
+            _ => None,
+        };
+        let what = square?;
+        let size = settings.map_size;
+        (!size.is_square()).then(|| {
+            format!(
+                "shadow.map_size = {size}: {name} has {what}, which needs a square map; \
+                 expected one number, like {}",
+                size.max_side()
+            )
+        })
+    }
+
     /// A short description for titles and reports.
     pub fn describe(&self) -> String {
         match self {
@@ -279,10 +316,12 @@ impl Light {
             },
             Light::Spot(l) => Shading::Position {
                 position: l.position,
-                cone: Some((
-                    (l.fov.to_radians() * 0.5).cos(),
-                    (l.target - l.position).normalize_or_zero(),
-                )),
+                cone: l.cone.then(|| {
+                    (
+                        (l.fov.to_radians() * 0.5).cos(),
+                        (l.target - l.position).normalize_or_zero(),
+                    )
+                }),
             },
         }
     }

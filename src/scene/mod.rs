@@ -155,16 +155,15 @@ impl Scene {
         &mut self.lights[0]
     }
 
-    /// Refuses settings under which a light's view cannot be built: the book's angle view
-    /// (`light_view = "book-angles"`) for a directional light with an x component. `settings`
-    /// are the scene's; each light's own table goes on top.
-    pub fn check_light_views(&self, settings: &ShadowSettings) -> Result<()> {
+    /// Refuses settings a light cannot be drawn with: the book's angle view
+    /// (`light_view = "book-angles"`) for a directional light with an x component, and a
+    /// non-square `map_size` for a light whose map is square (a point light's cube map,
+    /// cascades). `settings` are the scene's; each light's own table goes on top.
+    pub fn check_light_settings(&self, settings: &ShadowSettings) -> Result<()> {
         for (i, light) in self.lights.iter().enumerate() {
-            if let Light::Directional(l) = light {
-                let name = format!("light {i}");
-                if let Some(problem) = l.book_angles_problem(&name, &light.settings(settings)) {
-                    return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
-                }
+            let own = light.settings(settings);
+            if let Some(problem) = light.settings_problem(&format!("light {i}"), &own) {
+                return Err(Error::Invalid(problem));
             }
         }
         Ok(())
