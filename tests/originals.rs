@@ -297,3 +297,100 @@ fn left_at_ambient(
     }
     (checked, dark_pixels)
 }
+
+/// The steps from `bias` to `over-sampling`, in order.
+const MIDDLE_STEPS: [&str; 6] = [
+    "bias",
+    "slope-bias",
+    "cull-front",
+    "over-sampling-repeat",
+    "over-sampling-book",
+    "over-sampling",
+];
+
+/// For each pair of consecutive [`MIDDLE_STEPS`] of `scene` seen from `camera`: whether their
+/// settings differ, and how many pixels change between their images.
+fn step_changes(
+    ctx: &shadowmap::engine::HeadlessContext,
+    scene: &Scene,
+    camera: shadowmap::scene::Camera,
+) -> Vec<(bool, usize)> {
+    let mut scene = scene.clone();
+    scene.camera = camera;
+    let shots: Vec<_> = MIDDLE_STEPS
+        .iter()
+        .map(|name| {
+            let settings = shadowmap::steps::settings_for(&scene, name).unwrap();
+            let frame =
+                shadowmap::compare::render_visibility(ctx.gl(), &scene, &settings, 400, 300, 0)
+                    .unwrap();
+            (settings, frame.colour.rgba)
+        })
+        .collect();
+    shots
+        .windows(2)
+        .map(|w| {
+            let changed = w[0]
+                .1
+                .chunks_exact(4)
+                .zip(w[1].1.chunks_exact(4))
+                .filter(|(a, b)| a != b)
+                .count();
+            (w[0].0 != w[1].0, changed)
+        })
+        .collect()
+}
+
+#[test]
+fn learnopengl_steps_differ_from_the_steps_camera() {
+    let ctx = common::context();
+    let scene = Scene::load("learnopengl").unwrap();
+    // The tutorial's camera stays the scene's; the steps have their own, over the cubes.
+    assert_eq!(scene.camera.position, Vec3::new(0.0, 0.0, 3.0));
+    let view = scene.steps_camera();
+    assert_eq!(view.position, Vec3::new(2.0, 7.5, 8.5));
+    assert_eq!(view.fov, 45.0, "fields left out come from [camera]");
+    let tutorial = step_changes(&ctx, &scene, scene.camera);
+    let steps = step_changes(&ctx, &scene, view);
+    for (k, ((differ, seen), (_, before))) in steps.iter().zip(&tutorial).enumerate() {
+        let pair = (MIDDLE_STEPS[k], MIDDLE_STEPS[k + 1]);
+        eprintln!(
+            "{pair:?}: {seen} pixels change from the steps camera, {before} from the tutorial's"
+        );
+        if !differ {
+            // LearnOpenGL starts with REPEAT, so its `over-sampling-repeat` variant is the
+            // step before it: nothing to show from anywhere.
+            assert_eq!(pair, ("cull-front", "over-sampling-repeat"));
+            assert_eq!(*seen, 0);
+            continue;
+        }
+        assert!(*seen > 50, "{pair:?}: {seen} pixels change");
+        assert!(
+            seen >= before,
+            "{pair:?}: {seen} pixels change, {before} from the tutorial's camera"
+        );
+    }
+}
+
+#[test]
+fn a_bad_steps_camera_is_named() {
+    let dir = std::env::temp_dir().join(format!("originals-steps-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("steps.toml");
+    for (table, field) in [
+        ("{ near = 5.0, far = 1.0 }", "steps.camera"),
+        ("{ fov = 0.0 }", "steps.camera.fov"),
+        ("{ zoom = 2.0 }", "steps.camera"),
+    ] {
+        std::fs::write(
+            &path,
+            format!(
+                "[light]\nangle = 45.0\n[steps]\ncamera = {table}\n[[item]]\nmesh = \"cube\"\n"
+            ),
+        )
+        .unwrap();
+        let err = Scene::load(path.to_str().unwrap()).unwrap_err().to_string();
+        assert!(err.contains(field), "{table}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

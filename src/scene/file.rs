@@ -94,6 +94,9 @@ struct StepsFile {
     bias: f32,
     /// The wrap mode the chapter starts with (LearnOpenGL starts with REPEAT).
     start_wrap: Wrap,
+    /// The camera the steps are shown from, where the tutorial's own does not show what
+    /// they change; fields it leaves out are the scene's `[camera]`'s.
+    camera: Option<StepsCameraFile>,
 }
 
 impl Default for StepsFile {
@@ -101,6 +104,31 @@ impl Default for StepsFile {
         StepsFile {
             bias: 0.05,
             start_wrap: Wrap::ClampToEdge,
+            camera: None,
+        }
+    }
+}
+
+/// `[steps] camera`: a `[camera]` table whose every field is optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepsCameraFile {
+    position: Option<Fixed<f32, 3>>,
+    rotation: Option<Fixed<f32, 3>>,
+    fov: Option<f32>,
+    near: Option<f32>,
+    far: Option<f32>,
+}
+
+impl StepsCameraFile {
+    /// The whole camera: these fields over `scene`'s.
+    fn over(&self, scene: &CameraFile) -> CameraFile {
+        CameraFile {
+            position: self.position.unwrap_or(scene.position),
+            rotation: self.rotation.unwrap_or(scene.rotation),
+            fov: self.fov.unwrap_or(scene.fov),
+            near: self.near.unwrap_or(scene.near),
+            far: self.far.unwrap_or(scene.far),
         }
     }
 }
@@ -818,7 +846,7 @@ impl Context<'_> {
 
 fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
     check_globals(&file, cx)?;
-    let camera = build_camera(&file.camera, cx)?;
+    let camera = build_camera(&file.camera, "camera", cx)?;
     let lights = build_lights(file.light, file.lights, cx)?;
     // map_size is checked against the driver's maximum once there is a driver.
     file.shadow
@@ -858,7 +886,7 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
             });
         }
     }
-    let steps = build_steps(&file.steps, cx)?;
+    let steps = build_steps(&file.steps, &file.camera, cx)?;
     let mut items = Items::default();
     for (i, item) in file.items.into_iter().enumerate() {
         items.add(i, item, cx)?;
@@ -907,15 +935,16 @@ fn check_globals(file: &SceneFile, cx: &Context) -> Result<()> {
     Ok(())
 }
 
-fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
-    cx.finite("camera.position", &c.position.0)?;
-    cx.finite("camera.rotation", &c.rotation.0)?;
-    cx.finite("camera.fov", &[c.fov])?;
-    cx.finite("camera.near", &[c.near])?;
-    cx.finite("camera.far", &[c.far])?;
+/// A camera table (`table`: `camera`, or `steps.camera`), checked.
+fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
+    cx.finite(&format!("{table}.position"), &c.position.0)?;
+    cx.finite(&format!("{table}.rotation"), &c.rotation.0)?;
+    cx.finite(&format!("{table}.fov"), &[c.fov])?;
+    cx.finite(&format!("{table}.near"), &[c.near])?;
+    cx.finite(&format!("{table}.far"), &[c.far])?;
     if !(c.near > 0.0 && c.near < c.far) {
         return Err(cx.bad(
-            "camera",
+            table,
             format!(
                 "near = {}, far = {}: expected 0 < near < far",
                 c.near, c.far
@@ -924,7 +953,7 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
     }
     if !(c.fov > 0.0 && c.fov < 180.0) {
         return Err(cx.bad(
-            "camera.fov",
+            format!("{table}.fov"),
             format!("{}: expected degrees between 0 and 180", c.fov),
         ));
     }
@@ -937,16 +966,21 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
     })
 }
 
-fn build_steps(s: &StepsFile, cx: &Context) -> Result<StepContext> {
+fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result<StepContext> {
     if !(s.bias.is_finite() && s.bias >= 0.0) {
         return Err(cx.bad(
             "steps.bias",
             format!("{}: expected a finite number >= 0", s.bias),
         ));
     }
+    let camera = match &s.camera {
+        Some(c) => Some(build_camera(&c.over(scene_camera), "steps.camera", cx)?),
+        None => None,
+    };
     Ok(StepContext {
         bias: s.bias,
         start_wrap: s.start_wrap,
+        camera,
     })
 }
 

@@ -96,6 +96,9 @@ pub struct StepContext {
     pub bias: f32,
     /// The wrap mode its chapter starts with.
     pub start_wrap: crate::settings::Wrap,
+    /// The camera its steps are shown from (`[steps] camera`), where the tutorial's own
+    /// does not show what they change; `None`: the scene's camera.
+    pub camera: Option<Camera>,
 }
 
 impl Scene {
@@ -167,6 +170,11 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The camera the chapter steps are shown from: `[steps] camera`, else the scene's.
+    pub fn steps_camera(&self) -> Camera {
+        self.steps.camera.unwrap_or(self.camera)
     }
 
     /// The camera that shadow fitting follows: `fit_camera` when set, else the viewer.
