@@ -86,21 +86,31 @@ impl MeshData {
         )
     }
 
-    /// The book's `cube.obj`: a cube spanning [-1, 1] on each axis, one normal per face.
+    /// The built-in cube: [-1, 1] on each axis, one normal per face, counter-clockwise from
+    /// outside, with the texture coordinates of LearnOpenGL's `renderCube` (the only one of
+    /// the chapters' cubes that is textured): on the +-Z faces s follows x and t follows y; on
+    /// the +-Y faces s follows x and t runs against z; on the +-X faces s follows y and t
+    /// runs against z. So the -Z face's wood reads mirrored from outside, as in the tutorial.
     pub fn cube() -> MeshData {
-        // Each face: outward normal, and the two in-face axes u, v with u x v = normal.
-        let faces: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
-            ([1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
-            ([-1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
-            ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
-            ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
-            ([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
-            ([0.0, 0.0, -1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        // Each face: outward normal; in-face axes a, b with a x b = normal (the winding); and
+        // the axes along which s and t grow from 0 at -1 to 1 at +1.
+        #[rustfmt::skip]
+        let faces: [[[f32; 3]; 5]; 6] = [
+            [[1., 0., 0.], [0., 0., -1.], [0., 1., 0.], [0., 1., 0.], [0., 0., -1.]],
+            [[-1., 0., 0.], [0., 0., 1.], [0., 1., 0.], [0., 1., 0.], [0., 0., -1.]],
+            [[0., 1., 0.], [1., 0., 0.], [0., 0., -1.], [1., 0., 0.], [0., 0., -1.]],
+            [[0., -1., 0.], [1., 0., 0.], [0., 0., 1.], [1., 0., 0.], [0., 0., -1.]],
+            [[0., 0., 1.], [1., 0., 0.], [0., 1., 0.], [1., 0., 0.], [0., 1., 0.]],
+            [[0., 0., -1.], [-1., 0., 0.], [0., 1., 0.], [1., 0., 0.], [0., 1., 0.]],
         ];
         let mut mesh = MeshData::empty("cube");
-        for (n, u, v) in faces {
-            let (n, u, v) = (Vec3::from(n), Vec3::from(u), Vec3::from(v));
-            mesh.push_quad(n, u, v, n, [1.0, 1.0]);
+        for [n, a, b, s_axis, t_axis] in faces.map(|f| f.map(Vec3::from)) {
+            let first = mesh.positions.len();
+            mesh.push_quad(n, a, b, n, [1.0, 1.0]);
+            for i in first..mesh.positions.len() {
+                let p = Vec3::from(mesh.positions[i]);
+                mesh.tex_coords[i] = [(p.dot(s_axis) + 1.0) * 0.5, (p.dot(t_axis) + 1.0) * 0.5];
+            }
         }
         mesh
     }

@@ -136,22 +136,51 @@ fn read_png_file(path: &Path) -> Result<Vec<u8>> {
 
 impl ImageData {
     /// A procedural wood-like texture (LearnOpenGL's floor is wood; we draw ours rather than
-    /// download one): warm planks with rings and a dark seam between boards.
+    /// download one): four planks side by side across u, running along v, with grain along
+    /// them and a dark seam between boards.
+    ///
+    /// Band-limited at the source: along v (the direction a floor foreshortens, where regular
+    /// stripes read as shadow acne) every term repeats at most twice per tile, so the tiled
+    /// floor shows no bands at any distance; across u the finest term (the grain) has a period
+    /// of about 13 texels at 256. Every term is periodic in u and v, so tiles meet without a
+    /// seam, and each texel is the average of 4 x 4 samples of the pattern, so the seams'
+    /// edges are anti-aliased rather than stepped.
     pub fn wood(size: u32) -> ImageData {
+        use std::f32::consts::TAU;
+        const PLANKS: f32 = 4.0;
+        const SUB: u32 = 4;
+        // Brightness of the pattern at (u, v) in [0, 1)^2.
+        let tone = |u: f32, v: f32| {
+            let across = u * PLANKS;
+            let plank = across.floor();
+            let x = across - plank; // 0..1 across this plank
+            let shift = plank * 0.37; // each plank's pattern starts elsewhere along v
+            let sway = 0.06 * (TAU * (v + shift)).sin() + 0.03 * (2.0 * TAU * (v + shift)).sin();
+            // Grain: five lines per plank along its length, swaying gently.
+            let grain = 0.5 + 0.5 * (TAU * (5.0 * x + sway + 0.3 * plank)).sin();
+            // Broad growth rings: one darker band per plank, drifting across it along v.
+            let ring = (TAU * (x - 0.5 + 1.5 * sway)).cos() * 0.5 + 0.5;
+            // Each plank a slightly different shade.
+            let shade = [1.0, 0.94, 1.02, 0.97][(plank as usize) % 4];
+            // The seam: a narrow dark line where planks meet (x near 0 or 1).
+            let edge = x.min(1.0 - x);
+            let seam = if edge < 0.025 { 0.55 } else { 1.0 };
+            (0.7 + 0.18 * ring - 0.12 * grain) * shade * seam
+        };
         let mut rgba = Vec::with_capacity((size * size * 4) as usize);
+        let n = size as f32 * SUB as f32;
         for y in 0..size {
             for x in 0..size {
-                let (u, v) = (x as f32 / size as f32, y as f32 / size as f32);
-                let plank = (u * 4.0).floor();
-                let along = v + plank * 0.37;
-                let rings = ((u * 4.0).fract() * 9.0 + (along * std::f32::consts::TAU).sin() * 1.7)
-                    .sin()
-                    * 0.5
-                    + 0.5;
-                let grain = ((along * 90.0 + plank * 13.0).sin() * 0.5 + 0.5) * 0.15;
-                let seam = if (u * 4.0).fract() < 0.03 { 0.55 } else { 1.0 };
-                let t = (0.65 + 0.25 * rings - grain) * seam;
-                let c = |base: f32| (base * t * 255.0).clamp(0.0, 255.0) as u8;
+                let mut t = 0.0;
+                for j in 0..SUB {
+                    for i in 0..SUB {
+                        let u = ((x * SUB + i) as f32 + 0.5) / n;
+                        let v = ((y * SUB + j) as f32 + 0.5) / n;
+                        t += tone(u, v);
+                    }
+                }
+                let t = t / (SUB * SUB) as f32;
+                let c = |base: f32| (base * t * 255.0).round().clamp(0.0, 255.0) as u8;
                 rgba.extend_from_slice(&[c(0.78), c(0.55), c(0.33), 255]);
             }
         }
@@ -185,4 +214,72 @@ pub fn encode_png(width: u32, height: u32, ty: image::ColorType, data: &[u8]) ->
 fn save_png(path: &Path, width: u32, height: u32, ty: image::ColorType, data: &[u8]) -> Result<()> {
     let bytes = encode_png(width, height, ty, data)?;
     crate::output::write_file(path, "the image", &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The wood's red channel at texel (x, y).
+    fn red(w: &ImageData, x: u32, y: u32) -> f64 {
+        f64::from(w.rgba[((y * w.width + x) * 4) as usize])
+    }
+
+    #[test]
+    fn wood_has_no_stripes_along_its_planks_and_tiles_without_a_seam() {
+        let w = ImageData::wood(256);
+        let n = w.height as usize;
+        // Along v (the way a floor foreshortens), per column: the share of the varying
+        // part's energy at more than 2 cycles per tile. Regular stripes across the planks
+        // (the old grain, 14 cycles per tile) would put most of it there.
+        let (mut high, mut all) = (0.0, 0.0);
+        for x in 0..w.width {
+            let col: Vec<f64> = (0..w.height).map(|y| red(&w, x, y)).collect();
+            let mean = col.iter().sum::<f64>() / n as f64;
+            for k in 1..n / 2 {
+                let (mut re, mut im) = (0.0, 0.0);
+                for (y, v) in col.iter().enumerate() {
+                    let a = std::f64::consts::TAU * (k * y) as f64 / n as f64;
+                    re += (v - mean) * a.cos();
+                    im += (v - mean) * a.sin();
+                }
+                let e = re * re + im * im;
+                all += e;
+                if k > 2 {
+                    high += e;
+                }
+            }
+        }
+        let share = high / all;
+        assert!(
+            share < 0.02,
+            "{:.1}% of the energy along v above 2 cycles",
+            share * 100.0
+        );
+        // Tiles meet like neighbours: the step from the last row to the first, and from the
+        // last column to the first, is no larger than steps inside.
+        let step = |a: (u32, u32), b: (u32, u32)| (red(&w, a.0, a.1) - red(&w, b.0, b.1)).abs();
+        let inside_v = (0..w.width)
+            .flat_map(|x| (1..w.height).map(move |y| (x, y)))
+            .map(|(x, y)| step((x, y), (x, y - 1)))
+            .fold(0.0, f64::max);
+        let wrap_v = (0..w.width)
+            .map(|x| step((x, 0), (x, w.height - 1)))
+            .fold(0.0, f64::max);
+        assert!(
+            wrap_v <= inside_v,
+            "seam along v: {wrap_v} against {inside_v}"
+        );
+        let inside_u = (0..w.height)
+            .flat_map(|y| (1..w.width).map(move |x| (x, y)))
+            .map(|(x, y)| step((x, y), (x - 1, y)))
+            .fold(0.0, f64::max);
+        let wrap_u = (0..w.height)
+            .map(|y| step((0, y), (w.width - 1, y)))
+            .fold(0.0, f64::max);
+        assert!(
+            wrap_u <= inside_u,
+            "seam along u: {wrap_u} against {inside_u}"
+        );
+    }
 }

@@ -111,7 +111,7 @@ pub const STEPS: &[Step] = &[
         change: "A 4096 x 4096 shadow map (the slides go 2K, 4K, 8K).",
         look_for: "Sharper edges: each texel covers a sixteenth of the area.",
         cumulative: true,
-        apply: |s, _| s.map_size = s.map_size.max(4096),
+        apply: |s, _| s.map_size = s.map_size.at_least(4096),
     },
     Step {
         name: "perspective",

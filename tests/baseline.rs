@@ -42,7 +42,7 @@ fn hit_cube(model: &Mat4, origin: Vec3, dir: Vec3) -> Option<f32> {
     (near <= far && far > 0.0).then_some(near.max(0.0))
 }
 
-/// The floor point (y = -0.5, inside 25 x 25) seen at pixel (x, y), if no cube is in front.
+/// The floor point (y = -0.5, inside the 50 x 50 floor) seen at pixel (x, y), if no cube is in front.
 fn floor_point(inv_view_proj: &Mat4, x: f32, y: f32) -> Option<Vec3> {
     let ndc = Vec3::new(x / W as f32 * 2.0 - 1.0, 1.0 - y / H as f32 * 2.0, -1.0);
     let unproject = |z: f32| {
@@ -53,7 +53,7 @@ fn floor_point(inv_view_proj: &Mat4, x: f32, y: f32) -> Option<Vec3> {
     let dir = far - origin;
     let t = (-0.5 - origin.y) / dir.y;
     let p = origin + dir * t;
-    let visible = t > 0.0 && p.x.abs() <= 12.5 && p.z.abs() <= 12.5;
+    let visible = t > 0.0 && p.x.abs() <= 25.0 && p.z.abs() <= 25.0;
     let blocked = cubes()
         .iter()
         .any(|m| hit_cube(m, origin, dir).is_some_and(|c| c < t));

@@ -7,7 +7,7 @@ mod common;
 use glam::{DVec3, Vec3};
 use shadowmap::compare::{compare, CompareOptions};
 use shadowmap::settings::MAX_CASCADES;
-use shadowmap::settings::{Filter, ShadowSettings};
+use shadowmap::settings::{Filter, MapSize, ShadowSettings};
 use shadowmap::shadows::cascades::{fit_cascades, practical_splits, CascadeSpec};
 use shadowmap::Scene;
 
@@ -19,7 +19,7 @@ fn large() -> Scene {
 fn cascaded(scene: &Scene, cascades: u32, map_size: u32) -> ShadowSettings {
     ShadowSettings {
         cascades,
-        map_size,
+        map_size: MapSize::square(map_size),
         ..scene.shadow
     }
 }

@@ -262,7 +262,23 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
         ),
         (
             &["render", "--map-size", "-1"],
-            "invalid value '-1' for '--map-size <N>'",
+            "invalid value '-1' for '--map-size <SIZE>': '-1': expected a side in texels like \
+             1024, or WIDTHxHEIGHT like 400x300",
+        ),
+        (
+            &["render", "--map-size", "400x"],
+            "invalid value '400x' for '--map-size <SIZE>'",
+        ),
+        (
+            &[
+                "render",
+                "--scene",
+                "point-shadows",
+                "--map-size",
+                "400x300",
+            ],
+            "--map-size: shadow.map_size = 400x300: light 0 has a point light's cube map, which \
+             needs a square map; expected one number, like 400",
         ),
         (
             &["render", "--cascades", "-2"],

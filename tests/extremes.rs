@@ -10,7 +10,7 @@ use shadowmap::engine::HeadlessContext;
 use shadowmap::reference::Metrics;
 use shadowmap::scene::{Light, SpotLight};
 use shadowmap::settings::{
-    BeyondFar, BiasMode, DepthFormat, Filter, Fit, LightView, ShadowSettings, Wrap,
+    BeyondFar, BiasMode, DepthFormat, Filter, Fit, LightView, MapSize, ShadowSettings, Wrap,
 };
 use shadowmap::Scene;
 
@@ -237,7 +237,7 @@ fn map_sizes_from_one_texel_to_the_driver_maximum() {
     let scene = common::dummy(60.0);
     for size in [1, 2, 16, max] {
         let s = ShadowSettings {
-            map_size: size,
+            map_size: MapSize::square(size),
             ..scene.shadow
         };
         let m = measure(&ctx, &scene, &s);
@@ -248,7 +248,7 @@ fn map_sizes_from_one_texel_to_the_driver_maximum() {
         assert!(m.receivers > 1000);
     }
     let s = ShadowSettings {
-        map_size: max + 1,
+        map_size: MapSize::square(max + 1),
         ..scene.shadow
     };
     let err = shadowmap::frame::render_frames(
@@ -365,6 +365,8 @@ fn perspective_lights_over_near_planes_and_ratios() {
         target: Vec3::ZERO,
         up: None,
         fov: 90.0,
+        aspect: 1.0,
+        cone: true,
         near: 1.0,
         far: 20.0,
         casts_shadows: true,
@@ -530,6 +532,9 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
     // the fitted box is cut by the view and follows the camera.
     let mut scene = Scene::load("learnopengl").unwrap();
     scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
+    // The view reaches 12 units: with the tutorial's 100 it would see the whole 50 x 50
+    // floor and every cube on it, and the box would hold them all wherever the camera is.
+    scene.camera.far = 12.0;
     let cube = scene
         .items
         .iter()

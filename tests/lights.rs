@@ -5,7 +5,7 @@ mod common;
 
 use glam::Vec3;
 use shadowmap::compare::{compare, CompareOptions};
-use shadowmap::settings::{BiasMode, Filter, ShadowSettings};
+use shadowmap::settings::{BiasMode, Filter, MapSize, ShadowSettings};
 use shadowmap::Scene;
 
 fn measure(scene: &Scene, s: &ShadowSettings) -> shadowmap::reference::Metrics {
@@ -320,13 +320,13 @@ fn a_light_with_its_own_shadow_table_gets_its_own_map_and_test() {
         *scene.lights[0].shadow_patch(),
         ShadowPatch {
             filter: Some(Filter::Single),
-            map_size: Some(256),
+            map_size: Some(MapSize::square(256)),
             bias_mode: Some(BiasMode::None),
             ..ShadowPatch::default()
         }
     );
     let global = scene.shadow;
-    assert_eq!(global.map_size, 1024);
+    assert_eq!(global.map_size, MapSize::square(1024));
     // Light 0's map is 256^2 and light 1's the scene's 1024^2.
     let ctx = common::context();
     let mut renderer = Renderer::new(ctx.gl(), &scene, &global).unwrap();
@@ -352,7 +352,7 @@ fn a_light_with_its_own_shadow_table_gets_its_own_map_and_test() {
     *plain.lights[0].shadow_patch_mut() = ShadowPatch::default();
     let as_global = ShadowSettings {
         filter: Filter::Single,
-        map_size: 256,
+        map_size: MapSize::square(256),
         bias_mode: BiasMode::None,
         ..global
     };

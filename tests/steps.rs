@@ -8,7 +8,7 @@ use shadowmap::compare::{compare, CompareOptions, Comparison};
 use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::reference::Metrics;
-use shadowmap::settings::{BeyondFar, BiasMode, Cull, Filter, ShadowSettings, Wrap};
+use shadowmap::settings::{BeyondFar, BiasMode, Cull, Filter, MapSize, ShadowSettings, Wrap};
 use shadowmap::{steps, Scene};
 
 fn scene(name: &str) -> Scene {
@@ -260,11 +260,11 @@ fn pcf_gives_intermediate_values_and_lowers_mae_when_texels_are_small() {
         // edge when a texel is no larger than a pixel: a 4096 map seen at 320 x 180.
         let (hard4k, soft4k) = (
             ShadowSettings {
-                map_size: 4096,
+                map_size: MapSize::square(4096),
                 ..hard
             },
             ShadowSettings {
-                map_size: 4096,
+                map_size: MapSize::square(4096),
                 ..soft
             },
         );
@@ -285,7 +285,10 @@ fn hi_res_narrows_the_misclassified_band() {
     for name in ["dummy", "learnopengl"] {
         let sc = scene(name);
         let (lo, hi) = (step(&sc, "pcf"), step(&sc, "hi-res"));
-        assert_eq!((lo.map_size, hi.map_size), (1024, 4096));
+        assert_eq!(
+            (lo.map_size, hi.map_size),
+            (MapSize::square(1024), MapSize::square(4096))
+        );
         let ml = measure(&ctx, &sc, &lo, (640, 360), 1).metrics;
         let mh = measure(&ctx, &sc, &hi, (640, 360), 1).metrics;
         show(&format!("{name} 1024"), &ml);

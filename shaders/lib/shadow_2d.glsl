@@ -2,7 +2,8 @@
 // scene_fragment.fs; LearnOpenGL: ShadowCalculation). Compiled with the defines of
 // bias.glsl and:
 //   PCF_RADIUS      0 = one lookup, 1 = the chapters' 3 x 3 PCF, 2 = 5 x 5
-//   SHADOW_MAP_SIZE texels per side (a constant, not a textureSize query per pixel)
+//   SHADOW_TEXEL    one texel: vec2(1 / width, 1 / height) of the map (a constant, not a
+//                   textureSize query per pixel)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares, and reads as shadowed),
 //                   1 = LearnOpenGL (z > 1 is lit)
 
@@ -18,7 +19,7 @@ float calcShadow(SHADOW_SAMPLER_2D shadowMap, vec4 position, vec3 normal, vec3 t
 
     // Percentage-closer filtering: the lit fraction of a grid of comparisons, one texel
     // apart.
-    vec2 inc = vec2(1.0 / float(SHADOW_MAP_SIZE));
+    vec2 inc = SHADOW_TEXEL;
     float lit = 0.0;
     for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
         for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {

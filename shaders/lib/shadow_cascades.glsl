@@ -3,7 +3,7 @@
 // covering a slice of the view. Compiled with the defines of bias.glsl and:
 //   CASCADES       layers (2 to 4)
 //   CASCADE_BLEND  the last fraction of each cascade that fades into the next
-//   SHADOW_MAP_SIZE, PCF_RADIUS as for the 2D test
+//   SHADOW_TEXEL, PCF_RADIUS as for the 2D test
 
 // The cascaded light's position in each cascade's clip space (scene.vert: one light has
 // cascades, so they fit among the vertex outputs).
@@ -13,7 +13,7 @@ uniform float cascadeSplit[CASCADES + 1];  // view depths: cascade c serves [c, 
 // The PCF grid of calcShadow, in one layer of the array.
 float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
 {
-    vec2 inc = vec2(1.0 / float(SHADOW_MAP_SIZE));
+    vec2 inc = SHADOW_TEXEL;
     float lit = 0.0;
     for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
         for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {

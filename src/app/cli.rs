@@ -407,6 +407,7 @@ impl SettingsArgs {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
         settings
             .validate(max)
+            .and_then(|()| scene.check_light_settings(settings))
             .map_err(|e| self.name_source(scene, e))
     }
 
@@ -415,6 +416,7 @@ impl SettingsArgs {
     pub fn check_values(&self, scene: &Scene, settings: &ShadowSettings) -> shadowmap::Result<()> {
         settings
             .validate_values()
+            .and_then(|()| scene.check_light_settings(settings))
             .map_err(|e| self.name_source(scene, e))
     }
 

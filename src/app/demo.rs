@@ -90,6 +90,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         azimuth: None,
         angle_keys_idle: false,
         show_inset: args.inset,
+        camera_before_steps: None,
     };
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
@@ -251,6 +252,8 @@ struct Demo {
     angle_keys_idle: bool,
     /// Whether the shadow-map inset is drawn (I).
     show_inset: bool,
+    /// The camera to go back to when the steps (shown from the scene's steps camera) end.
+    camera_before_steps: Option<shadowmap::scene::Camera>,
 }
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
@@ -317,6 +320,21 @@ impl Demo {
 
     /// Switches to a chapter step (or back to the scene's settings with `None`).
     fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
+        // Steps are shown from the scene's steps camera (where its own does not show what
+        // they change); back to the scene's camera with its own settings.
+        if self.scene.steps.camera.is_some() {
+            match (step, self.camera_before_steps) {
+                (Some(_), None) => {
+                    self.camera_before_steps = Some(self.scene.camera);
+                    self.scene.camera = self.scene.steps_camera();
+                }
+                (None, Some(camera)) => {
+                    self.scene.camera = camera;
+                    self.camera_before_steps = None;
+                }
+                _ => {}
+            }
+        }
         let settings = match step {
             Some(name) => steps::settings_for(&self.scene, name),
             None => self.args.settings.apply(&mut self.scene),

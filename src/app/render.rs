@@ -86,7 +86,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         images.push((path, image.encode_png()?));
     }
     if let (Some(path), Some((size, grey))) = (&args.depth_out, frame.depth_grey()) {
-        images.push((path, encode_png(size, size, ColorType::L8, &grey)?));
+        images.push((
+            path,
+            encode_png(size.width, size.height, ColorType::L8, &grey)?,
+        ));
     }
     let files: Vec<(&Path, &str, &[u8])> = images
         .iter()

@@ -46,7 +46,7 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             let k = (frame / 50) as usize;
             let step = steps::STEPS[k % steps::STEPS.len()].name;
             let mut s = steps::settings_for(&scene, step)?;
-            s.map_size = sizes[k % sizes.len()];
+            s.map_size = sizes[k % sizes.len()].into();
             renderer.set_settings(&s)?;
         }
         let angle = 10.0 + (frame as f32 * 0.7) % 160.0;

@@ -113,15 +113,18 @@ fn cube_vertices() -> Vec<Vertex> {
         .collect()
 }
 
-/// The 25 x 25 floor at y = -0.5, the texture tiled 25 times, wound clockwise from above as
-/// the tutorial's is (no culling, so it only matters for consistency).
+/// The tutorial's 50 x 50 floor at y = -0.5 (`planeVertices` span -25..25), texture
+/// coordinates 0..25 (u grows with x, v against z), wound clockwise from above as the
+/// tutorial's is (no culling, so it only matters for consistency).
 fn floor_vertices() -> Vec<Vertex> {
+    const HALF: f32 = 25.0;
+    const TILES: f32 = 25.0;
     let corner = |x: f32, z: f32| -> Vertex {
-        let (u, v) = ((x / 12.5 + 1.0) * 12.5, (1.0 - z / 12.5) * 12.5);
-        [x, -0.5, z, 0.0, 1.0, 0.0, u, v]
+        let (u, v) = ((x + HALF) / (2.0 * HALF), (HALF - z) / (2.0 * HALF));
+        [x, -0.5, z, 0.0, 1.0, 0.0, u * TILES, v * TILES]
     };
-    let (a, b) = (corner(-12.5, 12.5), corner(12.5, 12.5));
-    let (c, d) = (corner(12.5, -12.5), corner(-12.5, -12.5));
+    let (a, b) = (corner(-HALF, HALF), corner(HALF, HALF));
+    let (c, d) = (corner(HALF, -HALF), corner(-HALF, -HALF));
     vec![a, c, b, a, d, c]
 }
 

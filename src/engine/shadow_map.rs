@@ -7,7 +7,7 @@ use super::check::check_framebuffer;
 use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
-use crate::settings::DepthFormat;
+use crate::settings::{DepthFormat, MapSize};
 
 /// Owns the framebuffer and the depth texture attached to it; both are freed on drop.
 pub struct ShadowMap {
@@ -18,16 +18,19 @@ pub struct ShadowMap {
 }
 
 impl ShadowMap {
-    /// Creates a `size` x `size` depth-only framebuffer. Like the book, it has no colour
-    /// buffer (draw and read buffer NONE) and its completeness is checked.
-    pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<ShadowMap> {
-        Self::from_texture(gl, Texture::depth(gl, size, size, format)?, format)
+    /// Creates a depth-only framebuffer of `size` (square in the chapters, the canvas' shape
+    /// in the shadow-playground). Like the book, it has no colour buffer (draw and read
+    /// buffer NONE) and its completeness is checked.
+    pub fn new(gl: &Gl, size: impl Into<MapSize>, format: DepthFormat) -> Result<ShadowMap> {
+        let size = size.into();
+        let texture = Texture::depth(gl, size.width, size.height, format)?;
+        Self::from_texture(gl, texture, format)
     }
 
     /// Builds the framebuffer around an existing texture. A texture that cannot be a depth
     /// attachment gives [`Error::IncompleteFramebuffer`], never a silently black map.
     pub fn from_texture(gl: &Gl, depth_map: Texture, format: DepthFormat) -> Result<ShadowMap> {
-        let size = depth_map.width();
+        let (width, height) = (depth_map.width(), depth_map.height());
         // The FBO has its owner before the completeness check, so a failure frees it.
         let map = ShadowMap {
             gl: gl.clone(),
@@ -45,7 +48,7 @@ impl ShadowMap {
                 0,
             );
         }
-        map.fbo.finish(&format!("shadow map {size}x{size}"))?;
+        map.fbo.finish(&format!("shadow map {width}x{height}"))?;
         Ok(map)
     }
 
@@ -66,8 +69,11 @@ impl ShadowMap {
         &self.depth_map
     }
 
-    pub fn size(&self) -> u32 {
-        self.depth_map.width()
+    pub fn size(&self) -> MapSize {
+        MapSize {
+            width: self.depth_map.width(),
+            height: self.depth_map.height(),
+        }
     }
 
     pub fn format(&self) -> DepthFormat {
@@ -76,7 +82,8 @@ impl ShadowMap {
 
     /// Reads the depth values back (row 0 at the bottom, as GL stores them).
     pub fn read_depth(&self) -> Vec<f32> {
-        let n = (self.size() * self.size()) as usize;
+        let size = self.size();
+        let n = size.texels() as usize;
         let mut bytes = vec![0u8; n * 4];
         self.fbo.bind();
         unsafe {
@@ -84,8 +91,8 @@ impl ShadowMap {
             self.gl.read_pixels(
                 0,
                 0,
-                self.size() as i32,
-                self.size() as i32,
+                size.width as i32,
+                size.height as i32,
                 glow::DEPTH_COMPONENT,
                 glow::FLOAT,
                 glow::PixelPackData::Slice(Some(&mut bytes)),

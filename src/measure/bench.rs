@@ -17,7 +17,7 @@ use crate::renderer::{Renderer, Target};
 use crate::scene::Scene;
 use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
-    BiasMode, Cull, DepthFormat, Filter, PointPass, ShadowPatch, ShadowSettings,
+    BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowPatch, ShadowSettings,
 };
 use crate::shadows::ShadowKind;
 
@@ -138,7 +138,7 @@ pub struct BenchConfig {
 /// The tutorials' own final configurations, on top of the scene's settings.
 pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
     let mut book = *base;
-    book.map_size = 1024;
+    book.map_size = MapSize::square(1024);
     book.filter = Filter::Pcf3x3;
     book.cull = Cull::None;
     book.depth_format = DepthFormat::D24;
@@ -197,8 +197,8 @@ pub fn sweep(
                     && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
                     && s.cull == Cull::None
                     && s.depth_format == DepthFormat::D24
-                    && (512..=2048).contains(&s.map_size)
-                    && (!quick || s.map_size == 1024);
+                    && (512..=2048).contains(&s.map_size.max_side())
+                    && (!quick || s.map_size == MapSize::square(1024));
                 let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
                 match keep {
                     true => counts
@@ -265,6 +265,8 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         target: Vec3::ZERO,
         up: None,
         fov: 45.0,
+        aspect: 1.0,
+        cone: true,
         near: 1.0,
         far: 20.0,
         casts_shadows: true,
@@ -311,7 +313,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
             for &filter in filters {
                 for &bias in biases {
                     let mut s = *base;
-                    s.map_size = map_size;
+                    s.map_size = MapSize::square(map_size);
                     s.filter = filter;
                     s.cull = Cull::None;
                     s.depth_format = DepthFormat::D24;
@@ -347,7 +349,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         for format in DepthFormat::ALL {
             for bias in BiasPreset::ALL {
                 let mut s = *base;
-                s.map_size = 1024;
+                s.map_size = MapSize::square(1024);
                 s.filter = Filter::Pcf3x3;
                 s.cull = cull;
                 s.depth_format = format;
@@ -359,7 +361,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     for format in [DepthFormat::D16, DepthFormat::D32F] {
         for bias in BiasPreset::ALL {
             let mut s = *base;
-            s.map_size = 1024;
+            s.map_size = MapSize::square(1024);
             s.filter = Filter::Pcf3x3;
             s.cull = Cull::None;
             s.depth_format = format;
@@ -369,7 +371,7 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     }
     if max_texture_size > 8192 {
         let mut s = tutorial_configs(base)[0].settings;
-        s.map_size = max_texture_size;
+        s.map_size = MapSize::square(max_texture_size);
         push(s, BiasPreset::Book);
     }
     out

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::renderer::{DepthPasses, Renderer, Target};
 use crate::scene::Scene;
-use crate::settings::ShadowSettings;
+use crate::settings::{MapSize, ShadowSettings};
 
 /// What a headless render returns. Images are rows top to bottom.
 pub struct Frame {
@@ -23,7 +23,7 @@ pub struct Frame {
     pub normals: Option<Vec<[f32; 3]>>,
     /// The first light's 2D shadow map: its size and depth values (rows top to bottom);
     /// `None` when that light has a cube map, cascades or no map.
-    pub depth_map: Option<(u32, Vec<f32>)>,
+    pub depth_map: Option<(MapSize, Vec<f32>)>,
     /// The light camera's near and far planes when that map is perspective (its depths
     /// are then not linear in distance); `None` for an orthographic map.
     pub depth_perspective: Option<(f32, f32)>,
@@ -87,7 +87,7 @@ impl Frame {
     /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane). A
     /// perspective map is linearised first, as the depth view does, or all but the surfaces
     /// next to the light would be white.
-    pub fn depth_grey(&self) -> Option<(u32, Vec<u8>)> {
+    pub fn depth_grey(&self) -> Option<(MapSize, Vec<u8>)> {
         let (size, depth) = self.depth_map.as_ref()?;
         let grey = depth
             .iter()
@@ -215,9 +215,9 @@ pub fn render_frames_with(
         let size = map.size();
         let mut depth = map.read_depth();
         // GL rows run bottom-up; flip so the image shows the map with +v up.
-        let row = size as usize;
-        for y in 0..row / 2 {
-            let (a, b) = depth.split_at_mut((row - 1 - y) * row);
+        let (row, rows) = (size.width as usize, size.height as usize);
+        for y in 0..rows / 2 {
+            let (a, b) = depth.split_at_mut((rows - 1 - y) * row);
             a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
         }
         (size, depth)

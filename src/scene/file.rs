@@ -98,6 +98,9 @@ struct StepsFile {
     bias: f32,
     /// The wrap mode the chapter starts with (LearnOpenGL starts with REPEAT).
     start_wrap: Wrap,
+    /// The camera the steps are shown from, where the tutorial's own does not show what
+    /// they change; fields it leaves out are the scene's `[camera]`'s.
+    camera: Option<StepsCameraFile>,
 }
 
 impl Default for StepsFile {
@@ -105,6 +108,38 @@ impl Default for StepsFile {
         StepsFile {
             bias: 0.05,
             start_wrap: Wrap::ClampToEdge,
+            camera: None,
+        }
+    }
+}
+
+/// `[steps] camera`: a `[camera]` table whose every field is optional.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepsCameraFile {
+    position: Option<Fixed<f32, 3>>,
+    rotation: Option<Fixed<f32, 3>>,
+    target: Option<Fixed<f32, 3>>,
+    fov: Option<f32>,
+    near: Option<f32>,
+    far: Option<f32>,
+}
+
+impl StepsCameraFile {
+    /// The whole camera: these fields over `scene`'s.
+    fn over(&self, scene: &CameraFile) -> CameraFile {
+        // Angles or a target given here replace the scene's way of aiming.
+        let (rotation, target) = match (self.rotation, self.target) {
+            (None, None) => (scene.rotation, scene.target),
+            aim => aim,
+        };
+        CameraFile {
+            position: self.position.unwrap_or(scene.position),
+            rotation,
+            target,
+            fov: self.fov.unwrap_or(scene.fov),
+            near: self.near.unwrap_or(scene.near),
+            far: self.far.unwrap_or(scene.far),
         }
     }
 }
@@ -180,9 +215,15 @@ struct SpotFile {
     intensity: f32,
     position: Fixed<f32, 3>,
     target: Fixed<f32, 3>,
-    /// The shadow camera's up vector; `None` picks one.
+    /// The shadow camera's up vector; `None` is +Y.
     up: Option<Fixed<f32, 3>>,
     fov: f32,
+    /// The frustum's width over height.
+    #[serde(default = "one")]
+    aspect: f32,
+    /// Whether a cone of `fov` limits the light (false: the whole frustum is lit).
+    #[serde(default = "yes")]
+    cone: bool,
     near: f32,
     far: f32,
     #[serde(default = "yes")]
@@ -816,7 +857,7 @@ impl Context<'_> {
 
 fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
     check_globals(&file, cx)?;
-    let camera = build_camera(&file.camera, cx)?;
+    let camera = build_camera(&file.camera, "camera", cx)?;
     let lights = build_lights(file.light, file.lights, cx)?;
     // map_size is checked against the driver's maximum once there is a driver.
     file.shadow
@@ -835,7 +876,28 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
                 .map_err(|e| cx.bad(field, e.to_string()))?;
         }
     }
-    let steps = build_steps(&file.steps, cx)?;
+    // What a light cannot be drawn with (the book's angle view off the YZ plane, which
+    // would say nothing; a non-square map for a cube map or cascades): the setting named.
+    for (i, light) in lights.iter().enumerate() {
+        let prefix = match lights.len() {
+            1 => "light".to_string(),
+            _ => format!("lights[{i}]"),
+        };
+        let own = light.shadow_patch();
+        if let Some(problem) = light.settings_problem(&prefix, &light.settings(&file.shadow)) {
+            let setting = problem.split(' ').next().unwrap_or_default();
+            let given_by_light = match setting {
+                "shadow.light_view" => own.light_view.is_some(),
+                "shadow.map_size" => own.map_size.is_some(),
+                _ => false,
+            };
+            return Err(match given_by_light {
+                true => cx.bad(format!("{prefix}.{setting}"), problem),
+                false => Error::file(cx.source, problem),
+            });
+        }
+    }
+    let steps = build_steps(&file.steps, &file.camera, cx)?;
     let mut items = Items::default();
     for (i, item) in file.items.into_iter().enumerate() {
         items.add(i, item, cx)?;
@@ -884,28 +946,29 @@ fn check_globals(file: &SceneFile, cx: &Context) -> Result<()> {
     Ok(())
 }
 
-fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
-    cx.finite("camera.position", &c.position.0)?;
+/// A camera table (`table`: `camera`, or `steps.camera`), checked: angles or a target.
+fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
+    cx.finite(&format!("{table}.position"), &c.position.0)?;
     let position = Vec3::from(c.position.0);
     let rotation = match (&c.rotation, &c.target) {
         (Some(_), Some(_)) => {
             return Err(cx.bad(
-                "camera",
+                table,
                 "rotation and target are both given: a camera takes one (rotation = angles, \
                  target = a point to look at)",
             ))
         }
         (Some(r), None) => {
-            cx.finite("camera.rotation", &r.0)?;
+            cx.finite(&format!("{table}.rotation"), &r.0)?;
             Vec3::from(r.0)
         }
         (None, Some(t)) => {
-            cx.finite("camera.target", &t.0)?;
+            cx.finite(&format!("{table}.target"), &t.0)?;
             let target = Vec3::from(t.0);
             Camera::look_at(position, target)
                 .ok_or_else(|| {
                     cx.bad(
-                        "camera.target",
+                        format!("{table}.target"),
                         format!("{target}: the camera's own position; it must look somewhere else"),
                     )
                 })?
@@ -913,12 +976,12 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
         }
         (None, None) => Vec3::ZERO,
     };
-    cx.finite("camera.fov", &[c.fov])?;
-    cx.finite("camera.near", &[c.near])?;
-    cx.finite("camera.far", &[c.far])?;
+    cx.finite(&format!("{table}.fov"), &[c.fov])?;
+    cx.finite(&format!("{table}.near"), &[c.near])?;
+    cx.finite(&format!("{table}.far"), &[c.far])?;
     if !(c.near > 0.0 && c.near < c.far) {
         return Err(cx.bad(
-            "camera",
+            table,
             format!(
                 "near = {}, far = {}: expected 0 < near < far",
                 c.near, c.far
@@ -927,7 +990,7 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
     }
     if !(c.fov > 0.0 && c.fov < 180.0) {
         return Err(cx.bad(
-            "camera.fov",
+            format!("{table}.fov"),
             format!("{}: expected degrees between 0 and 180", c.fov),
         ));
     }
@@ -940,16 +1003,21 @@ fn build_camera(c: &CameraFile, cx: &Context) -> Result<Camera> {
     })
 }
 
-fn build_steps(s: &StepsFile, cx: &Context) -> Result<StepContext> {
+fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result<StepContext> {
     if !(s.bias.is_finite() && s.bias >= 0.0) {
         return Err(cx.bad(
             "steps.bias",
             format!("{}: expected a finite number >= 0", s.bias),
         ));
     }
+    let camera = match &s.camera {
+        Some(c) => Some(build_camera(&c.over(scene_camera), "steps.camera", cx)?),
+        None => None,
+    };
     Ok(StepContext {
         bias: s.bias,
         start_wrap: s.start_wrap,
+        camera,
     })
 }
 
@@ -1276,8 +1344,24 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
     cx.finite(&field("target"), &l.target.0)?;
     if let Some(up) = &l.up {
         cx.finite(&field("up"), &up.0)?;
+        if Vec3::from(up.0).length() < 1e-6 {
+            return Err(cx.bad(
+                field("up"),
+                format!("{:?}: expected a non-zero vector", up.0),
+            ));
+        }
     }
     cx.finite(&field("fov"), &[l.fov])?;
+    cx.finite(&field("aspect"), &[l.aspect])?;
+    if !(l.aspect > 0.0 && l.aspect <= 1e3) {
+        return Err(cx.bad(
+            field("aspect"),
+            format!(
+                "{}: expected a width over height between 0 and 1000 (1 = square, 4:3 = 1.3333)",
+                l.aspect
+            ),
+        ));
+    }
     let (position, target) = (Vec3::from(l.position.0), Vec3::from(l.target.0));
     if (target - position).length() < 1e-6 {
         return Err(cx.bad(
@@ -1299,6 +1383,8 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
         target,
         up: l.up.map(|u| Vec3::from(u.0)),
         fov: l.fov,
+        aspect: l.aspect,
+        cone: l.cone,
         near: l.near,
         far: l.far,
         casts_shadows: l.casts_shadows,

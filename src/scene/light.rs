@@ -6,7 +6,7 @@
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{LightView, ShadowPatch, ShadowSettings};
+use crate::settings::{Fit, LightProjection, LightView, ShadowPatch, ShadowSettings};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -36,6 +36,10 @@ impl Default for OrthoCoords {
         }
     }
 }
+
+/// The largest |x| of a (unit) direction the book's angle view represents: its two angles,
+/// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane.
+pub const BOOK_ANGLES_MAX_X: f32 = 1e-6;
 
 /// A light infinitely far away. `direction` points from the scene TOWARDS the light (the
 /// book's convention), so (0, 1, 0) is the sun straight overhead.
@@ -145,6 +149,26 @@ impl DirectionalLight {
         }
     }
 
+    /// Why the book's angle view cannot stand for this light (`name` names it in the
+    /// message), if `settings` would build its view that way: its direction has an x
+    /// component, and the angles would turn the map away from the light without a word.
+    pub fn book_angles_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+        let uses_angles = settings.light_view == LightView::BookAngles
+            && settings.light_projection == LightProjection::Ortho
+            && settings.fit == Fit::Manual
+            && settings.cascades <= 1
+            && self.casts_shadows;
+        let d = self.direction.normalize();
+        (uses_angles && d.x.abs() > BOOK_ANGLES_MAX_X).then(|| {
+            format!(
+                "\"book-angles\" cannot build the view of {name} (direction [{:.3}, {:.3}, {:.3}]): \
+                 the book's angles (acos z, asin x) are right only for directions in the YZ \
+                 plane (|x| <= {BOOK_ANGLES_MAX_X:e}); expected \"look-at\" for this light",
+                d.x, d.y, d.z
+            )
+        })
+    }
+
     /// The orthographic projection of the ortho box.
     pub fn projection_matrix(&self) -> Mat4 {
         let o = &self.ortho;
@@ -160,10 +184,15 @@ pub struct SpotLight {
     pub intensity: f32,
     pub position: Vec3,
     pub target: Vec3,
-    /// The up vector of the shadow camera (the slides use +Z); `None` picks one.
+    /// The up vector of the shadow camera (the slides use +Z); `None` is +Y.
     pub up: Option<Vec3>,
-    /// Full cone angle and the shadow frustum's vertical field of view, degrees.
+    /// The shadow frustum's vertical field of view, degrees (and the full cone angle).
     pub fov: f32,
+    /// The shadow frustum's width over height (the shadow-playground's 4:3 canvas).
+    pub aspect: f32,
+    /// Whether a cone of `fov` limits the light; without one (the shadow-playground's bulb)
+    /// it lights its whole frustum (and beyond, unshadowed).
+    pub cone: bool,
     pub near: f32,
     pub far: f32,
     pub casts_shadows: bool,
@@ -275,6 +304,38 @@ impl Light {
         }
     }
 
+    /// What is wrong with drawing this light (named `name` in the message) under its own
+    /// `settings`, if anything: see [`crate::Scene::check_light_settings`]. The message
+    /// starts with the setting (`shadow.NAME = VALUE: ...`).
+    pub fn settings_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+        if !self.casts_shadows() {
+            return None;
+        }
+        if let Light::Directional(l) = self {
+            if let Some(problem) = l.book_angles_problem(name, settings) {
+                return Some(format!("shadow.light_view = {problem}"));
+            }
+        }
+        let square = match self {
+            Light::Point(_) => Some("a point light's cube map"),
+            Light::Directional(_)
+                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
+            {
+                Some("cascades")
+            }
+            _ => None,
+        };
+        let what = square?;
+        let size = settings.map_size;
+        (!size.is_square()).then(|| {
+            format!(
+                "shadow.map_size = {size}: {name} has {what}, which needs a square map; \
+                 expected one number, like {}",
+                size.max_side()
+            )
+        })
+    }
+
     /// A short description for titles and reports.
     pub fn describe(&self) -> String {
         match self {
@@ -307,10 +368,12 @@ impl Light {
             },
             Light::Spot(l) => Shading::Position {
                 position: l.position,
-                cone: Some((
-                    (l.fov.to_radians() * 0.5).cos(),
-                    (l.target - l.position).normalize_or_zero(),
-                )),
+                cone: l.cone.then(|| {
+                    (
+                        (l.fov.to_radians() * 0.5).cos(),
+                        (l.target - l.position).normalize_or_zero(),
+                    )
+                }),
             },
         }
     }

@@ -96,6 +96,9 @@ pub struct StepContext {
     pub bias: f32,
     /// The wrap mode its chapter starts with.
     pub start_wrap: crate::settings::Wrap,
+    /// The camera its steps are shown from (`[steps] camera`), where the tutorial's own
+    /// does not show what they change; `None`: the scene's camera.
+    pub camera: Option<Camera>,
 }
 
 impl Scene {
@@ -174,6 +177,25 @@ impl Scene {
     /// The first light, to change it.
     pub fn light_mut(&mut self) -> &mut Light {
         &mut self.lights[0]
+    }
+
+    /// Refuses settings a light cannot be drawn with: the book's angle view
+    /// (`light_view = "book-angles"`) for a directional light with an x component, and a
+    /// non-square `map_size` for a light whose map is square (a point light's cube map,
+    /// cascades). `settings` are the scene's; each light's own table goes on top.
+    pub fn check_light_settings(&self, settings: &ShadowSettings) -> Result<()> {
+        for (i, light) in self.lights.iter().enumerate() {
+            let own = light.settings(settings);
+            if let Some(problem) = light.settings_problem(&format!("light {i}"), &own) {
+                return Err(Error::Invalid(problem));
+            }
+        }
+        Ok(())
+    }
+
+    /// The camera the chapter steps are shown from: `[steps] camera`, else the scene's.
+    pub fn steps_camera(&self) -> Camera {
+        self.steps.camera.unwrap_or(self.camera)
     }
 
     /// The camera that shadow fitting follows: `fit_camera` when set, else the viewer.

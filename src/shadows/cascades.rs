@@ -100,7 +100,7 @@ impl CascadeSpec {
             } else {
                 f32::INFINITY
             },
-            map_size: s.map_size,
+            map_size: s.map_size.max_side(),
             snap: s.snap,
             light_depth,
         }
@@ -342,7 +342,12 @@ pub struct Cascades {
 impl Cascades {
     pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Cascades> {
         Ok(Cascades {
-            array: CascadeShadowMap::new(gl, s.map_size, s.cascades, s.depth_format)?,
+            array: CascadeShadowMap::new(
+                gl,
+                s.map_size.square_side("cascades")?,
+                s.cascades,
+                s.depth_format,
+            )?,
             cascades: Vec::new(),
         })
     }

@@ -59,7 +59,11 @@ pub struct Cube {
 impl Cube {
     pub fn new(gl: &Gl, settings: &ShadowSettings) -> Result<Cube> {
         Ok(Cube {
-            cube: CubeShadowMap::new(gl, settings.map_size, settings.depth_format)?,
+            cube: CubeShadowMap::new(
+                gl,
+                settings.map_size.square_side("a point light's cube map")?,
+                settings.depth_format,
+            )?,
         })
     }
 }

@@ -8,6 +8,7 @@ use glam::{DMat4, DVec3, Vec3};
 
 use super::{Rays, ShadowView};
 use crate::scene::Scene;
+use crate::settings::MapSize;
 use crate::transformation::{light_basis, light_view};
 
 /// A fitted orthographic light camera.
@@ -42,8 +43,10 @@ impl FittedBox {
 }
 
 /// Fits the light's box to `scene` for a light shining from `to_light`, with a
-/// `map_size`-texel map; `snap` quantises its size and snaps its position to whole texels.
-pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> FittedBox {
+/// map of `map_size` (a square box: with a non-square map its texels are not square);
+/// `snap` quantises its size and snaps its position to whole texels.
+pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -> FittedBox {
+    let (texels_x, texels_y) = (f64::from(map_size.width), f64::from(map_size.height));
     let basis = light_basis(to_light.as_dvec3());
     let to_light_space = |p: DVec3| basis.transpose() * p;
 
@@ -154,15 +157,15 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     let mut size = (lhi.x - llo.x).max(lhi.y - llo.y).max(1e-6);
     let mut centre = DVec3::new((llo.x + lhi.x) * 0.5, (llo.y + lhi.y) * 0.5, 0.0);
     // Two texels of room for filters that reach beside the looked-up texel.
-    size *= 1.0 + 4.0 / map_size as f64;
+    size *= 1.0 + 4.0 / texels_x.min(texels_y);
     let (mut z_lo, mut z_hi) = (llo.z, z_top);
     if snap {
         // Size to the next 1/8 of its power of two, so small camera moves keep it.
         let step = 2f64.powf(size.log2().floor()) / 8.0;
         size = (size / step).ceil() * step;
-        let texel = size / map_size as f64;
-        centre.x = (centre.x / texel).floor() * texel;
-        centre.y = (centre.y / texel).floor() * texel;
+        let (texel_x, texel_y) = (size / texels_x, size / texels_y);
+        centre.x = (centre.x / texel_x).floor() * texel_x;
+        centre.y = (centre.y / texel_y).floor() * texel_y;
         let zstep = step;
         z_lo = (z_lo / zstep).floor() * zstep;
         z_hi = (z_hi / zstep).ceil() * zstep;
@@ -177,7 +180,7 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: u32, snap: bool) -> Fi
     FittedBox {
         view: light_view(eye, basis),
         bounds: [-half, half, -half, half, 0.0, z_hi - z_lo],
-        texel: size / map_size as f64,
+        texel: size / texels_x.min(texels_y),
     }
 }
 

@@ -11,14 +11,14 @@
 //! view, LearnOpenGL's look-at, a perspective frustum (the slides, the blog), a spot's
 //! frustum, or a box fitted to the scene ([`super::fitted`]).
 
-use super::camera::{perspective_view, point_camera};
+use super::camera::{perspective_view, point_camera, Perspective};
 use super::casters::{casters, depth_state, draw_casters, may_land};
 use super::slots::LightGlsl;
 use super::{
     fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
 };
 use crate::engine::{state, DepthPassGuard, Gl, Sampling, ShadowMap, Texture};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
 
@@ -73,6 +73,13 @@ impl Technique for Map2d {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView> {
+        // Scene files and flags are checked before any frame; this guards scenes built in
+        // code (the book's angles would turn the map away from the light without a word).
+        if let Light::Directional(l) = &scene.lights[index] {
+            if let Some(problem) = l.book_angles_problem(&format!("light {index}"), pass.settings) {
+                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
+            }
+        }
         let view = camera(scene, index, pass.settings);
         let program = pass.programs.flat(pass.gl)?;
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
@@ -123,7 +130,7 @@ impl Technique for Map2d {
     }
 
     fn bytes(&self) -> u64 {
-        u64::from(self.map.size()).pow(2) * 4
+        self.map.size().texels() * 4
     }
 
     fn depth_view(&self) -> DepthViewKind {
@@ -176,7 +183,8 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
                 eye: l.position(),
                 near: o.near,
                 far: o.far,
-                texel_world: (o.right - o.left).max(o.top - o.bottom) / settings.map_size as f32,
+                texel_world: ((o.right - o.left) / settings.map_size.width as f32)
+                    .max((o.top - o.bottom) / settings.map_size.height as f32),
                 rays: Rays::Parallel {
                     to_light: l.direction.normalize(),
                 },
@@ -189,25 +197,29 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
             // depth precision usable (LearnOpenGL's comparison uses near 1).
             let near = l.ortho.near.max(1.0);
             let far = l.ortho.far.max(near * 2.0);
+            let frustum = Perspective {
+                fov: settings.perspective_fov,
+                aspect: settings.map_size.aspect(),
+                near,
+                far,
+            };
             perspective_view(
                 eye,
                 eye - l.direction.normalize() * l.shadow_pos_mult,
                 None,
-                settings.perspective_fov,
-                near,
-                far,
+                frustum,
                 settings.map_size,
             )
         }
-        (Light::Spot(s), _) => perspective_view(
-            s.position,
-            s.target,
-            s.up,
-            s.fov,
-            s.near,
-            s.far,
-            settings.map_size,
-        ),
+        (Light::Spot(s), _) => {
+            let frustum = Perspective {
+                fov: s.fov,
+                aspect: s.aspect,
+                near: s.near,
+                far: s.far,
+            };
+            perspective_view(s.position, s.target, s.up, frustum, settings.map_size)
+        }
         // A point light's camera is its cube's.
         (Light::Point(p), _) => point_camera(p, settings),
     }

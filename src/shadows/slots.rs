@@ -13,7 +13,7 @@
 
 use super::{cascades, cube, map2d, ShadowKind};
 use crate::scene::MAX_LIGHTS;
-use crate::settings::{glsl_float, BeyondFar, BiasMode, ShadowSettings};
+use crate::settings::{glsl_float, BeyondFar, BiasMode, MapSize, ShadowSettings};
 
 /// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
 pub const MATERIAL_UNIT: u32 = 0;
@@ -33,7 +33,8 @@ pub struct ShadowTest {
     pub bias_min_bits: u32,
     pub beyond_far_lit: bool,
     pub normal_offset: bool,
-    pub map_size: u32,
+    /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
+    pub map_size: MapSize,
 }
 
 impl ShadowTest {
@@ -69,7 +70,14 @@ impl ShadowTest {
             ("BIAS", glsl_float(f32::from_bits(self.bias_bits))),
             ("BIAS_MIN", glsl_float(f32::from_bits(self.bias_min_bits))),
             ("BEYOND_FAR_LIT", bit(self.beyond_far_lit)),
-            ("SHADOW_MAP_SIZE", self.map_size.to_string()),
+            (
+                "SHADOW_TEXEL",
+                format!(
+                    "vec2({}, {})",
+                    glsl_float(1.0 / self.map_size.width as f32),
+                    glsl_float(1.0 / self.map_size.height as f32)
+                ),
+            ),
         ]
     }
 }
