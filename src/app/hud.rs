@@ -85,11 +85,12 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         },
         None => format!("Settings: the {} scene's own", scene.name),
     };
-    let mut lines = vec![
-        format!("{light}{more}"),
-        step,
-        super::cli::in_use(info.scene, info.settings).summary(),
-    ];
+    let mut lines = vec![format!("{light}{more}"), step];
+    // The settings summary can be long: wrapped at its commas to stay in the corner.
+    lines.extend(wrap_at_commas(
+        &super::cli::in_use(info.scene, info.settings).summary(),
+        SUMMARY_WIDTH,
+    ));
     if info.angle_keys_idle {
         lines.push(ANGLE_KEYS_IDLE.to_string());
     }
@@ -191,6 +192,29 @@ impl Hud {
         let quads = layout(&self.atlas, info);
         self.text.draw(&quads, width, height)
     }
+}
+
+/// Characters per line of the settings summary (about 400 pixels at `FONT_PX`).
+const SUMMARY_WIDTH: usize = 48;
+
+/// `text` split into lines of at most `width` characters at ", " (a longer piece keeps its
+/// own line).
+fn wrap_at_commas(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for piece in text.split(", ") {
+        match lines.last_mut() {
+            Some(line) if line.len() + 2 + piece.len() <= width => {
+                line.push_str(", ");
+                line.push_str(piece);
+            }
+            Some(line) => {
+                line.push(',');
+                lines.push(format!("  {piece}"));
+            }
+            None => lines.push(piece.to_string()),
+        }
+    }
+    lines
 }
 
 /// Where the shadow-map inset goes in a `width` x `height` frame: the bottom-right corner,
@@ -300,7 +324,23 @@ mod tests {
             lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
             "{lines:?}"
         );
-        assert_eq!(lines[2], settings.summary());
+        // The summary, wrapped at its commas into lines that keep to the corner.
+        let summary = settings.summary();
+        let wrapped: Vec<&String> = lines
+            .iter()
+            .skip(2)
+            .take_while(|l| !l.starts_with("Frame time"))
+            .collect();
+        assert!(wrapped.len() > 1, "{lines:?}");
+        assert!(wrapped
+            .iter()
+            .all(|l| l.chars().count() <= SUMMARY_WIDTH + 1));
+        let joined: String = wrapped
+            .iter()
+            .map(|l| l.trim())
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert_eq!(joined, summary);
         assert!(
             lines.contains(&"Frame time: 3.25 ms".to_string()),
             "{lines:?}"
@@ -309,7 +349,10 @@ mod tests {
 
         let own = status_lines(&info(&scene, &scene.shadow, None));
         assert_eq!(own[1], "Settings: the dummy scene's own");
-        assert_eq!(own[2], scene.shadow.summary());
+        assert!(scene
+            .shadow
+            .summary()
+            .starts_with(own[2].trim_end_matches(',')));
     }
 
     #[test]
