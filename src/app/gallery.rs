@@ -202,8 +202,12 @@ pub fn changed_fields(before: &ShadowSettings, after: &ShadowSettings) -> Vec<St
     else {
         return Vec::new();
     };
+    // Settings are f32: shown in their own shortest form (0.05, not 0.05000000074505806).
     let show = |v: &serde_json::Value| match v {
         serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::Number(n) if n.is_f64() => {
+            n.as_f64().map_or_else(|| n.to_string(), |f| format!("{:?}", f as f32))
+        }
         other => other.to_string(),
     };
     b.iter()
@@ -228,6 +232,12 @@ mod tests {
         let fixed = steps::settings_for(&scene, "over-sampling").unwrap();
         // LearnOpenGL already wraps with REPEAT before its over-sampling steps.
         assert_eq!(changed_fields(&cull, &repeat), Vec::<String>::new());
+        let bias = steps::settings_for(&scene, "bias").unwrap();
+        let slope = steps::settings_for(&scene, "slope-bias").unwrap();
+        assert_eq!(
+            changed_fields(&bias, &slope),
+            vec!["bias 0.005 -> 0.05", "bias mode constant -> slope"]
+        );
         assert_eq!(
             changed_fields(&repeat, &book),
             vec!["wrap repeat -> clamp-to-edge"]
