@@ -158,30 +158,6 @@ fn check_success(case: &str, run: &Run, out: &Path, pixels: &[(u32, u32)]) -> Op
     None
 }
 
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = 0xffff_ffffu32;
-    for &b in bytes {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xedb8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}
-
-fn png_chunk(kind: &[u8; 4], body: &[u8]) -> Vec<u8> {
-    let mut c = (body.len() as u32).to_be_bytes().to_vec();
-    c.extend_from_slice(kind);
-    c.extend_from_slice(body);
-    let crc = crc32(&c[4..]);
-    c.extend_from_slice(&crc.to_be_bytes());
-    c
-}
-
 /// Deterministic noise bytes.
 fn noise(n: usize, seed: u32) -> Vec<u8> {
     let mut x = seed;
@@ -208,24 +184,9 @@ fn valid_png() -> Vec<u8> {
     bytes
 }
 
-/// A PNG whose header claims 100000 x 100000 RGBA pixels (40 GB), with a correct CRC, and a
-/// few bytes of image data.
+/// A PNG whose header claims 100000 x 100000 RGBA pixels (40 GB).
 fn absurd_png() -> Vec<u8> {
-    let mut ihdr = Vec::new();
-    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
-    ihdr.extend_from_slice(&100_000u32.to_be_bytes());
-    ihdr.extend_from_slice(&[8, 6, 0, 0, 0]); // 8 bits, RGBA, deflate, no filter, no interlace
-    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
-    png.extend(png_chunk(b"IHDR", &ihdr));
-    // zlib stream of a few zero bytes (far too short for the claimed size)
-    png.extend(png_chunk(
-        b"IDAT",
-        &[
-            0x78, 0x9c, 0x63, 0x60, 0x00, 0x02, 0x00, 0x00, 0x05, 0x00, 0x01,
-        ],
-    ));
-    png.extend(png_chunk(b"IEND", &[]));
-    png
+    common::png_claiming(100_000, 100_000)
 }
 
 const TEXTURED_SCENE: &[u8] =
@@ -241,8 +202,8 @@ fn driver_max_texture_size() -> u32 {
 #[test]
 fn crc32_matches_the_png_reference() {
     // The IEND chunk's CRC is fixed: AE 42 60 82.
-    assert_eq!(crc32(b"IEND"), 0xae42_6082);
-    assert_eq!(crc32(b"123456789"), 0xcbf4_3926);
+    assert_eq!(common::crc32(b"IEND"), 0xae42_6082);
+    assert_eq!(common::crc32(b"123456789"), 0xcbf4_3926);
 }
 
 #[test]

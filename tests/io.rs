@@ -190,45 +190,10 @@ fn textured_scene(dir: &Path, texture: &str) -> PathBuf {
     path
 }
 
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = match crc & 1 {
-                1 => (crc >> 1) ^ 0xedb8_8320,
-                _ => crc >> 1,
-            };
-        }
-    }
-    !crc
-}
-
-fn png_chunk(kind: &[u8; 4], body: &[u8]) -> Vec<u8> {
-    let mut c = (body.len() as u32).to_be_bytes().to_vec();
-    c.extend_from_slice(kind);
-    c.extend_from_slice(body);
-    let crc = crc32(&c[4..]);
-    c.extend_from_slice(&crc.to_be_bytes());
-    c
-}
-
 /// A PNG header claiming `side` x `side` RGBA pixels (inside the side limit, over the
 /// memory budget), with a few bytes of data.
 fn huge_png(side: u32) -> Vec<u8> {
-    let mut ihdr = side.to_be_bytes().to_vec();
-    ihdr.extend_from_slice(&side.to_be_bytes());
-    ihdr.extend_from_slice(&[8, 6, 0, 0, 0]);
-    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
-    png.extend(png_chunk(b"IHDR", &ihdr));
-    png.extend(png_chunk(
-        b"IDAT",
-        &[
-            0x78, 0x9c, 0x63, 0x60, 0x00, 0x02, 0x00, 0x00, 0x05, 0x00, 0x01,
-        ],
-    ));
-    png.extend(png_chunk(b"IEND", &[]));
-    png
+    common::png_claiming(side, side)
 }
 
 #[test]

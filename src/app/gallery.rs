@@ -205,9 +205,9 @@ pub fn changed_fields(before: &ShadowSettings, after: &ShadowSettings) -> Vec<St
     // Settings are f32: shown in their own shortest form (0.05, not 0.05000000074505806).
     let show = |v: &serde_json::Value| match v {
         serde_json::Value::String(s) => s.clone(),
-        serde_json::Value::Number(n) if n.is_f64() => {
-            n.as_f64().map_or_else(|| n.to_string(), |f| format!("{:?}", f as f32))
-        }
+        serde_json::Value::Number(n) if n.is_f64() => n
+            .as_f64()
+            .map_or_else(|| n.to_string(), |f| format!("{:?}", f as f32)),
         other => other.to_string(),
     };
     b.iter()
