@@ -41,7 +41,7 @@ fn window_shows_the_scene_and_its_shadow() {
     let shot = dir.join("window.png");
     let headless = dir.join("headless.png");
 
-    stdout_of(
+    let out = stdout_of(
         bin()
             .args([
                 "demo",
@@ -54,6 +54,11 @@ fn window_shows_the_scene_and_its_shadow() {
             ])
             .arg("--screenshot")
             .arg(&shot),
+    );
+    // A scripted run reports its frame times as `render --frames` does: 4 after the first.
+    assert!(
+        out.contains("frame time over 4 frames after the first: median "),
+        "{out}"
     );
     stdout_of(
         bin()

@@ -91,6 +91,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         angle_keys_idle: false,
         show_inset: args.inset,
         camera_before_steps: None,
+        frame_times: Vec::new(),
     };
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
@@ -254,6 +255,8 @@ struct Demo {
     show_inset: bool,
     /// The camera to go back to when the steps (shown from the scene's steps camera) end.
     camera_before_steps: Option<shadowmap::scene::Camera>,
+    /// Wall time of each frame after the first, frame to frame (printed at a scripted exit).
+    frame_times: Vec<f64>,
 }
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
@@ -568,6 +571,9 @@ impl Demo {
             return self.fail(event_loop, e);
         }
         // The first frame's dt runs from the window's opening, not from a frame.
+        if self.frames > 1 {
+            self.frame_times.push(dt * 1000.0);
+        }
         self.frame_ms = match (self.frames, self.frame_ms == 0.0) {
             (0 | 1, _) => self.frame_ms,
             (_, true) => dt * 1000.0,
@@ -597,6 +603,13 @@ impl Demo {
             ));
         }
         if last {
+            if let Some((median, p95)) = shadowmap::frame::median_p95(&self.frame_times) {
+                println!(
+                    "frame time over {} frames after the first: median {median:.2} ms, p95 \
+                     {p95:.2} ms (wall, frame to frame, swap included)",
+                    self.frame_times.len()
+                );
+            }
             event_loop.exit();
         } else if self.args.stress_window {
             self.stress_step();

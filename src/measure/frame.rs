@@ -75,13 +75,7 @@ impl Frame {
 
     /// Median and 95th percentile of the frame times after the first (warm-up) frame.
     pub fn frame_time_stats(&self) -> Option<(f64, f64)> {
-        let mut t: Vec<f64> = self.frame_ms.iter().skip(1).copied().collect();
-        if t.is_empty() {
-            return None;
-        }
-        t.sort_by(f64::total_cmp);
-        let at = |q: f64| t[((t.len() - 1) as f64 * q).round() as usize];
-        Some((at(0.5), at(0.95)))
+        median_p95(self.frame_ms.get(1..).unwrap_or_default())
     }
 
     /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane). A
@@ -241,6 +235,17 @@ pub fn render_frames_with(
         depth_passes: renderer.depth_passes(),
         casters: renderer.caster_counts(),
     })
+}
+
+/// Median and 95th percentile (nearest rank) of `times`; `None` when there are none.
+pub fn median_p95(times: &[f64]) -> Option<(f64, f64)> {
+    let mut t = times.to_vec();
+    if t.is_empty() {
+        return None;
+    }
+    t.sort_by(f64::total_cmp);
+    let at = |q: f64| t[((t.len() - 1) as f64 * q).round() as usize];
+    Some((at(0.5), at(0.95)))
 }
 
 #[cfg(test)]
