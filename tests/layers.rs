@@ -37,24 +37,67 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// Every `crate::NAME` the text refers to (outside comments).
-fn crate_refs(text: &str) -> BTreeSet<String> {
+/// The text without `//` comments, lines joined (so a `use` group over several lines reads
+/// as one).
+fn code_of(text: &str) -> String {
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The first identifier of `s` (after spaces).
+fn ident(s: &str) -> String {
+    s.trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect()
+}
+
+/// Every module name that follows `prefix` in `code`: `prefix::a` gives `a`, and a group
+/// `prefix::{a, b::c, d::{e, f}}` gives `a`, `b` and `d`.
+fn names_after(code: &str, prefix: &str) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
-    for line in text.lines() {
-        let code = line.split("//").next().unwrap_or("");
-        let mut rest = code;
-        while let Some(i) = rest.find("crate::") {
-            rest = &rest[i + "crate::".len()..];
-            let name: String = rest
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                .collect();
-            if !name.is_empty() {
-                out.insert(name);
+    let mut rest = code;
+    while let Some(i) = rest.find(prefix) {
+        rest = &rest[i + prefix.len()..];
+        let Some(group) = rest.trim_start().strip_prefix('{') else {
+            out.insert(ident(rest));
+            continue;
+        };
+        // Split the group's top level at its commas.
+        let (mut depth, mut start) = (0usize, 0usize);
+        for (k, c) in group.char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' if depth == 0 => {
+                    out.insert(ident(&group[start..k]));
+                    break;
+                }
+                '}' => depth -= 1,
+                ',' if depth == 0 => {
+                    out.insert(ident(&group[start..k]));
+                    start = k + 1;
+                }
+                _ => {}
             }
         }
     }
+    out.remove("");
     out
+}
+
+/// Every `crate::NAME` the text refers to (outside comments), groups included.
+fn crate_refs(text: &str) -> BTreeSet<String> {
+    names_after(&code_of(text), "crate::")
+}
+
+#[test]
+fn grouped_and_nested_imports_are_read() {
+    let code = code_of("use super::{a, b::c,\n d::{e, f}}; // super::x\nuse crate::g::h;");
+    let names: Vec<String> = names_after(&code, "super::").into_iter().collect();
+    assert_eq!(names, ["a", "b", "d"]);
+    assert_eq!(crate_refs("use crate::{g, i::j};").len(), 2);
 }
 
 #[test]
@@ -114,23 +157,10 @@ fn no_import_circles_between_modules_of_one_folder() {
             .unwrap()
             .to_string_lossy()
             .to_string();
-        let mut names = BTreeSet::new();
-        for line in text.lines() {
-            let code = line.split("//").next().unwrap_or("");
-            for prefix in ["super::".to_string(), format!("crate::{folder}::")] {
-                let mut rest = code;
-                while let Some(i) = rest.find(&prefix) {
-                    rest = &rest[i + prefix.len()..];
-                    let name: String = rest
-                        .chars()
-                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                        .collect();
-                    if !name.is_empty() && name != stem {
-                        names.insert(name);
-                    }
-                }
-            }
-        }
+        let code = code_of(&text);
+        let mut names = names_after(&code, "super::");
+        names.extend(names_after(&code, &format!("crate::{folder}::")));
+        names.remove(&stem);
         graphs
             .entry(dir.to_path_buf())
             .or_default()

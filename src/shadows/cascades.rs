@@ -17,8 +17,9 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::{aabb, corners, item_world_boxes, FittedBox};
-use super::slots::LightGlsl;
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
@@ -402,7 +403,11 @@ impl Technique for Cascades {
         // and far).
         Ok(match self.cascades.first() {
             Some(first) => first.fitted.shadow_view(l.direction),
-            None => super::map2d::camera(scene, index, pass.settings),
+            None => {
+                return Err(crate::Error::Internal(format!(
+                    "light {index}: cascades were fitted but there are none"
+                )))
+            }
         })
     }
 

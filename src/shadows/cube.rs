@@ -8,8 +8,9 @@ use glam::{DMat4, Mat4, Vec3};
 use super::camera::point_camera;
 use super::casters::{casters, depth_state, draw_casters, may_land};
 use super::fitted;
-use super::slots::LightGlsl;
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
 use crate::error::Result;
 use crate::scene::{Light, PointLight, Scene};

@@ -13,9 +13,9 @@
 
 use super::camera::{perspective_view, point_camera, Perspective};
 use super::casters::{casters, depth_state, draw_casters, may_land};
-use super::slots::LightGlsl;
 use super::{
-    fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
+    fitted, DepthPass, DepthViewKind, LightGlsl, Rays, ShadowKind, ShadowView, SlotTransform,
+    Technique,
 };
 use crate::engine::{state, DepthPassGuard, Gl, Sampling, ShadowMap, Texture};
 use crate::error::{Error, Result};

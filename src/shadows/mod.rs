@@ -137,6 +137,16 @@ pub struct SlotTransform {
     pub normal_offset: f32,
 }
 
+/// A technique's part of the generated snippet for light `i`: the library snippet it
+/// includes, the functions that snippet defines (renamed per light, so each light's test
+/// keeps its own constants), its sampler's GLSL type and its call.
+pub struct LightGlsl {
+    pub snippet: &'static str,
+    pub functions: &'static [&'static str],
+    pub sampler_type: &'static str,
+    pub call: String,
+}
+
 /// What a depth pass draws with: the scene's meshes, the depth programs and the settings.
 pub struct DepthPass<'a> {
     pub gl: &'a Gl,

@@ -94,16 +94,6 @@ pub struct LightSlot {
     pub test: Option<ShadowTest>,
 }
 
-/// A technique's part of the generated snippet for light `i`: the library snippet it
-/// includes, the functions that snippet defines (renamed per light, so each light's test
-/// keeps its own constants), its sampler's GLSL type and its call.
-pub struct LightGlsl {
-    pub snippet: &'static str,
-    pub functions: &'static [&'static str],
-    pub sampler_type: &'static str,
-    pub call: String,
-}
-
 /// The sampler uniform of light `index`'s shadow, if it has one.
 pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     match kind {
