@@ -83,10 +83,6 @@ impl Sampler {
         Ok(s)
     }
 
-    pub fn sampling(&self) -> Sampling {
-        self.sampling
-    }
-
     /// Binds the sampler to texture unit `unit` until the returned guard drops.
     pub fn bind(&self, unit: u32) -> BoundSampler {
         unsafe { self.gl.bind_sampler(unit, Some(self.id)) };

@@ -259,7 +259,7 @@ impl Renderer {
                     scene,
                     index,
                     &settings,
-                    cache::follows_camera(light, &settings),
+                    cache::follows_camera(light, technique.kind(), &settings),
                 )
             });
             if key.is_some() && key == self.drawn[index] && view.is_some() {

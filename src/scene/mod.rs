@@ -203,19 +203,3 @@ impl Scene {
         self.fit_camera.as_ref().unwrap_or(&self.camera)
     }
 }
-
-impl Scene {
-    /// All triangles of the items that cast shadows, in world space (for the reference).
-    pub fn world_triangles(&self) -> Vec<[Vec3; 3]> {
-        let mut out = Vec::new();
-        for item in self.items.iter().filter(|i| i.casts_shadows) {
-            let m = item.model_matrix();
-            out.extend(
-                self.meshes[item.mesh]
-                    .triangles()
-                    .map(|t| t.map(|p| m.transform_point3(p))),
-            );
-        }
-        out
-    }
-}

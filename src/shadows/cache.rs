@@ -7,6 +7,7 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
+use super::ShadowKind;
 use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
 
@@ -48,11 +49,20 @@ pub fn content_key(
     h.finish()
 }
 
-/// Whether `light`'s map under `settings` follows the camera (its box is fitted to what the
+/// Whether `light`'s map of kind `kind` under `settings` follows the camera (its box is fitted to what the
 /// camera sees).
-pub fn follows_camera(light: &Light, settings: &ShadowSettings) -> bool {
-    matches!(light, Light::Directional(_))
-        && (settings.cascades > 1 || settings.fit == crate::settings::Fit::Scene)
+pub fn follows_camera(light: &Light, kind: ShadowKind, settings: &ShadowSettings) -> bool {
+    use crate::settings::{Fit, LightProjection};
+    match kind {
+        ShadowKind::Cascades => true,
+        // The same case `map2d::camera` fits to the scene.
+        ShadowKind::Map => {
+            matches!(light, Light::Directional(_))
+                && settings.light_projection == LightProjection::Ortho
+                && settings.fit == Fit::Scene
+        }
+        ShadowKind::Cube | ShadowKind::None => false,
+    }
 }
 
 #[cfg(test)]
@@ -64,7 +74,7 @@ mod tests {
         let mut scene = Scene::load("dummy").unwrap();
         let s = scene.shadow;
         let key = |sc: &Scene, s: &ShadowSettings| {
-            content_key(sc, 0, s, follows_camera(&sc.lights[0], s))
+            content_key(sc, 0, s, follows_camera(&sc.lights[0], ShadowKind::Map, s))
         };
         let k0 = key(&scene, &s);
         assert_eq!(k0, key(&scene, &s));

@@ -31,7 +31,6 @@ impl FittedBox {
             view64: self.view,
             projection,
             perspective: false,
-            eye: self.view.inverse().transform_point3(DVec3::ZERO).as_vec3(),
             near: near as f32,
             far: far as f32,
             texel_world: self.texel as f32,
@@ -55,7 +54,8 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -
     let (rlo, rhi) = union(&boxes);
 
     // The part of the receivers the camera can see: their box cut by the view frustum's box.
-    let cam = &scene.camera;
+    // The camera the fit follows: the viewer, or `fit_camera` (to watch the fit from elsewhere).
+    let cam = scene.fitting_camera();
     let eye = cam.position.as_dvec3();
     let reach = corners(rlo, rhi)
         .iter()
@@ -259,7 +259,7 @@ fn union(boxes: &[(DVec3, DVec3)]) -> (DVec3, DVec3) {
 
 /// The camera frustum's corners, its far plane pulled in to `reach`.
 fn frustum_corners(scene: &Scene, reach: f64) -> [DVec3; 8] {
-    let cam = &scene.camera;
+    let cam = scene.fitting_camera();
     let [w, h] = scene.size;
     let aspect = w as f64 / h.max(1) as f64;
     let t = (cam.fov as f64).to_radians() * 0.5;

@@ -148,18 +148,6 @@ pub fn camera(scene: &Scene, index: usize, settings: &ShadowSettings) -> ShadowV
     let light = &scene.lights[index];
     match (light, settings.light_projection, settings.fit) {
         (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => {
-            let fit_scene;
-            let scene = match scene.fit_camera {
-                Some(camera) => {
-                    fit_scene = Scene {
-                        camera,
-                        fit_camera: None,
-                        ..scene.clone()
-                    };
-                    &fit_scene
-                }
-                None => scene,
-            };
             fitted::fit_ortho(scene, l.direction, settings.map_size, settings.snap)
                 .shadow_view(l.direction)
         }
@@ -180,7 +168,6 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
                 view64: view.as_dmat4(),
                 projection: l.projection_matrix(),
                 perspective: false,
-                eye: l.position(),
                 near: o.near,
                 far: o.far,
                 texel_world: ((o.right - o.left) / settings.map_size.width as f32)

@@ -106,7 +106,6 @@ pub struct ShadowView {
     pub projection: Mat4,
     /// Perspective projections need the divide by w (and linearising for display).
     pub perspective: bool,
-    pub eye: Vec3,
     pub near: f32,
     pub far: f32,
     /// The size of one shadow-map texel in world units, at the target for perspective maps.
