@@ -291,9 +291,20 @@ impl MapSize {
         match self.is_square() {
             true => Ok(self.width),
             false => Err(crate::Error::Invalid(format!(
-                "shadow.map_size = {self}: {what} needs a square map (its faces or layers are                  square); expected one number, like {}",
+                "shadow.map_size = {self}: {what} needs a square map (its faces or layers are \
+                 square); expected one number, like {}",
                 self.max_side()
             ))),
+        }
+    }
+}
+
+impl MapSize {
+    /// `1024^2` for a square map, `400x300` otherwise (for summaries).
+    pub fn label(&self) -> String {
+        match self.is_square() {
+            true => format!("{}^2", self.width),
+            false => self.to_string(),
         }
     }
 }
@@ -529,7 +540,7 @@ shadow_settings! {
         fit: Fit = Fit::Manual;
         /// With `fit = "scene"`: snap the box to whole texels so shadows hold still as the
         /// camera moves.
-        snap: bool = true, arg(value_name = "BOOL");
+        snap: bool = true, arg(value_name = "BOOL", value_parser = clap::builder::BoolishValueParser::new());
         /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
         /// scheme).
         cascade_lambda: f32 = 0.75,
@@ -548,11 +559,11 @@ shadow_settings! {
         /// quad; a cube map as a panorama, cascades side by side), linearised when the
         /// projection is perspective.
         show_depth_map: bool = false,
-            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true");
+            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", value_parser = clap::builder::BoolishValueParser::new());
         /// Tint each cascade's part of the frame (red, green, blue, yellow from the camera
         /// out).
         show_cascades: bool = false,
-            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true");
+            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", value_parser = clap::builder::BoolishValueParser::new());
     }
 }
 
@@ -615,10 +626,7 @@ impl ShadowSettings {
             }
             extra.push(')');
         }
-        let size = match self.map_size.is_square() {
-            true => format!("{}^2", self.map_size.width),
-            false => self.map_size.to_string(),
-        };
+        let size = self.map_size.label();
         let mut line = format!(
             "{size} {} {}, {}{}, cull {}",
             self.depth_format.name(),
@@ -642,6 +650,8 @@ impl ShadowSettings {
             }
             let v = match value {
                 serde_json::Value::String(s) => s.clone(),
+                // Switches read as the flags spell them.
+                serde_json::Value::Bool(b) => if *b { "on" } else { "off" }.to_string(),
                 other => other.to_string(),
             };
             let part = match key.as_str() {

@@ -104,8 +104,14 @@ fn scene_file_errors_name_the_line_or_field() {
 }
 
 fn run(args: &[&str]) -> (bool, String, String) {
+    run_in(Path::new("."), args)
+}
+
+/// [`run`] with `cwd` as the working folder (where a wrongly accepted command would write).
+fn run_in(cwd: &Path, args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
         .args(args)
+        .current_dir(cwd)
         .output()
         .expect("the binary runs");
     (
@@ -329,9 +335,12 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
             "invalid value '-1' for '--frames <N>'",
         ),
     ];
+    // Run in an empty folder of their own: a refused command writes nothing there.
+    let refused = dir.join("refused");
+    std::fs::create_dir_all(&refused).unwrap();
     let mut wrong = Vec::new();
     for (args, needle) in cases {
-        let (ok, _, err) = run(args);
+        let (ok, _, err) = run_in(&refused, args);
         if ok
             || !err.contains(needle)
             || err.contains("unexpected argument")
@@ -341,10 +350,8 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
         }
     }
     assert!(wrong.is_empty(), "\n{}", wrong.join("\n"));
-    assert!(
-        !std::path::Path::new("d").exists(),
-        "a refused command made its folder"
-    );
+    let left: Vec<_> = std::fs::read_dir(&refused).unwrap().flatten().collect();
+    assert!(left.is_empty(), "refused commands left {left:?}");
 }
 
 #[test]

@@ -91,7 +91,7 @@ fn render_inset_changes_only_its_corner_and_shows_the_map() {
 }
 
 #[test]
-fn render_inset_without_a_map_warns_and_draws_the_frame() {
+fn render_inset_on_a_frame_too_small_for_it_warns_and_draws_the_frame() {
     let dir = std::env::temp_dir().join(format!("shadowmap-inset-none-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let out = bin()

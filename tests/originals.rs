@@ -382,9 +382,15 @@ fn a_bad_steps_camera_is_named() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("steps.toml");
     for (table, field) in [
-        ("{ near = 5.0, far = 1.0 }", "steps.camera"),
-        ("{ fov = 0.0 }", "steps.camera.fov"),
-        ("{ zoom = 2.0 }", "steps.camera"),
+        (
+            "{ near = 5.0, far = 1.0 }",
+            "steps.camera: near = 5, far = 1: expected 0 < near < far",
+        ),
+        (
+            "{ fov = 0.0 }",
+            "steps.camera.fov: 0: expected degrees between 0 and 180",
+        ),
+        ("{ zoom = 2.0 }", "zoom"),
     ] {
         std::fs::write(
             &path,

@@ -19,7 +19,10 @@ use super::plot::with_error_legend;
 pub fn run(args: &StepsArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
     // Shown from the scene's steps camera, unless a camera flag picks the view.
-    if args.scene.camera_position.is_none() && args.scene.camera_rotation.is_none() {
+    let camera_flag = args.scene.camera_position.is_some()
+        || args.scene.camera_rotation.is_some()
+        || args.scene.camera_target.is_some();
+    if !camera_flag {
         scene.camera = scene.steps_camera();
     }
     scene

@@ -116,7 +116,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                      its far plane"
                 .to_string(),
         };
-        println!("wrote {} ({size}^2 shadow map: {shown})", path.display());
+        println!(
+            "wrote {} ({} shadow map: {shown})",
+            path.display(),
+            size.label()
+        );
     }
     if let Some((median, p95)) = frame.frame_time_stats() {
         println!(

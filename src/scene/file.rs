@@ -1722,7 +1722,7 @@ mod tests {
     }
 
     #[test]
-    fn every_built_in_scene_loads_as_before() {
+    fn every_built_in_scene_loads() {
         for name in Scene::builtin_names() {
             let scene = Scene::load(name).unwrap_or_else(|e| panic!("{name}: {e}"));
             assert!(
