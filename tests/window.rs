@@ -240,3 +240,47 @@ fn window_draws_the_shadow_map_inset_in_its_corner_as_headless_does() {
     assert!(mean < 1.0, "window and headless insets differ by {mean}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_draws_the_same_frame_through_glx_and_through_egl() {
+    // Issue 16: GLX is the default on X11 (its swap reaches the X server through shared
+    // memory); EGL stays selectable. Both must draw the headless frame and say which they are.
+    let dir = display_and_dir("gl-api");
+    let headless = dir.join("headless.png");
+    stdout_of(
+        bin()
+            .args(["render", "--scene", "learnopengl", "--size", "480x270"])
+            .arg("--out")
+            .arg(&headless),
+    );
+    let head = load(&headless);
+    for (flag, api) in [("auto", "GLX"), ("glx", "GLX"), ("egl", "EGL")] {
+        let shot = dir.join(format!("{flag}.png"));
+        let out = stdout_of(
+            bin()
+                .args([
+                    "demo",
+                    "--no-animation",
+                    "--no-hud",
+                    "--scene",
+                    "learnopengl",
+                ])
+                .args(["--size", "480x270", "--gl-api", flag])
+                .args(["--exit-after-frames", "5", "--screenshot"])
+                .arg(&shot),
+        );
+        assert!(
+            out.contains(&format!("swap included; window through {api})")),
+            "--gl-api {flag}: {out}"
+        );
+        let win = load(&shot);
+        assert_eq!(win.dimensions(), (480, 270), "--gl-api {flag}");
+        let mean = mean_difference(&win, &head);
+        assert!(
+            mean < 1.0,
+            "--gl-api {flag}: window and headless differ by {mean}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -416,7 +416,7 @@ impl Demo {
         let attributes = Window::default_attributes()
             .with_title("shadowmap")
             .with_inner_size(PhysicalSize::new(self.size.0.max(1), self.size.1.max(1)));
-        let context = WindowContext::new(event_loop, attributes)?;
+        let context = WindowContext::new(event_loop, attributes, self.args.gl_api.into())?;
         self.args
             .settings
             .check(context.gl(), &self.scene, &self.settings)?;
@@ -606,8 +606,9 @@ impl Demo {
             if let Some((median, p95)) = shadowmap::frame::median_p95(&self.frame_times) {
                 println!(
                     "frame time over {} frames after the first: median {median:.2} ms, p95 \
-                     {p95:.2} ms (wall, frame to frame, swap included)",
-                    self.frame_times.len()
+                     {p95:.2} ms (wall, frame to frame, swap included; window through {})",
+                    self.frame_times.len(),
+                    running.context.api()
                 );
             }
             event_loop.exit();
