@@ -97,3 +97,42 @@ fn only_maps_whose_light_sees_a_change_are_drawn_again() {
     });
     assert_eq!(drawn, 1);
 }
+
+#[test]
+fn a_point_light_draws_each_caster_only_into_the_cube_faces_it_can_reach() {
+    // Issue 16, culled casters per cube face: counted per face (six offered per caster), and
+    // a cube straight along +X from the light is drawn into the +X face alone. Both depth
+    // passes (one layered pass, six passes) cull alike.
+    let ctx = common::context();
+    for pass in [
+        shadowmap::settings::PointPass::Layered,
+        shadowmap::settings::PointPass::SixPasses,
+    ] {
+        let counts = |scene: &Scene| {
+            let s = ShadowSettings {
+                point_pass: pass,
+                ..scene.shadow
+            };
+            let mut renderer = shadowmap::Renderer::new(ctx.gl(), scene, &s).unwrap();
+            renderer.render_depth_map(scene).unwrap();
+            renderer.caster_counts()
+        };
+        let mut scene = Scene::load("point-shadows").unwrap();
+        let casters = scene.items.iter().filter(|i| i.casts_shadows).count() as u64;
+        let before = counts(&scene);
+        assert_eq!(before.total, 6 * casters, "{pass:?}");
+        // The room around the light is in all six faces; the five cubes in fewer.
+        assert!(before.drawn >= 6 && before.drawn < before.total, "{pass:?}: {before:?}");
+
+        let mut along_x = scene.items[1].clone();
+        let shadowmap::scene::Light::Point(light) = &scene.lights[0] else {
+            panic!("point-shadows' light is a point light");
+        };
+        along_x.position = light.position + glam::Vec3::new(6.0, 0.0, 0.0);
+        along_x.scale = glam::Vec3::splat(0.5);
+        scene.items.push(along_x);
+        let after = counts(&scene);
+        assert_eq!(after.total, before.total + 6, "{pass:?}");
+        assert_eq!(after.drawn, before.drawn + 1, "{pass:?}: {before:?} -> {after:?}");
+    }
+}

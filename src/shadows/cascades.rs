@@ -15,7 +15,7 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use super::casters::{depth_state, draw_casters};
+use super::casters::{casters, depth_state, draw_casters};
 use super::fitted::{aabb, corners, item_world_boxes, FittedBox};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
@@ -390,14 +390,16 @@ impl Technique for Cascades {
             let projection = DMat4::orthographic_rh_gl(l, r, b, t, n, f).as_mat4();
             program.set_mat4("orthoProjectionMatrix", &projection);
             let keep = |i: usize| c.may_hold(boxes[i].0, boxes[i].1);
-            draw_casters(
+            // Counted per cascade: a caster in two cascades is two of those offered.
+            pass.casters.total += casters(scene);
+            pass.casters.drawn += draw_casters(
                 pass.meshes,
                 scene,
                 program,
                 "modelLightViewMatrix",
                 c.fitted.view,
                 keep,
-            );
+            ) as u64;
         }
         // The first cascade stands for the light's camera (reports, the depth view's near
         // and far).

@@ -82,23 +82,27 @@ pub fn depth_state(settings: &ShadowSettings) -> DepthState {
 }
 
 /// Whether a caster whose world box is `lo..hi` can land in the map of `light` seen through
-/// `camera`: a point light's cube sees a ball of radius `far`; a 2D map its view volume
-/// (conservatively: the box's corners are not all beyond one of the clip planes).
+/// `camera`: a point light's cube sees a ball of radius `far`; a 2D map its view volume.
 pub fn may_land(light: &Light, camera: &ShadowView, lo: DVec3, hi: DVec3) -> bool {
     if let Light::Point(p) = light {
         let nearest = p.position.as_dvec3().clamp(lo, hi);
         return nearest.distance(p.position.as_dvec3()) <= f64::from(p.far);
     }
-    let clip = camera.projection.as_dmat4() * camera.view64;
+    !beyond_a_plane(camera.projection.as_dmat4() * camera.view64, lo, hi)
+}
+
+/// Whether the box `lo..hi` lies wholly beyond one of the clip planes of `clip` (all eight
+/// corners beyond x < -w, x > w, y < -w, y > w, z < -w or z > w): a conservative cull, a box
+/// it keeps may still miss the volume.
+pub fn beyond_a_plane(clip: DMat4, lo: DVec3, hi: DVec3) -> bool {
     let corners = super::fitted::corners(lo, hi).map(|c| clip * c.extend(1.0));
-    // A plane all eight corners are beyond: x < -w, x > w, y < -w, y > w, z < -w, z > w.
     let beyond = |f: &dyn Fn(&glam::DVec4) -> bool| corners.iter().all(f);
-    !(beyond(&|c| c.x < -c.w)
+    beyond(&|c| c.x < -c.w)
         || beyond(&|c| c.x > c.w)
         || beyond(&|c| c.y < -c.w)
         || beyond(&|c| c.y > c.w)
         || beyond(&|c| c.z < -c.w)
-        || beyond(&|c| c.z > c.w))
+        || beyond(&|c| c.z > c.w)
 }
 
 /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a
@@ -112,16 +116,30 @@ pub fn draw_casters(
     light: DMat4,
     keep: impl Fn(usize) -> bool,
 ) -> usize {
+    draw_casters_with(meshes, scene, program, uniform, light, keep, |_| {})
+}
+
+/// [`draw_casters`], with `each` called before each drawn item (by index) for uniforms of
+/// its own (a cube map's faces to draw it into).
+pub fn draw_casters_with(
+    meshes: &[Mesh],
+    scene: &Scene,
+    program: &ShaderProgram,
+    uniform: &'static str,
+    light: DMat4,
+    keep: impl Fn(usize) -> bool,
+    mut each: impl FnMut(usize),
+) -> usize {
     let mut drawn = 0;
     for (mesh_id, mesh) in meshes.iter().enumerate() {
         let items = scene
             .items
             .iter()
             .enumerate()
-            .filter(|(k, i)| i.mesh == mesh_id && i.casts_shadows && keep(*k))
-            .map(|(_, i)| i);
-        mesh.render_list(items, |item| {
+            .filter(|(k, i)| i.mesh == mesh_id && i.casts_shadows && keep(*k));
+        mesh.render_list(items, |(k, item)| {
             drawn += 1;
+            each(k);
             program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
         });
     }

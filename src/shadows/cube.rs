@@ -3,10 +3,10 @@
 //! fragment's distance over the far plane; the test (`shaders/lib/shadow_cube.glsl`)
 //! compares distances in world units.
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::camera::point_camera;
-use super::casters::{casters, depth_state, draw_casters, may_land};
+use super::casters::{beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land};
 use super::fitted;
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
@@ -46,6 +46,14 @@ pub fn face_views() -> [Mat4; 6] {
         (-Vec3::Z, -Vec3::Y),
     ];
     faces.map(|(d, up)| Mat4::look_at_rh(Vec3::ZERO, d, up))
+}
+
+/// The faces (bit f for face f of `faces`, each a face's projection x view relative to the
+/// light) that a box `lo..hi`, relative to the light, may enter.
+pub fn face_mask(faces: &[Mat4; 6], lo: DVec3, hi: DVec3) -> u32 {
+    (0..6)
+        .filter(|&f| !beyond_a_plane(faces[f].as_dmat4(), lo, hi))
+        .fold(0, |mask, f| mask | 1 << f)
 }
 
 /// World to the light's position: the faces and the scene pass' lookups are relative to it.
@@ -96,34 +104,57 @@ impl Technique for Cube {
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         program.set_f32("farPlane", light.far);
         let meshes = pass.meshes;
-        // Only casters within the light's reach (`far`): the rest would be clipped.
+        // Per caster, the faces it can land in (bit f for face f): none beyond the light's
+        // reach (`far`), and of the rest only the faces whose frustum its box may enter.
         let boxes = fitted::item_world_boxes(scene);
         let camera = point_camera(light, pass.settings);
-        let near = |k: usize| may_land(&scene.lights[index], &camera, boxes[k].0, boxes[k].1);
-        let mut drawn = 0;
-        let mut draw = || {
-            drawn = draw_casters(meshes, scene, program, "modelLightMatrix", to_light, near);
-        };
+        let faces = face_views().map(|v| projection * v);
+        let origin = light.position.as_dvec3();
+        let masks: Vec<u32> = boxes
+            .iter()
+            .map(|&(lo, hi)| match may_land(&scene.lights[index], &camera, lo, hi) {
+                false => 0,
+                true => face_mask(&faces, lo - origin, hi - origin),
+            })
+            .collect();
         match point_pass {
             PointPass::Layered => {
-                // One pass: the geometry shader draws every triangle into all six faces.
+                // One pass: the geometry shader draws each triangle into its caster's faces.
                 self.cube.bind_layered()?;
                 state::clear_depth(pass.gl);
-                let faces = face_views().map(|v| projection * v);
                 program.set_mat4_array("faceProjections", &faces);
-                draw();
+                let keep = |k: usize| masks[k] != 0;
+                let each = |k: usize| program.set_i32("faceMask", masks[k] as i32);
+                draw_casters_with(
+                    meshes,
+                    scene,
+                    program,
+                    "modelLightMatrix",
+                    to_light,
+                    keep,
+                    each,
+                );
             }
             PointPass::SixPasses => {
-                for (face, view) in face_views().iter().enumerate() {
+                for (face, clip) in faces.iter().enumerate() {
                     self.cube.bind_face(face as u32);
                     state::clear_depth(pass.gl);
-                    program.set_mat4("faceProjection", &(projection * *view));
-                    draw();
+                    program.set_mat4("faceProjection", clip);
+                    let keep = |k: usize| masks[k] & (1 << face) != 0;
+                    draw_casters(meshes, scene, program, "modelLightMatrix", to_light, keep);
                 }
             }
         }
+        // Counted per face: a caster in two faces is two of the six offered.
+        let drawn: u32 = scene
+            .items
+            .iter()
+            .zip(&masks)
+            .filter(|(item, _)| item.casts_shadows)
+            .map(|(_, m)| m.count_ones())
+            .sum();
         pass.casters.drawn += drawn as u64;
-        pass.casters.total += casters(scene);
+        pass.casters.total += 6 * casters(scene);
         Ok(camera)
     }
 
