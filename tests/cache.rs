@@ -122,7 +122,10 @@ fn a_point_light_draws_each_caster_only_into_the_cube_faces_it_can_reach() {
         let before = counts(&scene);
         assert_eq!(before.total, 6 * casters, "{pass:?}");
         // The room around the light is in all six faces; the five cubes in fewer.
-        assert!(before.drawn >= 6 && before.drawn < before.total, "{pass:?}: {before:?}");
+        assert!(
+            before.drawn >= 6 && before.drawn < before.total,
+            "{pass:?}: {before:?}"
+        );
 
         let mut along_x = scene.items[1].clone();
         let shadowmap::scene::Light::Point(light) = &scene.lights[0] else {
@@ -133,6 +136,10 @@ fn a_point_light_draws_each_caster_only_into_the_cube_faces_it_can_reach() {
         scene.items.push(along_x);
         let after = counts(&scene);
         assert_eq!(after.total, before.total + 6, "{pass:?}");
-        assert_eq!(after.drawn, before.drawn + 1, "{pass:?}: {before:?} -> {after:?}");
+        assert_eq!(
+            after.drawn,
+            before.drawn + 1,
+            "{pass:?}: {before:?} -> {after:?}"
+        );
     }
 }

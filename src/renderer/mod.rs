@@ -22,7 +22,7 @@ use crate::scene::{Scene, MAX_LIGHTS};
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::program::ProgramKey;
-use crate::shadows::{cache, CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
+use crate::shadows::{cache, fitted, CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
 /// offscreen [`RenderTarget`].
@@ -247,6 +247,10 @@ impl Renderer {
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
         self.hook(Pass::Depth, true);
+        let boxes = match self.shadows.iter().any(Option::is_some) {
+            true => fitted::item_world_boxes(scene),
+            false => Vec::new(),
+        };
         for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
             let light = &scene.lights[index];
             let settings = light.settings(&self.settings);
@@ -257,6 +261,7 @@ impl Renderer {
             let key = settings.shadow_cache.then(|| {
                 cache::content_key(
                     scene,
+                    &boxes,
                     index,
                     &settings,
                     cache::follows_camera(light, technique.kind(), &settings),
@@ -271,6 +276,7 @@ impl Renderer {
                 meshes: &self.meshes,
                 programs: &mut self.depth_programs,
                 settings: &settings,
+                boxes: &boxes,
                 casters: &mut self.casters,
             };
             // Forget the key first: a failed pass leaves the map to be drawn again.

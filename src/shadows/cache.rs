@@ -7,6 +7,8 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
+use glam::DVec3;
+
 use super::ShadowKind;
 use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
@@ -17,19 +19,19 @@ use crate::settings::ShadowSettings;
 /// turning out of its sight does not make it draw again.
 pub fn content_key(
     scene: &Scene,
+    boxes: &[(DVec3, DVec3)],
     index: usize,
     settings: &ShadowSettings,
     follows_camera: bool,
 ) -> u64 {
     let light = &scene.lights[index];
     let camera = (!follows_camera).then(|| super::light_camera(scene, index, settings));
-    let boxes = super::fitted::item_world_boxes(scene);
     let mut h = DefaultHasher::new();
     // Debug text hashes every field of the light and the settings, floats bit for bit
     // (their `Debug` prints the shortest exact form), without a Hash impl on each type.
     format!("{light:?}").hash(&mut h);
     format!("{settings:?}").hash(&mut h);
-    for (item, (lo, hi)) in scene.items.iter().zip(&boxes) {
+    for (item, (lo, hi)) in scene.items.iter().zip(boxes) {
         let seen = match &camera {
             Some(c) => super::casters::may_land(light, c, *lo, *hi),
             None => true,
@@ -74,7 +76,14 @@ mod tests {
         let mut scene = Scene::load("dummy").unwrap();
         let s = scene.shadow;
         let key = |sc: &Scene, s: &ShadowSettings| {
-            content_key(sc, 0, s, follows_camera(&sc.lights[0], ShadowKind::Map, s))
+            let boxes = crate::shadows::fitted::item_world_boxes(sc);
+            content_key(
+                sc,
+                &boxes,
+                0,
+                s,
+                follows_camera(&sc.lights[0], ShadowKind::Map, s),
+            )
         };
         let k0 = key(&scene, &s);
         assert_eq!(k0, key(&scene, &s));

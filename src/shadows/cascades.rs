@@ -16,7 +16,7 @@
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::casters::{casters, depth_state, draw_casters};
-use super::fitted::{aabb, corners, item_world_boxes, FittedBox};
+use super::fitted::{aabb, corners, FittedBox};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
 };
@@ -378,9 +378,9 @@ impl Technique for Cascades {
             )));
         };
         // Items' world boxes, once: the cascades are fitted above them and culled by them.
-        let boxes = item_world_boxes(scene);
+        let boxes = pass.boxes;
         let spec = CascadeSpec::of(pass.settings, l.ortho.far - l.ortho.near);
-        self.cascades = fit_cascades(scene, &boxes, l.direction, &spec);
+        self.cascades = fit_cascades(scene, boxes, l.direction, &spec);
         let program = pass.programs.flat(pass.gl)?;
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         for (layer, c) in self.cascades.iter().enumerate() {

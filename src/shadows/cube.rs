@@ -6,8 +6,9 @@
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::camera::point_camera;
-use super::casters::{beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land};
-use super::fitted;
+use super::casters::{
+    beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land,
+};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
 };
@@ -106,16 +107,18 @@ impl Technique for Cube {
         let meshes = pass.meshes;
         // Per caster, the faces it can land in (bit f for face f): none beyond the light's
         // reach (`far`), and of the rest only the faces whose frustum its box may enter.
-        let boxes = fitted::item_world_boxes(scene);
+        let boxes = pass.boxes;
         let camera = point_camera(light, pass.settings);
         let faces = face_views().map(|v| projection * v);
         let origin = light.position.as_dvec3();
         let masks: Vec<u32> = boxes
             .iter()
-            .map(|&(lo, hi)| match may_land(&scene.lights[index], &camera, lo, hi) {
-                false => 0,
-                true => face_mask(&faces, lo - origin, hi - origin),
-            })
+            .map(
+                |&(lo, hi)| match may_land(&scene.lights[index], &camera, lo, hi) {
+                    false => 0,
+                    true => face_mask(&faces, lo - origin, hi - origin),
+                },
+            )
             .collect();
         match point_pass {
             PointPass::Layered => {

@@ -87,8 +87,8 @@ impl Technique for Map2d {
         state::clear_depth(pass.gl);
         program.set_mat4("orthoProjectionMatrix", &view.projection);
         // Only casters that can land in the map: the rest would be clipped anyway.
-        let boxes = fitted::item_world_boxes(scene);
         let light = &scene.lights[index];
+        let boxes = pass.boxes;
         let keep = |k: usize| may_land(light, &view, boxes[k].0, boxes[k].1);
         let drawn = draw_casters(
             pass.meshes,

@@ -22,7 +22,7 @@ pub mod map2d;
 pub mod program;
 pub mod slots;
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
@@ -152,6 +152,9 @@ pub struct DepthPass<'a> {
     pub meshes: &'a [Mesh],
     pub programs: &'a mut casters::DepthPrograms,
     pub settings: &'a ShadowSettings,
+    /// Every item's world box, in the scene's item order ([`fitted::item_world_boxes`],
+    /// worked out once a frame for the cache's keys and every pass' culling).
+    pub boxes: &'a [(DVec3, DVec3)],
     /// Casters drawn, and casters there were, over the passes so far.
     pub casters: &'a mut CasterCounts,
 }
