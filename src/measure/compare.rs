@@ -15,7 +15,7 @@ use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
 use crate::scene::{GameItem, Scene, Shading};
 use crate::settings::ShadowSettings;
-use crate::shadows::Rays;
+use crate::shadows::{Rays, ShadowKind};
 
 /// How a comparison is made.
 #[derive(Debug, Clone, Copy)]
@@ -60,10 +60,18 @@ pub fn light_kind(
         Shading::Position { cone, .. } => cone,
         Shading::Direction(_) => None,
     });
-    match (
-        crate::shadows::light_camera(scene, index, settings).rays,
-        cone,
-    ) {
+    // Volumes cast from the light the scene is shaded with (`shadows::volumes`); a map
+    // from its camera.
+    let volumes = scene
+        .lights
+        .get(index)
+        .is_some_and(|l| ShadowKind::of(l, &l.settings(settings)) == ShadowKind::Volume);
+    let rays = match scene.lights[index].shading() {
+        Shading::Direction(to_light) if volumes => Rays::Parallel { to_light },
+        Shading::Position { position, .. } if volumes => Rays::FromPoint { position },
+        _ => crate::shadows::light_camera(scene, index, settings).rays,
+    };
+    match (rays, cone) {
         (Rays::FromPoint { position }, None) => LightKind::Point {
             position: (position.as_dvec3() - origin).as_vec3(),
         },
