@@ -3,15 +3,16 @@
 // neighbours (GL_TRIANGLES_ADJACENCY: 0 2 4 the triangle, 1 3 5 the vertex across each edge)
 // in, the volume faces it owns out. A triangle that faces the light owns:
 //   - its near cap: itself, a hair further from the camera so the caster's own lit pixels
-//     count it as behind them (see capNudge);
+//     count it as behind them (see `near`);
 //   - its far cap: itself projected to infinity away from the light, turned around (a
 //     directional light's far cap is a single point, so it has none);
 //   - a side for each silhouette edge (the neighbour across it does not face the light):
 //     the edge extruded to infinity.
 // Every face is wound outwards, so the stencil counts front faces down and back faces up.
 // An open edge's "neighbour" is the triangle's own third vertex (src/shadows/volumes.rs): the
-// neighbour is then this triangle turned around, which never faces the light with it, so the
-// open edge is a silhouette and the triangle's volume stays closed.
+// neighbour is then this triangle turned around, which always faces the other way, so the
+// open edge is a silhouette and the triangle's volume stays closed. An open mesh casts from
+// both sides (twoSided): a triangle lit from behind casts as if turned around.
 
 layout (triangles_adjacency) in;
 layout (triangle_strip, max_vertices = 18) out;
@@ -23,6 +24,8 @@ uniform mat4 projectionMatrix;
 uniform vec4 lightVector;
 // How far (in NDC depth, times w) the near cap moves away from the camera.
 uniform float capNudge;
+// The mesh is open (or non-manifold): every triangle casts, from whichever side is lit.
+uniform bool twoSided;
 
 vec3 towardsLight(vec3 p)
 {
@@ -49,6 +52,17 @@ float facing(vec3 a, vec3 b, vec3 c)
     return dot(cross(b - a, c - a), towardsLight(a));
 }
 
+// Corner k of the triangle where the volume starts: where the scene drew it, a hair
+// further from the camera. The near cap and the sides share these corners exactly, so the
+// volume is watertight, and a surface the volume starts on (a caster's lit side, the rim
+// of an open mesh) always counts the start as behind it.
+vec4 near(int k)
+{
+    vec4 p = projectionMatrix * viewPos[k];
+    p.z += capNudge * p.w;
+    return p;
+}
+
 // The point p seen from the light, pushed to infinity.
 vec4 atInfinity(vec3 p)
 {
@@ -61,40 +75,53 @@ void main()
     for (int k = 0; k < 6; ++k) {
         p[k] = viewPos[k].xyz;
     }
-    if (facing(p[0], p[2], p[4]) <= 0.0) {
+    float own = facing(p[0], p[2], p[4]);
+    // A closed mesh casts from its light-facing triangles; an open one from both sides of
+    // each (src/shadows/volumes.rs), a triangle lit from behind taken turned around.
+    if (own == 0.0 || (own < 0.0 && !twoSided)) {
         return;
     }
+    bool front = own > 0.0;
+    int i1 = front ? 2 : 4;
+    int i2 = front ? 4 : 2;
     // Near cap.
-    for (int k = 0; k < 6; k += 2) {
-        gl_Position = projectionMatrix * viewPos[k];
-        gl_Position.z += capNudge * gl_Position.w;
-        EmitVertex();
-    }
+    gl_Position = near(0);
+    EmitVertex();
+    gl_Position = near(i1);
+    EmitVertex();
+    gl_Position = near(i2);
+    EmitVertex();
     EndPrimitive();
     // Far cap, reversed (only a positional light has one with an area).
     if (lightVector.w != 0.0) {
         gl_Position = atInfinity(p[0]);
         EmitVertex();
-        gl_Position = atInfinity(p[4]);
+        gl_Position = atInfinity(p[i2]);
         EmitVertex();
-        gl_Position = atInfinity(p[2]);
+        gl_Position = atInfinity(p[i1]);
         EmitVertex();
         EndPrimitive();
     }
-    // Sides on the silhouette edges: edge a -> b, across it the neighbour a n b.
+    // Sides on the silhouette edges. Edge a -> b has the neighbour a n b across it; the
+    // edge is a silhouette when the neighbour faces the other way from this triangle
+    // (a neighbour facing the same way owns the same face, turned around: they cancel).
     for (int e = 0; e < 3; ++e) {
         int a = 2 * e;
         int b = (2 * e + 2) % 6;
-        if (facing(p[a], p[a + 1], p[b]) > 0.0) {
+        float across = facing(p[a], p[a + 1], p[b]);
+        if (front ? across > 0.0 : across < 0.0) {
             continue;
         }
-        gl_Position = projectionMatrix * viewPos[a];
+        // Along the edge in the order that faces the light.
+        int s = front ? a : b;
+        int t = front ? b : a;
+        gl_Position = near(s);
         EmitVertex();
-        gl_Position = atInfinity(p[a]);
+        gl_Position = atInfinity(p[s]);
         EmitVertex();
-        gl_Position = projectionMatrix * viewPos[b];
+        gl_Position = near(t);
         EmitVertex();
-        gl_Position = atInfinity(p[b]);
+        gl_Position = atInfinity(p[t]);
         EmitVertex();
         EndPrimitive();
     }

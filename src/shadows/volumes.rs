@@ -19,13 +19,15 @@
 //! it, running along it in opposite directions (a closed, consistently wound surface).
 //! Every other edge (open, met by three or more triangles, or by two wound the same way)
 //! gets, as its neighbour, the triangle's own third vertex: the geometry shader then sees
-//! the triangle turned around across that edge, which never faces the light with it, so
-//! the edge is always a silhouette. Each light-facing triangle's volume is thus closed
-//! whatever its neighbours, the volumes of shared edges' sides cancel, and the count is the
-//! number of light-facing triangles in front of a point along its ray to the light: never
-//! negative, nonzero exactly where something facing the light hides it. A single-sided
-//! plane (LearnOpenGL's floor) casts from its front side, as a closed box would; from
-//! behind (the light on its back side) it casts nothing.
+//! the triangle turned around across that edge, which always faces the other way, so the
+//! edge is always a silhouette and every triangle's volume is closed whatever its
+//! neighbours. The sides of shared edges cancel, so the count at a point is the number of
+//! casting triangles between it and the light: never negative, nonzero exactly where one
+//! hides it. A closed mesh casts from its light-facing triangles only (its back is behind
+//! its front: the same shadow, half the fill). A mesh that is not closed casts from both
+//! sides of every triangle, a triangle lit from behind taken turned around, as the exact
+//! reference's ray cast sees it: LearnOpenGL's floor (a single-sided plane) shadows from
+//! below as from above, and a box without a lid casts its whole shape.
 
 use std::collections::HashMap;
 
@@ -135,9 +137,10 @@ pub fn light_source(scene: &Scene, index: usize) -> Option<Shading> {
     scene.lights.get(index).map(|l| l.shading())
 }
 
-/// The meshes with adjacency and the program that extrudes them, made on first use.
+/// The meshes with adjacency (and whether each casts from both sides: not closed) and the
+/// program that extrudes them, made on first use.
 pub struct Volumes {
-    meshes: Vec<AdjacencyMesh>,
+    meshes: Vec<(AdjacencyMesh, bool)>,
     program: ShaderProgram,
 }
 
@@ -150,7 +153,11 @@ impl Volumes {
         let meshes = scene
             .meshes
             .iter()
-            .map(|m| AdjacencyMesh::new(gl, &m.name, &m.positions, &Adjacency::of(m).indices))
+            .map(|m| {
+                let a = Adjacency::of(m);
+                let mesh = AdjacencyMesh::new(gl, &m.name, &m.positions, &a.indices)?;
+                Ok((mesh, !a.is_closed()))
+            })
             .collect::<Result<Vec<_>>>()?;
         let program = ShaderProgram::from_stages(
             gl,
@@ -192,7 +199,8 @@ impl Volumes {
         p.set_vec4("lightVector", light);
         p.set_f32("capNudge", CAP_NUDGE);
         p.set_vec4("volumeColour", colour);
-        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+        for (mesh_id, (mesh, two_sided)) in self.meshes.iter().enumerate() {
+            p.set_i32("twoSided", i32::from(*two_sided));
             let casters = scene
                 .items
                 .iter()
