@@ -2,8 +2,8 @@
 // Shadow volumes, geometry stage (the slides' last section): a triangle with its three
 // neighbours (GL_TRIANGLES_ADJACENCY: 0 2 4 the triangle, 1 3 5 the vertex across each edge)
 // in, the volume faces it owns out. A triangle that faces the light owns:
-//   - its near cap: itself, a hair further from the camera so the caster's own lit pixels
-//     count it as behind them (see `near`);
+//   - its near cap: itself, a hair off towards its dark side so that its own pixels are
+//     outside its volume (see `near`);
 //   - its far cap: itself projected to infinity away from the light, turned around (a
 //     directional light's far cap is a single point, so it has none);
 //   - a side for each silhouette edge (the neighbour across it does not face the light):
@@ -52,14 +52,16 @@ float facing(vec3 a, vec3 b, vec3 c)
     return dot(cross(b - a, c - a), towardsLight(a));
 }
 
-// Corner k of the triangle where the volume starts: where the scene drew it, a hair
-// further from the camera. The near cap and the sides share these corners exactly, so the
-// volume is watertight, and a surface the volume starts on (a caster's lit side, the rim
-// of an open mesh) always counts the start as behind it.
-vec4 near(int k)
+// Corner k of the triangle where the volume starts: where the scene drew it, a hair off
+// towards the side the light does not reach (`nudge` is +-capNudge, see main). The near
+// cap and the sides share these corners exactly, so the volume is watertight, and a
+// surface the volume starts on (a caster's lit side, the rim of an open mesh) is on the
+// lit side of its own volume, as the exact reference's ray starts off the surface on the
+// side its normal faces.
+vec4 near(int k, float nudge)
 {
     vec4 p = projectionMatrix * viewPos[k];
-    p.z += capNudge * p.w;
+    p.z += nudge * p.w;
     return p;
 }
 
@@ -84,12 +86,20 @@ void main()
     bool front = own > 0.0;
     int i1 = front ? 2 : 4;
     int i2 = front ? 4 : 2;
+    // The volume's start moves away from the camera: the caster's lit pixels count the cap
+    // as behind them, their surface outside the volume. An open mesh seen from behind
+    // (the eye is at the view-space origin) is shaded and traced from its lit side, as if
+    // the camera saw that: its start moves towards the camera, leaving it outside again.
+    // (A closed mesh's caps seen from behind are hidden behind its own front: they keep
+    // the away nudge, which the front faces they meet at shared edges need.)
+    vec3 lit = cross(p[i1] - p[0], p[i2] - p[0]);
+    float nudge = twoSided && dot(lit, -p[0]) < 0.0 ? -capNudge : capNudge;
     // Near cap.
-    gl_Position = near(0);
+    gl_Position = near(0, nudge);
     EmitVertex();
-    gl_Position = near(i1);
+    gl_Position = near(i1, nudge);
     EmitVertex();
-    gl_Position = near(i2);
+    gl_Position = near(i2, nudge);
     EmitVertex();
     EndPrimitive();
     // Far cap, reversed (only a positional light has one with an area).
@@ -115,11 +125,11 @@ void main()
         // Along the edge in the order that faces the light.
         int s = front ? a : b;
         int t = front ? b : a;
-        gl_Position = near(s);
+        gl_Position = near(s, nudge);
         EmitVertex();
         gl_Position = atInfinity(p[s]);
         EmitVertex();
-        gl_Position = near(t);
+        gl_Position = near(t, nudge);
         EmitVertex();
         gl_Position = atInfinity(p[t]);
         EmitVertex();

@@ -101,3 +101,144 @@ fn closed_casters_match_the_reference() {
         assert!(shadowed_receivers(&ctx, &scene, light) > 500, "{what}");
     }
 }
+
+/// The DummyGame's cube frozen, lit from `angle` degrees.
+fn dummy(angle: f32) -> Scene {
+    common::dummy(angle)
+}
+
+/// Whether the ray from `origin` along `dir` passes through the box |p| <= `half` (slabs).
+fn ray_hits_box(origin: Vec3, dir: Vec3, half: f32) -> bool {
+    let (mut near, mut far) = (0.0f32, f32::INFINITY);
+    for k in 0..3 {
+        let (o, d) = (origin[k], dir[k]);
+        if d.abs() < 1e-12 {
+            if o.abs() > half {
+                return false;
+            }
+            continue;
+        }
+        let (a, b) = ((-half - o) / d, (half - o) / d);
+        near = near.max(a.min(b));
+        far = far.min(a.max(b));
+    }
+    near <= far
+}
+
+#[test]
+fn z_fail_holds_with_the_camera_inside_a_volume() {
+    let ctx = context();
+    let mut scene = dummy(45.0);
+    // Under and behind the cube, in its shadow, looking down the shadow on the plane.
+    scene.camera.position = Vec3::new(0.0, -0.8, -1.0);
+    scene.camera.rotation = Vec3::new(30.0, 0.0, 0.0);
+    let to_light = Vec3::new(0.0, 45f32.to_radians().sin(), 45f32.to_radians().cos());
+    assert!(
+        ray_hits_box(scene.camera.position, to_light, 0.5),
+        "the camera must sit in the cube's shadow"
+    );
+    holds(&ctx, &scene, 0, "camera inside the cube's volume");
+    assert!(shadowed_receivers(&ctx, &scene, 0) > 500);
+}
+
+#[test]
+fn a_grazing_light_and_a_scene_far_from_the_origin_hold() {
+    let ctx = context();
+    // 1 degree over the horizon: the shadow starts 29 units behind the cube and ends 86
+    // units behind it, so the plane grows to 200 x 200, the cube to 8 units wide, and the
+    // camera looks down on the far plane from 8 units up.
+    let mut grazing = dummy(1.0);
+    for item in &mut grazing.items {
+        match item.name.as_str() {
+            "plane" => item.scale = Vec3::splat(100.0),
+            _ => item.scale = Vec3::new(4.0, 0.5, 0.5),
+        }
+    }
+    grazing.camera.position = Vec3::new(0.0, 8.0, 0.0);
+    grazing.camera.rotation = Vec3::new(10.0, 0.0, 0.0);
+    holds(&ctx, &grazing, 0, "light at 1 degree");
+    assert!(shadowed_receivers(&ctx, &grazing, 0) > 500);
+    let offset = Vec3::new(1e5, 0.0, 1e5);
+    let mut far = dummy(60.0);
+    far.items.iter_mut().for_each(|i| i.position += offset);
+    far.camera.position += offset;
+    holds(&ctx, &far, 0, "the DummyGame 1e5 from the origin");
+    assert!(shadowed_receivers(&ctx, &far, 0) > 500);
+    let mut far_point = common::frozen("point-shadows");
+    far_point
+        .items
+        .iter_mut()
+        .for_each(|i| i.position += offset);
+    far_point.camera.position += offset;
+    for light in &mut far_point.lights {
+        if let shadowmap::scene::Light::Point(p) = light {
+            p.position += offset;
+        }
+    }
+    holds(&ctx, &far_point, 0, "point-shadows 1e5 from the origin");
+    assert!(shadowed_receivers(&ctx, &far_point, 0) > 500);
+}
+
+/// The DummyGame with its cube's mesh replaced by `mesh` (an open one).
+fn with_caster(mesh: shadowmap::geometry::MeshData, angle: f32) -> Scene {
+    let mut scene = dummy(angle);
+    scene.meshes.push(mesh);
+    let id = scene.meshes.len() - 1;
+    let cube = scene.items.iter_mut().find(|i| i.name == "cube").unwrap();
+    cube.mesh = id;
+    scene
+}
+
+#[test]
+fn a_single_sided_plane_casts_from_either_side_as_the_ray_cast() {
+    use shadowmap::geometry::MeshData;
+    use shadowmap::shadows::volumes::Adjacency;
+    let ctx = context();
+    let plane = MeshData::plane(1.0);
+    let a = Adjacency::of(&plane);
+    assert_eq!((a.open_edges, a.non_manifold_edges), (4, 0));
+    // Lit on its front (facing up, light above) and on its back (wound the other way).
+    for (mesh, what) in [
+        (plane.clone(), "a plane lit on its front"),
+        (plane.flip_winding(), "a plane lit on its back"),
+    ] {
+        let scene = with_caster(mesh, 60.0);
+        holds(&ctx, &scene, 0, what);
+        assert!(shadowed_receivers(&ctx, &scene, 0) > 500, "{what}");
+    }
+    // LearnOpenGL's floor is one (wound clockwise, lit on its back): the scene holds in
+    // `closed_casters_match_the_reference` with it casting from both sides.
+    let learnopengl = common::frozen("learnopengl");
+    let floor = learnopengl
+        .items
+        .iter()
+        .find(|i| i.name == "floor")
+        .unwrap();
+    assert!(floor.casts_shadows);
+    assert!(!Adjacency::of(&learnopengl.meshes[floor.mesh]).is_closed());
+}
+
+#[test]
+fn a_box_without_a_face_casts_its_whole_shape() {
+    use shadowmap::geometry::MeshData;
+    use shadowmap::shadows::volumes::Adjacency;
+    let ctx = context();
+    // Without its lid (the light looks in from above) and without its side towards the
+    // light (the light looks in from the side).
+    for (axis, what) in [(1, "a box without its lid"), (2, "a box without its side")] {
+        let mut mesh = MeshData::cube();
+        let positions = mesh.positions.clone();
+        mesh.indices = mesh
+            .indices
+            .chunks_exact(3)
+            .filter(|t| !t.iter().all(|&i| positions[i as usize][axis] == 1.0))
+            .flatten()
+            .copied()
+            .collect();
+        let a = Adjacency::of(&mesh);
+        assert_eq!((a.open_edges, a.non_manifold_edges), (4, 0), "{what}");
+        let scene = with_caster(mesh, 60.0);
+        holds(&ctx, &scene, 0, what);
+        assert!(shadowed_receivers(&ctx, &scene, 0) > 500, "{what}");
+    }
+}
