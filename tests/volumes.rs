@@ -242,3 +242,109 @@ fn a_box_without_a_face_casts_its_whole_shape() {
         assert!(shadowed_receivers(&ctx, &scene, 0) > 500, "{what}");
     }
 }
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("shadowmap-volumes-{name}-{}", std::process::id()));
+    std::fs::remove_dir_all(&d).ok();
+    d
+}
+
+fn metrics_of(dir: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("metrics.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn compare_scores_volumes_and_takes_them_as_the_truth() {
+    let size = [
+        "--scene",
+        "learnopengl",
+        "--size",
+        "320x180",
+        "--supersample",
+        "1",
+    ];
+    // --technique volumes against the ray cast: nothing wrong outside the band.
+    let cpu = tmp("cpu");
+    let out = common::stdout_of(
+        common::bin()
+            .args(["compare", "--technique", "volumes"])
+            .args(size)
+            .arg("--out-dir")
+            .arg(&cpu),
+    );
+    assert!(out.contains("[stencil shadow volumes"), "{out}");
+    let m = &metrics_of(&cpu)["metrics"];
+    assert_eq!(m["misclassified_outside_band"], 0, "{m}");
+    assert!(m["receivers"].as_u64().unwrap() > 5000, "{m}");
+    // The maps against the volumes' truth score as they do against the ray cast (the
+    // volumes agree with it), and the agreement is printed and written.
+    let maps_cpu = tmp("maps-cpu");
+    common::stdout_of(
+        common::bin()
+            .arg("compare")
+            .args(size)
+            .arg("--out-dir")
+            .arg(&maps_cpu),
+    );
+    let maps_vol = tmp("maps-vol");
+    let out = common::stdout_of(
+        common::bin()
+            .args(["compare", "--truth", "volumes"])
+            .args(size)
+            .arg("--out-dir")
+            .arg(&maps_vol),
+    );
+    assert!(
+        out.contains("truth: stencil shadow volumes; against the CPU ray cast they agree on"),
+        "{out}"
+    );
+    let json = metrics_of(&maps_vol);
+    assert_eq!(json["truth"], "volumes");
+    let agreement = &json["volumes_vs_cpu"];
+    assert_eq!(agreement["misclassified_outside_band"], 0, "{agreement}");
+    let against_volumes = json["metrics"]["misclassified"].as_u64().unwrap() as i64;
+    let against_cpu = metrics_of(&maps_cpu)["metrics"]["misclassified"]
+        .as_u64()
+        .unwrap() as i64;
+    assert!(
+        against_cpu > 20,
+        "the maps must have errors to find: {against_cpu}"
+    );
+    let wrong_volumes = agreement["misclassified"].as_u64().unwrap() as i64;
+    assert!(
+        (against_volumes - against_cpu).abs() <= wrong_volumes,
+        "maps: {against_volumes} wrong against the volumes, {against_cpu} against the ray cast"
+    );
+    for d in [cpu, maps_cpu, maps_vol] {
+        std::fs::remove_dir_all(d).ok();
+    }
+}
+
+#[test]
+fn an_unshadowed_pixel_looks_the_same_with_maps_and_volumes() {
+    let ctx = context();
+    // Three-lights has four lights (sun, spot, point and a fill that casts nothing); with
+    // no casters every pixel is unshadowed, drawn in one pass by the maps and in five
+    // (ambient, then each light added) by the volumes.
+    let mut scene = common::frozen("three-lights");
+    scene.items.iter_mut().for_each(|i| i.casts_shadows = false);
+    let maps = ShadowSettings {
+        shadows: false,
+        ..scene.shadow
+    };
+    let a = common::render(&ctx, &mut scene.clone(), &maps, 320, 180);
+    let b = common::render(&ctx, &mut scene.clone(), &volumes(&scene), 320, 180);
+    let diffs: Vec<i32> = a
+        .colour
+        .rgba
+        .iter()
+        .zip(&b.colour.rgba)
+        .map(|(x, y)| (i32::from(*x) - i32::from(*y)).abs())
+        .collect();
+    let lit = a.colour.rgba.iter().filter(|&&v| v > 40).count();
+    assert!(lit > 10_000, "the frame must be lit: {lit} bright channels");
+    // Each pass rounds to 8 bits: at most half a level each, five passes.
+    let max = diffs.iter().max().copied().unwrap_or(0);
+    let mean = diffs.iter().map(|&d| f64::from(d)).sum::<f64>() / diffs.len() as f64;
+    assert!(max <= 3 && mean < 0.5, "max {max}, mean {mean}");
+}

@@ -204,6 +204,20 @@ pub struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub light: usize,
+    /// What the frame is scored against: `cpu`, the exact ray cast; or `volumes`, the
+    /// stencil shadow volumes' answer (the GPU's exact hard shadows), whose own agreement
+    /// with the ray cast is printed beside.
+    #[arg(long, value_name = "cpu|volumes", default_value = "cpu")]
+    pub truth: Truth,
+}
+
+/// The reference `compare` scores against.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Truth {
+    /// The exact CPU ray cast.
+    Cpu,
+    /// Stencil shadow volumes, checked against the ray cast.
+    Volumes,
 }
 
 #[derive(Args, Debug, Clone)]

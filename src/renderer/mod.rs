@@ -342,7 +342,14 @@ impl Renderer {
             .map(|pixels| {
                 self.volume_pixels = pixels;
                 if self.settings.show_volumes {
-                    volume_pass::draw_debug(volumes, &self.kinds, &self.gl, scene, target.size());
+                    volume_pass::draw_debug(
+                        volumes,
+                        &self.kinds,
+                        &self.settings,
+                        &self.gl,
+                        scene,
+                        target.size(),
+                    );
                 }
             }),
             _ => {

@@ -13,6 +13,7 @@ use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};
 use crate::engine::{VolumeDraw, VolumePassGuard};
 use crate::error::Result;
 use crate::scene::Scene;
+use crate::settings::ShadowSettings;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
@@ -57,7 +58,7 @@ pub fn draw(
             let _pass = VolumePassGuard::begin(gl, VolumeDraw::Stencil);
             let query = queries.get(i);
             query.inspect(|q| q.begin());
-            volumes.draw(scene, i, size, Vec4::ZERO);
+            volumes.draw(scene, inputs.settings, i, size, Vec4::ZERO);
             if let Some(q) = query {
                 q.end();
                 counted.push(q);
@@ -88,6 +89,7 @@ pub fn draw(
 pub fn draw_debug(
     volumes: &Volumes,
     kinds: &[ShadowKind],
+    settings: &ShadowSettings,
     gl: &Gl,
     scene: &Scene,
     size: (u32, u32),
@@ -95,7 +97,7 @@ pub fn draw_debug(
     let _pass = VolumePassGuard::begin(gl, VolumeDraw::Debug);
     for (i, kind) in kinds.iter().enumerate() {
         if *kind == ShadowKind::Volume {
-            volumes.draw(scene, i, size, COLOURS[i % COLOURS.len()]);
+            volumes.draw(scene, settings, i, size, COLOURS[i % COLOURS.len()]);
         }
     }
 }

@@ -33,10 +33,12 @@ use std::collections::HashMap;
 
 use glam::{DMat4, Vec4};
 
+use super::Rays;
 use crate::engine::{AdjacencyMesh, Gl, ShaderProgram};
 use crate::error::Result;
 use crate::geometry::MeshData;
-use crate::scene::{Scene, Shading};
+use crate::scene::Scene;
+use crate::settings::ShadowSettings;
 use crate::shaders;
 
 /// A mesh's triangles with adjacency, and what welding found.
@@ -129,12 +131,12 @@ pub fn call(i: usize, positional: bool, cone: bool) -> String {
     format!("addLight({i}, toLightOf({i}, {positional}), {cone}, float(passLight == {i}), f);")
 }
 
-/// What the volumes of a light are cast from, in world space: a position (point and spot
-/// lights, and a directional light that shades from a point, as LearnOpenGL's does), or
-/// the direction towards the light. The same light the scene is shaded with, so the exact
-/// reference traces these rays for volumes.
-pub fn light_source(scene: &Scene, index: usize) -> Option<Shading> {
-    scene.lights.get(index).map(|l| l.shading())
+/// The rays light `index`'s volumes follow: the ones its map would stand for
+/// ([`super::light_camera`]), so volumes and maps shadow the same light and the exact
+/// reference traces the same rays for both (a directional light shaded from a point, as
+/// LearnOpenGL's, casts parallel rays from its direction).
+pub fn rays(scene: &Scene, index: usize, settings: &ShadowSettings) -> Rays {
+    super::light_camera(scene, index, settings).rays
 }
 
 /// The meshes with adjacency (and whether each casts from both sides: not closed) and the
@@ -178,10 +180,18 @@ impl Volumes {
 
     /// Draws light `index`'s volumes for every caster with the bound target and state
     /// (the stencil pass, or the debug view in `colour`).
-    pub fn draw(&self, scene: &Scene, index: usize, (width, height): (u32, u32), colour: Vec4) {
-        let Some(source) = light_source(scene, index) else {
+    pub fn draw(
+        &self,
+        scene: &Scene,
+        settings: &ShadowSettings,
+        index: usize,
+        (width, height): (u32, u32),
+        colour: Vec4,
+    ) {
+        let Some(light) = scene.lights.get(index) else {
             return;
         };
+        let source = rays(scene, index, &light.settings(settings));
         let p = &self.program;
         let view64 = scene.camera.view_matrix64();
         p.bind();
@@ -190,8 +200,8 @@ impl Volumes {
             &scene.camera.projection_matrix(width, height),
         );
         let light = match source {
-            Shading::Direction(d) => view64.as_mat4().transform_vector3(d).extend(0.0),
-            Shading::Position { position, .. } => view64
+            Rays::Parallel { to_light } => view64.as_mat4().transform_vector3(to_light).extend(0.0),
+            Rays::FromPoint { position } => view64
                 .transform_point3(position.as_dvec3())
                 .as_vec3()
                 .extend(1.0),
