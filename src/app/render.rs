@@ -136,6 +136,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             frame.casters.drawn,
             frame.casters.total
         );
+        if frame.volume_pixels > 0 {
+            println!(
+                "shadow volumes: {} volume pixels passed the depth test in the last frame \
+                 ({:.2} per frame pixel)",
+                frame.volume_pixels,
+                frame.volume_pixels as f64 / f64::from(frame.width * frame.height)
+            );
+        }
     }
     Ok(())
 }
