@@ -55,21 +55,13 @@ pub struct Adjacency {
 }
 
 impl Adjacency {
-    /// Welds `mesh`'s positions (equal coordinates are one vertex, whatever their normals
-    /// and texture coordinates) and finds each triangle's neighbours.
+    /// Welds `mesh`'s positions (points within [`WELD`] of the mesh's size are one vertex,
+    /// whatever their normals and texture coordinates: a UV sphere's seam and poles, whose
+    /// sines and cosines of 0 and 2 pi differ in the last bits) and finds each triangle's
+    /// neighbours. Every index it gives is a welded vertex's, so each geometry shader
+    /// invocation that meets a vertex sees the same position.
     pub fn of(mesh: &MeshData) -> Adjacency {
-        // The first vertex with each position stands for all of them.
-        let mut first: HashMap<[u32; 3], u32> = HashMap::new();
-        let weld: Vec<u32> = mesh
-            .positions
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
-                // +0 and -0 are the same point.
-                let key = p.map(|c| (c + 0.0).to_bits());
-                *first.entry(key).or_insert(i as u32)
-            })
-            .collect();
+        let weld = weld(&mesh.positions);
         let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(mesh.indices.len() / 3);
         let mut degenerate = 0;
         for t in mesh.indices.chunks_exact(3) {
@@ -123,6 +115,52 @@ impl Adjacency {
     pub fn is_closed(&self) -> bool {
         self.open_edges == 0 && self.non_manifold_edges == 0
     }
+}
+
+/// How close two positions must be to weld, as a fraction of the mesh's largest extent.
+pub const WELD: f32 = 1e-6;
+
+/// For each position, the first position within [`WELD`] of it (itself if none): a grid of
+/// cells one tolerance wide, each point checked against the 27 cells around it.
+fn weld(positions: &[[f32; 3]]) -> Vec<u32> {
+    let (lo, hi) = positions
+        .iter()
+        .fold(([f32::MAX; 3], [f32::MIN; 3]), |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+            )
+        });
+    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
+    let tolerance = (extent * WELD).max(f32::MIN_POSITIVE);
+    let cell = |p: &[f32; 3]| p.map(|c| (f64::from(c) / f64::from(tolerance)).floor() as i64);
+    let mut grid: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut out = Vec::with_capacity(positions.len());
+    for (i, p) in positions.iter().enumerate() {
+        let c = cell(p);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(there) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    if let Some(&j) = there.iter().find(|&&j| {
+                        let q = positions[j as usize];
+                        (0..3).all(|k| (q[k] - p[k]).abs() <= tolerance)
+                    }) {
+                        found = Some(j);
+                        break 'search;
+                    }
+                }
+            }
+        }
+        out.push(found.unwrap_or_else(|| {
+            grid.entry(c).or_default().push(i as u32);
+            i as u32
+        }));
+    }
+    out
 }
 
 /// The scene shader's call for light `i` with volumes: no test of its own, lit in its
