@@ -22,7 +22,7 @@ impl AdjacencyMesh {
     /// `positions.len()` (checked).
     pub fn new(gl: &Gl, name: &str, positions: &[[f32; 3]], indices: &[u32]) -> Result<Self> {
         let bad = |what: String| Error::Invalid(format!("mesh '{name}' with adjacency: {what}"));
-        if indices.len() % 6 != 0 {
+        if !indices.len().is_multiple_of(6) {
             return Err(bad(format!(
                 "{} indices, not six per triangle",
                 indices.len()

@@ -73,7 +73,7 @@ impl Adjacency {
             }
         }
         // Every undirected edge: the triangles on it, with the edge's slot and direction.
-        let mut edges: HashMap<(u32, u32), Vec<(usize, usize, bool)>> = HashMap::new();
+        let mut edges: HashMap<(u32, u32), Vec<EdgeUse>> = HashMap::new();
         for (t, tri) in triangles.iter().enumerate() {
             for e in 0..3 {
                 let (a, b) = (tri[e], tri[(e + 1) % 3]);
@@ -116,6 +116,10 @@ impl Adjacency {
         self.open_edges == 0 && self.non_manifold_edges == 0
     }
 }
+
+/// A triangle on an edge: the triangle, the edge's slot in it (0: a-b, 1: b-c, 2: c-a) and
+/// whether it runs from the lower vertex number to the higher.
+type EdgeUse = (usize, usize, bool);
 
 /// How close two positions must be to weld, as a fraction of the mesh's largest extent.
 pub const WELD: f32 = 1e-6;
