@@ -348,3 +348,41 @@ fn an_unshadowed_pixel_looks_the_same_with_maps_and_volumes() {
     let mean = diffs.iter().map(|&d| f64::from(d)).sum::<f64>() / diffs.len() as f64;
     assert!(max <= 3 && mean < 0.5, "max {max}, mean {mean}");
 }
+
+#[test]
+fn a_light_with_its_own_volumes_mixes_with_maps() {
+    let ctx = context();
+    let mut scene = common::frozen("three-lights");
+    // The spot (light 1) casts volumes from its own table; the sun and the point light keep
+    // their maps.
+    scene.lights[1].shadow_patch_mut().technique = Some(ShadowTechnique::Volumes);
+    let opts = |light| CompareOptions {
+        width: 640,
+        height: 360,
+        supersample: 1,
+        band: 1,
+        light,
+    };
+    let spot = compare(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
+    assert_eq!(
+        spot.metrics.misclassified_outside_band, 0,
+        "{:?}",
+        spot.metrics
+    );
+    assert!(spot.metrics.receivers > 10_000);
+    // The sun's map scores the same in the frame drawn light by light as in the maps' one
+    // pass.
+    let mixed = compare(ctx.gl(), &scene, &scene.shadow, &opts(0)).unwrap();
+    let maps = compare(
+        ctx.gl(),
+        &common::frozen("three-lights"),
+        &scene.shadow,
+        &opts(0),
+    )
+    .unwrap();
+    assert!(
+        maps.metrics.misclassified > 0,
+        "the sun's map has errors to compare"
+    );
+    assert_eq!(mixed.metrics, maps.metrics);
+}
