@@ -386,3 +386,31 @@ fn a_light_with_its_own_volumes_mixes_with_maps() {
     );
     assert_eq!(mixed.metrics, maps.metrics);
 }
+
+#[test]
+fn map_flags_with_volumes_and_show_volumes_with_maps_are_said_to_do_nothing() {
+    let dir = tmp("idle");
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |args: &[&str]| {
+        let out = common::bin()
+            .args(["render", "--size", "160x90", "--out", "x.png"])
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}: {out:?}");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let stderr = run(&["--technique", "volumes", "--filter", "single"]);
+    assert!(
+        stderr.contains("warning: --filter single: every casting light has shadow volumes"),
+        "{stderr}"
+    );
+    let stderr = run(&["--show-volumes"]);
+    assert!(
+        stderr.contains("no light has shadow volumes (--technique volumes)"),
+        "{stderr}"
+    );
+    assert!(!run(&["--technique", "volumes", "--show-volumes"]).contains("warning"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -542,6 +542,44 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
                 .to_string(),
         ));
     }
+    let volumes = kinds.contains(&ShadowKind::Volume);
+    let maps = kinds
+        .iter()
+        .any(|k| matches!(k, ShadowKind::Map | ShadowKind::Cube | ShadowKind::Cascades));
+    if volumes && !maps {
+        for name in [
+            "map_size",
+            "depth_format",
+            "cascades",
+            "filter",
+            "bias_mode",
+            "bias",
+            "bias_min",
+            "normal_offset",
+            "wrap",
+            "beyond_far",
+            "cull",
+            "polygon_offset",
+            "point_pass",
+            "shadow_cache",
+            "show_depth_map",
+        ] {
+            if !idle.iter().any(|(n, _)| *n == name) {
+                idle.push((
+                    name,
+                    "every casting light has shadow volumes (technique = volumes): there \
+                     is no map to size, test or draw"
+                        .to_string(),
+                ));
+            }
+        }
+    }
+    if !volumes {
+        idle.push((
+            "show_volumes",
+            "no light has shadow volumes (--technique volumes): there are none to show".to_string(),
+        ));
+    }
     idle
 }
 
