@@ -414,3 +414,25 @@ fn map_flags_with_volumes_and_show_volumes_with_maps_are_said_to_do_nothing() {
     assert!(!run(&["--technique", "volumes", "--show-volumes"]).contains("warning"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn render_says_which_meshes_cast_from_both_sides() {
+    let dir = tmp("open");
+    std::fs::create_dir_all(&dir).unwrap();
+    let stdout = common::stdout_of(
+        common::bin()
+            .args(["render", "--scene", "learnopengl", "--technique", "volumes"])
+            .args(["--size", "160x90", "--out", "x.png"])
+            .current_dir(&dir),
+    );
+    assert!(
+        stdout.contains(
+            "shadow volumes: mesh 'plane' is not closed (4 open, 0 non-manifold edges): it \
+             casts from both sides of each triangle"
+        ),
+        "{stdout}"
+    );
+    // The cubes are closed: one line, the floor's.
+    assert_eq!(stdout.matches("is not closed").count(), 1, "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -9,6 +9,7 @@ use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::encode_png;
 use shadowmap::output::{check_output_image, write_files};
+use shadowmap::shadows::volumes::Adjacency;
 use shadowmap::shadows::ShadowKind;
 use shadowmap::{Error, Result};
 
@@ -122,6 +123,20 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             path.display(),
             size.label()
         );
+    }
+    if ShadowKind::for_lights(&scene.lights, &settings).contains(&ShadowKind::Volume) {
+        // The documented treatment of meshes that are not closed, said where it applies.
+        for (id, mesh) in scene.meshes.iter().enumerate() {
+            let casts = scene.items.iter().any(|i| i.mesh == id && i.casts_shadows);
+            let a = Adjacency::of(mesh);
+            if casts && !a.is_closed() {
+                println!(
+                    "shadow volumes: mesh '{}' is not closed ({} open, {} non-manifold \
+                     edges): it casts from both sides of each triangle",
+                    mesh.name, a.open_edges, a.non_manifold_edges
+                );
+            }
+        }
     }
     if let Some((median, p95)) = frame.frame_time_stats() {
         println!(
