@@ -16,7 +16,8 @@
 // Defines (made in one place, src/shadows/program.rs, from a typed key; each exists only
 // when a light uses it): the lighting's (BLINN, SPECULAR_POWER), the lights' layout
 // (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; USES_CASCADES, CASCADES, CASCADE_BLEND,
-// SHOW_CASCADES for a cascaded light) and the target's outputs (OUTPUT_VISIBILITY,
+// SHOW_CASCADES for a cascaded light; MULTIPASS when a light has shadow volumes) and the
+// target's outputs (OUTPUT_VISIBILITY,
 // OUTPUT_GBUFFER). The shadow tests' constants are each light's, in the generated snippet.
 
 in vec2 outTexCoord;
@@ -38,6 +39,12 @@ uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
 uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
 
 uniform sampler2D textureSampler;  // unit 0; shadow maps on units 1, 2, ... (one per light)
+#ifdef MULTIPASS
+// With shadow volumes (src/renderer/volume_pass.rs): the light this pass adds, -1 for the
+// ambient pass. A light with volumes has no test here: its pass is drawn only where the
+// stencil says lit, so its test is `passLight == i` (lit in its pass, 0 in the others).
+uniform int passLight;
+#endif
 
 #include "lib/lighting.glsl"
 #include "lib/outputs.glsl"
@@ -60,7 +67,12 @@ void main()
 
     // Ambient light is not shadowed. The book clamps to [0, 1]; the colour buffer is
     // normalised fixed point, which clamps on the way in, so the shader need not.
+#ifdef MULTIPASS
+    // Passes add up (blending ONE, ONE): the ambient term only in the ambient pass.
+    fragColor = vec4(f.base * (ambientColour.rgb * float(passLight < 0) + f.light), 1.0);
+#else
     fragColor = vec4(f.base * (ambientColour.rgb + f.light), 1.0);
+#endif
 #ifdef SHOW_CASCADES
     fragColor.rgb = cascadeTint(fragColor.rgb, f.cascade);
 #endif

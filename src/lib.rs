@@ -7,7 +7,7 @@
 //!   `Camera`, `GameItem`, lights, and the scene files);
 //! - `engine`: every GL call (RAII owners, state as values);
 //! - `shadows`: one module per technique (the chapter's 2D map, cube maps, cascades, the
-//!   fitted box) behind one trait;
+//!   fitted box) behind one trait, and the slides' stencil shadow volumes beside them;
 //! - `renderer`: the book's two passes;
 //! - `measure`: frames read back, the exact reference, compare and bench, attached through
 //!   hooks; `steps`: the chapter steps as presets.

@@ -3,6 +3,29 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Which technique draws a light's shadow: the chapters' depth maps, or the slides' closing
+/// stencil shadow volumes (exact hard shadows; `crate::shadows::volumes`).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShadowTechnique {
+    /// A depth map per light (2D, cube or cascades), tested per fragment.
+    #[default]
+    Maps,
+    /// Stencil shadow volumes: silhouettes extruded in a geometry shader, counted z-fail.
+    Volumes,
+}
+
+impl ShadowTechnique {
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowTechnique::Maps => "maps",
+            ShadowTechnique::Volumes => "volumes",
+        }
+    }
+}
+
 /// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
 /// stores as 24 bits; we name the size so the choice is explicit and measurable.
 #[derive(
@@ -471,6 +494,12 @@ macro_rules! shadow_settings {
 }
 
 shadow_settings! {
+    /// What draws the shadows.
+    "Technique" {
+        /// `maps` (the chapters' depth maps) or `volumes` (the slides' stencil shadow
+        /// volumes: exact, no map, no bias; the map and test settings do not apply).
+        technique: ShadowTechnique = ShadowTechnique::Maps, arg(value_name = "maps|volumes");
+    }
     /// The map itself.
     "Shadow map" {
         /// Shadows at all: `off` lets every light light all it faces, the frame a shadow
@@ -560,6 +589,10 @@ shadow_settings! {
         /// projection is perspective.
         show_depth_map: bool = false,
             arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", value_parser = clap::builder::BoolishValueParser::new());
+        /// Draw the shadow volumes' faces over the frame (technique = volumes), each light's
+        /// in its own colour.
+        show_volumes: bool = false,
+            arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", value_parser = clap::builder::BoolishValueParser::new());
         /// Tint each cascade's part of the frame (red, green, blue, yellow from the camera
         /// out).
         show_cascades: bool = false,
@@ -596,6 +629,14 @@ impl ShadowSettings {
     pub fn summary(&self) -> String {
         if !self.shadows {
             return "no shadows".to_string();
+        }
+        if self.technique == ShadowTechnique::Volumes {
+            let shown = if self.show_volumes {
+                ", volumes shown"
+            } else {
+                ""
+            };
+            return format!("stencil shadow volumes (z-fail, depth clamp){shown}");
         }
         let bias = match self.bias_mode {
             BiasMode::None => "no bias".to_string(),
@@ -672,6 +713,7 @@ impl ShadowSettings {
                 "point_pass" => format!("point pass {v}"),
                 "show_depth_map" => "showing the depth map".to_string(),
                 "show_cascades" => "cascades tinted".to_string(),
+                "show_volumes" => "volumes shown".to_string(),
                 _ => format!("{} {v}", key.replace('_', " ")),
             };
             line.push_str(", ");

@@ -36,6 +36,9 @@ shader!(depth_point_vert, "depth_point.vert");
 shader!(depth_point_frag, "depth_point.frag");
 shader!(depth_point_layered_vert, "depth_point_layered.vert");
 shader!(depth_point_layered_geom, "depth_point_layered.geom");
+shader!(volume_vert, "volume.vert");
+shader!(volume_geom, "volume.geom");
+shader!(volume_frag, "volume.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
 

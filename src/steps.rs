@@ -4,7 +4,9 @@
 
 use crate::error::{Error, Result};
 use crate::scene::{Scene, StepContext};
-use crate::settings::{BeyondFar, BiasMode, Cull, Filter, LightProjection, ShadowSettings, Wrap};
+use crate::settings::{
+    BeyondFar, BiasMode, Cull, Filter, LightProjection, ShadowSettings, ShadowTechnique, Wrap,
+};
 
 /// One step of the chapters.
 pub struct Step {
@@ -19,7 +21,7 @@ pub struct Step {
 }
 
 /// The steps in the chapters' order (LWJGL "Shadows", LearnOpenGL "Shadow Mapping", the
-/// slides' larger maps and perspective light).
+/// slides' larger maps and perspective light, and the slides' closing shadow volumes).
 pub const STEPS: &[Step] = &[
     Step {
         name: "depth-map",
@@ -131,12 +133,24 @@ pub const STEPS: &[Step] = &[
             s.show_depth_map = true;
         },
     },
+    Step {
+        name: "shadow-volumes",
+        change: "The slides' last section: stencil shadow volumes instead of a map. Silhouettes \
+                 are extruded away from the light in a geometry shader and the stencil counts \
+                 the volume faces behind each pixel (z-fail): exact hard shadows, no texels, no \
+                 bias.",
+        look_for: "Hard, pixel-exact edges with no acne and no peter panning; the error image \
+                   is grey but for single pixels on the edges.",
+        cumulative: false,
+        apply: |s, _| s.technique = ShadowTechnique::Volumes,
+    },
 ];
 
 /// The chapter's starting point for a scene: its own settings with one lookup, no bias, no
 /// culling, an orthographic light and the wrap its tutorial starts with.
 pub fn start(scene: &Scene) -> ShadowSettings {
     ShadowSettings {
+        technique: ShadowTechnique::Maps,
         filter: Filter::Single,
         bias_mode: BiasMode::None,
         cull: Cull::None,

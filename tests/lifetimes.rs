@@ -4,11 +4,14 @@
 mod common;
 
 use shadowmap::engine::check::object_exists;
-use shadowmap::engine::{Mesh, RenderTarget, ShaderProgram, ShadowMap, Texture};
+use shadowmap::engine::{
+    AdjacencyMesh, Mesh, RenderTarget, SamplesQuery, ShaderProgram, ShadowMap, Texture,
+};
 use shadowmap::geometry::MeshData;
 use shadowmap::image_data::ImageData;
 use shadowmap::settings::DepthFormat;
 use shadowmap::shaders;
+use shadowmap::shadows::volumes::Adjacency;
 
 fn resident_kib() -> u64 {
     let statm = std::fs::read_to_string("/proc/self/statm").unwrap();
@@ -62,6 +65,19 @@ fn ten_thousand_objects_leave_memory_flat_and_names_deleted() {
             "mesh (cube)",
             10_000,
             Box::new(|| drop(Mesh::new(gl, &cube).unwrap())),
+        ),
+        (
+            "mesh with adjacency (cube)",
+            10_000,
+            Box::new(|| {
+                let adjacency = Adjacency::of(&cube);
+                drop(AdjacencyMesh::new(gl, "cube", &cube.positions, &adjacency.indices).unwrap())
+            }),
+        ),
+        (
+            "samples-passed query",
+            10_000,
+            Box::new(|| drop(SamplesQuery::new(gl).unwrap())),
         ),
         (
             "render target 64x64",

@@ -45,7 +45,13 @@ void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
         float c = dot(-toLight, normalize(lightConeAxis[i]));
         light *= smoothstep(lightConeCos[i], lightConeCos[i] + 0.01, c);
     }
+#ifdef MULTIPASS
+    // Shadow volumes draw the frame in passes: ambient (passLight = -1), then one per light,
+    // added where that light's stencil says lit. Each pass adds only its own light.
+    f.light += light * (lit * float(passLight == i));
+#else
     f.light += light * lit;
+#endif
     if (i == VISIBILITY_LIGHT) {
         f.visibility = lit;
     }

@@ -230,6 +230,20 @@ pub struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub light: usize,
+    /// What the frame is scored against: `cpu`, the exact ray cast; or `volumes`, the
+    /// stencil shadow volumes' answer (the GPU's exact hard shadows), whose own agreement
+    /// with the ray cast is printed beside.
+    #[arg(long, value_name = "cpu|volumes", default_value = "cpu")]
+    pub truth: Truth,
+}
+
+/// The reference `compare` scores against.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Truth {
+    /// The exact CPU ray cast.
+    Cpu,
+    /// Stencil shadow volumes, checked against the ray cast.
+    Volumes,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -552,6 +566,44 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
             "snap",
             "no light's box is fitted (--fit scene) or cascaded, so there is nothing to snap"
                 .to_string(),
+        ));
+    }
+    let volumes = kinds.contains(&ShadowKind::Volume);
+    let maps = kinds
+        .iter()
+        .any(|k| matches!(k, ShadowKind::Map | ShadowKind::Cube | ShadowKind::Cascades));
+    if volumes && !maps {
+        for name in [
+            "map_size",
+            "depth_format",
+            "cascades",
+            "filter",
+            "bias_mode",
+            "bias",
+            "bias_min",
+            "normal_offset",
+            "wrap",
+            "beyond_far",
+            "cull",
+            "polygon_offset",
+            "point_pass",
+            "shadow_cache",
+            "show_depth_map",
+        ] {
+            if !idle.iter().any(|(n, _)| *n == name) {
+                idle.push((
+                    name,
+                    "every casting light has shadow volumes (technique = volumes): there \
+                     is no map to size, test or draw"
+                        .to_string(),
+                ));
+            }
+        }
+    }
+    if !volumes {
+        idle.push((
+            "show_volumes",
+            "no light has shadow volumes (--technique volumes): there are none to show".to_string(),
         ));
     }
     idle

@@ -7,9 +7,10 @@ use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity};
 use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
-use shadowmap::{Error, Result, Scene};
+use shadowmap::settings::ShadowTechnique;
+use shadowmap::{Error, Result, Scene, ShadowSettings};
 
-use super::cli::CompareArgs;
+use super::cli::{CompareArgs, Truth};
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
@@ -40,11 +41,36 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             _ => format!(" (and {n}x{n} supersampled)"),
         }
     ));
-    let reference = compute_reference(context.gl(), &scene, &settings, &opts)?;
+    // With --truth volumes the ray cast follows the volumes' light (they cast from the
+    // light the scene is shaded with), so their agreement with it can be printed.
+    let volumes = ShadowSettings {
+        technique: ShadowTechnique::Volumes,
+        ..settings
+    };
+    let traced = match args.truth {
+        Truth::Cpu => &settings,
+        Truth::Volumes => &volumes,
+    };
+    let reference = compute_reference(context.gl(), &scene, traced, &opts)?;
     activity.done(&format!(
         "{} caster triangles, {:.0} ms of tracing",
         reference.triangles, reference.trace_ms
     ));
+    let (reference, agreement) = match args.truth {
+        Truth::Cpu => (reference, None),
+        Truth::Volumes => {
+            let activity = Activity::start(format!(
+                "compare: rendering light {}'s stencil shadow volumes as the truth",
+                args.light
+            ));
+            let frame =
+                render_visibility(context.gl(), &scene, &volumes, width, height, args.light)?;
+            let vis = frame.visibility.as_deref().unwrap_or_default();
+            let agreement = reference.score(vis, args.band);
+            activity.done("");
+            (reference.with_volumes_truth(vis), Some(agreement))
+        }
+    };
     let activity = Activity::start(format!(
         "compare: rendering light {}'s shadow test ({})",
         args.light,
@@ -101,6 +127,11 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         "band": args.band,
         "reference_triangles": reference.triangles,
         "reference_ms": reference.trace_ms,
+        "truth": match args.truth {
+            Truth::Cpu => "cpu",
+            Truth::Volumes => "volumes",
+        },
+        "volumes_vs_cpu": agreement,
         "metrics": metrics,
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
@@ -127,6 +158,17 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             args.band
         )
     );
+    if let Some(a) = &agreement {
+        println!(
+            "truth: stencil shadow volumes; against the CPU ray cast they agree on {} of {} \
+             receivers ({} misclassified, {} outside a {}-px edge band)",
+            a.receivers - a.misclassified,
+            a.receivers,
+            a.misclassified,
+            a.misclassified_outside_band,
+            args.band
+        );
+    }
     println!("{ERROR_COLOURS}");
     println!(
         "wrote {}: {}",

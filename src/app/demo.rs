@@ -11,7 +11,7 @@ use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::check_output_image;
-use shadowmap::settings::MAX_CASCADES;
+use shadowmap::settings::{ShadowTechnique, MAX_CASCADES};
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -671,6 +671,16 @@ impl ApplicationHandler for Demo {
                                 .change_settings(event_loop, |s| {
                                     s.show_cascades = !s.show_cascades
                                 }),
+                            KeyCode::KeyV if !event.repeat => {
+                                self.change_settings(event_loop, |s| {
+                                    s.technique = match s.technique {
+                                        ShadowTechnique::Maps => ShadowTechnique::Volumes,
+                                        ShadowTechnique::Volumes => ShadowTechnique::Maps,
+                                    }
+                                })
+                            }
+                            KeyCode::KeyB if !event.repeat => self
+                                .change_settings(event_loop, |s| s.show_volumes = !s.show_volumes),
                             KeyCode::KeyK if !event.repeat => self
                                 .change_settings(event_loop, |s| {
                                     s.cascades = s.cascades % MAX_CASCADES + 1

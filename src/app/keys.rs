@@ -12,6 +12,8 @@ pub const KEYS: &[(&str, &str)] = &[
     ("1..9, 0, -, =", "chapter step 1 to 12"),
     ("Backspace", "the scene's own settings"),
     ("M", "each casting light's shadow map, then the scene"),
+    ("V", "shadow maps / stencil shadow volumes"),
+    ("B", "draw the shadow volumes over the scene"),
     ("C", "tint the cascades"),
     ("K", "cascades: 1, 2, 3, 4, 1, ..."),
     ("I", "the shadow-map inset (bottom-right)"),

@@ -69,6 +69,7 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             (Family::Cascades, RGBColor(20, 150, 60)),
             (Family::PointLayered, RGBColor(140, 60, 190)),
             (Family::PointSixPasses, RGBColor(230, 140, 20)),
+            (Family::Volumes, RGBColor(220, 30, 30)),
         ] {
             let points: Vec<(f64, f64)> = rows
                 .iter()
@@ -192,6 +193,9 @@ pub fn tick_label(v: f64) -> String {
 /// A front point's name: map size, filter and bias, plus what differs from the usual.
 fn short_label(r: &BenchRow) -> String {
     let s = &r.config.settings;
+    if r.config.family == Family::Volumes {
+        return format!("volumes, {} px/frame", r.volume_pixels);
+    }
     let mut name = match r.config.family {
         Family::Cascades => format!("{}x{}", s.cascades, s.map_size),
         _ => s.map_size.to_string(),

@@ -9,6 +9,7 @@ use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::render_frames;
 use shadowmap::image_data::encode_png;
 use shadowmap::output::{check_output_image, write_files};
+use shadowmap::shadows::volumes::Adjacency;
 use shadowmap::shadows::ShadowKind;
 use shadowmap::{Error, Result};
 
@@ -27,7 +28,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
             return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
-                 cascades or casts no shadow): use --show-depth-map to see its map",
+                 cascades, shadow volumes or casts no shadow): use --show-depth-map to see \
+                 its map",
                 path.display()
             )));
         }
@@ -122,6 +124,20 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             size.label()
         );
     }
+    if ShadowKind::for_lights(&scene.lights, &settings).contains(&ShadowKind::Volume) {
+        // The documented treatment of meshes that are not closed, said where it applies.
+        for (id, mesh) in scene.meshes.iter().enumerate() {
+            let casts = scene.items.iter().any(|i| i.mesh == id && i.casts_shadows);
+            let a = Adjacency::of(mesh);
+            if casts && !a.is_closed() {
+                println!(
+                    "shadow volumes: mesh '{}' is not closed ({} open, {} non-manifold \
+                     edges): it casts from both sides of each triangle",
+                    mesh.name, a.open_edges, a.non_manifold_edges
+                );
+            }
+        }
+    }
     if let Some((median, p95)) = frame.frame_time_stats() {
         println!(
             "frame time over {} frames after the first: median {median:.2} ms, p95 {p95:.2} ms (wall, glFinish per frame)",
@@ -136,6 +152,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             frame.casters.drawn,
             frame.casters.total
         );
+        if frame.volume_pixels > 0 {
+            println!(
+                "shadow volumes: {} volume pixels passed the depth test in the last frame \
+                 ({:.2} per frame pixel)",
+                frame.volume_pixels,
+                frame.volume_pixels as f64 / f64::from(frame.width * frame.height)
+            );
+        }
     }
     Ok(())
 }

@@ -16,6 +16,7 @@ pub mod state;
 pub mod text;
 pub mod texture;
 pub mod timer;
+pub mod volume;
 pub mod window_context;
 
 use std::rc::Rc;
@@ -33,3 +34,6 @@ pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
 pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use texture::Texture;
 pub use timer::PassTimer;
+pub use volume::{
+    AdjacencyMesh, LightPass, LightPassGuard, SamplesQuery, VolumeDraw, VolumePassGuard,
+};

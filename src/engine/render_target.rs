@@ -21,7 +21,8 @@ pub struct Outputs {
 /// World positions and world normals read back from the G-buffer outputs.
 pub type GBufferData = (Vec<[f32; 3]>, Vec<[f32; 3]>);
 
-/// An owned framebuffer with a colour texture, a depth renderbuffer and the chosen outputs.
+/// An owned framebuffer with a colour texture, a depth-stencil renderbuffer (the stencil for
+/// shadow volumes) and the chosen outputs.
 pub struct RenderTarget {
     gl: Gl,
     fbo: glow::Framebuffer,
@@ -79,7 +80,7 @@ impl RenderTarget {
             gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
             gl.renderbuffer_storage(
                 glow::RENDERBUFFER,
-                glow::DEPTH_COMPONENT24,
+                glow::DEPTH24_STENCIL8,
                 width as i32,
                 height as i32,
             );
@@ -87,7 +88,7 @@ impl RenderTarget {
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
             gl.framebuffer_renderbuffer(
                 glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
+                glow::DEPTH_STENCIL_ATTACHMENT,
                 glow::RENDERBUFFER,
                 Some(depth),
             );
@@ -149,7 +150,9 @@ impl RenderTarget {
                         .clear_buffer_f32_slice(glow::COLOR, *i, &[0.0, 0.0, 0.0, 0.0]);
                 }
             }
-            self.gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            self.gl.stencil_mask(0xff);
+            self.gl
+                .clear_buffer_depth_stencil(glow::DEPTH_STENCIL, 0, 1.0, 0);
         }
     }
 

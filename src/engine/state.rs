@@ -76,7 +76,8 @@ pub fn bind_window_and_clear(gl: &Gl, width: u32, height: u32, colour: [f32; 4])
         gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         gl.viewport(0, 0, width as i32, height as i32);
         gl.clear_color(colour[0], colour[1], colour[2], colour[3]);
-        gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+        gl.stencil_mask(0xff);
+        gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT | glow::STENCIL_BUFFER_BIT);
     }
 }
 

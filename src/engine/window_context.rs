@@ -62,11 +62,21 @@ impl WindowContext {
             WindowApi::Egl => DisplayApiPreference::Egl,
         };
         let display = unsafe { Display::new(display_handle, preference) }.map_err(|e| no_gl(&e))?;
-        let template = ConfigTemplateBuilder::new().with_depth_size(24).build();
+        let template = ConfigTemplateBuilder::new()
+            .with_depth_size(24)
+            .with_stencil_size(8)
+            .build();
         // SAFETY: the template holds no native window.
         let config = unsafe { display.find_configs(template) }
             .map_err(|e| no_gl(&e))?
-            .max_by_key(|c| (c.num_samples() == 0, c.depth_size(), c.alpha_size()))
+            .max_by_key(|c| {
+                (
+                    c.num_samples() == 0,
+                    c.stencil_size() >= 8,
+                    c.depth_size(),
+                    c.alpha_size(),
+                )
+            })
             .ok_or_else(|| no_gl(&"the display offers no OpenGL config with a depth buffer"))?;
         let window = finalize_window(event_loop, attributes, &config).map_err(|e| no_gl(&e))?;
         let raw = window

@@ -18,6 +18,7 @@ use crate::scene::Scene;
 use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowPatch, ShadowSettings,
+    ShadowTechnique,
 };
 use crate::shadows::ShadowKind;
 
@@ -103,6 +104,8 @@ pub enum Family {
     PointLayered,
     /// A point light's cube map drawn face by face.
     PointSixPasses,
+    /// Stencil shadow volumes (no map).
+    Volumes,
 }
 
 impl Family {
@@ -111,6 +114,7 @@ impl Family {
             (ShadowKind::Cascades, _) => Family::Cascades,
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
+            (ShadowKind::Volume, _) => Family::Volumes,
             _ => Family::OneMap,
         }
     }
@@ -121,6 +125,7 @@ impl Family {
             Family::Cascades => "cascades",
             Family::PointLayered => "point light, layered",
             Family::PointSixPasses => "point light, six passes",
+            Family::Volumes => "shadow volumes",
         }
     }
 }
@@ -168,7 +173,8 @@ pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
 /// size x filter x bias (no culling, 24-bit), then culling and depth format varied around
 /// 1024^2 with 3x3 PCF, and the driver's largest map; for a directional light, cascades
 /// (2 to 4 layers) over sizes, filters and biases; for a point light, the cube faces drawn
-/// in six passes as well as in one. `quick` keeps a representative subset.
+/// in six passes as well as in one; and stencil shadow volumes. `quick` keeps a
+/// representative subset (with the volumes).
 pub fn sweep(
     base: &ShadowSettings,
     quick: bool,
@@ -231,6 +237,16 @@ pub fn sweep(
         })
         .collect();
     out.extend(extra);
+    // The slides' exact technique, once: it has no map, filter or bias to sweep.
+    out.push(BenchConfig {
+        settings: ShadowSettings {
+            technique: ShadowTechnique::Volumes,
+            ..tutorial_configs(base)[0].settings
+        },
+        bias_preset: BiasPreset::None,
+        tutorial: None,
+        family: Family::Volumes,
+    });
     for c in &mut out {
         c.family = Family::of(light, &c.settings);
     }
@@ -429,6 +445,9 @@ pub struct BenchRow {
     /// GL timer queries per pass (see the note in [`run`] on software drivers).
     pub depth_gpu_ms: Stat,
     pub scene_gpu_ms: Stat,
+    /// Shadow-volume pixels that passed the depth test per frame (median; 0 for maps): the
+    /// fill the volumes cost.
+    pub volume_pixels: u64,
     pub metrics: Metrics,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
@@ -449,6 +468,12 @@ impl BenchRow {
             Family::Cascades => (format!("{}x{}", s.cascades, s.map_size), " cascades"),
             Family::PointLayered => (s.map_size.to_string(), " cube layered"),
             Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
+            Family::Volumes => {
+                return format!(
+                    "stencil shadow volumes ({} volume px/frame)",
+                    self.volume_pixels
+                )
+            }
         };
         format!(
             "{size} {} {} cull-{} {}{suffix}",
@@ -562,6 +587,7 @@ pub fn run(
             t.wall.push(ms(end - start));
             t.depth_wall.push(ms(mid - start));
             t.scene_wall.push(ms(end - mid));
+            t.volume_pixels.push(renderer.volume_pixels() as f64);
             let [d, s] = timer.read_ms();
             t.depth_gpu.push(d);
             t.scene_gpu.push(s);
@@ -585,6 +611,7 @@ pub fn run(
             scene_wall_ms: Stat::of(&quieter.scene_wall),
             depth_gpu_ms: Stat::of(&quieter.depth_gpu),
             scene_gpu_ms: Stat::of(&quieter.scene_gpu),
+            volume_pixels: Stat::of(&quieter.volume_pixels).median.max(0.0) as u64,
             metrics: reference.score(&visibility, opts.band),
             pareto: false,
         };
@@ -605,6 +632,7 @@ struct Timings {
     scene_wall: Vec<f64>,
     depth_gpu: Vec<f64>,
     scene_gpu: Vec<f64>,
+    volume_pixels: Vec<f64>,
 }
 
 fn ms(d: std::time::Duration) -> f64 {
@@ -634,7 +662,8 @@ pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filte
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
-misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto";
+misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
+volume_pixels";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -679,6 +708,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             m.false_light_outside_band.to_string(),
             m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
             r.pareto.to_string(),
+            r.volume_pixels.to_string(),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');

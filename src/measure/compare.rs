@@ -60,10 +60,8 @@ pub fn light_kind(
         Shading::Position { cone, .. } => cone,
         Shading::Direction(_) => None,
     });
-    match (
-        crate::shadows::light_camera(scene, index, settings).rays,
-        cone,
-    ) {
+    let rays = crate::shadows::light_camera(scene, index, settings).rays;
+    match (rays, cone) {
         (Rays::FromPoint { position }, None) => LightKind::Point {
             position: (position.as_dvec3() - origin).as_vec3(),
         },
@@ -208,6 +206,40 @@ impl Reference {
             self.supersampled.as_deref(),
             band,
         )
+    }
+}
+
+impl Reference {
+    /// This reference with the stencil shadow volumes' answer as its truth (`compare
+    /// --truth volumes`): a receiver here that the volumes' frame covers keeps being one,
+    /// with the volumes' visibility; the supersampled reference is dropped.
+    pub fn with_volumes_truth(&self, volumes: &[Option<f32>]) -> Reference {
+        let hard = self
+            .hard
+            .iter()
+            .enumerate()
+            .map(|(i, r)| match volumes.get(i).copied().flatten() {
+                Some(v) if v.is_finite() => RefPixel {
+                    covered: true,
+                    receiver: r.receiver,
+                    visibility: if v >= 0.5 { 1.0 } else { 0.0 },
+                },
+                _ => RefPixel {
+                    receiver: false,
+                    ..*r
+                },
+            })
+            .collect();
+        Reference {
+            width: self.width,
+            height: self.height,
+            gbuffer: self.gbuffer.clone(),
+            hard,
+            supersampled: None,
+            trace_ms: self.trace_ms,
+            triangles: self.triangles,
+            origin: self.origin,
+        }
     }
 }
 

@@ -35,6 +35,9 @@ pub struct Frame {
     pub depth_passes: DepthPasses,
     /// Casters drawn into maps against casters offered, over the frames.
     pub casters: crate::shadows::CasterCounts,
+    /// Shadow-volume pixels that passed the depth test in the last frame (0 without
+    /// volumes).
+    pub volume_pixels: u64,
 }
 
 impl Frame {
@@ -234,6 +237,7 @@ pub fn render_frames_with(
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),
         casters: renderer.caster_counts(),
+        volume_pixels: renderer.volume_pixels(),
     })
 }
 

@@ -6,22 +6,25 @@
 //!    light's test whether it is lit (`calcShadow` in `shaders/lib/shadow_2d.glsl`).
 //!
 //! The techniques live in [`crate::shadows`]; this file only orders the passes and feeds
-//! the scene shader ([`scene_pass`]). Measurement attaches through [`PassHooks`] and the
+//! the scene shader ([`scene_pass`]). With stencil shadow volumes the scene pass becomes
+//! one pass per light ([`volume_pass`]). Measurement attaches through [`PassHooks`] and the
 //! target's extra outputs; the renderer does not know who measures.
 
 mod depth_view;
 mod scene_pass;
+mod volume_pass;
 
 use std::rc::Rc;
 
 use crate::engine::{check_gl, gl_limits, state, Gl, Mesh, Outputs, RenderTarget, Samplers};
-use crate::engine::{ShaderProgram, ShadowMap, Texture};
+use crate::engine::{SamplesQuery, ShaderProgram, ShadowMap, Texture};
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
 use crate::scene::{Scene, MAX_LIGHTS};
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::program::ProgramKey;
+use crate::shadows::volumes::Volumes;
 use crate::shadows::{cache, fitted, CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
 
 /// Where the main pass draws: the window's framebuffer (size in physical pixels) or an
@@ -100,8 +103,18 @@ pub struct Renderer {
     textures: Vec<Texture>,
     /// 1 x 1 white, for items without a texture.
     white: Texture,
-    /// One per scene light, in the scene's order; `None` for a light that does not cast.
+    /// One per scene light, in the scene's order; `None` for a light that does not cast
+    /// or has shadow volumes.
     shadows: Vec<Option<Box<dyn Technique>>>,
+    /// Each light's kind of shadow (a light with volumes has no technique above).
+    kinds: Vec<ShadowKind>,
+    /// The meshes with adjacency and the extruding program, made when a light first
+    /// needs them.
+    volumes: Option<Volumes>,
+    /// One samples-passed query per light, for the volumes' fill.
+    volume_queries: Vec<SamplesQuery>,
+    /// Volume pixels that passed the depth test in the last frame.
+    volume_pixels: u64,
     /// Each light's camera in the last depth pass.
     views: Vec<Option<ShadowView>>,
     /// What each light's map holds ([`cache::content_key`]); `None`: draw it again.
@@ -153,6 +166,10 @@ impl Renderer {
             textures,
             white: Texture::from_image(gl, &white)?,
             shadows: Vec::new(),
+            kinds: Vec::new(),
+            volumes: None,
+            volume_queries: Vec::new(),
+            volume_pixels: 0,
             views: Vec::new(),
             drawn: Vec::new(),
             passes: DepthPasses::default(),
@@ -219,6 +236,12 @@ impl Renderer {
     /// cascades cull per cascade and count only in the passes).
     pub fn caster_counts(&self) -> CasterCounts {
         self.casters
+    }
+
+    /// The pixels of shadow-volume faces that passed the depth test in the last frame
+    /// (what z-fail counts: the fill the volumes cost); 0 without volumes.
+    pub fn volume_pixels(&self) -> u64 {
+        self.volume_pixels
     }
 
     /// Shadow maps in use and the bytes they take.
@@ -308,8 +331,38 @@ impl Renderer {
             meshes: &self.meshes,
             textures: &self.textures,
             white: &self.white,
+            pass_light: -1,
         };
-        let result = scene_pass::draw(&inputs, &mut self.samplers, &self.gl, scene, target.size());
+        let result = match &self.volumes {
+            Some(volumes) if self.kinds.contains(&ShadowKind::Volume) => volume_pass::draw(
+                &inputs,
+                volumes,
+                &self.kinds,
+                self.visibility_light,
+                &self.volume_queries,
+                &mut self.samplers,
+                &self.gl,
+                scene,
+                target.size(),
+            )
+            .map(|pixels| {
+                self.volume_pixels = pixels;
+                if self.settings.show_volumes {
+                    volume_pass::draw_debug(
+                        volumes,
+                        &self.kinds,
+                        &self.settings,
+                        &self.gl,
+                        scene,
+                        target.size(),
+                    );
+                }
+            }),
+            _ => {
+                self.volume_pixels = 0;
+                scene_pass::draw(&inputs, &mut self.samplers, &self.gl, scene, target.size())
+            }
+        };
         self.hook(Pass::Scene, false);
         result?;
         check_gl(&self.gl, "the scene pass")
@@ -396,6 +449,15 @@ impl Renderer {
     /// that cast get one, remade when the settings change its kind or storage.
     fn prepare_shadows(&mut self, scene: &Scene) -> Result<()> {
         let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
+        if kinds.contains(&ShadowKind::Volume) {
+            if !self.volumes.as_ref().is_some_and(|v| v.fits(scene)) {
+                self.volumes = Some(Volumes::new(&self.gl, scene)?);
+            }
+            while self.volume_queries.len() < kinds.len() {
+                self.volume_queries.push(SamplesQuery::new(&self.gl)?);
+            }
+        }
+        self.kinds.clone_from(&kinds);
         self.shadows.resize_with(kinds.len(), || None);
         self.views.resize(kinds.len(), None);
         self.drawn.resize(kinds.len(), None);
@@ -413,7 +475,7 @@ impl Renderer {
             }
             let fits = match shadow {
                 Some(t) => t.kind() == kind && t.fits(&settings),
-                None => kind == ShadowKind::None,
+                None => matches!(kind, ShadowKind::None | ShadowKind::Volume),
             };
             if !fits {
                 *shadow = kind.create(&self.gl, &settings)?;
@@ -429,10 +491,10 @@ impl Renderer {
         const KEEP: usize = 4;
         // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
         let mut kinds = [ShadowKind::None; MAX_LIGHTS];
-        for (k, shadow) in kinds.iter_mut().zip(&self.shadows) {
-            *k = shadow.as_ref().map_or(ShadowKind::None, |t| t.kind());
+        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
+            *k = *kind;
         }
-        let n = self.shadows.len().min(MAX_LIGHTS);
+        let n = self.kinds.len().min(MAX_LIGHTS);
         let key = ProgramKey::of(
             scene,
             &self.settings,

@@ -20,6 +20,9 @@ pub struct Inputs<'a> {
     pub meshes: &'a [Mesh],
     pub textures: &'a [Texture],
     pub white: &'a Texture,
+    /// With shadow volumes, the light this pass adds (-1: the ambient pass); unused
+    /// otherwise.
+    pub pass_light: i32,
 }
 
 /// Draws every item with `inputs.program` (bound here) into the bound target.
@@ -53,6 +56,7 @@ pub fn draw(
     p.set_mat3("viewToWorld", &Mat3::from_mat4(view).transpose());
     p.set_mat4_array("orthoProjectionMatrix", &u.projection);
     p.set_i32("textureSampler", MATERIAL_UNIT as i32);
+    p.set_i32("passLight", inputs.pass_light);
     // Each light's map and sampler on its unit, for the pass; the samplers unbind when
     // `bound` drops.
     let mut bound: Vec<BoundSampler> = Vec::with_capacity(inputs.shadows.len());

@@ -63,7 +63,7 @@ pub fn follows_camera(light: &Light, kind: ShadowKind, settings: &ShadowSettings
                 && settings.light_projection == LightProjection::Ortho
                 && settings.fit == Fit::Scene
         }
-        ShadowKind::Cube | ShadowKind::None => false,
+        ShadowKind::Cube | ShadowKind::None | ShadowKind::Volume => false,
     }
 }
 

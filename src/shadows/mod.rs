@@ -6,6 +6,9 @@
 //! - [`cascades`]: cascaded shadow maps for a directional light.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
 //!   [`map2d`]).
+//! - [`volumes`]: the slides' stencil shadow volumes, beside the maps rather than behind
+//!   [`Technique`]: no storage, no depth pass; the renderer draws them per light into the
+//!   stencil buffer (`renderer::volume_pass`).
 //!
 //! A technique owns its storage (and says whether it still fits the settings), makes its
 //! light camera, runs its depth pass, names its shader snippet and sampler, and gives the
@@ -21,13 +24,14 @@ pub mod fitted;
 pub mod map2d;
 pub mod program;
 pub mod slots;
+pub mod volumes;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
-use crate::settings::{LightProjection, ShadowSettings};
+use crate::settings::{LightProjection, ShadowSettings, ShadowTechnique};
 
 /// What a light's shadow is stored in, and so which technique draws it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -40,6 +44,8 @@ pub enum ShadowKind {
     Cube,
     /// A depth texture array, one layer per cascade (directional lights with cascades).
     Cascades,
+    /// No map: stencil shadow volumes ([`volumes`]), any kind of light.
+    Volume,
 }
 
 impl ShadowKind {
@@ -67,6 +73,7 @@ impl ShadowKind {
     pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
         match light {
             l if !l.casts_shadows() || !settings.shadows => ShadowKind::None,
+            _ if settings.technique == ShadowTechnique::Volumes => ShadowKind::Volume,
             Light::Point(_) => ShadowKind::Cube,
             Light::Directional(_)
                 if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
@@ -77,10 +84,11 @@ impl ShadowKind {
         }
     }
 
-    /// Makes the storage of this kind for `settings` (`None` for a light that does not cast).
+    /// Makes the storage of this kind for `settings` (`None` for a light that does not cast,
+    /// and for volumes, which need none).
     pub fn create(self, gl: &Gl, settings: &ShadowSettings) -> Result<Option<Box<dyn Technique>>> {
         Ok(match self {
-            ShadowKind::None => None,
+            ShadowKind::None | ShadowKind::Volume => None,
             ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
             ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
             ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),

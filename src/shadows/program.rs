@@ -32,6 +32,9 @@ pub struct ProgramKey {
     visibility_light: usize,
     /// The outputs the target has: the others are not computed.
     outputs: Outputs,
+    /// A light has shadow volumes: the frame is drawn in passes, one light each
+    /// (`MULTIPASS`, the uniform `passLight`).
+    multipass: bool,
 }
 
 impl ProgramKey {
@@ -68,7 +71,9 @@ impl ProgramKey {
                 shadow,
                 positional,
                 cone,
-                test: (shadow != ShadowKind::None).then(|| ShadowTest::of(&own)),
+                // Volumes have no test in the shader: the stencil decides.
+                test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume))
+                    .then(|| ShadowTest::of(&own)),
             });
         }
         Ok(ProgramKey {
@@ -79,6 +84,7 @@ impl ProgramKey {
             specular_power_bits: scene.specular_power.to_bits(),
             visibility_light,
             outputs,
+            multipass: kinds.contains(&ShadowKind::Volume),
         })
     }
 
@@ -121,6 +127,9 @@ impl ProgramKey {
             .any(|s| s.test.is_some_and(|t| t.normal_offset))
         {
             set("NORMAL_OFFSET", "1".into());
+        }
+        if self.multipass {
+            set("MULTIPASS", "1".into());
         }
         if let Some(c) = &self.cascades {
             set("USES_CASCADES", "1".into());

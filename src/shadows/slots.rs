@@ -11,7 +11,7 @@
 //! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
 //! [`super::cascades::glsl`]).
 
-use super::{cascades, cube, map2d, ShadowKind};
+use super::{cascades, cube, map2d, volumes, ShadowKind};
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{glsl_float, BeyondFar, BiasMode, MapSize, ShadowSettings};
 
@@ -98,7 +98,7 @@ pub struct LightSlot {
 pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     match kind {
         _ if index >= MAX_LIGHTS => None,
-        ShadowKind::None => None,
+        ShadowKind::None | ShadowKind::Volume => None,
         ShadowKind::Map => Some(map2d::SAMPLERS[index]),
         ShadowKind::Cube => Some(cube::SAMPLERS[index]),
         ShadowKind::Cascades => Some(cascades::SAMPLERS[index]),
@@ -116,7 +116,7 @@ pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usiz
                 next += 1;
                 Some(next - 1)
             }
-            ShadowKind::None | ShadowKind::Cascades => None,
+            ShadowKind::None | ShadowKind::Cascades | ShadowKind::Volume => None,
         })
         .collect()
 }
@@ -154,6 +154,10 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
         let (positional, cone) = (slot.positional, slot.cone);
         let hardware = slot.test.is_some_and(|t| t.hardware);
         let glsl = match slot.shadow {
+            ShadowKind::Volume => {
+                calls.push_str(&format!("    {}\n", volumes::call(i, positional, cone)));
+                continue;
+            }
             ShadowKind::None => None,
             ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
             ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),

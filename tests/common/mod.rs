@@ -21,6 +21,15 @@ pub fn dummy(angle: f32) -> Scene {
     scene
 }
 
+/// A built-in scene with every item's spin stopped.
+pub fn frozen(name: &str) -> Scene {
+    let mut scene = Scene::load(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for item in &mut scene.items {
+        item.spin = Vec3::ZERO;
+    }
+    scene
+}
+
 /// Renders one frame with visibility and G-buffer outputs.
 pub fn render(
     ctx: &HeadlessContext,

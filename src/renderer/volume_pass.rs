@@ -1,0 +1,103 @@
+//! The frame with stencil shadow volumes (`crate::shadows::volumes`): an ambient pass that
+//! lays down depth, then per light: clear the stencil, count that light's volumes (z-fail),
+//! and add its light where the count is 0. Lights with a map take part too (their pass
+//! tests their map and ignores the stencil), so techniques mix within a scene; every pass
+//! shades with the same `shaders/lib/lighting.glsl`, so an unshadowed pixel is the one
+//! pass' colour up to the rounding of each addition.
+
+use glam::Vec4;
+
+use super::scene_pass::{self, Inputs};
+use crate::engine::volume::clear_stencil;
+use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};
+use crate::engine::{VolumeDraw, VolumePassGuard};
+use crate::error::Result;
+use crate::scene::Scene;
+use crate::settings::ShadowSettings;
+use crate::shadows::volumes::Volumes;
+use crate::shadows::ShadowKind;
+
+/// The debug view's colours, one per light (translucent, so overlaps show).
+const COLOURS: [Vec4; 4] = [
+    Vec4::new(1.0, 0.85, 0.1, 0.18),
+    Vec4::new(0.2, 0.6, 1.0, 0.18),
+    Vec4::new(1.0, 0.3, 0.3, 0.18),
+    Vec4::new(0.3, 1.0, 0.4, 0.18),
+];
+
+/// Draws the frame into the bound, cleared target. `queries` (one per light) count the
+/// volume pixels that passed the depth test; returns their sum.
+#[allow(clippy::too_many_arguments)]
+pub fn draw(
+    inputs: &Inputs,
+    volumes: &Volumes,
+    kinds: &[ShadowKind],
+    visibility_light: usize,
+    queries: &[SamplesQuery],
+    samplers: &mut Samplers,
+    gl: &Gl,
+    scene: &Scene,
+    size: (u32, u32),
+) -> Result<u64> {
+    // Ambient (and depth, and the extra outputs: the measured light is 0 here).
+    scene_pass::draw(
+        &Inputs {
+            pass_light: -1,
+            ..*inputs
+        },
+        samplers,
+        gl,
+        scene,
+        size,
+    )?;
+    let mut counted = Vec::new();
+    for (i, kind) in kinds.iter().enumerate() {
+        let stencil_lit = *kind == ShadowKind::Volume;
+        if stencil_lit {
+            clear_stencil(gl);
+            let _pass = VolumePassGuard::begin(gl, VolumeDraw::Stencil);
+            let query = queries.get(i);
+            query.inspect(|q| q.begin());
+            volumes.draw(scene, inputs.settings, i, size, Vec4::ZERO);
+            if let Some(q) = query {
+                q.end();
+                counted.push(q);
+            }
+        }
+        let _pass = LightPassGuard::begin(
+            gl,
+            LightPass {
+                stencil_lit,
+                extra_outputs: i == visibility_light,
+            },
+        );
+        scene_pass::draw(
+            &Inputs {
+                pass_light: i as i32,
+                ..*inputs
+            },
+            samplers,
+            gl,
+            scene,
+            size,
+        )?;
+    }
+    Ok(counted.iter().map(|q| q.read()).sum())
+}
+
+/// The debug view: every volume light's faces, translucent, over the finished frame.
+pub fn draw_debug(
+    volumes: &Volumes,
+    kinds: &[ShadowKind],
+    settings: &ShadowSettings,
+    gl: &Gl,
+    scene: &Scene,
+    size: (u32, u32),
+) {
+    let _pass = VolumePassGuard::begin(gl, VolumeDraw::Debug);
+    for (i, kind) in kinds.iter().enumerate() {
+        if *kind == ShadowKind::Volume {
+            volumes.draw(scene, settings, i, size, COLOURS[i % COLOURS.len()]);
+        }
+    }
+}
