@@ -371,6 +371,7 @@ fn perspective_lights_over_near_planes_and_ratios() {
         far: 20.0,
         casts_shadows: true,
         shadow: Default::default(),
+        size: 0.0,
     });
     eprintln!("| near | far/near | misclassified |");
     for near in [1e-4f32, 1e-3, 1e-2, 0.1, 1.0] {

@@ -65,6 +65,12 @@ pub struct SceneArgs {
     /// lights have no angle: the flag is refused for them.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub light_angle: Option<f32>,
+    /// Every light's size, replacing the scene file's `size`: a directional light's
+    /// angular diameter in degrees (the sun: 0.53), a spot or point light's radius in world
+    /// units; 0 = a point (hard shadows). PCSS widens its penumbra with it, and `compare`
+    /// and `bench` measure against a light of that size (rays to its disc).
+    #[arg(long, value_name = "SIZE", value_parser = shadowmap::settings::parse_finite, allow_negative_numbers = true)]
+    pub light_size: Option<f32>,
     /// Frame size in pixels; default: the scene's size.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
@@ -127,6 +133,7 @@ impl Default for DemoArgs {
             scene: SceneArgs {
                 scene: "dummy".into(),
                 light_angle: None,
+                light_size: None,
                 size: None,
                 camera_position: None,
                 camera_rotation: None,
@@ -364,6 +371,18 @@ impl SceneArgs {
                      only a directional light",
                     scene.name
                 )));
+            }
+        }
+        if let Some(size) = self.light_size {
+            for light in &mut scene.lights {
+                if let Some(problem) = light.size_problem(size) {
+                    return Err(shadowmap::Error::Invalid(format!(
+                        "--light-size {problem}; the {} scene has a {} light",
+                        scene.name,
+                        light.kind_name()
+                    )));
+                }
+                light.set_size(size);
             }
         }
         Ok(scene)

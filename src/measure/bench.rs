@@ -257,6 +257,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         shading_position: None,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     let spot = Light::Spot(SpotLight {
         colour: Vec3::ONE,
@@ -271,6 +272,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         far: 20.0,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     let point = Light::Point(PointLight {
         colour: Vec3::ONE,
@@ -282,6 +284,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         centre: Vec3::ZERO,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     [
         (

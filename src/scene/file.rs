@@ -201,6 +201,10 @@ struct DirectionalFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -229,6 +233,10 @@ struct SpotFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -252,6 +260,10 @@ struct PointFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -889,6 +901,7 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
             let given_by_light = match setting {
                 "shadow.light_view" => own.light_view.is_some(),
                 "shadow.map_size" => own.map_size.is_some(),
+                "shadow.filter" => own.filter.is_some(),
                 _ => false,
             };
             return Err(match given_by_light {
@@ -1287,7 +1300,9 @@ fn directional(l: DirectionalFile, prefix: &str, cx: &Context) -> Result<Light> 
         shading_position: position,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 /// An ortho box must be finite, ordered, and not so wide that its width overflows f32
@@ -1318,6 +1333,15 @@ fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
     Ok(())
 }
 
+/// The light with its `size`, checked for its kind.
+fn sized(mut light: Light, size: f32, prefix: &str, cx: &Context) -> Result<Light> {
+    if let Some(problem) = light.size_problem(size) {
+        return Err(cx.bad(format!("{prefix}.size"), problem));
+    }
+    light.set_size(size);
+    Ok(light)
+}
+
 fn point(l: PointFile, prefix: &str, cx: &Context) -> Result<Light> {
     let colour = light_colour(&l.colour, l.intensity, prefix, cx)?;
     cx.finite(&format!("{prefix}.position"), &l.position.0)?;
@@ -1334,7 +1358,9 @@ fn point(l: PointFile, prefix: &str, cx: &Context) -> Result<Light> {
         centre: position,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
@@ -1389,7 +1415,9 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
         far: l.far,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 // ---------------------------------------------------------------------------------------

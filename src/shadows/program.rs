@@ -68,7 +68,7 @@ impl ProgramKey {
                 shadow,
                 positional,
                 cone,
-                test: (shadow != ShadowKind::None).then(|| ShadowTest::of(&own)),
+                test: (shadow != ShadowKind::None).then(|| ShadowTest::for_light(light, &own)),
             });
         }
         Ok(ProgramKey {
