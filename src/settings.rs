@@ -727,9 +727,7 @@ impl ShadowSettings {
                 | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "cascade_lambda"
                 | "cascade_blend" | "shadow_distance" => continue,
                 "perspective_fov" => continue,
-                "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => {
-                    continue
-                }
+                "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => continue,
                 "light_projection" if perspective => {
                     format!("perspective light, fov {}", self.perspective_fov)
                 }

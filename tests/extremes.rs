@@ -18,6 +18,7 @@ const SIZE: (u32, u32) = (320, 180);
 
 fn measure(ctx: &HeadlessContext, scene: &Scene, s: &ShadowSettings) -> Metrics {
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: SIZE.0,
         height: SIZE.1,
         supersample: 1,

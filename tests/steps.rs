@@ -32,6 +32,7 @@ fn measure(
     ss: u32,
 ) -> Comparison {
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: size.0,
         height: size.1,
         supersample: ss,

@@ -187,6 +187,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
+    /// (for a light with a size) reference-area.png and error-area.png, and
     /// metrics.json (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
@@ -211,6 +212,10 @@ pub struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub light: usize,
+    /// Rays per pixel to a light with a size (--light-size, or the scene's `size`): the
+    /// soft-shadow truth, stratified over the light's disc.
+    #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
+    pub rays: u32,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -251,6 +256,9 @@ pub struct BenchArgs {
     /// Print the cheapest configuration whose misclassified fraction is at most E (0.01 = 1%).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true)]
     pub target_error: Option<f64>,
+    /// Rays per pixel to a light with a size (the soft-shadow truth).
+    #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
+    pub rays: u32,
 }
 
 #[derive(Args, Debug, Clone)]

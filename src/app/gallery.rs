@@ -43,6 +43,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width,
         height,
         supersample: args.supersample,

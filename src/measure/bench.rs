@@ -475,6 +475,7 @@ pub fn bench_reference(
         scene,
         base,
         &CompareOptions {
+            rays: super::compare::AREA_RAYS,
             width: opts.width,
             height: opts.height,
             supersample: opts.supersample,

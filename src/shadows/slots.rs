@@ -12,8 +12,8 @@
 //! [`super::cascades::glsl`]).
 
 use super::{cascades, cube, map2d, ShadowKind};
-use crate::scene::MAX_LIGHTS;
 use crate::scene::Light;
+use crate::scene::MAX_LIGHTS;
 use crate::settings::{
     glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
 };
