@@ -9,7 +9,7 @@ use glam::Vec3;
 use serde::Serialize;
 
 use super::compare::{compute_reference, CompareOptions, Reference};
-use super::reference::Metrics;
+use super::reference::{Metrics, SoftMetrics};
 use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
@@ -103,6 +103,8 @@ pub enum Family {
     PointLayered,
     /// A point light's cube map drawn face by face.
     PointSixPasses,
+    /// One 2D map read through a soft filter (the playground's, PCSS).
+    Soft,
 }
 
 impl Family {
@@ -111,6 +113,7 @@ impl Family {
             (ShadowKind::Cascades, _) => Family::Cascades,
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
+            (ShadowKind::Map, _) if light.settings(s).filter.soft() => Family::Soft,
             _ => Family::OneMap,
         }
     }
@@ -121,6 +124,7 @@ impl Family {
             Family::Cascades => "cascades",
             Family::PointLayered => "point light, layered",
             Family::PointSixPasses => "point light, six passes",
+            Family::Soft => "one map, soft filter",
         }
     }
 }
@@ -180,6 +184,7 @@ pub fn sweep(
         ..*base
     };
     let mut out = sweep_grid(base, quick, max_texture_size);
+    out.extend(soft_grid(base, quick, light));
     // The tutorials' configurations go in the middle of the sweep (below): the first and
     // last places (timed at the start and at the very end) are the likeliest to catch the
     // machine changing state.
@@ -240,6 +245,38 @@ pub fn sweep(
     let mid = rest.len() / 2;
     rest.splice(mid..mid, tutorials);
     rest
+}
+
+/// The soft filters' configurations, for a light with a size (a point light has none: its
+/// cube map takes no soft filter): 1024^2 (and 2048^2 in the full sweep), each soft filter,
+/// LearnOpenGL's constant and slope biases.
+fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConfig> {
+    if light.size() <= 0.0 {
+        return Vec::new();
+    }
+    let sizes: &[u32] = if quick { &[1024] } else { &[1024, 2048] };
+    let mut out = Vec::new();
+    for &side in sizes {
+        for filter in Filter::SOFT {
+            for bias in [BiasPreset::LearnOpenGL, BiasPreset::Slope] {
+                let mut s = *base;
+                s.map_size = MapSize::square(side);
+                s.filter = filter;
+                s.cull = Cull::None;
+                s.depth_format = DepthFormat::D24;
+                bias.apply(&mut s);
+                if light.settings_problem("the light", &s).is_none() {
+                    out.push(BenchConfig {
+                        settings: s,
+                        bias_preset: bias,
+                        tutorial: None,
+                        family: Family::Soft,
+                    });
+                }
+            }
+        }
+    }
+    out
 }
 
 /// How many configurations [`sweep`] tries for each kind of light, with the default
@@ -389,6 +426,8 @@ pub struct BenchOptions {
     pub frames: u32,
     pub supersample: u32,
     pub band: usize,
+    /// Rays per pixel of the area truth (a light with a size).
+    pub rays: u32,
 }
 
 /// Median and 95th percentile.
@@ -433,14 +472,28 @@ pub struct BenchRow {
     pub depth_gpu_ms: Stat,
     pub scene_gpu_ms: Stat,
     pub metrics: Metrics,
+    /// Against the area truth, for a light with a size.
+    pub area: Option<SoftMetrics>,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
 }
 
 impl BenchRow {
-    /// The error the sweep optimises: the misclassified fraction of receiver pixels.
+    /// The error the sweep optimises: the misclassified fraction of receiver pixels, or
+    /// for a light with a size the visibility's MAE against its area truth (a soft shadow
+    /// is right in between, where "misclassified" says nothing).
     pub fn error(&self) -> f64 {
-        self.metrics.misclassified_rate
+        self.area
+            .as_ref()
+            .map_or(self.metrics.misclassified_rate, |a| a.mae)
+    }
+
+    /// What [`BenchRow::error`] is, for axes and messages.
+    pub fn error_name(&self) -> &'static str {
+        match self.area {
+            Some(_) => "MAE against the area light",
+            None => "misclassified receiver pixels",
+        }
     }
 
     /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
@@ -452,6 +505,7 @@ impl BenchRow {
             Family::Cascades => (format!("{}x{}", s.cascades, s.map_size), " cascades"),
             Family::PointLayered => (s.map_size.to_string(), " cube layered"),
             Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
+            Family::Soft => (s.map_size.to_string(), ""),
         };
         format!(
             "{size} {} {} cull-{} {}{suffix}",
@@ -475,7 +529,7 @@ pub fn bench_reference(
         scene,
         base,
         &CompareOptions {
-            rays: super::compare::AREA_RAYS,
+            rays: opts.rays,
             width: opts.width,
             height: opts.height,
             supersample: opts.supersample,
@@ -590,6 +644,7 @@ pub fn run(
             depth_gpu_ms: Stat::of(&quieter.depth_gpu),
             scene_gpu_ms: Stat::of(&quieter.scene_gpu),
             metrics: reference.score(&visibility, opts.band),
+            area: reference.score_area(&visibility),
             pareto: false,
         };
         progress(&row);
@@ -638,7 +693,9 @@ pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filte
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
-misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto";
+misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
+area_rays,area_mae,light_bleed_rate,area_false_shadow_rate,penumbra_width_px,penumbra_width_truth_px,\
+penumbra_width_error_px";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -684,6 +741,18 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
             r.pareto.to_string(),
         ];
+        let nan = || "nan".to_string();
+        let a = r.area.as_ref();
+        let area = [
+            a.map_or(nan(), |a| a.rays.to_string()),
+            a.map_or(nan(), |a| format!("{:.6}", a.mae)),
+            a.map_or(nan(), |a| format!("{:.6}", a.light_bleed_rate)),
+            a.map_or(nan(), |a| format!("{:.6}", a.false_shadow_rate)),
+            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_px)),
+            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_truth_px)),
+            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_error_px)),
+        ];
+        let fields: Vec<String> = fields.into_iter().chain(area).collect();
         out.push_str(&fields.join(","));
         out.push('\n');
     }
