@@ -1976,7 +1976,7 @@ mod tests {
              fov = 30.0\n",
             "lights[1].fov",
             "not used by a point light (line 6, column 7); it takes kind, colour, intensity, \
-             position, near, far, oscillate, casts_shadows, shadow",
+             position, near, far, oscillate, casts_shadows, size, shadow",
         );
         refuses(
             "[light]\nangle = 45.0\nshadow_pos_multi = 5.0\n",
@@ -2024,6 +2024,7 @@ mod tests {
                 "far",
                 "oscillate",
                 "casts_shadows",
+                "size",
                 "shadow"
             ]
         );
