@@ -25,6 +25,10 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     if !camera_flag {
         scene.camera = scene.steps_camera();
     }
+    // With the lights' size its steps ask for, unless --light-size gives one.
+    if args.scene.light_size.is_none() {
+        scene.use_steps_light_size();
+    }
     scene
         .items
         .iter_mut()
@@ -58,7 +62,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     // The first step is told against the chapter's start, each other against the one before.
     let mut previous = steps::start(&scene);
-    for (i, step) in steps::STEPS.iter().enumerate() {
+    for (i, step) in steps::of(&scene).iter().enumerate() {
         let settings = steps::settings_for(&scene, step.name)?;
         let changed = match changed_fields(&previous, &settings) {
             c if c.is_empty() => "nothing on this scene (the settings of the step before)".into(),
@@ -70,6 +74,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         files.push((image.clone(), frame.colour.encode_png()?));
         let mut metrics: Option<Metrics> = None;
         let mut error_file = None;
+        let mut area = None;
         if !settings.show_depth_map {
             let reference = match references.entry(settings.light_projection) {
                 Entry::Occupied(e) => e.into_mut(),
@@ -83,7 +88,13 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 .chunks_exact(4)
                 .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
                 .collect();
-            let err = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+            // A light with a size: the errors against its area truth (the soft answer).
+            let truth = reference
+                .area
+                .as_ref()
+                .map_or(&reference.hard, |a| &a.pixels);
+            area = reference.score_area(vis);
+            let err = error_image(width as usize, height as usize, vis, truth, &grey);
             let name = format!("{:02}-{}-error.png", i + 1, step.name);
             let err = with_error_legend(ImageData {
                 width,
@@ -107,6 +118,9 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 ))
                 .unwrap_or_else(|| "(depth map)".into())
         );
+        if let Some(a) = &area {
+            println!("   {}", super::compare::area_summary(a));
+        }
         rows.push((step, settings, image, error_file, metrics, changed));
     }
     let mut html = String::new();

@@ -20,7 +20,7 @@ use toml::Spanned;
 
 use super::{
     Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, PointLight, Scene,
-    ShadingModel, SpotLight, StepContext, MAX_LIGHTS,
+    ShadingModel, SpotLight, StepContext, StepList, MAX_LIGHTS,
 };
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -101,6 +101,10 @@ struct StepsFile {
     /// The camera the steps are shown from, where the tutorial's own does not show what
     /// they change; fields it leaves out are the scene's `[camera]`'s.
     camera: Option<StepsCameraFile>,
+    /// Which tutorial's steps: "chapters" (the default) or "playground".
+    list: StepList,
+    /// The lights' size while the steps are shown (a step like PCSS needs one).
+    light_size: Option<f32>,
 }
 
 impl Default for StepsFile {
@@ -109,6 +113,8 @@ impl Default for StepsFile {
             bias: 0.05,
             start_wrap: Wrap::ClampToEdge,
             camera: None,
+            list: StepList::Chapters,
+            light_size: None,
         }
     }
 }
@@ -911,6 +917,11 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
         }
     }
     let steps = build_steps(&file.steps, &file.camera, cx)?;
+    if let Some(size) = steps.light_size {
+        if let Some(problem) = lights.iter().find_map(|l| l.size_problem(size)) {
+            return Err(cx.bad("steps.light_size", problem));
+        }
+    }
     let mut items = Items::default();
     for (i, item) in file.items.into_iter().enumerate() {
         items.add(i, item, cx)?;
@@ -1031,6 +1042,8 @@ fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result
         bias: s.bias,
         start_wrap: s.start_wrap,
         camera,
+        list: s.list,
+        light_size: s.light_size,
     })
 }
 
