@@ -34,19 +34,24 @@ float softTaps(KERNEL_MAP, vec2 uv, float current)
 #ifndef PCSS_DISK_DEFINED
 #define PCSS_DISK_DEFINED
 // 32 points in the unit disk, each added where it was farthest from those before it, so
-// that every prefix (the first 16, the first 8) is itself spread over the disk.
+// that every prefix (the first 16, the first 8) is itself spread over the disk; then scaled
+// (by 0.916) so that the first 16's mean squared radius is a uniform disc's, 1/2 (that way
+// leans to the rim, and a kernel that leans to its rim draws a wider penumbra).
 const vec2 PCSS_DISK[32] = vec2[](
-    vec2(-0.4820, 0.3705), vec2(0.7061, -0.6899), vec2(0.7741, 0.5506), vec2(-0.5674, -0.7067),
-    vec2(0.1914, -0.0037), vec2(0.0936, 0.9025), vec2(0.9783, -0.0685), vec2(0.0688, -0.8438),
-    vec2(-0.8257, -0.0561), vec2(0.1138, 0.4476), vec2(-0.2963, -0.2499), vec2(-0.5850, 0.7908),
-    vec2(0.5360, -0.2628), vec2(0.0906, -0.4280), vec2(-0.8854, 0.4239), vec2(0.5964, 0.2292),
-    vec2(-0.8129, -0.4389), vec2(0.4874, 0.7979), vec2(-0.1663, 0.0906), vec2(-0.2292, -0.6429),
-    vec2(-0.1758, 0.6327), vec2(0.3765, -0.6003), vec2(-0.4947, 0.0348), vec2(0.9129, -0.3852),
-    vec2(-0.3259, 0.9422), vec2(0.4093, 0.5070), vec2(-0.2862, -0.9526), vec2(0.7083, -0.0080),
-    vec2(0.3580, -0.9092), vec2(-0.5982, -0.2368), vec2(0.9259, 0.2168), vec2(-0.0522, -0.1296));
+    vec2(-0.4413, 0.3392), vec2(0.6465, -0.6317), vec2(0.7088, 0.5042), vec2(-0.5195, -0.6471),
+    vec2(0.1753, -0.0034), vec2(0.0857, 0.8264), vec2(0.8958, -0.0627), vec2(0.0630, -0.7726),
+    vec2(-0.7560, -0.0514), vec2(0.1042, 0.4098), vec2(-0.2713, -0.2288), vec2(-0.5357, 0.7241),
+    vec2(0.4908, -0.2406), vec2(0.0830, -0.3919), vec2(-0.8107, 0.3881), vec2(0.5461, 0.2099),
+    vec2(-0.7443, -0.4019), vec2(0.4463, 0.7306), vec2(-0.1523, 0.0830), vec2(-0.2099, -0.5887),
+    vec2(-0.1610, 0.5793), vec2(0.3447, -0.5497), vec2(-0.4530, 0.0319), vec2(0.8359, -0.3527),
+    vec2(-0.2984, 0.8627), vec2(0.3748, 0.4642), vec2(-0.2621, -0.8722), vec2(0.6485, -0.0073),
+    vec2(0.3278, -0.8325), vec2(-0.5477, -0.2168), vec2(0.8478, 0.1985), vec2(-0.0478, -0.1187));
 // The blocker search reaches at most this many texels (thin blockers far from the receiver
 // of a large light are missed beyond it, as in every PCSS).
 const float PCSS_MAX_SEARCH_TEXELS = 64.0;
+// The steepest receiver plane followed, in depth per map width: steeper (grazing) planes
+// keep this slope, so a receiver seen edge-on to the light cannot cancel its shadow.
+const float PCSS_MAX_SLOPE = 8.0;
 #endif
 
 // A map depth in [0, 1] as a distance from the light. lightPenumbra[i] (scene.frag) is
@@ -84,6 +89,18 @@ vec2 pcssPenumbra(float dr, float db, vec4 light)
 // least one texel wide, so a light of size 0 filters like a small PCF.
 float pcss(KERNEL_MAP, vec2 uv, float z, float current)
 {
+    // Receiver-plane depth bias: over a wide kernel a surface tilted to the light differs
+    // from its own depth at the centre by more than any constant bias, and would shadow
+    // itself. The fragment's depth is taken as a plane in the map, z + dot(slope, offset),
+    // its slope from the screen-space derivatives of (uv, z) (a 2 x 2 solve; none where the
+    // solve is singular, at silhouettes, and at most PCSS_MAX_SLOPE).
+    vec3 ddx = dFdx(vec3(uv, z));
+    vec3 ddy = dFdy(vec3(uv, z));
+    float det = ddx.x * ddy.y - ddx.y * ddy.x;
+    vec2 slope = abs(det) > 1e-14
+        ? vec2(ddx.z * ddy.y - ddx.y * ddy.z, ddx.x * ddy.z - ddy.x * ddx.z) / det
+        : vec2(0.0);
+    slope = clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
     vec4 light = lightPenumbra[LIGHT_INDEX];
     float turn = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy,
                                                              vec2(0.06711056, 0.00583715))));
@@ -94,8 +111,9 @@ float pcss(KERNEL_MAP, vec2 uv, float z, float current)
     float blockers = 0.0;
     float blockerDepth = 0.0;
     for (int k = 0; k < PCSS_BLOCKER_TAPS; ++k) {
-        float d = KERNEL_DEPTH(uv + rotation * PCSS_DISK[k] * search);
-        float nearer = d < current ? 1.0 : 0.0;
+        vec2 offset = rotation * PCSS_DISK[k] * search;
+        float d = KERNEL_DEPTH(uv + offset);
+        float nearer = d < current + dot(slope, offset) ? 1.0 : 0.0;
         blockers += nearer;
         blockerDepth += nearer * d;
     }
@@ -103,7 +121,8 @@ float pcss(KERNEL_MAP, vec2 uv, float z, float current)
     vec2 radius = max(pcssPenumbra(dr, db, light), SHADOW_TEXEL);
     float lit = 0.0;
     for (int k = 0; k < PCSS_FILTER_TAPS; ++k) {
-        lit += step(current, KERNEL_DEPTH(uv + rotation * PCSS_DISK[k] * radius));
+        vec2 offset = rotation * PCSS_DISK[k] * radius;
+        lit += step(current + dot(slope, offset), KERNEL_DEPTH(uv + offset));
     }
     // No blocker found: lit (a select, not a branch per pixel).
     return blockers > 0.0 ? lit / float(PCSS_FILTER_TAPS) : 1.0;
