@@ -545,6 +545,17 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
                 .to_string(),
         ));
     }
+    let pcss = scene.lights.iter().any(|l| {
+        l.casts_shadows() && l.settings(settings).filter == shadowmap::settings::Filter::Pcss
+    });
+    if !pcss {
+        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
+            idle.push((
+                name,
+                "no light's filter is pcss (--filter pcss); only PCSS takes its counts".to_string(),
+            ));
+        }
+    }
     let snapped = |s: &ShadowSettings| {
         s.light_projection == LightProjection::Ortho && (s.fit == Fit::Scene || s.cascades > 1)
     };

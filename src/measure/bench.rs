@@ -759,12 +759,22 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
     out
 }
 
-/// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first.
+/// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first,
+/// then (for a light with a size) every soft filter's configuration, with the figures
+/// against the area truth in three more columns.
 pub fn to_markdown(rows: &[BenchRow]) -> String {
+    let area = rows.iter().any(|r| r.area.is_some());
     let mut out = String::from(
-        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |",
     );
+    if area {
+        out.push_str(" MAE vs area light | light bleeding | penumbra width error px |");
+    }
+    out.push_str("\n|---|---|---|---|---|---|---|---|---|---|");
+    if area {
+        out.push_str("---|---|---|");
+    }
+    out.push('\n');
     let mut shown: Vec<&BenchRow> = rows
         .iter()
         .filter(|r| r.config.tutorial.is_some())
@@ -775,15 +785,22 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         .collect();
     front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
     shown.extend(front);
+    let mut soft: Vec<&BenchRow> = rows
+        .iter()
+        .filter(|r| r.config.family == Family::Soft && !r.pareto)
+        .collect();
+    soft.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
+    shown.extend(soft);
     for r in shown {
-        let name = match r.config.tutorial {
-            Some(t) => format!("**{t}** ({})", r.label()),
-            None => format!("{} (Pareto)", r.label()),
+        let name = match (r.config.tutorial, r.pareto) {
+            (Some(t), _) => format!("**{t}** ({})", r.label()),
+            (None, true) => format!("{} (Pareto)", r.label()),
+            (None, false) => format!("{} (soft)", r.label()),
         };
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |",
             r.wall_ms.median,
             r.wall_ms.p95,
             r.overhead_ms,
@@ -795,6 +812,15 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             pct(m.misclassified_outside_band_rate),
             m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
         ));
+        if let Some(a) = &r.area {
+            out.push_str(&format!(
+                " {:.4} | {} | {:.2} |",
+                a.mae,
+                pct(a.light_bleed_rate),
+                a.penumbra_width_error_px
+            ));
+        }
+        out.push('\n');
     }
     out
 }
