@@ -282,3 +282,58 @@ fn the_command_line_refuses_what_a_light_cannot_use_with_its_reason() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_its_area_truth() {
+    let dir = std::env::temp_dir().join(format!("shadowmap-soft-bench-{}", std::process::id()));
+    let stdout = common::stdout_of(
+        common::bin()
+            .args([
+                "bench",
+                "--quick",
+                "--frames",
+                "2",
+                "--warmup",
+                "1",
+                "--size",
+                "160x90",
+                "--light-size",
+                "5",
+                "--rays",
+                "16",
+                "--out-dir",
+            ])
+            .arg(&dir),
+    );
+    let csv = std::fs::read_to_string(dir.join("bench.csv")).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Every row against the area truth (16 rays), none empty.
+    for row in &rows {
+        assert_eq!(row[col("area_rays")], "16", "{row:?}");
+        for name in ["area_mae", "light_bleed_rate", "penumbra_width_error_px"] {
+            let v: f64 = row[col(name)].parse().unwrap();
+            assert!(v.is_finite() && v >= 0.0, "{name} in {row:?}");
+        }
+    }
+    // The soft filters, each a row of the "soft" series.
+    for filter in Filter::SOFT {
+        assert!(
+            rows.iter()
+                .any(|r| r[col("family")] == "soft" && r[col("filter")] == filter.name()),
+            "no {} row",
+            filter.name()
+        );
+    }
+    assert!(rows.iter().all(|r| (r[col("family")] == "soft")
+        == Filter::SOFT.iter().any(|f| f.name() == r[col("filter")])));
+    // The table shows them, with the area figures' columns.
+    assert!(stdout.contains("| MAE vs area light |"), "{stdout}");
+    assert!(
+        stdout.contains("pcss learnopengl-0.005 cull-none 24"),
+        "{stdout}"
+    );
+}

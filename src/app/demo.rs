@@ -387,6 +387,12 @@ impl Demo {
     ) {
         let mut s = self.settings;
         change(&mut s);
+        // What a light cannot be drawn with (cascades with PCSS, a non-square map) is
+        // said, and the key does nothing, rather than ending the demo.
+        if let Err(e) = self.scene.check_light_settings(&s) {
+            eprintln!("note: {e}; the settings stay as they were");
+            return;
+        }
         if let Some(r) = &mut self.running {
             if let Err(e) = r.renderer.set_settings(&s) {
                 return self.fail(event_loop, e);

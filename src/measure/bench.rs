@@ -472,8 +472,9 @@ pub struct BenchRow {
     pub depth_gpu_ms: Stat,
     pub scene_gpu_ms: Stat,
     pub metrics: Metrics,
-    /// Against the area truth, for a light with a size.
-    pub area: Option<SoftMetrics>,
+    /// Against the area truth for a light with a size; for a point light against the hard
+    /// reference (its truth: `rays` 0).
+    pub soft: SoftMetrics,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
 }
@@ -483,16 +484,17 @@ impl BenchRow {
     /// for a light with a size the visibility's MAE against its area truth (a soft shadow
     /// is right in between, where "misclassified" says nothing).
     pub fn error(&self) -> f64 {
-        self.area
-            .as_ref()
-            .map_or(self.metrics.misclassified_rate, |a| a.mae)
+        match self.soft.rays {
+            0 => self.metrics.misclassified_rate,
+            _ => self.soft.mae,
+        }
     }
 
     /// What [`BenchRow::error`] is, for axes and messages.
     pub fn error_name(&self) -> &'static str {
-        match self.area {
-            Some(_) => "MAE against the area light",
-            None => "misclassified receiver pixels",
+        match self.soft.rays {
+            0 => "misclassified receiver pixels",
+            _ => "MAE against the area light",
         }
     }
 
@@ -644,7 +646,7 @@ pub fn run(
             depth_gpu_ms: Stat::of(&quieter.depth_gpu),
             scene_gpu_ms: Stat::of(&quieter.scene_gpu),
             metrics: reference.score(&visibility, opts.band),
-            area: reference.score_area(&visibility),
+            soft: reference.score_soft(&visibility),
             pareto: false,
         };
         progress(&row);
@@ -688,7 +690,9 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
         .min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median))
 }
 
-/// The CSV columns, in order.
+/// The CSV columns, in order (the `area_*`, `light_bleed_rate` and `penumbra_*` ones are
+/// against the area truth, or with `area_rays` 0 against the hard reference of a point
+/// light).
 pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
@@ -741,16 +745,15 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
             r.pareto.to_string(),
         ];
-        let nan = || "nan".to_string();
-        let a = r.area.as_ref();
+        let a = &r.soft;
         let area = [
-            a.map_or(nan(), |a| a.rays.to_string()),
-            a.map_or(nan(), |a| format!("{:.6}", a.mae)),
-            a.map_or(nan(), |a| format!("{:.6}", a.light_bleed_rate)),
-            a.map_or(nan(), |a| format!("{:.6}", a.false_shadow_rate)),
-            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_px)),
-            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_truth_px)),
-            a.map_or(nan(), |a| format!("{:.3}", a.penumbra_width_error_px)),
+            a.rays.to_string(),
+            format!("{:.6}", a.mae),
+            format!("{:.6}", a.light_bleed_rate),
+            format!("{:.6}", a.false_shadow_rate),
+            format!("{:.3}", a.penumbra_width_px),
+            format!("{:.3}", a.penumbra_width_truth_px),
+            format!("{:.3}", a.penumbra_width_error_px),
         ];
         let fields: Vec<String> = fields.into_iter().chain(area).collect();
         out.push_str(&fields.join(","));
@@ -763,7 +766,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
 /// then (for a light with a size) every soft filter's configuration, with the figures
 /// against the area truth in three more columns.
 pub fn to_markdown(rows: &[BenchRow]) -> String {
-    let area = rows.iter().any(|r| r.area.is_some());
+    let area = rows.iter().any(|r| r.soft.rays > 0);
     let mut out = String::from(
         "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |",
     );
@@ -812,7 +815,8 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             pct(m.misclassified_outside_band_rate),
             m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
         ));
-        if let Some(a) = &r.area {
+        if area {
+            let a = &r.soft;
             out.push_str(&format!(
                 " {:.4} | {} | {:.2} |",
                 a.mae,

@@ -260,6 +260,20 @@ impl Reference {
         })
     }
 
+    /// [`Reference::score_area`], or for a light of no size the same figures against the
+    /// hard reference (its truth; `rays` 0).
+    pub fn score_soft(&self, rendered: &[Option<f32>]) -> SoftMetrics {
+        self.score_area(rendered).unwrap_or_else(|| {
+            compute_soft_metrics(
+                self.width as usize,
+                self.height as usize,
+                rendered,
+                &self.hard,
+                0,
+            )
+        })
+    }
+
     /// Scores a rendered visibility image against this reference.
     pub fn score(&self, rendered: &[Option<f32>], band: usize) -> Metrics {
         compute_metrics(

@@ -62,8 +62,8 @@ impl ShadowTest {
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
             kernel: s.filter.kernel(),
-            pcss_blocker_taps: pcss.then_some(s.pcss_blocker_taps).unwrap_or(0),
-            pcss_filter_taps: pcss.then_some(s.pcss_filter_taps).unwrap_or(0),
+            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
+            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
         }
     }

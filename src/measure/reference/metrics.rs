@@ -297,7 +297,7 @@ pub fn penumbra_profiles(
             }
         }
         let len = (g[0] * g[0] + g[1] * g[1]).sqrt();
-        if !whole || !(len > 0.0) {
+        if !whole || len.is_nan() || len <= 0.0 {
             continue;
         }
         let dir = [g[0] / len, g[1] / len];
