@@ -99,6 +99,8 @@ pub enum Filter {
 }
 
 impl Filter {
+    /// The chapters' filters (hard tests; the bench's full grid); the soft ones are
+    /// [`Filter::SOFT`].
     pub const ALL: [Filter; 5] = [
         Filter::Single,
         Filter::Pcf3x3,

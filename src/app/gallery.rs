@@ -134,8 +134,17 @@ pub fn run(args: &StepsArgs) -> Result<()> {
          <p>Each step adds one change to the one before (variants, marked, do not carry over). Left: the \
          frame; right: its errors against the exact ray-traced reference (red = false shadow, blue = \
          false light). Figures are fractions of the receiver pixels (geometry facing the light); MAE \
-         is against a {1}x{1} supersampled reference.</p>\n",
-        scene.name, args.supersample
+         is against a {1}x{1} supersampled reference.{2}</p>\n",
+        scene.name,
+        args.supersample,
+        match scene.light().size() {
+            0.0 => String::new(),
+            size => format!(
+                " The light has a size ({size}): the error images are against its area truth \
+                 ({} rays per pixel to its disc), and the terminal prints its figures.",
+                shadowmap::compare::AREA_RAYS
+            ),
+        }
     );
     html.push_str("<table><tr><th class=n>step</th><th>false shadow</th><th>false light</th><th>outside 1-px edge band</th><th>MAE</th></tr>\n");
     for (step, _, _, _, m, _) in &rows {
