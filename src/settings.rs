@@ -135,6 +135,16 @@ impl Filter {
         }
     }
 
+    /// Shadow-map lookups per fragment of a 2D map under `settings` (PCSS: its blocker
+    /// search and its filter; a hardware lookup reads 2 x 2 texels in one).
+    pub fn lookups(self, settings: &ShadowSettings) -> u32 {
+        match self {
+            Filter::Pcf4x4Weighted | Filter::SoftPcf => 16,
+            Filter::Pcss => settings.pcss_blocker_taps + settings.pcss_filter_taps,
+            _ => (2 * self.radius() + 1).pow(2),
+        }
+    }
+
     /// Whether this is one of the soft filters ([`Filter::SOFT`]).
     pub fn soft(self) -> bool {
         Filter::SOFT.contains(&self)

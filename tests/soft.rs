@@ -330,6 +330,18 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
     }
     assert!(rows.iter().all(|r| (r[col("family")] == "soft")
         == Filter::SOFT.iter().any(|f| f.name() == r[col("filter")])));
+    // Each states its lookups per fragment: 16 + 16 for PCSS by default.
+    for (filter, lookups) in [
+        ("single", "1"),
+        ("pcf3x3", "9"),
+        ("pcf4x4-weighted", "16"),
+        ("soft-pcf", "16"),
+        ("pcss", "32"),
+    ] {
+        for r in rows.iter().filter(|r| r[col("filter")] == filter) {
+            assert_eq!(r[col("lookups")], lookups, "{r:?}");
+        }
+    }
     // The table shows them, with the area figures' columns.
     assert!(stdout.contains("| MAE vs area light |"), "{stdout}");
     assert!(

@@ -692,14 +692,14 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
 
 /// The CSV columns, in order (the `area_*`, `light_bleed_rate` and `penumbra_*` ones are
 /// against the area truth, or with `area_rays` 0 against the hard reference of a point
-/// light).
+/// light; `lookups`: shadow-map reads per fragment, [`Filter::lookups`]).
 pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
 misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
 area_rays,area_mae,light_bleed_rate,area_false_shadow_rate,penumbra_width_px,penumbra_width_truth_px,\
-penumbra_width_error_px";
+penumbra_width_error_px,lookups";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -754,6 +754,15 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             format!("{:.3}", a.penumbra_width_px),
             format!("{:.3}", a.penumbra_width_truth_px),
             format!("{:.3}", a.penumbra_width_error_px),
+            match r.config.family {
+                // A cube map: one lookup, or LearnOpenGL's 20 on a disk (shadow_cube.glsl).
+                Family::PointLayered | Family::PointSixPasses => match s.filter.radius() {
+                    0 => 1,
+                    _ => 20,
+                },
+                _ => s.filter.lookups(s),
+            }
+            .to_string(),
         ];
         let fields: Vec<String> = fields.into_iter().chain(area).collect();
         out.push_str(&fields.join(","));
