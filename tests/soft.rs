@@ -349,3 +349,61 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
         "{stdout}"
     );
 }
+
+#[test]
+fn compare_writes_the_area_figures_for_a_sized_light_and_none_for_a_point() {
+    let base = std::env::temp_dir().join(format!("shadowmap-soft-compare-{}", std::process::id()));
+    for (size, sized) in [("4", true), ("0", false)] {
+        let dir = base.join(size);
+        let stdout = common::stdout_of(
+            common::bin()
+                .args([
+                    "compare",
+                    "--scene",
+                    "dummy",
+                    "--size",
+                    "320x180",
+                    "--supersample",
+                    "1",
+                    "--rays",
+                    "8",
+                    "--filter",
+                    "pcss",
+                    "--light-size",
+                    size,
+                    "--out-dir",
+                ])
+                .arg(&dir),
+        );
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("metrics.json")).unwrap())
+                .unwrap();
+        let area = &json["area_light"];
+        assert_eq!(json["light_size"].as_f64(), Some(size.parse().unwrap()));
+        for file in ["reference-area.png", "error-area.png"] {
+            assert_eq!(dir.join(file).exists(), sized, "{file} for size {size}");
+        }
+        assert_eq!(
+            stdout.contains("against the area light (8 rays"),
+            sized,
+            "{stdout}"
+        );
+        match sized {
+            true => {
+                assert_eq!(area["rays"], 8);
+                for key in [
+                    "mae",
+                    "light_bleed_rate",
+                    "false_shadow_rate",
+                    "penumbra_width_error_px",
+                ] {
+                    let v = area[key].as_f64().unwrap_or(f64::NAN);
+                    assert!(v.is_finite() && v >= 0.0, "{key}: {area}");
+                }
+                assert!(area["penumbra_edges"].as_u64().unwrap_or(0) > 10, "{area}");
+            }
+            false => assert!(area.is_null(), "{area}"),
+        }
+    }
+    std::fs::remove_dir_all(&base).unwrap();
+}

@@ -1763,6 +1763,37 @@ mod tests {
     }
 
     #[test]
+    fn a_lights_size_is_read_and_checked_for_its_kind() {
+        let sun = parse(
+            "[light]\nangle = 45.0\nsize = 0.53\n",
+            Path::new("s.toml"),
+            None,
+        )
+        .unwrap();
+        assert_eq!(sun.lights[0].size(), 0.53);
+        refuses(
+            "[light]\nangle = 45.0\nsize = 90.0\n",
+            "light.size",
+            "90: expected an angular diameter in degrees (the sun: 0.53) under 90",
+        );
+        refuses(
+            "[light]\nkind = \"point\"\nposition = [0.0, 1.0, 0.0]\nsize = -0.5\n",
+            "light.size",
+            "-0.5: expected a radius in world units >= 0 (0 = a point)",
+        );
+        refuses(
+            "[light]\nangle = 45.0\n[steps]\nlight_size = 120.0\n",
+            "steps.light_size",
+            "120: expected an angular diameter in degrees",
+        );
+        refuses(
+            "[light]\nangle = 45.0\n[steps]\nlist = \"book\"\n",
+            "steps.list",
+            "unknown variant `book`, expected `chapters` or `playground`",
+        );
+    }
+
+    #[test]
     fn every_built_in_scene_loads() {
         for name in Scene::builtin_names() {
             let scene = Scene::load(name).unwrap_or_else(|e| panic!("{name}: {e}"));
