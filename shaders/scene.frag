@@ -37,6 +37,9 @@ flat in vec3 lightVector[LIGHT_COUNT];   // view space: light i's position, or i
 uniform float lightConeCos[LIGHT_COUNT];   // cos of a spot's half angle
 uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
 uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
+// PCSS (lib/soft_filters.glsl): a light's size in its map's units per distance, and its
+// near and far planes: (S.x, S.y, near, far).
+uniform vec4 lightPenumbra[LIGHT_COUNT];
 
 uniform sampler2D textureSampler;  // unit 0; shadow maps on units 1, 2, ... (one per light)
 #ifdef MULTIPASS

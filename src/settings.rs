@@ -102,9 +102,28 @@ pub enum Filter {
     #[value(name = "hw3x3")]
     #[serde(rename = "hw3x3")]
     Hardware3x3,
+    // The soft filters (past the chapters: the shadow-playground's demos, and PCSS).
+    /// The shadow-playground's PCF: 16 taps at +-0.5 and +-1.5 texels, the inner 2 x 2
+    /// weighing 0.6 / 4 each and the outer 12 0.4 / 12 each (its epsilon is the bias).
+    #[value(name = "pcf4x4-weighted")]
+    #[serde(rename = "pcf4x4-weighted")]
+    Pcf4x4Weighted,
+    /// The same 16 weighted taps, each comparison through the playground's sigmoid
+    /// 1 / (1 + exp(-1000 diff)) instead of a step.
+    #[value(name = "soft-pcf")]
+    #[serde(rename = "soft-pcf")]
+    SoftPcf,
+    /// Percentage-closer soft shadows: a blocker search on a rotated Poisson disk, then a
+    /// filter as wide as the penumbra a light of the light's `size` casts from that
+    /// blocker depth (contact hardening). A zero-size light gives a hard test.
+    #[value(name = "pcss")]
+    #[serde(rename = "pcss")]
+    Pcss,
 }
 
 impl Filter {
+    /// The chapters' filters (hard tests; the bench's full grid); the soft ones are
+    /// [`Filter::SOFT`].
     pub const ALL: [Filter; 5] = [
         Filter::Single,
         Filter::Pcf3x3,
@@ -113,12 +132,62 @@ impl Filter {
         Filter::Hardware3x3,
     ];
 
-    /// Half the grid of lookups in texels (0 = one lookup).
+    /// The soft filters, for the 2D map (and, but for PCSS, cascades): see
+    /// [`Filter::works_with`].
+    pub const SOFT: [Filter; 3] = [Filter::Pcf4x4Weighted, Filter::SoftPcf, Filter::Pcss];
+
+    /// Half the grid of lookups in texels (0 = one lookup); the soft filters have their
+    /// own taps ([`Filter::kernel`]) and no grid.
     pub fn radius(self) -> u32 {
         match self {
             Filter::Single | Filter::Hardware2x2 => 0,
             Filter::Pcf3x3 | Filter::Hardware3x3 => 1,
             Filter::Pcf5x5 => 2,
+            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => 0,
+        }
+    }
+
+    /// The shader's `FILTER_KERNEL`: 0 = the grid of [`Filter::radius`], 1 = the
+    /// playground's weighted 4 x 4, 2 = its soft PCF, 3 = PCSS.
+    pub fn kernel(self) -> u32 {
+        match self {
+            Filter::Pcf4x4Weighted => 1,
+            Filter::SoftPcf => 2,
+            Filter::Pcss => 3,
+            _ => 0,
+        }
+    }
+
+    /// Shadow-map lookups per fragment of a 2D map under `settings` (PCSS: its blocker
+    /// search and its filter; a hardware lookup reads 2 x 2 texels in one).
+    pub fn lookups(self, settings: &ShadowSettings) -> u32 {
+        match self {
+            Filter::Pcf4x4Weighted | Filter::SoftPcf => 16,
+            Filter::Pcss => settings.pcss_blocker_taps + settings.pcss_filter_taps,
+            _ => (2 * self.radius() + 1).pow(2),
+        }
+    }
+
+    /// Whether this is one of the soft filters ([`Filter::SOFT`]).
+    pub fn soft(self) -> bool {
+        Filter::SOFT.contains(&self)
+    }
+
+    /// Whether a light whose shadow is stored as `storage` ("a cube map", "cascades", "a 2D
+    /// map") can use this filter: the soft filters read a 2D texel grid, which a cube map
+    /// has not; PCSS needs one light camera per map, which cascades have not (each layer
+    /// has its own box). `None` when it can; otherwise why not.
+    pub fn refused_for(self, cube: bool, cascades: bool) -> Option<&'static str> {
+        match self {
+            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss if cube => Some(
+                "a point light's cube map takes single, pcf3x3, pcf5x5, hw2x2 or hw3x3 (the \
+                 soft filters read a 2D map's texel grid)",
+            ),
+            Filter::Pcss if cascades => Some(
+                "cascades take every filter but pcss (its penumbra is measured in one light \
+                 camera's units, and each cascade has its own box)",
+            ),
+            _ => None,
         }
     }
 
@@ -134,6 +203,9 @@ impl Filter {
             Filter::Pcf5x5 => "pcf5x5",
             Filter::Hardware2x2 => "hw2x2",
             Filter::Hardware3x3 => "hw3x3",
+            Filter::Pcf4x4Weighted => "pcf4x4-weighted",
+            Filter::SoftPcf => "soft-pcf",
+            Filter::Pcss => "pcss",
         }
     }
 }
@@ -418,6 +490,10 @@ pub fn parse_map_size(s: &str) -> Result<MapSize, String> {
     }
 }
 
+/// The points of PCSS's Poisson disk (shaders/lib/soft_filters.glsl): the most taps each
+/// of its two stages can take.
+pub const PCSS_MAX_TAPS: u32 = 32;
+
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
@@ -534,6 +610,10 @@ shadow_settings! {
         /// surface normal (0 = off); the same meaning for 2D, cube and cascade maps.
         normal_offset: f32 = 0.0,
             arg(value_name = "TEXELS", value_parser = parse_finite, allow_negative_numbers = true);
+        /// PCSS: lookups of the blocker search (on a rotated Poisson disk, 1 to 32).
+        pcss_blocker_taps: u32 = 16, arg(value_name = "N", allow_negative_numbers = true);
+        /// PCSS: lookups of the filter that follows the penumbra (1 to 32).
+        pcss_filter_taps: u32 = 16, arg(value_name = "N", allow_negative_numbers = true);
         /// Shadow-map wrap mode for lookups outside [0, 1].
         wrap: Wrap = Wrap::ClampToEdge;
         /// What fragments beyond the light's far plane get.
@@ -700,6 +780,7 @@ impl ShadowSettings {
                 | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "cascade_lambda"
                 | "cascade_blend" | "shadow_distance" => continue,
                 "perspective_fov" => continue,
+                "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => continue,
                 "light_projection" if perspective => {
                     format!("perspective light, fov {}", self.perspective_fov)
                 }
@@ -758,6 +839,16 @@ impl ShadowSettings {
                 "shadow.perspective_fov = {}: expected degrees between 0 and 180",
                 self.perspective_fov
             ));
+        }
+        for (name, v) in [
+            ("pcss_blocker_taps", self.pcss_blocker_taps),
+            ("pcss_filter_taps", self.pcss_filter_taps),
+        ] {
+            if !(1..=PCSS_MAX_TAPS).contains(&v) {
+                return bad(format!(
+                    "shadow.{name} = {v}: expected 1 to {PCSS_MAX_TAPS} (the Poisson disk's points)"
+                ));
+            }
         }
         let max = MAX_CASCADES;
         if !(1..=max).contains(&self.cascades) {

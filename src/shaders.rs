@@ -54,6 +54,10 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/shadow_2d.glsl"),
     ),
     (
+        "lib/soft_filters.glsl",
+        include_str!("../shaders/lib/soft_filters.glsl"),
+    ),
+    (
         "lib/shadow_cube.glsl",
         include_str!("../shaders/lib/shadow_cube.glsl"),
     ),

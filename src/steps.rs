@@ -1,11 +1,13 @@
-//! The chapters' steps as data: each step is a named preset of [`ShadowSettings`], built by
-//! applying every earlier step's change to the chapter's starting point. Nothing here draws;
-//! the renderer is the same for every step.
+//! The tutorials' steps as data: each step is a named preset of [`ShadowSettings`], built by
+//! applying every earlier step's change to the tutorial's starting point. Nothing here
+//! draws; the renderer is the same for every step. A scene names its list (`[steps] list`):
+//! the chapters' ([`STEPS`]) or the shadow-playground's demo pages ([`PLAYGROUND_STEPS`]).
 
 use crate::error::{Error, Result};
-use crate::scene::{Scene, StepContext};
+use crate::scene::{Scene, StepContext, StepList};
 use crate::settings::{
-    BeyondFar, BiasMode, Cull, Filter, LightProjection, ShadowSettings, ShadowTechnique, Wrap,
+    BeyondFar, BiasMode, Cull, Filter, LightProjection, MapSize, ShadowSettings, ShadowTechnique,
+    Wrap,
 };
 
 /// One step of the chapters.
@@ -146,6 +148,71 @@ pub const STEPS: &[Step] = &[
     },
 ];
 
+/// The shadow-playground's demo pages in its order (basic, PCF, soft PCF; its variance and
+/// moment pages are filters of their own), then PCSS, which the engines add.
+pub const PLAYGROUND_STEPS: &[Step] = &[
+    Step {
+        name: "basic",
+        change: "The playground's basic demo: one comparison, shadowed when the fragment is \
+                 more than its epsilon (5e-3) behind the stored depth.",
+        look_for: "Hard, blocky edges; texels of the 400 x 300 map show along them.",
+        cumulative: true,
+        apply: |s, c| {
+            s.filter = Filter::Single;
+            s.bias_mode = BiasMode::Constant;
+            s.bias = c.bias;
+        },
+    },
+    Step {
+        name: "pcf",
+        change: "Its PCF demo: 16 taps at +-0.5 and +-1.5 texels, the inner 2 x 2 weighing 0.6 \
+                 in all and the outer 12 weighing 0.4; epsilon 1.125e-2; the map twice the \
+                 canvas (800 x 600).",
+        look_for: "Edges soften over about three texels; the larger epsilon detaches the shadow \
+                   a little at the contact.",
+        cumulative: true,
+        apply: |s, _| {
+            s.filter = Filter::Pcf4x4Weighted;
+            s.bias = 1.125e-2;
+            s.map_size = MapSize {
+                width: s.map_size.width * 2,
+                height: s.map_size.height * 2,
+            };
+        },
+    },
+    Step {
+        name: "soft-pcf",
+        change: "Its soft PCF demo: the same taps, each comparison through the sigmoid \
+                 1 / (1 + exp(-1000 diff)).",
+        look_for: "Smoother steps inside the penumbra; surfaces within a few thousandths of \
+                   depth of their own texels are slightly darker.",
+        cumulative: true,
+        apply: |s, _| s.filter = Filter::SoftPcf,
+    },
+    Step {
+        name: "pcss",
+        change: "Percentage-closer soft shadows (the engines' answer): a blocker search, then a \
+                 filter as wide as the penumbra the light's size casts from that depth.",
+        look_for: "Shadows sharp where the cube touches the slab and wider away from it, as the \
+                   area-light truth's.",
+        cumulative: true,
+        apply: |s, _| s.filter = Filter::Pcss,
+    },
+];
+
+/// The steps of `scene`'s list (`[steps] list`).
+pub fn of(scene: &Scene) -> &'static [Step] {
+    list(scene.steps.list)
+}
+
+/// The steps of a list.
+pub fn list(list: StepList) -> &'static [Step] {
+    match list {
+        StepList::Chapters => STEPS,
+        StepList::Playground => PLAYGROUND_STEPS,
+    }
+}
+
 /// The chapter's starting point for a scene: its own settings with one lookup, no bias, no
 /// culling, an orthographic light and the wrap its tutorial starts with.
 pub fn start(scene: &Scene) -> ShadowSettings {
@@ -164,26 +231,39 @@ pub fn start(scene: &Scene) -> ShadowSettings {
     }
 }
 
-/// The settings of step `name` for `scene`: every earlier cumulative step, then this one.
+/// The settings of step `name` for `scene`: every earlier cumulative step of its list,
+/// then this one.
 pub fn settings_for(scene: &Scene, name: &str) -> Result<ShadowSettings> {
-    let index = STEPS.iter().position(|s| s.name == name).ok_or_else(|| {
+    let steps = of(scene);
+    let index = steps.iter().position(|s| s.name == name).ok_or_else(|| {
         Error::Invalid(format!(
-            "unknown step '{name}': expected one of {}",
-            names().join(", ")
+            "unknown step '{name}' for the {} scene (its [steps] list is \"{}\"): expected one \
+             of {}",
+            scene.name,
+            scene.steps.list.name(),
+            steps.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
         ))
     })?;
     let mut s = start(scene);
-    for step in STEPS[..index].iter().filter(|s| s.cumulative) {
+    for step in steps[..index].iter().filter(|s| s.cumulative) {
         (step.apply)(&mut s, &scene.steps);
     }
-    (STEPS[index].apply)(&mut s, &scene.steps);
+    (steps[index].apply)(&mut s, &scene.steps);
     Ok(s)
 }
 
+/// Every list's step names, each once (what `--step` takes; a scene takes its own list's).
 pub fn names() -> Vec<&'static str> {
-    STEPS.iter().map(|s| s.name).collect()
+    let mut names: Vec<&'static str> = Vec::new();
+    for step in STEPS.iter().chain(PLAYGROUND_STEPS) {
+        if !names.contains(&step.name) {
+            names.push(step.name);
+        }
+    }
+    names
 }
 
-pub fn get(name: &str) -> Option<&'static Step> {
-    STEPS.iter().find(|s| s.name == name)
+/// Step `name` of `scene`'s list.
+pub fn get(scene: &Scene, name: &str) -> Option<&'static Step> {
+    of(scene).iter().find(|s| s.name == name)
 }

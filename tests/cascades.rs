@@ -139,6 +139,7 @@ fn cascades_beat_one_map_of_the_same_memory_on_the_large_scene() {
     let ctx = common::context();
     let scene = large();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 640,
         height: 360,
         supersample: 1,
@@ -206,6 +207,7 @@ fn cascades_on_the_dummy_game_keep_the_shadow() {
     let ctx = common::context();
     let scene = Scene::load("dummy").unwrap();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 640,
         height: 360,
         supersample: 1,

@@ -116,7 +116,11 @@ fn the_readme_lists_every_filter() {
         .expect("a comment listing the filters")
         .1;
     let listed: Vec<&str> = comment.split('"').skip(1).step_by(2).collect();
-    let all: Vec<&str> = Filter::ALL.iter().map(|f| f.name()).collect();
+    let all: Vec<&str> = Filter::ALL
+        .iter()
+        .chain(&Filter::SOFT)
+        .map(|f| f.name())
+        .collect();
     assert_eq!(listed, all, "README: {line}");
     // And every filter is a value the scene files take.
     for name in all {

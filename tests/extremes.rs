@@ -18,6 +18,7 @@ const SIZE: (u32, u32) = (320, 180);
 
 fn measure(ctx: &HeadlessContext, scene: &Scene, s: &ShadowSettings) -> Metrics {
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: SIZE.0,
         height: SIZE.1,
         supersample: 1,
@@ -371,6 +372,7 @@ fn perspective_lights_over_near_planes_and_ratios() {
         far: 20.0,
         casts_shadows: true,
         shadow: Default::default(),
+        size: 0.0,
     });
     eprintln!("| near | far/near | misclassified |");
     for near in [1e-4f32, 1e-3, 1e-2, 0.1, 1.0] {

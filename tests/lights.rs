@@ -16,6 +16,7 @@ fn measure(scene: &Scene, s: &ShadowSettings) -> shadowmap::reference::Metrics {
 fn measure_light(scene: &Scene, s: &ShadowSettings, light: usize) -> shadowmap::reference::Metrics {
     let ctx = common::context();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 400,
         height: 300,
         supersample: 2,

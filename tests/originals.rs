@@ -216,6 +216,7 @@ fn playground_bulb_lights_its_whole_frustum_where_rays_say() {
     let ctx = common::context();
     let scene = Scene::load("playground").unwrap();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 400,
         height: 300,
         supersample: 1,

@@ -8,6 +8,7 @@ use shadowmap::compare::{compute_reference, CompareOptions};
 
 fn opts(supersample: u32) -> CompareOptions {
     CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 320,
         height: 180,
         supersample,
@@ -250,6 +251,7 @@ fn slides_reference() -> (shadowmap::Scene, shadowmap::compare::Reference) {
     let ctx = context();
     let scene = shadowmap::Scene::load("slides").unwrap();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 640,
         height: 360,
         ..opts(1)
@@ -404,6 +406,7 @@ fn under_the_sphere(
 ) -> UnderTheSphere {
     let ctx = context();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: 640,
         height: 360,
         ..opts(1)

@@ -32,6 +32,7 @@ fn measure(
     ss: u32,
 ) -> Comparison {
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width: size.0,
         height: size.1,
         supersample: ss,
@@ -307,7 +308,7 @@ fn every_scene_and_step_renders_without_gl_errors() {
     let ctx = common::context();
     for name in Scene::builtin_names() {
         let mut sc = Scene::load(name).unwrap();
-        for st in steps::STEPS {
+        for st in steps::of(&sc) {
             let settings = steps::settings_for(&sc, st.name).unwrap();
             let outputs = Outputs {
                 visibility: true,
@@ -329,4 +330,60 @@ fn every_scene_and_step_renders_without_gl_errors() {
             );
         }
     }
+}
+
+#[test]
+fn the_playground_has_its_demo_pages_as_steps() {
+    use shadowmap::settings::{Filter, MapSize};
+    let scene = Scene::load("playground").unwrap();
+    let names: Vec<&str> = steps::of(&scene).iter().map(|s| s.name).collect();
+    assert_eq!(names, ["basic", "pcf", "soft-pcf", "pcss"]);
+    let at = |name| steps::settings_for(&scene, name).unwrap();
+    let basic = at("basic");
+    assert_eq!((basic.filter, basic.bias), (Filter::Single, 0.005));
+    assert_eq!(
+        basic.map_size,
+        MapSize {
+            width: 400,
+            height: 300
+        }
+    );
+    // The PCF pages: the weighted taps, epsilon 1.125e-2, a map twice the canvas; each
+    // later page keeps them.
+    for (name, filter) in [
+        ("pcf", Filter::Pcf4x4Weighted),
+        ("soft-pcf", Filter::SoftPcf),
+        ("pcss", Filter::Pcss),
+    ] {
+        let s = at(name);
+        assert_eq!((s.filter, s.bias), (filter, 1.125e-2), "{name}");
+        assert_eq!(
+            s.map_size,
+            MapSize {
+                width: 800,
+                height: 600
+            },
+            "{name}"
+        );
+    }
+    assert_eq!(scene.steps.light_size, Some(1.0));
+    // Each scene takes its own list's steps, and says which it has.
+    let e = steps::settings_for(&scene, "cull-front")
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "unknown step 'cull-front' for the playground scene (its [steps] list is \"playground\"): \
+         expected one of basic, pcf, soft-pcf, pcss"
+    );
+    let dummy = Scene::load("dummy").unwrap();
+    let e = steps::settings_for(&dummy, "soft-pcf")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with(
+            "unknown step 'soft-pcf' for the dummy scene (its [steps] list is \"chapters\")"
+        ),
+        "{e}"
+    );
 }

@@ -29,6 +29,7 @@ fn holds(ctx: &HeadlessContext, scene: &Scene, light: usize, what: &str) -> (usi
         supersample: 1,
         band: 1,
         light,
+        rays: shadowmap::compare::AREA_RAYS,
     };
     let c =
         compare(ctx.gl(), scene, &volumes(scene), &opts).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -78,6 +79,7 @@ fn shadowed_receivers(ctx: &HeadlessContext, scene: &Scene, light: usize) -> usi
         supersample: 1,
         band: 1,
         light,
+        rays: shadowmap::compare::AREA_RAYS,
     };
     let c = compare(ctx.gl(), scene, &volumes(scene), &opts).unwrap();
     c.reference
@@ -362,6 +364,7 @@ fn a_light_with_its_own_volumes_mixes_with_maps() {
         supersample: 1,
         band: 1,
         light,
+        rays: shadowmap::compare::AREA_RAYS,
     };
     let spot = compare(ctx.gl(), &scene, &scene.shadow, &opts(1)).unwrap();
     assert_eq!(

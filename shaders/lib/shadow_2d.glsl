@@ -6,6 +6,13 @@
 //                   textureSize query per pixel)
 //   BEYOND_FAR_LIT  0 = the book (z > 1 compares, and reads as shadowed),
 //                   1 = LearnOpenGL (z > 1 is lit)
+//   FILTER_KERNEL   0 = the grid of PCF_RADIUS; 1 to 3 = a soft filter (soft_filters.glsl)
+
+#define KERNEL_MAP SHADOW_SAMPLER_2D shadowMap
+#define KERNEL_DEPTH(uv) texture(shadowMap, uv).r
+#include "lib/soft_filters.glsl"
+#undef KERNEL_MAP
+#undef KERNEL_DEPTH
 
 // 1 = lit, 0 = in shadow: the book returns the shadow factor, we return what is left of
 // the light (1 - shadowFactor), so filters and lights multiply. `position` is the
@@ -17,6 +24,11 @@ float calcShadow(SHADOW_SAMPLER_2D shadowMap, vec4 position, vec3 normal, vec3 t
     vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
     float currentDepth = projCoords.z - depthBias(normal, toLightDir);
 
+#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
+    float lit = softTaps(shadowMap, projCoords.xy, currentDepth);
+#elif FILTER_KERNEL == 3
+    float lit = pcss(shadowMap, projCoords.xy, projCoords.z, currentDepth);
+#else
     // Percentage-closer filtering: the lit fraction of a grid of comparisons, one texel
     // apart.
     vec2 inc = SHADOW_TEXEL;
@@ -27,6 +39,7 @@ float calcShadow(SHADOW_SAMPLER_2D shadowMap, vec4 position, vec3 normal, vec3 t
         }
     }
     lit /= PCF_TAPS;
+#endif
 #if BEYOND_FAR_LIT
     // A select, not an early return: no branch per pixel.
     lit = projCoords.z > 1.0 ? 1.0 : lit;

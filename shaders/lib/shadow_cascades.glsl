@@ -3,16 +3,26 @@
 // covering a slice of the view. Compiled with the defines of bias.glsl and:
 //   CASCADES       layers (2 to 4)
 //   CASCADE_BLEND  the last fraction of each cascade that fades into the next
-//   SHADOW_TEXEL, PCF_RADIUS as for the 2D test
+//   SHADOW_TEXEL, PCF_RADIUS, FILTER_KERNEL as for the 2D test (PCSS is refused for
+//                  cascades: src/settings.rs, Filter::refused_for)
 
 // The cascaded light's position in each cascade's clip space (scene.vert: one light has
 // cascades, so they fit among the vertex outputs).
 in vec4 cascadePos[CASCADES];
 uniform float cascadeSplit[CASCADES + 1];  // view depths: cascade c serves [c, c + 1)
 
-// The PCF grid of calcShadow, in one layer of the array.
+#define KERNEL_MAP SHADOW_SAMPLER_ARRAY map, float layer
+#define KERNEL_DEPTH(uv) texture(map, vec3(uv, layer)).r
+#include "lib/soft_filters.glsl"
+#undef KERNEL_MAP
+#undef KERNEL_DEPTH
+
+// The PCF grid of calcShadow (or the playground's soft taps), in one layer of the array.
 float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
 {
+#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
+    return softTaps(map, layer, uv, current);
+#else
     vec2 inc = SHADOW_TEXEL;
     float lit = 0.0;
     for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
@@ -21,6 +31,7 @@ float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
         }
     }
     return lit / PCF_TAPS;
+#endif
 }
 
 // The test in cascade `c` (the position already pushed along the normal by the cascade's

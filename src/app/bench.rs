@@ -48,6 +48,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         frames: args.frames,
         supersample: args.supersample,
         band: args.band,
+        rays: args.rays,
     };
     eprintln!(
         "bench: {} configurations of the {} scene at {width}x{height}, {} frames each after {} \
@@ -85,9 +86,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         counter
             .get_or_insert_with(|| Counter::new(configs.len() as u64))
             .step(&format!(
-                "{}: {:.2} ms, {:.3}% wrong",
+                "{}: {:.2} ms, {} {:.3}%",
                 row.label(),
                 row.wall_ms.median,
+                row.error_name(),
                 row.error() * 100.0
             ));
     })?;
@@ -126,12 +128,13 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if let Some(target) = args.target_error {
         match bench::cheapest_under(&rows, target) {
             Some(r) => println!(
-                "cheapest configuration with error <= {:.3}%: {} ({:.2} ms, {:.3}% misclassified)\n  \
+                "cheapest configuration with error <= {:.3}%: {} ({:.2} ms, {} {:.3}%)\n  \
                  as flags: --map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} \
                  --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {}",
                 target * 100.0,
                 r.label(),
                 r.wall_ms.median,
+                r.error_name(),
                 r.error() * 100.0,
                 r.config.settings.map_size,
                 r.config.settings.filter.name(),

@@ -66,6 +66,12 @@ pub struct SceneArgs {
     /// lights have no angle: the flag is refused for them.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub light_angle: Option<f32>,
+    /// Every light's size, replacing the scene file's `size`: a directional light's
+    /// angular diameter in degrees (the sun: 0.53), a spot or point light's radius in world
+    /// units; 0 = a point (hard shadows). PCSS widens its penumbra with it, and `compare`
+    /// and `bench` measure against a light of that size (rays to its disc).
+    #[arg(long, value_name = "SIZE", value_parser = shadowmap::settings::parse_finite, allow_negative_numbers = true)]
+    pub light_size: Option<f32>,
     /// Frame size in pixels; default: the scene's size.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
@@ -152,6 +158,7 @@ impl Default for DemoArgs {
             scene: SceneArgs {
                 scene: "dummy".into(),
                 light_angle: None,
+                light_size: None,
                 size: None,
                 camera_position: None,
                 camera_rotation: None,
@@ -206,6 +213,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
+    /// (for a light with a size) reference-area.png and error-area.png, and
     /// metrics.json (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
@@ -230,6 +238,10 @@ pub struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub light: usize,
+    /// Rays per pixel to a light with a size (--light-size, or the scene's `size`): the
+    /// soft-shadow truth, stratified over the light's disc.
+    #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
+    pub rays: u32,
     /// What the frame is scored against: `cpu`, the exact ray cast; or `volumes`, the
     /// stencil shadow volumes' answer (the GPU's exact hard shadows), whose own agreement
     /// with the ray cast is printed beside.
@@ -284,6 +296,9 @@ pub struct BenchArgs {
     /// Print the cheapest configuration whose misclassified fraction is at most E (0.01 = 1%).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true)]
     pub target_error: Option<f64>,
+    /// Rays per pixel to a light with a size (the soft-shadow truth).
+    #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
+    pub rays: u32,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -404,6 +419,18 @@ impl SceneArgs {
                      only a directional light",
                     scene.name
                 )));
+            }
+        }
+        if let Some(size) = self.light_size {
+            for light in &mut scene.lights {
+                if let Some(problem) = light.size_problem(size) {
+                    return Err(shadowmap::Error::Invalid(format!(
+                        "--light-size {problem}; the {} scene has a {} light",
+                        scene.name,
+                        light.kind_name()
+                    )));
+                }
+                light.set_size(size);
             }
         }
         Ok(scene)
@@ -557,6 +584,17 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
              perspective); spot lights use their own fov"
                 .to_string(),
         ));
+    }
+    let pcss = scene.lights.iter().any(|l| {
+        l.casts_shadows() && l.settings(settings).filter == shadowmap::settings::Filter::Pcss
+    });
+    if !pcss {
+        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
+            idle.push((
+                name,
+                "no light's filter is pcss (--filter pcss); only PCSS takes its counts".to_string(),
+            ));
+        }
     }
     let snapped = |s: &ShadowSettings| {
         s.light_projection == LightProjection::Ortho && (s.fit == Fit::Scene || s.cascades > 1)

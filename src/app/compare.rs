@@ -30,15 +30,20 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         supersample: args.supersample,
         band: args.band,
         light: args.light,
+        rays: args.rays,
     };
     // The steps of `shadowmap::compare::compare`, one at a time so each can be shown.
     let n = args.supersample;
     let activity = Activity::start(format!(
-        "compare: tracing the exact reference for the {} scene at {width}x{height}{}",
+        "compare: tracing the exact reference for the {} scene at {width}x{height}{}{}",
         scene.name,
         match n {
             1 => String::new(),
             _ => format!(" (and {n}x{n} supersampled)"),
+        },
+        match scene.lights.get(args.light).map_or(0.0, |l| l.size()) {
+            0.0 => String::new(),
+            _ => format!(" and the area light's, {} rays per pixel", args.rays),
         }
     ));
     // With --truth volumes the ray cast follows the volumes' light (they cast from the
@@ -79,6 +84,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
     let vis = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(vis, args.band);
+    let area = reference.score_area(vis);
     activity.done("");
 
     let mut files: Vec<(&str, Vec<u8>)> = Vec::new();
@@ -102,6 +108,19 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         rgba: error.concat(),
     })?;
     files.push(("error.png", error.encode_png()?));
+    if let Some(truth) = &reference.area {
+        files.push((
+            "reference-area.png",
+            reference_image(width, height, &truth.pixels).encode_png()?,
+        ));
+        let error = error_image(width as usize, height as usize, vis, &truth.pixels, &grey);
+        let error = super::plot::with_error_legend(ImageData {
+            width,
+            height,
+            rgba: error.concat(),
+        })?;
+        files.push(("error-area.png", error.encode_png()?));
+    }
     let g = &reference.gbuffer;
     let world: Vec<[f32; 3]> = (0..g.positions.len())
         .map(|i| reference.world_position(i).as_vec3().to_array())
@@ -133,6 +152,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         },
         "volumes_vs_cpu": agreement,
         "metrics": metrics,
+        // A light with a size: the soft truth's figures (null for a point light).
+        "light_size": scene.lights.get(args.light).map(|l| l.size()),
+        "area_light": area,
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
     create_output_dir(dir)?;
@@ -168,6 +190,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             a.misclassified_outside_band,
             args.band
         );
+    }
+    if let Some(a) = &area {
+        println!("{}", area_summary(a));
     }
     println!("{ERROR_COLOURS}");
     println!(
@@ -211,6 +236,23 @@ pub fn summary(scene: &str, settings: &str, m: &Metrics, band: usize) -> String 
         m.receivers,
         pct(m.misclassified_outside_band_rate),
         m.mae.map_or("n/a".to_string(), |v| format!("{v:.4}")),
+    )
+}
+
+/// The line `compare` adds for a light with a size.
+pub fn area_summary(a: &shadowmap::reference::SoftMetrics) -> String {
+    format!(
+        "against the area light ({} rays per pixel): MAE {:.4}, light bleeding {:.3}%, false \
+         shadow {:.3}%, penumbra width error {:.2} px ({:.2} px against the truth's {:.2} px \
+         over {} edges)",
+        a.rays,
+        a.mae,
+        a.light_bleed_rate * 100.0,
+        a.false_shadow_rate * 100.0,
+        a.penumbra_width_error_px,
+        a.penumbra_width_px,
+        a.penumbra_width_truth_px,
+        a.penumbra_edges
     )
 }
 

@@ -57,6 +57,12 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         Err(_) => return headless_fallback(args, scene, &settings),
     };
     let size = args.scene.size(&scene);
+    let step = args
+        .settings
+        .step
+        .as_deref()
+        .and_then(|name| steps::get(&scene, name))
+        .map(|s| s.name);
     let mut demo = Demo {
         args: args.clone(),
         scene,
@@ -78,12 +84,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         last_title: Instant::now() - Duration::from_secs(1),
         screenshot_requested: false,
         screenshots: 0,
-        step: args
-            .settings
-            .step
-            .as_deref()
-            .and_then(steps::get)
-            .map(|s| s.name),
+        step,
         minimised: false,
         skipped: 0,
         depth_light: 0,
@@ -91,6 +92,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         angle_keys_idle: false,
         show_inset: args.inset,
         camera_before_steps: None,
+        sizes_before_steps: None,
         frame_times: Vec::new(),
     };
     // Taken once: past the overhead a light's own horizontal part points the other way.
@@ -255,6 +257,9 @@ struct Demo {
     show_inset: bool,
     /// The camera to go back to when the steps (shown from the scene's steps camera) end.
     camera_before_steps: Option<shadowmap::scene::Camera>,
+    /// The lights' sizes to go back to when the steps (shown with the scene's
+    /// `[steps] light_size`) end.
+    sizes_before_steps: Option<Vec<f32>>,
     /// Wall time of each frame after the first, frame to frame (printed at a scripted exit).
     frame_times: Vec<f64>,
 }
@@ -338,6 +343,22 @@ impl Demo {
                 _ => {}
             }
         }
+        // And with the lights' size its steps ask for (`[steps] light_size`), if any.
+        if self.scene.steps.light_size.is_some() {
+            match (step, self.sizes_before_steps.take()) {
+                (Some(_), None) => {
+                    let sizes = self.scene.lights.iter().map(|l| l.size()).collect();
+                    self.sizes_before_steps = Some(sizes);
+                    self.scene.use_steps_light_size();
+                }
+                (None, Some(sizes)) => {
+                    for (l, size) in self.scene.lights.iter_mut().zip(sizes) {
+                        l.set_size(size);
+                    }
+                }
+                (_, kept) => self.sizes_before_steps = kept,
+            }
+        }
         let settings = match step {
             Some(name) => steps::settings_for(&self.scene, name),
             None => self.args.settings.apply(&mut self.scene),
@@ -366,6 +387,12 @@ impl Demo {
     ) {
         let mut s = self.settings;
         change(&mut s);
+        // What a light cannot be drawn with (cascades with PCSS, a non-square map) is
+        // said, and the key does nothing, rather than ending the demo.
+        if let Err(e) = self.scene.check_light_settings(&s) {
+            eprintln!("note: {e}; the settings stay as they were");
+            return;
+        }
         if let Some(r) = &mut self.running {
             if let Err(e) = r.renderer.set_settings(&s) {
                 return self.fail(event_loop, e);
@@ -687,7 +714,7 @@ impl ApplicationHandler for Demo {
                                 }),
                             _ if !event.repeat => {
                                 if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
-                                    let name = steps::STEPS.get(i).map(|s| s.name);
+                                    let name = steps::of(&self.scene).get(i).map(|s| s.name);
                                     self.select_step(event_loop, name);
                                 }
                             }

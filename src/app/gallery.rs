@@ -25,6 +25,10 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     if !camera_flag {
         scene.camera = scene.steps_camera();
     }
+    // With the lights' size its steps ask for, unless --light-size gives one.
+    if args.scene.light_size.is_none() {
+        scene.use_steps_light_size();
+    }
     scene
         .items
         .iter_mut()
@@ -43,6 +47,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
         width,
         height,
         supersample: args.supersample,
@@ -57,7 +62,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     // The first step is told against the chapter's start, each other against the one before.
     let mut previous = steps::start(&scene);
-    for (i, step) in steps::STEPS.iter().enumerate() {
+    for (i, step) in steps::of(&scene).iter().enumerate() {
         let settings = steps::settings_for(&scene, step.name)?;
         let changed = match changed_fields(&previous, &settings) {
             c if c.is_empty() => "nothing on this scene (the settings of the step before)".into(),
@@ -69,6 +74,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         files.push((image.clone(), frame.colour.encode_png()?));
         let mut metrics: Option<Metrics> = None;
         let mut error_file = None;
+        let mut area = None;
         if !settings.show_depth_map {
             let reference = match references.entry(settings.light_projection) {
                 Entry::Occupied(e) => e.into_mut(),
@@ -82,7 +88,13 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 .chunks_exact(4)
                 .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
                 .collect();
-            let err = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+            // A light with a size: the errors against its area truth (the soft answer).
+            let truth = reference
+                .area
+                .as_ref()
+                .map_or(&reference.hard, |a| &a.pixels);
+            area = reference.score_area(vis);
+            let err = error_image(width as usize, height as usize, vis, truth, &grey);
             let name = format!("{:02}-{}-error.png", i + 1, step.name);
             let err = with_error_legend(ImageData {
                 width,
@@ -106,6 +118,9 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 ))
                 .unwrap_or_else(|| "(depth map)".into())
         );
+        if let Some(a) = &area {
+            println!("   {}", super::compare::area_summary(a));
+        }
         rows.push((step, settings, image, error_file, metrics, changed));
     }
     let mut html = String::new();
@@ -119,8 +134,17 @@ pub fn run(args: &StepsArgs) -> Result<()> {
          <p>Each step adds one change to the one before (variants, marked, do not carry over). Left: the \
          frame; right: its errors against the exact ray-traced reference (red = false shadow, blue = \
          false light). Figures are fractions of the receiver pixels (geometry facing the light); MAE \
-         is against a {1}x{1} supersampled reference.</p>\n",
-        scene.name, args.supersample
+         is against a {1}x{1} supersampled reference.{2}</p>\n",
+        scene.name,
+        args.supersample,
+        match scene.light().size() {
+            0.0 => String::new(),
+            size => format!(
+                " The light has a size ({size}): the error images are against its area truth \
+                 ({} rays per pixel to its disc), and the terminal prints its figures.",
+                shadowmap::compare::AREA_RAYS
+            ),
+        }
     );
     html.push_str("<table><tr><th class=n>step</th><th>false shadow</th><th>false light</th><th>outside 1-px edge band</th><th>MAE</th></tr>\n");
     for (step, _, _, _, m, _) in &rows {

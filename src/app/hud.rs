@@ -79,8 +79,8 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         n => format!(" (+{} more)", n - 1),
     };
     let step = match info.step {
-        Some(name) => match steps::STEPS.iter().position(|s| s.name == name) {
-            Some(i) => format!("Step {} of {}: {name}", i + 1, steps::STEPS.len()),
+        Some(name) => match steps::of(scene).iter().position(|s| s.name == name) {
+            Some(i) => format!("Step {} of {}: {name}", i + 1, steps::of(scene).len()),
             None => format!("Step: {name}"),
         },
         None => format!("Settings: the {} scene's own", scene.name),

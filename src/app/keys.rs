@@ -9,7 +9,10 @@ pub const KEYS: &[(&str, &str)] = &[
     ("A / D", "move left / right"),
     ("Z / X", "move down / up"),
     ("right drag", "look around"),
-    ("1..9, 0, -, =", "chapter step 1 to 12"),
+    (
+        "1..9, 0, -, =",
+        "the scene's steps in order (the chapters: 1 to 12)",
+    ),
     ("Backspace", "the scene's own settings"),
     ("M", "each casting light's shadow map, then the scene"),
     ("V", "shadow maps / stencil shadow volumes"),

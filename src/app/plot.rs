@@ -53,7 +53,10 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
         chart
             .configure_mesh()
             .x_desc("wall time per frame, median (ms, glFinish), log scale")
-            .y_desc("misclassified receiver pixels, log scale (0 drawn at the bottom)")
+            .y_desc(format!(
+                "{}, log scale (0 drawn at the bottom)",
+                rows.first().map_or("error", |r| r.error_name())
+            ))
             .x_label_formatter(&|v| tick_label(*v))
             .y_label_formatter(&|&v| match v <= ERROR_FLOOR_PCT * 1.0001 {
                 true => format!("≤{}%", tick_label(v)),
@@ -70,6 +73,7 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             (Family::PointLayered, RGBColor(140, 60, 190)),
             (Family::PointSixPasses, RGBColor(230, 140, 20)),
             (Family::Volumes, RGBColor(220, 30, 30)),
+            (Family::Soft, RGBColor(30, 110, 220)),
         ] {
             let points: Vec<(f64, f64)> = rows
                 .iter()

@@ -44,7 +44,8 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         if frame % 50 == 0 {
             // Every 50 frames: the next step and the next map size.
             let k = (frame / 50) as usize;
-            let step = steps::STEPS[k % steps::STEPS.len()].name;
+            let list = steps::of(&scene);
+            let step = list[k % list.len()].name;
             let mut s = steps::settings_for(&scene, step)?;
             s.map_size = sizes[k % sizes.len()].into();
             renderer.set_settings(&s)?;

@@ -247,6 +247,14 @@ impl ShaderProgram {
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
+    pub fn set_vec4_array(&self, name: &'static str, vs: &[Vec4]) {
+        if let Some(loc) = self.location(name) {
+            let flat: Vec<f32> = vs.iter().flat_map(|v| v.to_array()).collect();
+            unsafe { self.gl.uniform_4_f32_slice(Some(&loc), &flat) };
+        }
+    }
+
+    /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_f32_array(&self, name: &'static str, vs: &[f32]) {
         if let Some(loc) = self.location(name) {
             unsafe { self.gl.uniform_1_f32_slice(Some(&loc), vs) };

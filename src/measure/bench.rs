@@ -9,7 +9,7 @@ use glam::Vec3;
 use serde::Serialize;
 
 use super::compare::{compute_reference, CompareOptions, Reference};
-use super::reference::Metrics;
+use super::reference::{Metrics, SoftMetrics};
 use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
@@ -106,6 +106,8 @@ pub enum Family {
     PointSixPasses,
     /// Stencil shadow volumes (no map).
     Volumes,
+    /// One 2D map read through a soft filter (the playground's, PCSS).
+    Soft,
 }
 
 impl Family {
@@ -115,6 +117,7 @@ impl Family {
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
             (ShadowKind::Volume, _) => Family::Volumes,
+            (ShadowKind::Map, _) if light.settings(s).filter.soft() => Family::Soft,
             _ => Family::OneMap,
         }
     }
@@ -126,6 +129,7 @@ impl Family {
             Family::PointLayered => "point light, layered",
             Family::PointSixPasses => "point light, six passes",
             Family::Volumes => "shadow volumes",
+            Family::Soft => "one map, soft filter",
         }
     }
 }
@@ -186,6 +190,7 @@ pub fn sweep(
         ..*base
     };
     let mut out = sweep_grid(base, quick, max_texture_size);
+    out.extend(soft_grid(base, quick, light));
     // The tutorials' configurations go in the middle of the sweep (below): the first and
     // last places (timed at the start and at the very end) are the likeliest to catch the
     // machine changing state.
@@ -258,6 +263,38 @@ pub fn sweep(
     rest
 }
 
+/// The soft filters' configurations, for a light with a size (a point light has none: its
+/// cube map takes no soft filter): 1024^2 (and 2048^2 in the full sweep), each soft filter,
+/// LearnOpenGL's constant and slope biases.
+fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConfig> {
+    if light.size() <= 0.0 {
+        return Vec::new();
+    }
+    let sizes: &[u32] = if quick { &[1024] } else { &[1024, 2048] };
+    let mut out = Vec::new();
+    for &side in sizes {
+        for filter in Filter::SOFT {
+            for bias in [BiasPreset::LearnOpenGL, BiasPreset::Slope] {
+                let mut s = *base;
+                s.map_size = MapSize::square(side);
+                s.filter = filter;
+                s.cull = Cull::None;
+                s.depth_format = DepthFormat::D24;
+                bias.apply(&mut s);
+                if light.settings_problem("the light", &s).is_none() {
+                    out.push(BenchConfig {
+                        settings: s,
+                        bias_preset: bias,
+                        tutorial: None,
+                        family: Family::Soft,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
 /// How many configurations [`sweep`] tries for each kind of light, with the default
 /// settings: (the kind, quick, full). The help and the README state these; `max_texture_size`
 /// decides whether the driver's largest map joins the full sweep.
@@ -273,6 +310,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         shading_position: None,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     let spot = Light::Spot(SpotLight {
         colour: Vec3::ONE,
@@ -287,6 +325,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         far: 20.0,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     let point = Light::Point(PointLight {
         colour: Vec3::ONE,
@@ -298,6 +337,7 @@ pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usi
         centre: Vec3::ZERO,
         casts_shadows: true,
         shadow: ShadowPatch::default(),
+        size: 0.0,
     });
     [
         (
@@ -402,6 +442,8 @@ pub struct BenchOptions {
     pub frames: u32,
     pub supersample: u32,
     pub band: usize,
+    /// Rays per pixel of the area truth (a light with a size).
+    pub rays: u32,
 }
 
 /// Median and 95th percentile.
@@ -449,14 +491,30 @@ pub struct BenchRow {
     /// fill the volumes cost.
     pub volume_pixels: u64,
     pub metrics: Metrics,
+    /// Against the area truth for a light with a size; for a point light against the hard
+    /// reference (its truth: `rays` 0).
+    pub soft: SoftMetrics,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
 }
 
 impl BenchRow {
-    /// The error the sweep optimises: the misclassified fraction of receiver pixels.
+    /// The error the sweep optimises: the misclassified fraction of receiver pixels, or
+    /// for a light with a size the visibility's MAE against its area truth (a soft shadow
+    /// is right in between, where "misclassified" says nothing).
     pub fn error(&self) -> f64 {
-        self.metrics.misclassified_rate
+        match self.soft.rays {
+            0 => self.metrics.misclassified_rate,
+            _ => self.soft.mae,
+        }
+    }
+
+    /// What [`BenchRow::error`] is, for axes and messages.
+    pub fn error_name(&self) -> &'static str {
+        match self.soft.rays {
+            0 => "misclassified receiver pixels",
+            _ => "MAE against the area light",
+        }
     }
 
     /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
@@ -474,6 +532,7 @@ impl BenchRow {
                     self.volume_pixels
                 )
             }
+            Family::Soft => (s.map_size.to_string(), ""),
         };
         format!(
             "{size} {} {} cull-{} {}{suffix}",
@@ -497,6 +556,7 @@ pub fn bench_reference(
         scene,
         base,
         &CompareOptions {
+            rays: opts.rays,
             width: opts.width,
             height: opts.height,
             supersample: opts.supersample,
@@ -613,6 +673,7 @@ pub fn run(
             scene_gpu_ms: Stat::of(&quieter.scene_gpu),
             volume_pixels: Stat::of(&quieter.volume_pixels).median.max(0.0) as u64,
             metrics: reference.score(&visibility, opts.band),
+            soft: reference.score_soft(&visibility),
             pareto: false,
         };
         progress(&row);
@@ -657,13 +718,16 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
         .min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median))
 }
 
-/// The CSV columns, in order.
+/// The CSV columns, in order (the `area_*`, `light_bleed_rate` and `penumbra_*` ones are
+/// against the area truth, or with `area_rays` 0 against the hard reference of a point
+/// light; `lookups`: shadow-map reads per fragment, [`Filter::lookups`]).
 pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
 misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
-volume_pixels";
+volume_pixels,area_rays,area_mae,light_bleed_rate,area_false_shadow_rate,penumbra_width_px,penumbra_width_truth_px,\
+penumbra_width_error_px,lookups";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -710,18 +774,50 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             r.pareto.to_string(),
             r.volume_pixels.to_string(),
         ];
+        let a = &r.soft;
+        let area = [
+            a.rays.to_string(),
+            format!("{:.6}", a.mae),
+            format!("{:.6}", a.light_bleed_rate),
+            format!("{:.6}", a.false_shadow_rate),
+            format!("{:.3}", a.penumbra_width_px),
+            format!("{:.3}", a.penumbra_width_truth_px),
+            format!("{:.3}", a.penumbra_width_error_px),
+            match r.config.family {
+                // A cube map: one lookup, or LearnOpenGL's 20 on a disk (shadow_cube.glsl).
+                Family::PointLayered | Family::PointSixPasses => match s.filter.radius() {
+                    0 => 1,
+                    _ => 20,
+                },
+                // The stencil decides: no map is read.
+                Family::Volumes => 0,
+                _ => s.filter.lookups(s),
+            }
+            .to_string(),
+        ];
+        let fields: Vec<String> = fields.into_iter().chain(area).collect();
         out.push_str(&fields.join(","));
         out.push('\n');
     }
     out
 }
 
-/// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first.
+/// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first,
+/// then (for a light with a size) every soft filter's configuration, with the figures
+/// against the area truth in three more columns.
 pub fn to_markdown(rows: &[BenchRow]) -> String {
+    let area = rows.iter().any(|r| r.soft.rays > 0);
     let mut out = String::from(
-        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |",
     );
+    if area {
+        out.push_str(" MAE vs area light | light bleeding | penumbra width error px |");
+    }
+    out.push_str("\n|---|---|---|---|---|---|---|---|---|---|");
+    if area {
+        out.push_str("---|---|---|");
+    }
+    out.push('\n');
     let mut shown: Vec<&BenchRow> = rows
         .iter()
         .filter(|r| r.config.tutorial.is_some())
@@ -732,15 +828,22 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         .collect();
     front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
     shown.extend(front);
+    let mut soft: Vec<&BenchRow> = rows
+        .iter()
+        .filter(|r| r.config.family == Family::Soft && !r.pareto)
+        .collect();
+    soft.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
+    shown.extend(soft);
     for r in shown {
-        let name = match r.config.tutorial {
-            Some(t) => format!("**{t}** ({})", r.label()),
-            None => format!("{} (Pareto)", r.label()),
+        let name = match (r.config.tutorial, r.pareto) {
+            (Some(t), _) => format!("**{t}** ({})", r.label()),
+            (None, true) => format!("{} (Pareto)", r.label()),
+            (None, false) => format!("{} (soft)", r.label()),
         };
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |",
             r.wall_ms.median,
             r.wall_ms.p95,
             r.overhead_ms,
@@ -752,6 +855,16 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             pct(m.misclassified_outside_band_rate),
             m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
         ));
+        if area {
+            let a = &r.soft;
+            out.push_str(&format!(
+                " {:.4} | {} | {:.2} |",
+                a.mae,
+                pct(a.light_bleed_rate),
+                a.penumbra_width_error_px
+            ));
+        }
+        out.push('\n');
     }
     out
 }

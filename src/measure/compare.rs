@@ -1,6 +1,7 @@
 //! Measuring a shadow map against the truth: render a frame with its G-buffer, trace the
-//! exact hard-shadow visibility of every pixel on the CPU ([`crate::reference`]), and score
-//! the shadow test's answer ([`crate::reference::metrics`]).
+//! exact hard-shadow visibility of every pixel on the CPU ([`crate::reference`]) (and, for a
+//! light with a size, its soft visibility: [`crate::reference::area`]), and score the
+//! shadow test's answer ([`crate::reference::metrics`]).
 
 use std::time::Instant;
 
@@ -8,12 +9,13 @@ use glam::{DMat4, DVec3};
 
 use super::frame::{render_frames, render_frames_of_light, Frame};
 use super::reference::{
-    compute_metrics, face_normals, reference_visibility, reference_visibility_supersampled, Bvh,
-    GBuffer, LightKind, Metrics, RefPixel, Triangle,
+    area_visibility, compute_metrics, compute_soft_metrics, face_normals, reference_visibility,
+    reference_visibility_supersampled, Bvh, GBuffer, LightExtent, LightKind, Metrics, RefPixel,
+    SoftMetrics, Triangle,
 };
 use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
-use crate::scene::{GameItem, Scene, Shading};
+use crate::scene::{GameItem, Light, Scene, Shading};
 use crate::settings::ShadowSettings;
 use crate::shadows::Rays;
 
@@ -29,6 +31,18 @@ pub struct CompareOptions {
     /// The light measured (its shadow test against its exact visibility); scenes with
     /// several lights are measured one light at a time.
     pub light: usize,
+    /// Rays per pixel to a light with a size (the soft-shadow truth, [`AreaTruth`]).
+    pub rays: u32,
+}
+
+/// The soft-shadow truth's rays per pixel unless told otherwise (`--rays`).
+pub const AREA_RAYS: u32 = 64;
+
+/// The truth for a light with a size: `rays` stratified rays per pixel to its disc.
+pub struct AreaTruth {
+    pub pixels: Vec<RefPixel>,
+    pub rays: usize,
+    pub extent: LightExtent,
 }
 
 /// The exact visibility of a view of a scene; independent of the shadow settings, so one
@@ -39,7 +53,10 @@ pub struct Reference {
     pub gbuffer: GBuffer,
     pub hard: Vec<RefPixel>,
     pub supersampled: Option<Vec<RefPixel>>,
-    /// CPU time to build the BVH and trace both references.
+    /// With a light of non-zero size, the soft truth ([`crate::reference::area`]); the
+    /// figures above stay the hard ones of a point at its centre.
+    pub area: Option<AreaTruth>,
+    /// CPU time to build the BVH and trace the references.
     pub trace_ms: f64,
     pub triangles: usize,
     /// The G-buffer's positions and the traced triangles are relative to this point (the
@@ -72,6 +89,28 @@ pub fn light_kind(
         },
         (Rays::Parallel { to_light }, _) => LightKind::Directional { to_light },
     }
+}
+
+/// The extent of light `index` as the soft reference samples it, under `settings`, or
+/// `None` for a light of size 0 (a point: the hard reference is the truth). A directional
+/// light traced with parallel rays is a cone of its angular diameter; traced from its
+/// shadow position (a perspective map), a disc that subtends the same angle from the
+/// origin; a spot or point light a sphere of its radius.
+pub fn light_extent(scene: &Scene, index: usize, settings: &ShadowSettings) -> Option<LightExtent> {
+    let light = scene.lights.get(index)?;
+    let size = light.size();
+    if size <= 0.0 {
+        return None;
+    }
+    let tan_half = (size.to_radians() * 0.5).tan();
+    let rays = crate::shadows::light_camera(scene, index, settings).rays;
+    Some(match (light, rays) {
+        (Light::Directional(_), Rays::Parallel { .. }) => LightExtent::Cone { tan_half },
+        (Light::Directional(l), Rays::FromPoint { .. }) => LightExtent::Sphere {
+            radius: l.shadow_pos_mult.abs() * tan_half,
+        },
+        (Light::Spot(_) | Light::Point(_), _) => LightExtent::Sphere { radius: size },
+    })
 }
 
 /// The width, in cosine, of a spot's soft rim: the scene shader's
@@ -164,12 +203,21 @@ pub fn compute_reference(
     let supersampled = hi
         .as_ref()
         .map(|hi| reference_visibility_supersampled(&bvh, &light, hi, n as usize));
+    let area = light_extent(scene, opts.light, settings).map(|extent| {
+        let rays = opts.rays.max(1) as usize;
+        AreaTruth {
+            pixels: area_visibility(&bvh, &light, extent, &gbuffer, rays),
+            rays,
+            extent,
+        }
+    });
     Ok(Reference {
         width: opts.width,
         height: opts.height,
         gbuffer,
         hard,
         supersampled,
+        area,
         trace_ms: start.elapsed().as_secs_f64() * 1000.0,
         triangles: bvh.triangle_count(),
         origin,
@@ -196,6 +244,34 @@ impl Reference {
         DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) + self.origin
     }
 
+    /// Scores a rendered visibility image against the soft truth, when the light has a
+    /// size.
+    pub fn score_area(&self, rendered: &[Option<f32>]) -> Option<SoftMetrics> {
+        self.area.as_ref().map(|a| {
+            compute_soft_metrics(
+                self.width as usize,
+                self.height as usize,
+                rendered,
+                &a.pixels,
+                a.rays,
+            )
+        })
+    }
+
+    /// [`Reference::score_area`], or for a light of no size the same figures against the
+    /// hard reference (its truth; `rays` 0).
+    pub fn score_soft(&self, rendered: &[Option<f32>]) -> SoftMetrics {
+        self.score_area(rendered).unwrap_or_else(|| {
+            compute_soft_metrics(
+                self.width as usize,
+                self.height as usize,
+                rendered,
+                &self.hard,
+                0,
+            )
+        })
+    }
+
     /// Scores a rendered visibility image against this reference.
     pub fn score(&self, rendered: &[Option<f32>], band: usize) -> Metrics {
         compute_metrics(
@@ -212,7 +288,8 @@ impl Reference {
 impl Reference {
     /// This reference with the stencil shadow volumes' answer as its truth (`compare
     /// --truth volumes`): a receiver here that the volumes' frame covers keeps being one,
-    /// with the volumes' visibility; the supersampled reference is dropped.
+    /// with the volumes' visibility; the supersampled reference and the area truth (the
+    /// volumes are hard shadows) are dropped.
     pub fn with_volumes_truth(&self, volumes: &[Option<f32>]) -> Reference {
         let hard = self
             .hard
@@ -236,6 +313,7 @@ impl Reference {
             gbuffer: self.gbuffer.clone(),
             hard,
             supersampled: None,
+            area: None,
             trace_ms: self.trace_ms,
             triangles: self.triangles,
             origin: self.origin,
@@ -248,6 +326,8 @@ pub struct Comparison {
     pub frame: Frame,
     pub reference: Reference,
     pub metrics: Metrics,
+    /// Against the soft truth, for a light with a size.
+    pub area: Option<SoftMetrics>,
 }
 
 /// Renders `scene` with `settings`, traces the reference and scores the frame.
@@ -261,10 +341,12 @@ pub fn compare(
     let frame = render_visibility(gl, scene, settings, opts.width, opts.height, opts.light)?;
     let visibility = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(visibility, opts.band);
+    let area = reference.score_area(visibility);
     Ok(Comparison {
         frame,
         reference,
         metrics,
+        area,
     })
 }
 

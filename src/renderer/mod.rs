@@ -473,6 +473,15 @@ impl Renderer {
                     .validate(self.max_texture_size)
                     .map_err(|e| Error::Invalid(format!("light {i}'s own shadow table: {e}")))?;
             }
+            // Checked before any frame by the commands; this guards scenes built in code (a
+            // cube map would otherwise take a soft filter as one lookup without a word).
+            let (cube, cascaded) = (kind == ShadowKind::Cube, kind == ShadowKind::Cascades);
+            if let Some(why) = settings.filter.refused_for(cube, cascaded) {
+                return Err(Error::Invalid(format!(
+                    "shadow.filter = {}: light {i} cannot use it: {why}",
+                    settings.filter.name()
+                )));
+            }
             let fits = match shadow {
                 Some(t) => t.kind() == kind && t.fits(&settings),
                 None => matches!(kind, ShadowKind::None | ShadowKind::Volume),

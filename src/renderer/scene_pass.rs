@@ -2,7 +2,7 @@
 //! unit with its sampler, and the per-item matrices and colours ("Shadows": the scene
 //! shader gets `modelLightViewMatrix` and `orthoProjectionMatrix` besides the camera's).
 
-use glam::{DMat4, Mat3, Mat4, Vec3};
+use glam::{DMat4, Mat3, Mat4, Vec3, Vec4};
 
 use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
@@ -50,6 +50,7 @@ pub fn draw(
     p.set_f32_array("lightConeCos", &u.cone_cos);
     p.set_vec3_array("lightConeAxis", &u.cone_axis);
     p.set_f32_array("lightFar", &u.far);
+    p.set_vec4_array("lightPenumbra", &u.penumbra);
     p.set_f32_array("normalOffset", &u.normal_offset);
     p.set_mat3_array("lightRotation", &u.rotation);
     // The view is rigid: the transpose of its rotation undoes it (G-buffer outputs).
@@ -116,6 +117,8 @@ struct LightUniforms {
     cone_cos: Vec<f32>,
     cone_axis: Vec<Vec3>,
     far: Vec<f32>,
+    /// PCSS's (S.x, S.y, near, far) per light: see [`penumbra`].
+    penumbra: Vec<Vec4>,
     /// Per map slot.
     normal_offset: Vec<f32>,
     projection: Vec<Mat4>,
@@ -141,6 +144,7 @@ impl LightUniforms {
             cone_cos: vec![-2.0; n],
             cone_axis: vec![Vec3::Z; n],
             far: vec![1.0; n],
+            penumbra: vec![Vec4::ZERO; n],
             normal_offset: vec![0.0; mapped],
             projection: vec![Mat4::IDENTITY; mapped],
             light_from: vec![DMat4::IDENTITY; mapped],
@@ -167,6 +171,7 @@ impl LightUniforms {
             else {
                 continue;
             };
+            u.penumbra[i] = penumbra(light, v);
             if let Some(s) = t.slot_transform(light, v, &light.settings(inputs.settings)) {
                 u.normal_offset[p] = s.normal_offset;
                 u.projection[p] = s.projection;
@@ -176,6 +181,22 @@ impl LightUniforms {
         }
         u
     }
+}
+
+/// PCSS's constants for a light's 2D map (shaders/lib/soft_filters.glsl): its size in the
+/// map's units per distance, S = (size term) x (P[0][0], P[1][1]) / 2 with P the light's
+/// projection, and its near and far planes. The size term is a perspective map's light
+/// radius (a directional light's angular radius seen from its shadow position), or an
+/// orthographic map's tan of the angular radius.
+fn penumbra(light: &Light, view: &ShadowView) -> Vec4 {
+    let half_angle = || (light.size().to_radians() * 0.5).tan();
+    let size = match (light, view.perspective) {
+        (Light::Directional(l), true) => l.shadow_pos_mult.abs() * half_angle(),
+        (Light::Directional(_), false) => half_angle(),
+        (Light::Spot(_) | Light::Point(_), _) => light.size(),
+    };
+    let scale = glam::Vec2::new(view.projection.x_axis.x, view.projection.y_axis.y) * 0.5;
+    (scale.abs() * size).extend(view.near).extend(view.far)
 }
 
 /// The matrix that carries normals: the inverse transpose of the upper 3 x 3, so normals

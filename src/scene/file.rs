@@ -20,7 +20,7 @@ use toml::Spanned;
 
 use super::{
     Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, PointLight, Scene,
-    ShadingModel, SpotLight, StepContext, MAX_LIGHTS,
+    ShadingModel, SpotLight, StepContext, StepList, MAX_LIGHTS,
 };
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -101,6 +101,10 @@ struct StepsFile {
     /// The camera the steps are shown from, where the tutorial's own does not show what
     /// they change; fields it leaves out are the scene's `[camera]`'s.
     camera: Option<StepsCameraFile>,
+    /// Which tutorial's steps: "chapters" (the default) or "playground".
+    list: StepList,
+    /// The lights' size while the steps are shown (a step like PCSS needs one).
+    light_size: Option<f32>,
 }
 
 impl Default for StepsFile {
@@ -109,6 +113,8 @@ impl Default for StepsFile {
             bias: 0.05,
             start_wrap: Wrap::ClampToEdge,
             camera: None,
+            list: StepList::Chapters,
+            light_size: None,
         }
     }
 }
@@ -201,6 +207,10 @@ struct DirectionalFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -229,6 +239,10 @@ struct SpotFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -252,6 +266,10 @@ struct PointFile {
     #[serde(default = "yes")]
     casts_shadows: bool,
     /// Its own shadow settings over the scene's `[shadow]`.
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius (0 = a point).
+    #[serde(default)]
+    size: f32,
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -889,6 +907,7 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
             let given_by_light = match setting {
                 "shadow.light_view" => own.light_view.is_some(),
                 "shadow.map_size" => own.map_size.is_some(),
+                "shadow.filter" => own.filter.is_some(),
                 _ => false,
             };
             return Err(match given_by_light {
@@ -898,6 +917,11 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
         }
     }
     let steps = build_steps(&file.steps, &file.camera, cx)?;
+    if let Some(size) = steps.light_size {
+        if let Some(problem) = lights.iter().find_map(|l| l.size_problem(size)) {
+            return Err(cx.bad("steps.light_size", problem));
+        }
+    }
     let mut items = Items::default();
     for (i, item) in file.items.into_iter().enumerate() {
         items.add(i, item, cx)?;
@@ -1018,6 +1042,8 @@ fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result
         bias: s.bias,
         start_wrap: s.start_wrap,
         camera,
+        list: s.list,
+        light_size: s.light_size,
     })
 }
 
@@ -1287,7 +1313,9 @@ fn directional(l: DirectionalFile, prefix: &str, cx: &Context) -> Result<Light> 
         shading_position: position,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 /// An ortho box must be finite, ordered, and not so wide that its width overflows f32
@@ -1318,6 +1346,15 @@ fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
     Ok(())
 }
 
+/// The light with its `size`, checked for its kind.
+fn sized(mut light: Light, size: f32, prefix: &str, cx: &Context) -> Result<Light> {
+    if let Some(problem) = light.size_problem(size) {
+        return Err(cx.bad(format!("{prefix}.size"), problem));
+    }
+    light.set_size(size);
+    Ok(light)
+}
+
 fn point(l: PointFile, prefix: &str, cx: &Context) -> Result<Light> {
     let colour = light_colour(&l.colour, l.intensity, prefix, cx)?;
     cx.finite(&format!("{prefix}.position"), &l.position.0)?;
@@ -1334,7 +1371,9 @@ fn point(l: PointFile, prefix: &str, cx: &Context) -> Result<Light> {
         centre: position,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
@@ -1389,7 +1428,9 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
         far: l.far,
         casts_shadows: l.casts_shadows,
         shadow: l.shadow,
+        size: 0.0,
     }))
+    .and_then(|light| sized(light, l.size, prefix, cx))
 }
 
 // ---------------------------------------------------------------------------------------
@@ -1722,6 +1763,37 @@ mod tests {
     }
 
     #[test]
+    fn a_lights_size_is_read_and_checked_for_its_kind() {
+        let sun = parse(
+            "[light]\nangle = 45.0\nsize = 0.53\n",
+            Path::new("s.toml"),
+            None,
+        )
+        .unwrap();
+        assert_eq!(sun.lights[0].size(), 0.53);
+        refuses(
+            "[light]\nangle = 45.0\nsize = 90.0\n",
+            "light.size",
+            "90: expected an angular diameter in degrees (the sun: 0.53) under 90",
+        );
+        refuses(
+            "[light]\nkind = \"point\"\nposition = [0.0, 1.0, 0.0]\nsize = -0.5\n",
+            "light.size",
+            "-0.5: expected a radius in world units >= 0 (0 = a point)",
+        );
+        refuses(
+            "[light]\nangle = 45.0\n[steps]\nlight_size = 120.0\n",
+            "steps.light_size",
+            "120: expected an angular diameter in degrees",
+        );
+        refuses(
+            "[light]\nangle = 45.0\n[steps]\nlist = \"book\"\n",
+            "steps.list",
+            "unknown variant `book`, expected `chapters` or `playground`",
+        );
+    }
+
+    #[test]
     fn every_built_in_scene_loads() {
         for name in Scene::builtin_names() {
             let scene = Scene::load(name).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -1948,7 +2020,7 @@ mod tests {
              fov = 30.0\n",
             "lights[1].fov",
             "not used by a point light (line 6, column 7); it takes kind, colour, intensity, \
-             position, near, far, oscillate, casts_shadows, shadow",
+             position, near, far, oscillate, casts_shadows, size, shadow",
         );
         refuses(
             "[light]\nangle = 45.0\nshadow_pos_multi = 5.0\n",
@@ -1996,6 +2068,7 @@ mod tests {
                 "far",
                 "oscillate",
                 "casts_shadows",
+                "size",
                 "shadow"
             ]
         );

@@ -37,6 +37,10 @@ impl Default for OrthoCoords {
     }
 }
 
+/// A directional light's angular diameter stays under this many degrees (its cone's half
+/// angle under 45).
+pub const MAX_ANGULAR_DIAMETER: f32 = 90.0;
+
 /// The largest |x| of a (unit) direction the book's angle view represents: its two angles,
 /// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane.
 pub const BOOK_ANGLES_MAX_X: f32 = 1e-6;
@@ -59,6 +63,9 @@ pub struct DirectionalLight {
     pub casts_shadows: bool,
     /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
     pub shadow: ShadowPatch,
+    /// Its angular diameter in degrees (the sun: 0.53); 0 = a point at infinity, whose
+    /// shadows are hard. Soft filters (PCSS) and the area-light reference read it.
+    pub size: f32,
 }
 
 impl DirectionalLight {
@@ -198,6 +205,8 @@ pub struct SpotLight {
     pub casts_shadows: bool,
     /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
     pub shadow: ShadowPatch,
+    /// Its radius in world units (a disc facing what it lights); 0 = a point.
+    pub size: f32,
 }
 
 /// A light shining every way from a point, with an omnidirectional shadow in a depth cube
@@ -217,6 +226,8 @@ pub struct PointLight {
     pub casts_shadows: bool,
     /// This light's own shadow settings over the scene's `[shadow]` (its `shadow` table).
     pub shadow: ShadowPatch,
+    /// Its radius in world units (a sphere); 0 = a point.
+    pub size: f32,
 }
 
 /// A scene's light.
@@ -280,6 +291,57 @@ impl Light {
         s
     }
 
+    /// Its size: a directional light's angular diameter in degrees, a spot or point
+    /// light's radius in world units (0 = a point: hard shadows).
+    pub fn size(&self) -> f32 {
+        match self {
+            Light::Directional(l) => l.size,
+            Light::Spot(l) => l.size,
+            Light::Point(l) => l.size,
+        }
+    }
+
+    pub fn set_size(&mut self, size: f32) {
+        match self {
+            Light::Directional(l) => l.size = size,
+            Light::Spot(l) => l.size = size,
+            Light::Point(l) => l.size = size,
+        }
+    }
+
+    /// "directional", "spot" or "point", as scene files name them.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Light::Directional(_) => "directional",
+            Light::Spot(_) => "spot",
+            Light::Point(_) => "point",
+        }
+    }
+
+    /// What `size` means for this kind of light, for messages.
+    pub fn size_unit(&self) -> &'static str {
+        match self {
+            Light::Directional(_) => "an angular diameter in degrees (the sun: 0.53)",
+            Light::Spot(_) | Light::Point(_) => "a radius in world units",
+        }
+    }
+
+    /// Why `size` cannot be this light's (named `name`), if it cannot: a finite number
+    /// >= 0, and a directional light's diameter under 90 degrees.
+    pub fn size_problem(&self, size: f32) -> Option<String> {
+        let max = match self {
+            Light::Directional(_) => MAX_ANGULAR_DIAMETER,
+            _ => f32::MAX,
+        };
+        (!(size.is_finite() && (0.0..max).contains(&size))).then(|| match self {
+            Light::Directional(_) => format!(
+                "{size}: expected {} under {MAX_ANGULAR_DIAMETER} (0 = a point)",
+                self.size_unit()
+            ),
+            _ => format!("{size}: expected {} >= 0 (0 = a point)", self.size_unit()),
+        })
+    }
+
     pub fn casts_shadows(&self) -> bool {
         match self {
             Light::Directional(l) => l.casts_shadows,
@@ -316,6 +378,16 @@ impl Light {
                 return Some(format!("shadow.light_view = {problem}"));
             }
         }
+        let cube = matches!(self, Light::Point(_));
+        let cascades = matches!(self, Light::Directional(_))
+            && settings.cascades > 1
+            && settings.light_projection == LightProjection::Ortho;
+        if let Some(why) = settings.filter.refused_for(cube, cascades) {
+            return Some(format!(
+                "shadow.filter = {}: {name} cannot use it: {why}",
+                settings.filter.name()
+            ));
+        }
         let square = match self {
             Light::Point(_) => Some("a point light's cube map"),
             Light::Directional(_)
@@ -336,8 +408,17 @@ impl Light {
         })
     }
 
-    /// A short description for titles and reports.
+    /// A short description for titles and reports (with its size, when it has one).
     pub fn describe(&self) -> String {
+        let size = match self {
+            _ if self.size() == 0.0 => String::new(),
+            Light::Directional(_) => format!(", {} deg wide", self.size()),
+            Light::Spot(_) | Light::Point(_) => format!(", radius {}", self.size()),
+        };
+        format!("{}{size}", self.describe_point())
+    }
+
+    fn describe_point(&self) -> String {
         match self {
             Light::Directional(l) if l.direction.x == 0.0 => {
                 format!("light {:.1} deg", l.angle_deg())

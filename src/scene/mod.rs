@@ -99,6 +99,31 @@ pub struct StepContext {
     /// The camera its steps are shown from (`[steps] camera`), where the tutorial's own
     /// does not show what they change; `None`: the scene's camera.
     pub camera: Option<Camera>,
+    /// Which tutorial's steps it has (`[steps] list`): see `crate::steps::of`.
+    pub list: StepList,
+    /// The lights' size while its steps are shown (`[steps] light_size`), where the
+    /// tutorial's light is a point but a step (PCSS) needs a size; `None`: the lights' own.
+    pub light_size: Option<f32>,
+}
+
+/// The lists of steps a scene can have (`[steps] list`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StepList {
+    /// The chapters' (LWJGL "Shadows", LearnOpenGL "Shadow Mapping", the slides).
+    #[default]
+    Chapters,
+    /// The shadow-playground's demo pages, then PCSS.
+    Playground,
+}
+
+impl StepList {
+    pub fn name(self) -> &'static str {
+        match self {
+            StepList::Chapters => "chapters",
+            StepList::Playground => "playground",
+        }
+    }
 }
 
 impl Scene {
@@ -191,6 +216,14 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The lights as the steps show them: each given `[steps] light_size`, if the scene
+    /// has one.
+    pub fn use_steps_light_size(&mut self) {
+        if let Some(size) = self.steps.light_size {
+            self.lights.iter_mut().for_each(|l| l.set_size(size));
+        }
     }
 
     /// The camera the chapter steps are shown from: `[steps] camera`, else the scene's.

@@ -317,6 +317,7 @@ pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl
     LightGlsl {
         snippet: "lib/shadow_cascades.glsl",
         functions: &[
+            "softTaps",
             "pcfArray",
             "cascadeLookup",
             "calcShadowCascades",

@@ -31,7 +31,14 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
 pub fn glsl(i: usize, p: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
     LightGlsl {
         snippet: "lib/shadow_2d.glsl",
-        functions: &["calcShadow", "addLight2D"],
+        functions: &[
+            "softTaps",
+            "pcssDistance",
+            "pcssPenumbra",
+            "pcss",
+            "calcShadow",
+            "addLight2D",
+        ],
         sampler_type: if hardware {
             "sampler2DShadow"
         } else {

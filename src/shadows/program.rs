@@ -73,7 +73,7 @@ impl ProgramKey {
                 cone,
                 // Volumes have no test in the shader: the stencil decides.
                 test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume))
-                    .then(|| ShadowTest::of(&own)),
+                    .then(|| ShadowTest::for_light(light, &own)),
             });
         }
         Ok(ProgramKey {

@@ -12,8 +12,11 @@
 //! [`super::cascades::glsl`]).
 
 use super::{cascades, cube, map2d, volumes, ShadowKind};
+use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
-use crate::settings::{glsl_float, BeyondFar, BiasMode, MapSize, ShadowSettings};
+use crate::settings::{
+    glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
+};
 
 /// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
 pub const MATERIAL_UNIT: u32 = 0;
@@ -35,12 +38,20 @@ pub struct ShadowTest {
     pub normal_offset: bool,
     /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
     pub map_size: MapSize,
+    /// [`Filter::kernel`]: the grid, or a soft filter (shaders/lib/soft_filters.glsl).
+    pub kernel: u32,
+    /// PCSS's taps (0 for the other filters, so their key ignores them).
+    pub pcss_blocker_taps: u32,
+    pub pcss_filter_taps: u32,
+    /// PCSS: the light's map is a perspective one (its depth is not linear).
+    pub pcss_perspective: bool,
 }
 
 impl ShadowTest {
     /// The test as the settings apply it ([`ShadowSettings::effective`]).
     pub fn of(settings: &ShadowSettings) -> ShadowTest {
         let s = settings.effective();
+        let pcss = s.filter == Filter::Pcss;
         ShadowTest {
             pcf_radius: s.filter.radius(),
             hardware: s.filter.hardware(),
@@ -50,13 +61,34 @@ impl ShadowTest {
             beyond_far_lit: s.beyond_far == BeyondFar::Lit,
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
+            kernel: s.filter.kernel(),
+            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
+            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
+            pcss_perspective: false,
+        }
+    }
+
+    /// The test of `light` under its own settings: as [`ShadowTest::of`], knowing whether
+    /// PCSS reads a perspective map (a spot's, or a directional light's perspective one).
+    pub fn for_light(light: &Light, settings: &ShadowSettings) -> ShadowTest {
+        let perspective = match light {
+            Light::Spot(_) => true,
+            Light::Directional(_) => settings.light_projection == LightProjection::Perspective,
+            Light::Point(_) => false,
+        };
+        ShadowTest {
+            pcss_perspective: perspective && settings.filter == Filter::Pcss,
+            ..ShadowTest::of(settings)
         }
     }
 }
 
 impl ShadowTest {
     /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
-    fn defines(&self) -> [(&'static str, String); 7] {
+    /// How many constants [`ShadowTest::defines`] makes.
+    pub const DEFINES: usize = 11;
+
+    fn defines(&self) -> [(&'static str, String); Self::DEFINES] {
         let bit = |b: bool| u32::from(b).to_string();
         let mode = match self.bias_mode {
             BiasMode::None => 0,
@@ -78,6 +110,10 @@ impl ShadowTest {
                     glsl_float(1.0 / self.map_size.height as f32)
                 ),
             ),
+            ("FILTER_KERNEL", self.kernel.to_string()),
+            ("PCSS_BLOCKER_TAPS", self.pcss_blocker_taps.to_string()),
+            ("PCSS_FILTER_TAPS", self.pcss_filter_taps.to_string()),
+            ("PCSS_PERSPECTIVE", bit(self.pcss_perspective)),
         ]
     }
 }
@@ -175,6 +211,7 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
             .defines()
             .into_iter()
             .map(|(k, v)| (k.to_string(), v))
+            .chain(std::iter::once(("LIGHT_INDEX".to_string(), i.to_string())))
             .chain(
                 std::iter::once("depthBias")
                     .chain(glsl.functions.iter().copied())
@@ -204,7 +241,6 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Light;
     use crate::settings::ShadowSettings;
     use crate::Scene;
 
@@ -299,7 +335,7 @@ mod tests {
                 .iter()
                 .position(|l| l.starts_with(&format!("#define depthBias depthBias_{i}")))
                 .unwrap();
-            lights[from - 7..from + 1].to_vec()
+            lights[from - ShadowTest::DEFINES - 1..from + 1].to_vec()
         };
         assert!(
             block(0).contains(&"#define BIAS 0.05".to_string()),
@@ -361,14 +397,11 @@ mod tests {
             slot(ShadowKind::Cube),
             slot(ShadowKind::Cascades),
         ]);
-        let text = format!(
-            "{}{}",
-            include_str!("../../shaders/scene.frag"),
-            generated[1].1
-        );
+        // Included directly or by another snippet (the soft filters by the 2D test's).
+        let resolved = crate::shaders::scene_frag(&generated).unwrap();
         for name in crate::shaders::library() {
             assert!(
-                text.contains(&format!("#include \"{name}\"")),
+                resolved.files.contains(&format!("shaders/{name}")),
                 "{name} is never included"
             );
         }

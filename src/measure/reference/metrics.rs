@@ -210,6 +210,184 @@ fn dilate_lines(
     out
 }
 
+/// A rendered image against the soft-shadow truth of a light with a size
+/// ([`super::area`]). Rates are fractions of the scored pixels (receivers of the truth with
+/// a rendered value).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SoftMetrics {
+    /// Rays per pixel of the truth.
+    pub rays: usize,
+    pub receivers: usize,
+    /// Mean |V - V_truth|.
+    pub mae: f64,
+    /// Light bleeding: lit above 0.5 where the truth is fully shadowed.
+    pub light_bleed: usize,
+    pub light_bleed_rate: f64,
+    /// Shadowed below 0.5 where the truth is fully lit.
+    pub false_shadow: usize,
+    pub false_shadow_rate: f64,
+    /// The truth's shadow edges measured (see [`penumbra_profiles`]).
+    pub penumbra_edges: usize,
+    /// Mean 10%-90% width across those edges, in pixels: the truth's and the image's.
+    pub penumbra_width_truth_px: f64,
+    pub penumbra_width_px: f64,
+    /// Mean |width - truth's width| over the edges, in pixels.
+    pub penumbra_width_error_px: f64,
+}
+
+/// One of the truth's shadow edges, measured across: at pixel (x, y), the 10%-90% width
+/// of the truth's and of the image's visibility along the truth's gradient, in pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PenumbraProfile {
+    pub x: usize,
+    pub y: usize,
+    pub truth_px: f64,
+    pub rendered_px: f64,
+}
+
+/// The longest walk from an edge to either side, in pixels: a penumbra wider than twice
+/// this is not measured.
+pub const PENUMBRA_REACH: usize = 48;
+
+/// The truth's shadow edges and their widths. An edge pixel is a receiver where the truth
+/// crosses 0.5 towards its right or lower neighbour; the profile runs along the truth's
+/// gradient there (Sobel), one pixel per step, up to [`PENUMBRA_REACH`] each way, and the
+/// width is the number of steps whose visibility lies strictly between 0.1 and 0.9 (for a
+/// ramp, its 10%-90% width), each image counted on each side until it passes the ramp's
+/// end there (0.1 below the edge, 0.9 above). An edge is kept only if the truth's profile reaches both 0.1
+/// and 0.9 on receivers the image also covers (so occluder silhouettes and image borders
+/// do not cut it short).
+pub fn penumbra_profiles(
+    width: usize,
+    height: usize,
+    rendered: &[Option<f32>],
+    truth: &[RefPixel],
+) -> Vec<PenumbraProfile> {
+    let n = width.saturating_mul(height);
+    let t = |i: usize| truth.get(i).filter(|r| r.receiver).map(|r| r.visibility);
+    let both = |x: i64, y: i64| -> Option<(f32, f32)> {
+        if x < 0 || y < 0 || x >= width as i64 || y >= height as i64 {
+            return None;
+        }
+        let i = y as usize * width + x as usize;
+        Some((t(i)?, rendered_at(rendered, i)?))
+    };
+    let mut out = Vec::new();
+    for i in 0..n {
+        let (x, y) = (i % width, i / width);
+        let Some(v) = t(i) else { continue };
+        let crosses = |j: Option<usize>| j.and_then(t).is_some_and(|w| (v < 0.5) != (w < 0.5));
+        let right = (x + 1 < width).then_some(i + 1);
+        let down = (y + 1 < height).then_some(i + width);
+        if !(crosses(right) || crosses(down)) {
+            continue;
+        }
+        // Sobel on the truth; every neighbour must be a receiver.
+        let mut g = [0.0f32; 2];
+        let mut whole = true;
+        for dy in -1i64..=1 {
+            for dx in -1i64..=1 {
+                let Some((w, _)) = both(x as i64 + dx, y as i64 + dy) else {
+                    whole = false;
+                    continue;
+                };
+                let k = if dx == 0 || dy == 0 { 2.0 } else { 1.0 };
+                g[0] += w * dx as f32 * k;
+                g[1] += w * dy as f32 * k;
+            }
+        }
+        let len = (g[0] * g[0] + g[1] * g[1]).sqrt();
+        if !whole || len.is_nan() || len <= 0.0 {
+            continue;
+        }
+        let dir = [g[0] / len, g[1] / len];
+        // Per side, each image is counted until it passes the ramp's end there (so the
+        // truth's width does not hang on the image's, nor on features farther on).
+        let inside = |v: f32| v > 0.1 && v < 0.9;
+        let (mut truth_px, mut rendered_px) = (0.0, 0.0);
+        let (mut low, mut high) = (false, false);
+        for side in [-1.0f32, 1.0] {
+            let past = |v: f32| if side < 0.0 { v <= 0.1 } else { v >= 0.9 };
+            let (mut truth_done, mut rendered_done) = (false, false);
+            for s in 0..=PENUMBRA_REACH {
+                if side > 0.0 && s == 0 {
+                    continue;
+                }
+                let px = (x as f32 + side * s as f32 * dir[0]).round() as i64;
+                let py = (y as f32 + side * s as f32 * dir[1]).round() as i64;
+                let Some((t, r)) = both(px, py) else { break };
+                truth_done |= past(t);
+                rendered_done |= past(r);
+                truth_px += (!truth_done && inside(t)) as u32 as f64;
+                rendered_px += (!rendered_done && inside(r)) as u32 as f64;
+                if truth_done && rendered_done {
+                    break;
+                }
+            }
+            match side < 0.0 {
+                true => low = truth_done,
+                false => high = truth_done,
+            }
+        }
+        if !(low && high) {
+            continue;
+        }
+        out.push(PenumbraProfile {
+            x,
+            y,
+            truth_px,
+            rendered_px,
+        });
+    }
+    out
+}
+
+/// Scores `rendered` against the soft-shadow `truth` made with `rays` rays per pixel.
+pub fn compute_soft_metrics(
+    width: usize,
+    height: usize,
+    rendered: &[Option<f32>],
+    truth: &[RefPixel],
+    rays: usize,
+) -> SoftMetrics {
+    let n = width.saturating_mul(height);
+    let (mut receivers, mut bleed, mut false_shadow, mut abs_sum) = (0usize, 0usize, 0usize, 0.0);
+    for i in 0..n {
+        let (Some(v), Some(r)) = (rendered_at(rendered, i), truth.get(i)) else {
+            continue;
+        };
+        if !r.receiver {
+            continue;
+        }
+        receivers += 1;
+        abs_sum += (f64::from(v) - f64::from(r.visibility)).abs();
+        bleed += (r.visibility == 0.0 && v > 0.5) as usize;
+        false_shadow += (r.visibility == 1.0 && v < 0.5) as usize;
+    }
+    let profiles = penumbra_profiles(width, height, rendered, truth);
+    let mean = |f: &dyn Fn(&PenumbraProfile) -> f64| match profiles.len() {
+        0 => 0.0,
+        k => profiles.iter().map(f).sum::<f64>() / k as f64,
+    };
+    SoftMetrics {
+        rays,
+        receivers,
+        mae: if receivers == 0 {
+            0.0
+        } else {
+            abs_sum / receivers as f64
+        },
+        light_bleed: bleed,
+        light_bleed_rate: rate(bleed, receivers),
+        false_shadow,
+        false_shadow_rate: rate(false_shadow, receivers),
+        penumbra_edges: profiles.len(),
+        penumbra_width_truth_px: mean(&|p| p.truth_px),
+        penumbra_width_px: mean(&|p| p.rendered_px),
+        penumbra_width_error_px: mean(&|p| (p.rendered_px - p.truth_px).abs()),
+    }
+}
+
 /// RGBA picture of the errors: false shadow red, false light blue, every
 /// other pixel the matching `base_grey` value (0 where it is missing).
 pub fn error_image(
@@ -350,6 +528,60 @@ mod tests {
         assert!(
             j.contains("\"misclassified_outside_band_rate\":0.3333333333333333"),
             "{j}"
+        );
+    }
+
+    /// A 40 x 9 truth ramping from shadow (x < 10) to light (x >= 20) over ten pixels.
+    fn ramp(x0: usize, x1: usize) -> Vec<f32> {
+        (0..40 * 9)
+            .map(|i| {
+                let x = i % 40;
+                ((x as f32 - x0 as f32 + 0.5) / (x1 - x0) as f32).clamp(0.0, 1.0)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn soft_metrics_measure_widths_bleed_and_false_shadow() {
+        let truth: Vec<RefPixel> = ramp(10, 20).into_iter().map(|v| px(true, v)).collect();
+        // The same ramp: no error; the truth's width is its 10%-90% part, 8 pixels.
+        let same: Vec<Option<f32>> = truth.iter().map(|p| Some(p.visibility)).collect();
+        let m = compute_soft_metrics(40, 9, &same, &truth, 64);
+        assert_eq!(
+            (m.receivers, m.mae, m.light_bleed, m.false_shadow),
+            (360, 0.0, 0, 0)
+        );
+        assert!(m.penumbra_edges >= 7, "{m:?}");
+        assert_eq!(m.penumbra_width_truth_px, 8.0);
+        assert_eq!(m.penumbra_width_error_px, 0.0);
+        // A hard edge in the middle of the ramp: no width, so the error is the truth's;
+        // neither bleeding nor false shadow (the truth is partly lit on both sides of it).
+        let hard: Vec<Option<f32>> = (0..360)
+            .map(|i| Some(if i % 40 < 15 { 0.0 } else { 1.0 }))
+            .collect();
+        let m = compute_soft_metrics(40, 9, &hard, &truth, 64);
+        assert_eq!(m.penumbra_width_px, 0.0);
+        assert_eq!(m.penumbra_width_error_px, 8.0);
+        assert_eq!((m.light_bleed, m.false_shadow), (0, 0));
+        // Twice as wide, about the same middle: wider by 8 pixels.
+        let wide: Vec<Option<f32>> = ramp(5, 25).into_iter().map(Some).collect();
+        let m = compute_soft_metrics(40, 9, &wide, &truth, 64);
+        assert_eq!(m.penumbra_width_px, 16.0);
+        assert_eq!(m.penumbra_width_error_px, 8.0);
+        // Lit from x = 5: bleeds over the truth's umbra x 5..10; shadowed up to x = 30:
+        // false shadow over its full light x 20..30.
+        let early: Vec<Option<f32>> = (0..360)
+            .map(|i| Some(if i % 40 < 5 { 0.0 } else { 1.0 }))
+            .collect();
+        let m = compute_soft_metrics(40, 9, &early, &truth, 64);
+        assert_eq!(m.light_bleed, 5 * 9);
+        assert_eq!(m.light_bleed_rate, 45.0 / 360.0);
+        let late: Vec<Option<f32>> = (0..360)
+            .map(|i| Some(if i % 40 < 30 { 0.0 } else { 1.0 }))
+            .collect();
+        assert_eq!(
+            compute_soft_metrics(40, 9, &late, &truth, 64).false_shadow,
+            10 * 9
         );
     }
 

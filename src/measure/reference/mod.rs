@@ -1,4 +1,4 @@
-//! Exact CPU reference for hard shadows.
+//! Exact CPU reference for hard shadows, and for soft ones ([`area`]: a light with a size).
 //!
 //! Shadow maps are approximations: they trade exactness for speed and show
 //! acne, peter-panning and aliased edges. To measure those errors we need the
@@ -9,13 +9,18 @@
 //! Everything is std plus glam, so the reference builds and runs on machines
 //! without a GPU.
 
+pub mod area;
 pub mod bvh;
 pub mod metrics;
 pub mod npy;
 pub mod visibility;
 
+pub use area::{area_visibility, LightExtent};
 pub use bvh::{Bvh, Triangle};
-pub use metrics::{compute_metrics, error_image, Metrics};
+pub use metrics::{
+    compute_metrics, compute_soft_metrics, error_image, penumbra_profiles, Metrics,
+    PenumbraProfile, SoftMetrics,
+};
 pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
 pub use visibility::{
     face_normals, reference_visibility, reference_visibility_supersampled, GBuffer, LightKind,

@@ -28,7 +28,7 @@ pub enum LightKind {
 
 impl LightKind {
     /// The point the shadow rays go to, for lights at a point.
-    fn position(&self) -> Option<Vec3> {
+    pub fn position(&self) -> Option<Vec3> {
         match *self {
             LightKind::Directional { .. } => None,
             LightKind::Point { position } | LightKind::Spot { position, .. } => Some(position),
@@ -139,7 +139,7 @@ pub struct RefPixel {
 }
 
 impl RefPixel {
-    const EMPTY: RefPixel = RefPixel {
+    pub(super) const EMPTY: RefPixel = RefPixel {
         covered: false,
         receiver: false,
         visibility: 0.0,
@@ -201,12 +201,44 @@ pub fn reference_visibility_supersampled(
 
 /// Traces the shadow ray of G-buffer entry `i`.
 fn sample(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer, i: usize) -> RefPixel {
+    let (origin, to_light) = match receiver(light, gbuf, i) {
+        Ok(r) => r,
+        Err(not) => return not,
+    };
+    let blocked = match (*light, light.position()) {
+        (LightKind::Directional { .. }, _) => bvh.occluded(origin, to_light, 0.0, f32::INFINITY),
+        (_, None) => false,
+        (_, Some(position)) => occluded_to(bvh, origin, position),
+    };
+    RefPixel {
+        covered: true,
+        receiver: true,
+        visibility: if blocked { 0.0 } else { 1.0 },
+    }
+}
+
+/// Whether the segment from `origin` to the point `to` is blocked, stopping just short of
+/// the point so that geometry the light sits on does not count as an occluder.
+pub(super) fn occluded_to(bvh: &Bvh, origin: Vec3, to: Vec3) -> bool {
+    let d = to - origin;
+    let dist = d.length();
+    let t_max = dist - RAY_EPSILON * to.abs().max_element().max(1.0);
+    t_max > 0.0 && bvh.occluded(origin, d / dist, 0.0, t_max)
+}
+
+/// Whether G-buffer entry `i` receives the light: the ray origin (offset along the normal)
+/// and the unit direction towards the light's centre if so, else the pixel as it stands.
+pub(super) fn receiver(
+    light: &LightKind,
+    gbuf: &GBuffer,
+    i: usize,
+) -> Result<(Vec3, Vec3), RefPixel> {
     let Some(&p) = gbuf.positions.get(i) else {
-        return RefPixel::EMPTY;
+        return Err(RefPixel::EMPTY);
     };
     let p = Vec3::from(p);
     if !p.is_finite() {
-        return RefPixel::EMPTY;
+        return Err(RefPixel::EMPTY);
     }
     let not_receiver = RefPixel {
         covered: true,
@@ -226,7 +258,7 @@ fn sample(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer, i: usize) -> RefPixel {
     // A zero normal or light direction gives 0 here and is not a receiver.
     let cos = n.dot(to_light);
     if cos.is_nan() || cos <= 0.0 {
-        return not_receiver;
+        return Err(not_receiver);
     }
     // The triangle itself must face the light too, where it is known.
     let face = gbuf
@@ -236,38 +268,22 @@ fn sample(bvh: &Bvh, light: &LightKind, gbuf: &GBuffer, i: usize) -> RefPixel {
     // (Written so that NaN counts as facing away.)
     let face_cos = face.dot(to_light);
     if face != Vec3::ZERO && (face_cos.is_nan() || face_cos <= 0.0) {
-        return not_receiver;
+        return Err(not_receiver);
     }
     if let LightKind::Spot { axis, cos_full, .. } = *light {
         let c = (-to_light).dot(axis.normalize_or_zero());
         if c.is_nan() || c < cos_full {
-            return not_receiver;
+            return Err(not_receiver);
         }
     }
     let origin = p + n * (RAY_EPSILON * p.abs().max_element().max(1.0));
-    let blocked = match (*light, light.position()) {
-        (LightKind::Directional { .. }, _) => bvh.occluded(origin, to_light, 0.0, f32::INFINITY),
-        (_, None) => false,
-        (_, Some(position)) => {
-            let d = position - origin;
-            let dist = d.length();
-            // Stop just short of the light so geometry the light sits on
-            // does not count as an occluder.
-            let t_max = dist - RAY_EPSILON * position.abs().max_element().max(1.0);
-            t_max > 0.0 && bvh.occluded(origin, d / dist, 0.0, t_max)
-        }
-    };
-    RefPixel {
-        covered: true,
-        receiver: true,
-        visibility: if blocked { 0.0 } else { 1.0 },
-    }
+    Ok((origin, to_light))
 }
 
 /// Evaluates `f(x, y)` for every pixel, handing rows to
 /// `available_parallelism()` scoped threads on demand, so expensive rows
 /// (deep shadow regions) do not leave other cores idle.
-fn par_rows<T, F>(width: usize, height: usize, empty: T, f: F) -> Vec<T>
+pub(super) fn par_rows<T, F>(width: usize, height: usize, empty: T, f: F) -> Vec<T>
 where
     T: Copy + Send,
     F: Fn(usize, usize) -> T + Sync,

@@ -1,0 +1,130 @@
+// The soft filters of a 2D texel grid (past the chapters: the shadow-playground's PCF demos,
+// and percentage-closer soft shadows). Compiled with the defines of bias.glsl and:
+//   FILTER_KERNEL      1 = the playground's weighted 4 x 4 PCF, 2 = its soft PCF, 3 = PCSS
+//   SHADOW_TEXEL       one texel of the map
+//   PCSS_BLOCKER_TAPS, PCSS_FILTER_TAPS, PCSS_PERSPECTIVE, LIGHT_INDEX   (PCSS)
+// The includer says how its map is read: KERNEL_MAP (the parameters naming the map, e.g. a
+// 2D map, or an array and a layer), KERNEL_DEPTH(uv) (the depth stored at uv).
+
+#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
+// The playground's 16 taps, +-0.5 and +-1.5 texels from the lookup: the inner 2 x 2 weigh
+// 0.6 in all, the outer 12 weigh 0.4. The weighted 4 x 4 counts a tap lit when the stored
+// depth is at least the fragment's (the bias is the playground's epsilon); the soft PCF
+// passes the difference through a steep sigmoid instead, 1 / (1 + exp(-1000 diff)).
+float softTaps(KERNEL_MAP, vec2 uv, float current)
+{
+    float lit = 0.0;
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 4; ++col) {
+            vec2 offset = vec2(col, row) - 1.5;
+            float weight = abs(offset.x) < 1.0 && abs(offset.y) < 1.0 ? 0.6 / 4.0 : 0.4 / 12.0;
+            float diff = KERNEL_DEPTH(uv + offset * SHADOW_TEXEL) - current;
+#if FILTER_KERNEL == 2
+            lit += weight / (1.0 + exp(-1000.0 * diff));
+#else
+            lit += weight * step(0.0, diff);
+#endif
+        }
+    }
+    return lit;
+}
+#endif
+
+#if FILTER_KERNEL == 3
+#ifndef PCSS_DISK_DEFINED
+#define PCSS_DISK_DEFINED
+// 32 points in the unit disk, each added where it was farthest from those before it, so
+// that every prefix (the first 16, the first 8) is itself spread over the disk; then scaled
+// (by 0.916) so that the first 16's mean squared radius is a uniform disc's, 1/2 (that way
+// leans to the rim, and a kernel that leans to its rim draws a wider penumbra).
+const vec2 PCSS_DISK[32] = vec2[](
+    vec2(-0.4413, 0.3392), vec2(0.6465, -0.6317), vec2(0.7088, 0.5042), vec2(-0.5195, -0.6471),
+    vec2(0.1753, -0.0034), vec2(0.0857, 0.8264), vec2(0.8958, -0.0627), vec2(0.0630, -0.7726),
+    vec2(-0.7560, -0.0514), vec2(0.1042, 0.4098), vec2(-0.2713, -0.2288), vec2(-0.5357, 0.7241),
+    vec2(0.4908, -0.2406), vec2(0.0830, -0.3919), vec2(-0.8107, 0.3881), vec2(0.5461, 0.2099),
+    vec2(-0.7443, -0.4019), vec2(0.4463, 0.7306), vec2(-0.1523, 0.0830), vec2(-0.2099, -0.5887),
+    vec2(-0.1610, 0.5793), vec2(0.3447, -0.5497), vec2(-0.4530, 0.0319), vec2(0.8359, -0.3527),
+    vec2(-0.2984, 0.8627), vec2(0.3748, 0.4642), vec2(-0.2621, -0.8722), vec2(0.6485, -0.0073),
+    vec2(0.3278, -0.8325), vec2(-0.5477, -0.2168), vec2(0.8478, 0.1985), vec2(-0.0478, -0.1187));
+// The blocker search reaches at most this many texels (thin blockers far from the receiver
+// of a large light are missed beyond it, as in every PCSS).
+const float PCSS_MAX_SEARCH_TEXELS = 64.0;
+// The steepest receiver plane followed, in depth per map width: steeper (grazing) planes
+// keep this slope, so a receiver seen edge-on to the light cannot cancel its shadow.
+const float PCSS_MAX_SLOPE = 8.0;
+#endif
+
+// A map depth in [0, 1] as a distance from the light. lightPenumbra[i] (scene.frag) is
+// (S.x, S.y, near, far): a perspective map's depth is LearnOpenGL's LinearizeDepth, an
+// orthographic map's is linear from near to far.
+float pcssDistance(float z, vec4 light)
+{
+#if PCSS_PERSPECTIVE
+    float ndc = z * 2.0 - 1.0;
+    return 2.0 * light.z * light.w / (light.w + light.z - ndc * (light.w - light.z));
+#else
+    return light.z + z * (light.w - light.z);
+#endif
+}
+
+// Half the penumbra's width in the map (uv) for a receiver at distance dr behind a blocker
+// at db, by similar triangles: a disc light of radius R at the light's eye gives
+// R (dr - db) / db in the world at the receiver, R (dr - db) / (db dr) in the map's
+// tangent units (S = R x the projection's scale / 2); parallel rays within a cone of
+// angular radius a give tan(a) (dr - db) (S = tan(a) x the projection's scale / 2).
+vec2 pcssPenumbra(float dr, float db, vec4 light)
+{
+#if PCSS_PERSPECTIVE
+    return light.xy * max(dr - db, 0.0) / max(dr * db, 1e-12);
+#else
+    return light.xy * max(dr - db, 0.0);
+#endif
+}
+
+// Percentage-closer soft shadows: (1) the blocker search: the mean depth of the texels
+// nearer than the fragment over the region of the map through which the light's disc
+// can be hidden (blockers at the near plane at most); (2) the penumbra those blockers
+// cast; (3) PCF over a disc that wide. Both stages use the Poisson disk turned by a
+// per-pixel angle (interleaved gradient noise), which trades banding for fine noise. At
+// least one texel wide, so a light of size 0 filters like a small PCF.
+float pcss(KERNEL_MAP, vec2 uv, float z, float current)
+{
+    // Receiver-plane depth bias: over a wide kernel a surface tilted to the light differs
+    // from its own depth at the centre by more than any constant bias, and would shadow
+    // itself. The fragment's depth is taken as a plane in the map, z + dot(slope, offset),
+    // its slope from the screen-space derivatives of (uv, z) (a 2 x 2 solve; none where the
+    // solve is singular, at silhouettes, and at most PCSS_MAX_SLOPE).
+    vec3 ddx = dFdx(vec3(uv, z));
+    vec3 ddy = dFdy(vec3(uv, z));
+    float det = ddx.x * ddy.y - ddx.y * ddy.x;
+    vec2 slope = abs(det) > 1e-14
+        ? vec2(ddx.z * ddy.y - ddx.y * ddy.z, ddx.x * ddy.z - ddy.x * ddx.z) / det
+        : vec2(0.0);
+    slope = clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
+    vec4 light = lightPenumbra[LIGHT_INDEX];
+    float turn = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy,
+                                                             vec2(0.06711056, 0.00583715))));
+    mat2 rotation = mat2(cos(turn), sin(turn), -sin(turn), cos(turn));
+    float dr = pcssDistance(z, light);
+    vec2 search = clamp(pcssPenumbra(dr, light.z, light), SHADOW_TEXEL,
+                        PCSS_MAX_SEARCH_TEXELS * SHADOW_TEXEL);
+    float blockers = 0.0;
+    float blockerDepth = 0.0;
+    for (int k = 0; k < PCSS_BLOCKER_TAPS; ++k) {
+        vec2 offset = rotation * PCSS_DISK[k] * search;
+        float d = KERNEL_DEPTH(uv + offset);
+        float nearer = d < current + dot(slope, offset) ? 1.0 : 0.0;
+        blockers += nearer;
+        blockerDepth += nearer * d;
+    }
+    float db = pcssDistance(blockerDepth / max(blockers, 1.0), light);
+    vec2 radius = max(pcssPenumbra(dr, db, light), SHADOW_TEXEL);
+    float lit = 0.0;
+    for (int k = 0; k < PCSS_FILTER_TAPS; ++k) {
+        vec2 offset = rotation * PCSS_DISK[k] * radius;
+        lit += step(current + dot(slope, offset), KERNEL_DEPTH(uv + offset));
+    }
+    // No blocker found: lit (a select, not a branch per pixel).
+    return blockers > 0.0 ? lit / float(PCSS_FILTER_TAPS) : 1.0;
+}
+#endif
