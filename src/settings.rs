@@ -79,15 +79,29 @@ pub enum Filter {
     #[value(name = "hw3x3")]
     #[serde(rename = "hw3x3")]
     Hardware3x3,
+    // Filterable maps (src/shadows/moments.rs): the map stores moments of depth, blurred,
+    // and the test reconstructs a visibility from them.
+    /// Variance shadow maps: (z, z^2), blurred, Chebyshev's upper bound.
+    Vsm,
+    /// Exponential variance shadow maps with the positive exponent only (2 components).
+    Evsm2,
+    /// Exponential variance shadow maps with both exponents (4 components).
+    Evsm4,
+    /// Moment shadow maps: (z, z^2, z^3, z^4), the Hamburger 4MSM reconstruction.
+    Msm,
 }
 
 impl Filter {
-    pub const ALL: [Filter; 5] = [
+    pub const ALL: [Filter; 9] = [
         Filter::Single,
         Filter::Pcf3x3,
         Filter::Pcf5x5,
         Filter::Hardware2x2,
         Filter::Hardware3x3,
+        Filter::Vsm,
+        Filter::Evsm2,
+        Filter::Evsm4,
+        Filter::Msm,
     ];
 
     /// Half the grid of lookups in texels (0 = one lookup).
@@ -96,6 +110,23 @@ impl Filter {
             Filter::Single | Filter::Hardware2x2 => 0,
             Filter::Pcf3x3 | Filter::Hardware3x3 => 1,
             Filter::Pcf5x5 => 2,
+            // One filtered lookup: the blur did the averaging.
+            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 0,
+        }
+    }
+
+    /// Whether the map stores moments of depth (a float colour map, blurred) rather than
+    /// depth: those filters need one 2D map (no cube maps, no cascades).
+    pub fn moments(self) -> bool {
+        self.moment_components() > 0
+    }
+
+    /// The components of a moment map's texel (0: a depth map).
+    pub fn moment_components(self) -> u32 {
+        match self {
+            Filter::Vsm | Filter::Evsm2 => 2,
+            Filter::Evsm4 | Filter::Msm => 4,
+            _ => 0,
         }
     }
 
@@ -111,6 +142,115 @@ impl Filter {
             Filter::Pcf5x5 => "pcf5x5",
             Filter::Hardware2x2 => "hw2x2",
             Filter::Hardware3x3 => "hw3x3",
+            Filter::Vsm => "vsm",
+            Filter::Evsm2 => "evsm2",
+            Filter::Evsm4 => "evsm4",
+            Filter::Msm => "msm",
+        }
+    }
+}
+
+/// The Gaussian blur a moment map gets before it is read: separable, one horizontal and
+/// one vertical pass. `playground3x3` is the shadow-playground's 3 x 3 kernel (corner /
+/// edge / centre 0.045 / 0.122 / 0.332 = the outer product of (0.2118, 0.5762, 0.2118));
+/// the others are Gaussians with sigma = taps / 6 (the kernel spans +-3 sigma),
+/// normalised.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Blur {
+    /// No blur: only the lookup's bilinear filtering.
+    None,
+    /// The shadow-playground's 3 x 3.
+    #[default]
+    #[value(name = "playground3x3")]
+    #[serde(rename = "playground3x3")]
+    Playground3x3,
+    #[value(name = "gauss5")]
+    #[serde(rename = "gauss5")]
+    Gauss5,
+    #[value(name = "gauss7")]
+    #[serde(rename = "gauss7")]
+    Gauss7,
+    #[value(name = "gauss9")]
+    #[serde(rename = "gauss9")]
+    Gauss9,
+}
+
+impl Blur {
+    pub const ALL: [Blur; 5] = [
+        Blur::None,
+        Blur::Playground3x3,
+        Blur::Gauss5,
+        Blur::Gauss7,
+        Blur::Gauss9,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Blur::None => "none",
+            Blur::Playground3x3 => "playground3x3",
+            Blur::Gauss5 => "gauss5",
+            Blur::Gauss7 => "gauss7",
+            Blur::Gauss9 => "gauss9",
+        }
+    }
+
+    /// Taps of the 1D kernel (0: no blur).
+    pub fn taps(self) -> u32 {
+        match self {
+            Blur::None => 0,
+            Blur::Playground3x3 => 3,
+            Blur::Gauss5 => 5,
+            Blur::Gauss7 => 7,
+            Blur::Gauss9 => 9,
+        }
+    }
+
+    /// The 1D weights from the centre out (`weights[0]` the centre, then each side's),
+    /// summing to 1 over the whole kernel.
+    pub fn weights(self) -> Vec<f32> {
+        if self == Blur::Playground3x3 {
+            // The playground's 2D weights are this kernel's outer product: sqrt(0.332) in
+            // the centre, 0.122 / sqrt(0.332) either side (0.045 ~ 0.2118^2 in the corners).
+            let centre = 0.332f32.sqrt();
+            let side = 0.122 / centre;
+            let sum = centre + 2.0 * side;
+            return vec![centre / sum, side / sum];
+        }
+        let radius = (self.taps() / 2) as i32;
+        if radius == 0 {
+            return vec![1.0];
+        }
+        let sigma = self.taps() as f32 / 6.0;
+        let w: Vec<f32> = (0..=radius)
+            .map(|i| (-((i * i) as f32) / (2.0 * sigma * sigma)).exp())
+            .collect();
+        let sum = w[0] + 2.0 * w[1..].iter().sum::<f32>();
+        w.iter().map(|v| v / sum).collect()
+    }
+}
+
+/// The moment vector a moment shadow map's moments are pulled toward by `msm_bias`
+/// (against the numerical failures of a nearly singular Hankel matrix).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum MsmToward {
+    /// (0.5, 0.5, 0.5, 0.5): half the weight at depth 0 and half at 1 (for [0, 1] depth).
+    #[default]
+    Half,
+    /// The shadow-playground's (0, 0.63, 0, 0.63).
+    Playground,
+}
+
+impl MsmToward {
+    pub fn vector(self) -> [f32; 4] {
+        match self {
+            MsmToward::Half => [0.5; 4],
+            MsmToward::Playground => [0.0, 0.63, 0.0, 0.63],
         }
     }
 }
@@ -395,6 +535,10 @@ pub fn parse_map_size(s: &str) -> Result<MapSize, String> {
     }
 }
 
+/// EVSM's largest exponent: exp(2 x 42) ~ 3e36 stays below 32-bit floats' 3.4e38, so
+/// the warped depth's square cannot overflow.
+pub const EVSM_MAX_EXPONENT: f32 = 42.0;
+
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
@@ -509,6 +653,30 @@ shadow_settings! {
         wrap: Wrap = Wrap::ClampToEdge;
         /// What fragments beyond the light's far plane get.
         beyond_far: BeyondFar = BeyondFar::Shadowed;
+    }
+    /// The filterable maps (`filter = "vsm"`, `"evsm2"`, `"evsm4"`, `"msm"`): a float
+    /// colour map of depth's moments, blurred, read with one filtered lookup.
+    "Moment maps" {
+        /// The blur before the lookup: the playground's 3 x 3, a wider Gaussian, or none.
+        blur: Blur = Blur::Playground3x3;
+        /// The least variance Chebyshev's bound assumes (VSM; EVSM scales it by each
+        /// exponent's slope), against acne where the map is flat.
+        min_variance: f32 = 1e-6,
+            arg(value_name = "V", value_parser = parse_finite, allow_negative_numbers = true);
+        /// Light-bleeding reduction (VSM, EVSM): bounds below this read as shadow, the rest
+        /// stretch to [0, 1] (0 = off; Filament's default 0.15, MJP's comparisons 0.25).
+        bleed_reduction: f32 = 0.15,
+            arg(value_name = "AMOUNT", value_parser = parse_finite, allow_negative_numbers = true);
+        /// EVSM's exponents [positive, negative] (40 and 5 by default); each is clamped to
+        /// 42 so exp(2c) stays inside 32-bit floats.
+        evsm_exponents: [f32; 2] = [40.0, 5.0],
+            arg(value_name = "POS,NEG", value_parser = parse_pair, allow_hyphen_values = true);
+        /// MSM's moment bias alpha: the moments move this far toward `msm_toward` (3e-5
+        /// for [0, 1] depth; the playground's preset: 9e-4 toward "playground").
+        msm_bias: f32 = 3e-5,
+            arg(value_name = "ALPHA", value_parser = parse_finite, allow_negative_numbers = true);
+        /// What MSM's moment bias pulls toward.
+        msm_toward: MsmToward = MsmToward::Half;
     }
     /// How the map is drawn.
     "Depth pass" {
@@ -659,6 +827,13 @@ impl ShadowSettings {
                 | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "cascade_lambda"
                 | "cascade_blend" | "shadow_distance" => continue,
                 "perspective_fov" => continue,
+                // The moment maps' knobs do nothing for a depth map.
+                "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
+                | "msm_toward"
+                    if !self.filter.moments() =>
+                {
+                    continue
+                }
                 "light_projection" if perspective => {
                     format!("perspective light, fov {}", self.perspective_fov)
                 }
@@ -736,6 +911,31 @@ impl ShadowSettings {
             return bad(format!(
                 "shadow.shadow_distance = {}: expected a finite number >= 0 (0 = the camera's far plane)",
                 self.shadow_distance
+            ));
+        }
+        if !(self.min_variance.is_finite() && self.min_variance >= 0.0) {
+            return bad(format!(
+                "shadow.min_variance = {}: expected a finite number >= 0",
+                self.min_variance
+            ));
+        }
+        if !(0.0..1.0).contains(&self.bleed_reduction) {
+            return bad(format!(
+                "shadow.bleed_reduction = {}: expected 0 (off) to below 1",
+                self.bleed_reduction
+            ));
+        }
+        if self.evsm_exponents.iter().any(|c| !(c.is_finite() && *c > 0.0)) {
+            return bad(format!(
+                "shadow.evsm_exponents = {:?}: expected two numbers > 0 [positive, negative], \
+                 like [40, 5] (each is clamped to {EVSM_MAX_EXPONENT})",
+                self.evsm_exponents
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.msm_bias) {
+            return bad(format!(
+                "shadow.msm_bias = {}: expected 0 to 1 (3e-5 for [0, 1] depth)",
+                self.msm_bias
             ));
         }
         if self.polygon_offset.iter().any(|v| !v.is_finite()) {

@@ -36,6 +36,8 @@ shader!(depth_point_vert, "depth_point.vert");
 shader!(depth_point_frag, "depth_point.frag");
 shader!(depth_point_layered_vert, "depth_point_layered.vert");
 shader!(depth_point_layered_geom, "depth_point_layered.geom");
+shader!(moments_depth_frag, "moments_depth.frag");
+shader!(moments_blur_frag, "moments_blur.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
 
@@ -57,6 +59,10 @@ const LIBRARY: &[(&str, &str)] = &[
     (
         "lib/shadow_cascades.glsl",
         include_str!("../shaders/lib/shadow_cascades.glsl"),
+    ),
+    (
+        "lib/shadow_moments.glsl",
+        include_str!("../shaders/lib/shadow_moments.glsl"),
     ),
     (
         "lib/outputs.glsl",

@@ -4,6 +4,8 @@
 //!   `calcShadow` in `shaders/lib/shadow_2d.glsl` ("Shadows"; LearnOpenGL "Shadow Mapping").
 //! - [`cube`]: a point light's depth cube map (LearnOpenGL "Point Shadows").
 //! - [`cascades`]: cascaded shadow maps for a directional light.
+//! - [`moments`]: filterable maps (VSM, EVSM, MSM): depth's moments in a float colour
+//!   map, blurred, for directional and spot lights.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
 //!   [`map2d`]).
 //!
@@ -19,6 +21,7 @@ pub mod casters;
 pub mod cube;
 pub mod fitted;
 pub mod map2d;
+pub mod moments;
 pub mod program;
 pub mod slots;
 
@@ -40,6 +43,8 @@ pub enum ShadowKind {
     Cube,
     /// A depth texture array, one layer per cascade (directional lights with cascades).
     Cascades,
+    /// One 2D map of depth's moments, blurred (a moment filter: vsm, evsm2, evsm4, msm).
+    Moments,
 }
 
 impl ShadowKind {
@@ -53,7 +58,7 @@ impl ShadowKind {
         lights
             .iter()
             .map(|l| match ShadowKind::of(l, &l.settings(settings)) {
-                ShadowKind::Cascades if cascaded => ShadowKind::Map,
+                ShadowKind::Cascades if cascaded => ShadowKind::one_map(&l.settings(settings)),
                 ShadowKind::Cascades => {
                     cascaded = true;
                     ShadowKind::Cascades
@@ -73,7 +78,16 @@ impl ShadowKind {
             {
                 ShadowKind::Cascades
             }
-            Light::Directional(_) | Light::Spot(_) => ShadowKind::Map,
+            Light::Directional(_) | Light::Spot(_) => ShadowKind::one_map(settings),
+        }
+    }
+
+    /// The kind of one 2D map under `settings`: a depth map, or with a moment filter a
+    /// moment map.
+    pub fn one_map(settings: &ShadowSettings) -> ShadowKind {
+        match settings.filter.moments() {
+            true => ShadowKind::Moments,
+            false => ShadowKind::Map,
         }
     }
 
@@ -84,6 +98,7 @@ impl ShadowKind {
             ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
             ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
             ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),
+            ShadowKind::Moments => Some(Box::new(moments::Moments::new(gl, settings)?)),
         })
     }
 }
@@ -177,7 +192,8 @@ pub trait Technique {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView>;
-    /// The depth texture the scene pass samples.
+    /// The texture the scene pass samples: a depth texture, or a moment map's float colour
+    /// texture (its `sampling` says how it is read).
     fn texture(&self) -> &Texture;
     /// How the scene pass samples it under `settings`.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling;

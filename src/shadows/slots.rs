@@ -11,7 +11,8 @@
 //! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
 //! [`super::cascades::glsl`]).
 
-use super::{cascades, cube, map2d, ShadowKind};
+use super::moments::MomentTest;
+use super::{cascades, cube, map2d, moments, ShadowKind};
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{glsl_float, BeyondFar, BiasMode, MapSize, ShadowSettings};
 
@@ -35,6 +36,8 @@ pub struct ShadowTest {
     pub normal_offset: bool,
     /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
     pub map_size: MapSize,
+    /// A moment filter's own constants.
+    pub moments: Option<MomentTest>,
 }
 
 impl ShadowTest {
@@ -50,20 +53,21 @@ impl ShadowTest {
             beyond_far_lit: s.beyond_far == BeyondFar::Lit,
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
+            moments: MomentTest::of(&s),
         }
     }
 }
 
 impl ShadowTest {
     /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
-    fn defines(&self) -> [(&'static str, String); 7] {
+    fn defines(&self) -> Vec<(&'static str, String)> {
         let bit = |b: bool| u32::from(b).to_string();
         let mode = match self.bias_mode {
             BiasMode::None => 0,
             BiasMode::Constant => 1,
             BiasMode::Slope => 2,
         };
-        [
+        let mut d = vec![
             ("PCF_RADIUS", self.pcf_radius.to_string()),
             ("HW_PCF", bit(self.hardware)),
             ("BIAS_MODE", mode.to_string()),
@@ -78,7 +82,11 @@ impl ShadowTest {
                     glsl_float(1.0 / self.map_size.height as f32)
                 ),
             ),
-        ]
+        ];
+        if let Some(m) = &self.moments {
+            d.extend(m.defines());
+        }
+        d
     }
 }
 
@@ -99,7 +107,7 @@ pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     match kind {
         _ if index >= MAX_LIGHTS => None,
         ShadowKind::None => None,
-        ShadowKind::Map => Some(map2d::SAMPLERS[index]),
+        ShadowKind::Map | ShadowKind::Moments => Some(map2d::SAMPLERS[index]),
         ShadowKind::Cube => Some(cube::SAMPLERS[index]),
         ShadowKind::Cascades => Some(cascades::SAMPLERS[index]),
     }
@@ -112,7 +120,7 @@ pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usiz
     kinds
         .into_iter()
         .map(|k| match k {
-            ShadowKind::Map | ShadowKind::Cube => {
+            ShadowKind::Map | ShadowKind::Cube | ShadowKind::Moments => {
                 next += 1;
                 Some(next - 1)
             }
@@ -158,6 +166,7 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
             ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
             ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
             ShadowKind::Cascades => Some(cascades::glsl(i, positional, cone, hardware)),
+            ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
         };
         let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
         else {

@@ -1,0 +1,301 @@
+//! Filterable shadow maps: variance (VSM), exponential variance (EVSM, 2 or 4 components)
+//! and moment shadow maps (MSM), for directional and spot lights with one 2D map. The
+//! shadow-playground's "variance" and "moment" demos, and the engines' EVSM.
+//!
+//! A depth map cannot be averaged: the mean of depths says nothing about how many of them
+//! a receiver is behind. Moments of depth can: the depth pass writes (z, z^2) (or four
+//! moments) into a float colour map, a separable Gaussian blur averages them
+//! ([`crate::engine::MomentMap::blur`], `shaders/moments_blur.frag`), and the scene pass
+//! reads one bilinear lookup and bounds the lit fraction from it
+//! (`shaders/lib/shadow_moments.glsl`). The price is light bleeding where occluders
+//! overlap, which the bleeding reduction, EVSM's warp and MSM's four moments each cut.
+//!
+//! Cube maps and cascades have no moment form here: `Light::settings_problem` refuses
+//! those combinations, naming the light and the filter.
+
+use super::casters::depth_state;
+use super::map2d::{camera, draw_map_casters, SAMPLERS};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
+use crate::engine::{
+    DepthPassGuard, FullScreenTriangle, Gl, MomentMap, Sampling, ShaderProgram, Texture,
+};
+use crate::error::{Error, Result};
+use crate::scene::{Light, Scene};
+use crate::settings::{glsl_float, Blur, Filter, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
+use crate::shaders;
+
+/// Light `i`'s part of the generated snippets: `calcShadowMoments`
+/// (shaders/lib/shadow_moments.glsl), a plain `sampler2D` (the moments are filtered, not
+/// compared) and its call with its map slot `p`.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_moments.glsl",
+        functions: &[
+            "chebyshevUpperBound",
+            "reduceLightBleeding",
+            "momentVisibility",
+            "calcShadowMoments",
+            "addLightMoments",
+        ],
+        sampler_type: "sampler2D",
+        call: format!(
+            "addLightMoments_{i}({i}, {p}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    }
+}
+
+/// The shader's number for a moment filter (`MOMENT_MODE`); 0 for a depth filter.
+pub fn mode(filter: Filter) -> u32 {
+    match filter {
+        Filter::Vsm => 1,
+        Filter::Evsm2 => 2,
+        Filter::Evsm4 => 3,
+        Filter::Msm => 4,
+        _ => 0,
+    }
+}
+
+/// EVSM's exponents as the shaders use them: clamped so exp(2c) fits a 32-bit float.
+pub fn evsm_exponents(settings: &ShadowSettings) -> [f32; 2] {
+    settings.evsm_exponents.map(|c| c.min(EVSM_MAX_EXPONENT))
+}
+
+/// The moments of depth 1 (where no caster was drawn), which the map is cleared to.
+pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
+    let [p, n] = evsm_exponents(settings);
+    match settings.filter {
+        Filter::Evsm2 | Filter::Evsm4 => {
+            let (pos, neg) = (p.exp(), -(-n).exp());
+            [pos, pos * pos, neg, neg * neg]
+        }
+        Filter::Vsm => [1.0, 1.0, 0.0, 0.0],
+        _ => [1.0; 4],
+    }
+}
+
+/// The constants of shaders/lib/shadow_moments.glsl for one light (with bias.glsl's, from
+/// [`super::slots::ShadowTest`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct MomentTest {
+    pub mode: u32,
+    pub min_variance_bits: u32,
+    pub bleed_reduction_bits: u32,
+    pub evsm_bits: [u32; 2],
+    pub msm_bias_bits: u32,
+    pub msm_toward_bits: [u32; 4],
+    pub border_lit: bool,
+}
+
+impl MomentTest {
+    /// The test under `settings` (as [`ShadowSettings::effective`] made them), if its filter
+    /// is a moment one.
+    pub fn of(s: &ShadowSettings) -> Option<MomentTest> {
+        let mode = mode(s.filter);
+        (mode > 0).then(|| MomentTest {
+            mode,
+            min_variance_bits: s.min_variance.to_bits(),
+            bleed_reduction_bits: s.bleed_reduction.to_bits(),
+            evsm_bits: evsm_exponents(s).map(f32::to_bits),
+            msm_bias_bits: s.msm_bias.to_bits(),
+            msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
+            border_lit: s.wrap == Wrap::ClampToBorder,
+        })
+    }
+
+    pub fn defines(&self) -> Vec<(&'static str, String)> {
+        let f = |bits: u32| glsl_float(f32::from_bits(bits));
+        let t = self.msm_toward_bits.map(f);
+        vec![
+            ("MOMENT_MODE", self.mode.to_string()),
+            ("MIN_VARIANCE", f(self.min_variance_bits)),
+            ("BLEED_REDUCTION", f(self.bleed_reduction_bits)),
+            ("EVSM_POS", f(self.evsm_bits[0])),
+            ("EVSM_NEG", f(self.evsm_bits[1])),
+            ("MSM_BIAS", f(self.msm_bias_bits)),
+            (
+                "MSM_TOWARD",
+                format!("vec4({}, {}, {}, {})", t[0], t[1], t[2], t[3]),
+            ),
+            ("BORDER_LIT", u32::from(self.border_lit).to_string()),
+        ]
+    }
+}
+
+/// What a filter costs per frame: lookups per shaded pixel, passes over the map and the
+/// bytes of its storage (the bench states these).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct FilterCost {
+    /// Texture lookups per shaded fragment (a bilinear or hardware-compared lookup is one).
+    pub taps: u32,
+    /// Passes per map per frame: the depth pass, and a moment map's two blur passes.
+    pub passes: u32,
+    /// Texture reads per map texel in the blur (0 without one).
+    pub blur_taps: u32,
+    /// Bytes per map texel.
+    pub bytes_per_texel: u32,
+}
+
+/// The cost of `settings`' filter on one 2D map.
+pub fn cost(settings: &ShadowSettings) -> FilterCost {
+    let f = settings.filter;
+    let components = f.moment_components();
+    if components == 0 {
+        let side = 2 * f.radius() + 1;
+        return FilterCost {
+            taps: side * side,
+            passes: 1,
+            blur_taps: 0,
+            bytes_per_texel: 4,
+        };
+    }
+    let blur = settings.blur.taps();
+    FilterCost {
+        taps: 1,
+        passes: if blur > 0 { 3 } else { 1 },
+        blur_taps: 2 * blur,
+        bytes_per_texel: 2 * 4 * components + 4,
+    }
+}
+
+/// A light's filterable map, with the programs that draw and blur it.
+pub struct Moments {
+    map: MomentMap,
+    /// The depth program and the (mode, exponents) it was compiled for.
+    depth: Option<((u32, [u32; 2]), ShaderProgram)>,
+    /// The blur program and its kernel.
+    blur: Option<(Blur, ShaderProgram)>,
+    triangle: FullScreenTriangle,
+}
+
+impl Moments {
+    pub fn new(gl: &Gl, settings: &ShadowSettings) -> Result<Moments> {
+        let components = settings.filter.moment_components();
+        if components == 0 {
+            return Err(Error::Invalid(format!(
+                "filter {} has no moment map",
+                settings.filter.name()
+            )));
+        }
+        Ok(Moments {
+            map: MomentMap::new(gl, settings.map_size, components)?,
+            depth: None,
+            blur: None,
+            triangle: FullScreenTriangle::new(gl)?,
+        })
+    }
+
+    /// Compiles the depth program for `s`' filter and exponents unless it is the one there.
+    fn prepare_depth(&mut self, gl: &Gl, s: &ShadowSettings) -> Result<()> {
+        let exponents = evsm_exponents(s);
+        let key = (mode(s.filter), exponents.map(f32::to_bits));
+        if self.depth.as_ref().map(|(k, _)| *k) != Some(key) {
+            let defines = vec![
+                ("MOMENT_MODE".to_string(), key.0.to_string()),
+                ("EVSM_POS".to_string(), glsl_float(exponents[0])),
+                ("EVSM_NEG".to_string(), glsl_float(exponents[1])),
+            ];
+            let program = ShaderProgram::new(
+                gl,
+                &shaders::depth_vert(),
+                &shaders::moments_depth_frag(),
+                &defines,
+            )?;
+            self.depth = Some((key, program));
+        }
+        Ok(())
+    }
+
+    /// Compiles the blur program for `blur` unless it is the one there.
+    fn prepare_blur(&mut self, gl: &Gl, blur: Blur) -> Result<()> {
+        if self.blur.as_ref().map(|(b, _)| *b) != Some(blur) {
+            let weights = blur.weights();
+            let list: Vec<String> = weights.iter().map(|w| glsl_float(*w)).collect();
+            let defines = vec![
+                ("BLUR_RADIUS".to_string(), (weights.len() - 1).to_string()),
+                ("BLUR_WEIGHTS".to_string(), list.join(", ")),
+            ];
+            let program = ShaderProgram::new(
+                gl,
+                &shaders::depth_view_vert(),
+                &shaders::moments_blur_frag(),
+                &defines,
+            )?;
+            self.blur = Some((blur, program));
+        }
+        Ok(())
+    }
+}
+
+impl Technique for Moments {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Moments
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.map.size() == s.map_size && self.map.components() == s.filter.moment_components()
+    }
+
+    /// The chapter's depth pass with moments for depth, then the blur.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let settings = pass.settings;
+        let view = camera(scene, index, settings);
+        let gl = pass.gl.clone();
+        self.prepare_depth(&gl, settings)?;
+        if let Some((_, program)) = &self.depth {
+            let _state = DepthPassGuard::begin(&gl, depth_state(settings), program);
+            self.map.begin_depth_pass(far_moments(settings));
+            draw_map_casters(pass.meshes, pass.casters, scene, index, &view, program);
+        }
+        if settings.blur != Blur::None {
+            self.prepare_blur(&gl, settings.blur)?;
+            if let Some((_, program)) = &self.blur {
+                self.map.blur(program, &self.triangle);
+            }
+        }
+        Ok(view)
+    }
+
+    fn texture(&self) -> &Texture {
+        self.map.texture()
+    }
+
+    /// Filtered, never compared: the blur and the bilinear lookup are the filter. Outside
+    /// the map the shader decides (`BORDER_LIT`): a border colour of depth 1 is not the
+    /// moments of depth 1 for every filter.
+    fn sampling(&self, _settings: &ShadowSettings) -> Sampling {
+        Sampling {
+            compare: false,
+            linear: true,
+            wrap: Wrap::ClampToEdge,
+        }
+    }
+
+    fn slot_transform(
+        &self,
+        _light: &Light,
+        view: &ShadowView,
+        settings: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        Some(SlotTransform {
+            from: view.view64,
+            projection: view.projection,
+            normal_offset: settings.normal_offset * view.texel_world,
+        })
+    }
+
+    fn bytes(&self) -> u64 {
+        self.map.bytes()
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        DepthViewKind::Flat
+    }
+}
