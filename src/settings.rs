@@ -820,6 +820,10 @@ impl ShadowSettings {
                 serde_json::Value::String(s) => s.clone(),
                 // Switches read as the flags spell them.
                 serde_json::Value::Bool(b) => if *b { "on" } else { "off" }.to_string(),
+                // Settings are f32: shown as f32 (0.4, not 0.4000000059604645).
+                serde_json::Value::Number(n) if n.is_f64() => {
+                    (n.as_f64().unwrap_or_default() as f32).to_string()
+                }
                 other => other.to_string(),
             };
             let part = match key.as_str() {
