@@ -8,7 +8,7 @@ use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::frame::render_frames;
 use shadowmap::engine::Outputs;
 use shadowmap::settings::{Filter, ShadowSettings};
-use shadowmap::shadows::moments::cost;
+use shadowmap::shadows::filter_cost as cost;
 use shadowmap::Scene;
 
 const MOMENT_FILTERS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];

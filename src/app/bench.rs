@@ -85,10 +85,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         counter
             .get_or_insert_with(|| Counter::new(configs.len() as u64))
             .step(&format!(
-                "{}: {:.2} ms, {:.3}% wrong",
+                "{}: {:.2} ms, {:.3}% wrong (taps / passes / map MiB: {})",
                 row.label(),
                 row.wall_ms.median,
-                row.error() * 100.0
+                row.error() * 100.0,
+                row.cost_label()
             ));
     })?;
     if let Some(counter) = counter {

@@ -19,7 +19,7 @@ use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowPatch, ShadowSettings,
 };
-use crate::shadows::ShadowKind;
+use crate::shadows::{filter_cost, FilterCost, ShadowKind};
 
 /// The bias configurations the sweep tries, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -234,6 +234,12 @@ pub fn sweep(
     for c in &mut out {
         c.family = Family::of(light, &c.settings);
     }
+    // Combinations the light refuses (a moment filter on a point light's cube map).
+    out.retain(|c| {
+        light
+            .settings_problem("the light", &light.settings(&c.settings))
+            .is_none()
+    });
     // The tutorials back in the middle of the whole sweep.
     let (tutorials, mut rest): (Vec<_>, Vec<_>) =
         out.into_iter().partition(|c| c.tutorial.is_some());
@@ -307,6 +313,9 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
             });
         }
     };
+    // The moment filters' maps hold 2 x 16 + 4 bytes a texel: tried at 1024^2 only.
+    let (moment_filters, depth_filters): (Vec<Filter>, Vec<Filter>) =
+        Filter::ALL.iter().partition(|f| f.moments());
     let grid = |sizes: &[u32], filters: &[Filter], biases: &[BiasPreset]| {
         let mut v = Vec::new();
         for &map_size in sizes {
@@ -336,13 +345,19 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         ) {
             push(s, b);
         }
+        for (s, b) in grid(&[1024], &moment_filters, &[BiasPreset::Book]) {
+            push(s, b);
+        }
         return out;
     }
     let sizes: Vec<u32> = [256, 512, 1024, 2048, 4096, 8192]
         .into_iter()
         .filter(|&s| s <= max_texture_size)
         .collect();
-    for (s, b) in grid(&sizes, &Filter::ALL, &BiasPreset::ALL) {
+    for (s, b) in grid(&sizes, &depth_filters, &BiasPreset::ALL) {
+        push(s, b);
+    }
+    for (s, b) in grid(&[1024], &moment_filters, &[BiasPreset::Book, BiasPreset::Slope]) {
         push(s, b);
     }
     for cull in [Cull::Back, Cull::Front] {
@@ -438,6 +453,40 @@ impl BenchRow {
     /// The error the sweep optimises: the misclassified fraction of receiver pixels.
     pub fn error(&self) -> f64 {
         self.metrics.misclassified_rate
+    }
+
+    /// What the configuration's filter costs: lookups per pixel, passes per frame (a
+    /// cascade or a cube face drawn in its own pass counts as one) and blur reads.
+    pub fn cost(&self) -> FilterCost {
+        let s = &self.config.settings;
+        let mut cost = filter_cost(s);
+        cost.passes *= match self.config.family {
+            Family::OneMap | Family::PointLayered => 1,
+            Family::Cascades => s.cascades,
+            Family::PointSixPasses => 6,
+        };
+        cost
+    }
+
+    /// The cost as the table shows it: "9 / 1 / 4.0", a blur's reads after the passes.
+    pub fn cost_label(&self) -> String {
+        let c = self.cost();
+        let mib = self.map_bytes() as f64 / (1024.0 * 1024.0);
+        match c.blur_taps {
+            0 => format!("{} / {} / {mib:.1}", c.taps, c.passes),
+            b => format!("{} / {} (blur {b} reads a texel) / {mib:.1}", c.taps, c.passes),
+        }
+    }
+
+    /// Bytes of the light's maps (every cascade, every cube face).
+    pub fn map_bytes(&self) -> u64 {
+        let s = &self.config.settings;
+        let layers = match self.config.family {
+            Family::OneMap => 1,
+            Family::Cascades => u64::from(s.cascades),
+            Family::PointLayered | Family::PointSixPasses => 6,
+        };
+        s.map_size.texels() * layers * u64::from(filter_cost(s).bytes_per_texel)
     }
 
     /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
@@ -634,7 +683,8 @@ pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filte
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
-misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto";
+misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
+taps,passes,blur_taps,map_bytes";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -643,6 +693,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
     for r in rows {
         let s = &r.config.settings;
         let m = &r.metrics;
+        let cost = r.cost();
         let fields = [
             r.config.tutorial.unwrap_or("-").to_string(),
             format!("{:?}", r.config.family).to_lowercase(),
@@ -679,6 +730,10 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             m.false_light_outside_band.to_string(),
             m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
             r.pareto.to_string(),
+            cost.taps.to_string(),
+            cost.passes.to_string(),
+            cost.blur_taps.to_string(),
+            r.map_bytes().to_string(),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');
@@ -689,8 +744,8 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
 /// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first.
 pub fn to_markdown(rows: &[BenchRow]) -> String {
     let mut out = String::from(
-        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |\n\
-         |---|---|---|---|---|---|---|---|---|---|\n",
+        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE | cost: taps / passes / map MiB |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     let mut shown: Vec<&BenchRow> = rows
         .iter()
@@ -710,7 +765,7 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |\n",
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} | {} |\n",
             r.wall_ms.median,
             r.wall_ms.p95,
             r.overhead_ms,
@@ -721,6 +776,7 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             pct(m.false_light_rate),
             pct(m.misclassified_outside_band_rate),
             m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
+            r.cost_label(),
         ));
     }
     out

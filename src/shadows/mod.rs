@@ -103,6 +103,42 @@ impl ShadowKind {
     }
 }
 
+/// What a filter costs per frame: lookups per shaded pixel, passes over the map and the
+/// bytes of its storage (the bench states these).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct FilterCost {
+    /// Texture lookups per shaded fragment (a bilinear or hardware-compared lookup is one).
+    pub taps: u32,
+    /// Passes per map per frame: the depth pass, and a moment map's two blur passes.
+    pub passes: u32,
+    /// Texture reads per map texel in the blur (0 without one).
+    pub blur_taps: u32,
+    /// Bytes per map texel.
+    pub bytes_per_texel: u32,
+}
+
+/// The cost of `settings`' filter on one 2D map.
+pub fn filter_cost(settings: &ShadowSettings) -> FilterCost {
+    let f = settings.filter;
+    let components = f.moment_components();
+    if components == 0 {
+        let side = 2 * f.radius() + 1;
+        return FilterCost {
+            taps: side * side,
+            passes: 1,
+            blur_taps: 0,
+            bytes_per_texel: 4,
+        };
+    }
+    let blur = settings.blur.taps();
+    FilterCost {
+        taps: 1,
+        passes: if blur > 0 { 3 } else { 1 },
+        blur_taps: 2 * blur,
+        bytes_per_texel: 2 * 4 * components + 4,
+    }
+}
+
 /// The rays a light's map stands for: what the exact reference traces.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Rays {
