@@ -263,3 +263,79 @@ impl Technique for Moments {
         DepthViewKind::Flat
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::MsmToward;
+
+    #[test]
+    fn kernels_sum_to_one_and_the_playgrounds_is_its_3x3() {
+        for blur in Blur::ALL {
+            let w = blur.weights();
+            assert_eq!(w.len() as u32, blur.taps() / 2 + 1, "{}", blur.name());
+            let sum = w[0] + 2.0 * w[1..].iter().sum::<f32>();
+            assert!((sum - 1.0).abs() < 1e-6, "{}: {sum}", blur.name());
+            assert!(w.windows(2).all(|p| p[0] >= p[1]), "{}: {w:?}", blur.name());
+        }
+        // The outer product of the 1D kernel is the playground's 2D one.
+        let w = Blur::Playground3x3.weights();
+        for (got, want) in [
+            (w[1] * w[1], 0.045),
+            (w[0] * w[1], 0.122),
+            (w[0] * w[0], 0.332),
+        ] {
+            assert!((got - want).abs() < 1e-3, "{got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn evsm_exponents_are_clamped_so_the_cleared_map_is_finite() {
+        let s = ShadowSettings {
+            filter: Filter::Evsm4,
+            evsm_exponents: [500.0, 90.0],
+            ..ShadowSettings::default()
+        };
+        assert_eq!(evsm_exponents(&s), [EVSM_MAX_EXPONENT, EVSM_MAX_EXPONENT]);
+        assert!(far_moments(&s).iter().all(|m| m.is_finite()));
+        let [pos, pos2, neg, neg2] = far_moments(&ShadowSettings {
+            evsm_exponents: [40.0, 5.0],
+            ..s
+        });
+        assert_eq!((pos, pos2), (40f32.exp(), 40f32.exp() * 40f32.exp()));
+        assert_eq!((neg, neg2), (-(-5f32).exp(), (-5f32).exp() * (-5f32).exp()));
+    }
+
+    #[test]
+    fn moment_constants_reach_only_moment_programs() {
+        let pcf = ShadowSettings::default();
+        assert_eq!(MomentTest::of(&pcf), None);
+        let vsm = ShadowSettings {
+            filter: Filter::Vsm,
+            ..pcf
+        };
+        let test = MomentTest::of(&vsm).unwrap();
+        let defines = test.defines();
+        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
+        assert_eq!(get("MOMENT_MODE"), "1");
+        assert_eq!(get("BLEED_REDUCTION"), "0.15");
+        assert_eq!(get("MSM_TOWARD"), "vec4(0.5, 0.5, 0.5, 0.5)");
+        let playground = ShadowSettings {
+            filter: Filter::Msm,
+            msm_bias: 9e-4,
+            msm_toward: MsmToward::Playground,
+            ..pcf
+        };
+        let defines = MomentTest::of(&playground).unwrap().defines();
+        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
+        assert_eq!(get("MSM_TOWARD"), "vec4(0.0, 0.63, 0.0, 0.63)");
+        assert_eq!(get("MSM_BIAS"), "0.0009");
+        // A border of depth 1 is lit through the shader, not the sampler.
+        let fitted = ShadowSettings {
+            fit: crate::settings::Fit::Scene,
+            ..vsm
+        };
+        assert!(MomentTest::of(&fitted.effective()).unwrap().border_lit);
+        assert!(!test.border_lit);
+    }
+}

@@ -353,7 +353,8 @@ mod tests {
 
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        // Three lights of three kinds, one with cascades: every snippet is included.
+        // Four lights of four kinds, one with cascades, one with a moment map: every
+        // snippet is included.
         let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
         let slot = |shadow| LightSlot {
             shadow,
@@ -365,6 +366,7 @@ mod tests {
             slot(ShadowKind::Map),
             slot(ShadowKind::Cube),
             slot(ShadowKind::Cascades),
+            slot(ShadowKind::Moments),
         ]);
         let text = format!(
             "{}{}",
