@@ -168,6 +168,10 @@ pub struct ShadowView {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DepthViewKind {
     Flat,
+    /// A 2D map that stores exp(c (2 z - 1)) (EVSM's first moment): shown as the depth z.
+    Exponential {
+        exponent_bits: u32,
+    },
     /// A cube map, as a panorama.
     Cube,
     /// A texture array, its layers side by side.

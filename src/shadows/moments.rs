@@ -132,6 +132,10 @@ pub struct Moments {
     /// The blur program and its kernel.
     blur: Option<(Blur, ShaderProgram)>,
     triangle: FullScreenTriangle,
+    /// What the last depth pass stored, for the depth view: the filter and EVSM's
+    /// positive exponent.
+    map_mode: Filter,
+    evsm_positive: f32,
 }
 
 impl Moments {
@@ -148,6 +152,8 @@ impl Moments {
             depth: None,
             blur: None,
             triangle: FullScreenTriangle::new(gl)?,
+            map_mode: settings.filter,
+            evsm_positive: evsm_exponents(settings)[0],
         })
     }
 
@@ -211,6 +217,8 @@ impl Technique for Moments {
     ) -> Result<ShadowView> {
         let settings = pass.settings;
         let view = camera(scene, index, settings);
+        self.map_mode = settings.filter;
+        self.evsm_positive = evsm_exponents(settings)[0];
         let gl = pass.gl.clone();
         self.prepare_depth(&gl, settings)?;
         if let Some((_, program)) = &self.depth {
@@ -260,7 +268,12 @@ impl Technique for Moments {
     }
 
     fn depth_view(&self) -> DepthViewKind {
-        DepthViewKind::Flat
+        match self.map_mode {
+            Filter::Evsm2 | Filter::Evsm4 => DepthViewKind::Exponential {
+                exponent_bits: self.evsm_positive.to_bits(),
+            },
+            _ => DepthViewKind::Flat,
+        }
     }
 }
 
