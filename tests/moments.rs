@@ -210,3 +210,41 @@ fn costs_state_taps_passes_and_memory() {
     assert_eq!((msm.passes, msm.blur_taps, msm.bytes_per_texel), (3, 18, 2 * 16 + 4));
     assert_eq!(of(Filter::Evsm2, Blur::None).passes, 1);
 }
+
+#[test]
+fn bad_moment_settings_get_their_messages() {
+    let dir = std::env::temp_dir().join(format!("shadowmap-moments-bad-{}", std::process::id()));
+    for (flag, value, message) in [
+        (
+            "--bleed-reduction",
+            "1",
+            "error: --bleed-reduction: shadow.bleed_reduction = 1: expected 0 (off) to below 1",
+        ),
+        (
+            "--evsm-exponents",
+            "40,-5",
+            "error: --evsm-exponents: shadow.evsm_exponents = [40.0, -5.0]: expected two numbers \
+             > 0 [positive, negative], like [40, 5] (each is clamped to 42)",
+        ),
+        (
+            "--msm-bias",
+            "2",
+            "error: --msm-bias: shadow.msm_bias = 2: expected 0 to 1 (3e-5 for [0, 1] depth)",
+        ),
+        (
+            "--min-variance",
+            "-1",
+            "error: --min-variance: shadow.min_variance = -1: expected a finite number >= 0",
+        ),
+    ] {
+        let out = common::bin()
+            .args(["render", "--filter", "vsm", flag, value, "--out"])
+            .arg(dir.join("x.png"))
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{flag} {value}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(stderr.trim(), message, "{flag} {value}");
+    }
+    assert!(!dir.exists());
+}
