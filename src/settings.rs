@@ -929,7 +929,11 @@ impl ShadowSettings {
                 self.bleed_reduction
             ));
         }
-        if self.evsm_exponents.iter().any(|c| !(c.is_finite() && *c > 0.0)) {
+        if self
+            .evsm_exponents
+            .iter()
+            .any(|c| !(c.is_finite() && *c > 0.0))
+        {
             return bad(format!(
                 "shadow.evsm_exponents = {:?}: expected two numbers > 0 [positive, negative], \
                  like [40, 5] (each is clamped to {EVSM_MAX_EXPONENT})",

@@ -5,8 +5,8 @@
 mod common;
 
 use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
-use shadowmap::frame::render_frames;
 use shadowmap::engine::Outputs;
+use shadowmap::frame::render_frames;
 use shadowmap::settings::{Filter, ShadowSettings};
 use shadowmap::shadows::filter_cost as cost;
 use shadowmap::Scene;
@@ -51,12 +51,17 @@ fn vsm_bleeds_under_overlapping_occluders_and_reduction_and_msm_cut_it() {
     let strong = bleed(&with(Filter::Vsm, 0.4));
     let msm = bleed(&with(Filter::Msm, 0.0));
     let pcf = bleed(&with(Filter::Pcf3x3, 0.0));
-    eprintln!("bleeding pixels: vsm {raw}, reduced 0.15 {reduced}, 0.4 {strong}; msm {msm}; pcf3x3 {pcf}");
+    eprintln!(
+        "bleeding pixels: vsm {raw}, reduced 0.15 {reduced}, 0.4 {strong}; msm {msm}; pcf3x3 {pcf}"
+    );
     // A depth map does not bleed here; VSM does, visibly.
     assert!(pcf <= 5, "pcf3x3 bleeds {pcf} pixels");
     assert!(raw >= 50, "vsm without reduction bleeds only {raw} pixels");
     assert!(reduced < raw, "reduction 0.15: {reduced} vs {raw}");
-    assert!(strong < reduced, "reduction 0.4: {strong} vs 0.15: {reduced}");
+    assert!(
+        strong < reduced,
+        "reduction 0.4: {strong} vs 0.15: {reduced}"
+    );
     assert!(
         msm * 2 < reduced,
         "msm bleeds {msm}, vsm with Filament's reduction {reduced}"
@@ -82,14 +87,22 @@ fn away_from_edges_the_moment_filters_agree_with_the_hard_reference() {
             let frame = render_visibility(ctx.gl(), &scene, &s, opts.width, opts.height, 0)
                 .unwrap_or_else(|e| panic!("{} {}: {e}", scene.name, filter.name()));
             let m = reference.score(frame.visibility.as_deref().unwrap(), opts.band);
-            worst.push((scene.name.clone(), filter.name(), m.misclassified_outside_band_rate));
+            worst.push((
+                scene.name.clone(),
+                filter.name(),
+                m.misclassified_outside_band_rate,
+            ));
             // Something is shadowed and something lit: not a blank map.
             assert!(m.receivers > 1000, "{} {}", scene.name, filter.name());
         }
     }
     eprintln!("misclassified outside the band: {worst:?}");
     for (scene, filter, rate) in worst {
-        assert!(rate < 0.01, "{scene} {filter}: {:.3}% misclassified away from edges", rate * 100.0);
+        assert!(
+            rate < 0.01,
+            "{scene} {filter}: {:.3}% misclassified away from edges",
+            rate * 100.0
+        );
     }
 }
 
@@ -176,14 +189,24 @@ fn cascades_and_the_cli_refuse_moment_filters_by_name() {
     // On the command line: before any GL work, naming the flag.
     let dir = std::env::temp_dir().join(format!("shadowmap-moments-{}", std::process::id()));
     let out = common::bin()
-        .args(["render", "--scene", "point-shadows", "--filter", "vsm", "--out"])
+        .args([
+            "render",
+            "--scene",
+            "point-shadows",
+            "--filter",
+            "vsm",
+            "--out",
+        ])
         .arg(dir.join("x.png"))
         .output()
         .unwrap();
     assert!(!out.status.success());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
-        stderr.contains(&format!("--filter: {}", point_light_refusal(Filter::Vsm, 0))),
+        stderr.contains(&format!(
+            "--filter: {}",
+            point_light_refusal(Filter::Vsm, 0)
+        )),
         "{stderr}"
     );
     assert!(!dir.exists());
@@ -207,7 +230,10 @@ fn costs_state_taps_passes_and_memory() {
     assert_eq!((vsm.taps, vsm.passes, vsm.blur_taps), (1, 3, 6));
     assert_eq!(vsm.bytes_per_texel, 2 * 8 + 4);
     let msm = of(Filter::Msm, Blur::Gauss9);
-    assert_eq!((msm.passes, msm.blur_taps, msm.bytes_per_texel), (3, 18, 2 * 16 + 4));
+    assert_eq!(
+        (msm.passes, msm.blur_taps, msm.bytes_per_texel),
+        (3, 18, 2 * 16 + 4)
+    );
     assert_eq!(of(Filter::Evsm2, Blur::None).passes, 1);
 }
 

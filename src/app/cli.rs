@@ -544,8 +544,16 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
             &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm][..],
             "a moment filter (vsm, evsm2, evsm4, msm)",
         ),
-        (&["min_variance", "bleed_reduction"], &variance, "vsm, evsm2 or evsm4"),
-        (&["evsm_exponents"], &[Filter::Evsm2, Filter::Evsm4], "evsm2 or evsm4"),
+        (
+            &["min_variance", "bleed_reduction"],
+            &variance,
+            "vsm, evsm2 or evsm4",
+        ),
+        (
+            &["evsm_exponents"],
+            &[Filter::Evsm2, Filter::Evsm4],
+            "evsm2 or evsm4",
+        ),
         (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
     ] {
         if !uses(filters) {

@@ -357,7 +357,11 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     for (s, b) in grid(&sizes, &depth_filters, &BiasPreset::ALL) {
         push(s, b);
     }
-    for (s, b) in grid(&[1024], &moment_filters, &[BiasPreset::Book, BiasPreset::Slope]) {
+    for (s, b) in grid(
+        &[1024],
+        &moment_filters,
+        &[BiasPreset::Book, BiasPreset::Slope],
+    ) {
         push(s, b);
     }
     for cull in [Cull::Back, Cull::Front] {
@@ -474,7 +478,10 @@ impl BenchRow {
         let mib = self.map_bytes() as f64 / (1024.0 * 1024.0);
         match c.blur_taps {
             0 => format!("{} / {} / {mib:.1}", c.taps, c.passes),
-            b => format!("{} / {} (blur {b} reads a texel) / {mib:.1}", c.taps, c.passes),
+            b => format!(
+                "{} / {} (blur {b} reads a texel) / {mib:.1}",
+                c.taps, c.passes
+            ),
         }
     }
 
