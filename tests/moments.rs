@@ -8,7 +8,7 @@ use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::settings::{Filter, ShadowSettings};
-use shadowmap::shadows::filter_cost as cost;
+use shadowmap::shadows::{filter_cost as cost, ShadowKind};
 use shadowmap::Scene;
 
 const MOMENT_FILTERS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
@@ -140,6 +140,24 @@ fn every_moment_filter_draws_every_built_in_scene_or_is_refused_exactly() {
                 Some(i) => {
                     let e = result.err().map(|e| e.to_string());
                     assert_eq!(e, Some(point_light_refusal(filter, i)), "{name}");
+                    // With a depth filter of its own, the point light keeps its cube map
+                    // and the other lights their moment maps, in one program.
+                    let mut mixed = scene.clone();
+                    for light in &mut mixed.lights {
+                        if matches!(light, shadowmap::scene::Light::Point(_)) {
+                            light.shadow_patch_mut().filter = Some(Filter::Pcf3x3);
+                        }
+                    }
+                    let kinds = ShadowKind::for_lights(&mixed.lights, &s);
+                    let frame = render_frames(ctx.gl(), &mut mixed, &s, w, h, 1, outputs)
+                        .unwrap_or_else(|e| panic!("{name} {} mixed: {e}", filter.name()));
+                    assert!(frame.visibility.is_some());
+                    assert!(kinds.contains(&ShadowKind::Cube), "{name}: {kinds:?}");
+                    if name == "three-lights" {
+                        // The sun and the spot: two moment maps, each with its own snippet.
+                        let moments = kinds.iter().filter(|k| **k == ShadowKind::Moments);
+                        assert_eq!(moments.count(), 2, "{kinds:?}");
+                    }
                 }
                 None => {
                     // No GL error (render checks after each pass), and a picture with

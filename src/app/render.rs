@@ -27,7 +27,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
             return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
-                 cascades or casts no shadow): use --show-depth-map to see its map",
+                 cascades, a moment map or casts no shadow): use --show-depth-map to see its map",
                 path.display()
             )));
         }
