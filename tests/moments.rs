@@ -292,3 +292,58 @@ fn bad_moment_settings_get_their_messages() {
     }
     assert!(!dir.exists());
 }
+
+#[test]
+fn the_blur_scissored_to_the_casters_changes_no_pixel() {
+    // The blur runs only over the casters' footprint in the map (the rest is the cleared far
+    // moments, which a blur keeps). On the overlap scene with a floor that only receives,
+    // the plates' outlines are the footprint's edges, and their shadows' edges are in view.
+    // A small caster behind the camera, in the map's corner, grows the footprint to most of
+    // the map (a blur as good as unscissored): where the camera looks, nothing may change.
+    let ctx = common::context();
+    let mut scene = overlap();
+    scene.items[0].casts_shadows = false;
+    let mut wide = scene.clone();
+    let mut far_off = wide.items[1].clone();
+    far_off.name = "far-off plate".into();
+    far_off.position = glam::Vec3::new(-4.5, 0.0, 5.0);
+    far_off.scale = glam::Vec3::splat(0.1);
+    wide.items.push(far_off);
+    let view = shadowmap::shadows::light_camera(&scene, 0, &scene.shadow);
+    let area = |s: &Scene| {
+        let f = shadowmap::shadows::moments::caster_footprint(s, 0, &view, scene.shadow.map_size)
+            .unwrap();
+        u64::from(f.width) * u64::from(f.height)
+    };
+    assert!(
+        area(&wide) > 2 * area(&scene),
+        "{} vs {}",
+        area(&wide),
+        area(&scene)
+    );
+    for filter in MOMENT_FILTERS {
+        for blur in [
+            shadowmap::settings::Blur::Playground3x3,
+            shadowmap::settings::Blur::Gauss9,
+        ] {
+            let s = ShadowSettings {
+                filter,
+                blur,
+                ..scene.shadow
+            };
+            let a = common::render(&ctx, &mut scene.clone(), &s, 320, 240);
+            let b = common::render(&ctx, &mut wide.clone(), &s, 320, 240);
+            let (va, vb) = (a.visibility.unwrap(), b.visibility.unwrap());
+            let shadowed = va.iter().flatten().filter(|v| **v < 0.5).count();
+            assert!(shadowed > 100, "{}: {shadowed}", filter.name());
+            let changed = va.iter().zip(&vb).filter(|(x, y)| x != y).count();
+            assert_eq!(
+                changed,
+                0,
+                "{} {}: pixels changed",
+                filter.name(),
+                blur.name()
+            );
+        }
+    }
+}

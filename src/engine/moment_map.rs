@@ -8,7 +8,7 @@ use glow::HasContext;
 
 use super::check::check_framebuffer;
 use super::mesh::FullScreenTriangle;
-use super::state::NoDepthTest;
+use super::state::{NoDepthTest, PixelRect};
 use super::texture::Texture;
 use super::{Gl, ShaderProgram};
 use crate::error::{Error, Result};
@@ -96,19 +96,60 @@ impl MomentMap {
     }
 
     /// The separable blur: `program` (a full-screen pass reading the sampler `source` on
-    /// unit 0, stepping `stepUv` per tap) from texture 0 into 1 across, then back down.
-    /// Leaves the default framebuffer bound and no program.
-    pub fn blur(&self, program: &ShaderProgram, triangle: &FullScreenTriangle) {
-        let (w, h) = (self.textures[0].width(), self.textures[0].height());
+    /// unit 0, stepping `stepUv` per tap, `radius` taps either side) from texture 0 into 1
+    /// across, then back down. With `footprint` (the texels the casters can cover; the rest
+    /// hold the cleared far moments, which a blur leaves as they are) each pass is
+    /// scissored to what it can change: across, the footprint grown by the radius sideways
+    /// and twice it up and down (the rows the pass down reads); down, grown by the radius.
+    /// Leaves the default framebuffer bound, no program and no scissor test.
+    pub fn blur(
+        &self,
+        program: &ShaderProgram,
+        triangle: &FullScreenTriangle,
+        radius: u32,
+        footprint: Option<PixelRect>,
+    ) {
+        let size = self.size();
+        let (w, h) = (size.width, size.height);
+        let grow = |r: PixelRect, dx: u32, dy: u32| {
+            let x0 = r.x.saturating_sub(dx);
+            let y0 = r.y.saturating_sub(dy);
+            let x1 = (r.x + r.width).saturating_add(dx).min(w);
+            let y1 = (r.y + r.height).saturating_add(dy).min(h);
+            PixelRect {
+                x: x0,
+                y: y0,
+                width: x1.saturating_sub(x0),
+                height: y1.saturating_sub(y0),
+            }
+        };
+        // One texel more than the kernel reaches, for rounding at the footprint's edges.
+        let r = radius + 1;
+        let passes = [
+            (
+                0,
+                [1.0 / w as f32, 0.0],
+                footprint.map(|f| grow(f, r, 2 * r)),
+            ),
+            (1, [0.0, 1.0 / h as f32], footprint.map(|f| grow(f, r, r))),
+        ];
         let _no_depth = NoDepthTest::begin(&self.gl);
         program.bind();
         program.set_i32("source", 0);
-        for (from, step) in [(0, [1.0 / w as f32, 0.0]), (1, [0.0, 1.0 / h as f32])] {
+        for (from, step, scissor) in passes {
             unsafe {
                 self.gl
                     .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[1 - from]);
                 self.viewport();
                 self.gl.bind_sampler(0, None);
+                match scissor {
+                    Some(s) => {
+                        self.gl.enable(glow::SCISSOR_TEST);
+                        self.gl
+                            .scissor(s.x as i32, s.y as i32, s.width as i32, s.height as i32);
+                    }
+                    None => self.gl.disable(glow::SCISSOR_TEST),
+                }
             }
             self.textures[from].bind(0);
             program.set_vec2("stepUv", step);
@@ -116,6 +157,7 @@ impl MomentMap {
         }
         program.unbind();
         unsafe {
+            self.gl.disable(glow::SCISSOR_TEST);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }

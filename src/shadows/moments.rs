@@ -13,17 +13,20 @@
 //! Cube maps and cascades have no moment form here: `Light::settings_problem` refuses
 //! those combinations, naming the light and the filter.
 
-use super::casters::depth_state;
+use glam::DVec2;
+
+use super::casters::{depth_state, may_land};
+use super::fitted;
 use super::map2d::{camera, draw_map_casters, SAMPLERS};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
 };
 use crate::engine::{
-    DepthPassGuard, FullScreenTriangle, Gl, MomentMap, Sampling, ShaderProgram, Texture,
+    DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
 };
 use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
-use crate::settings::{glsl_float, Blur, Filter, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
+use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
 use crate::shaders;
 
 /// Light `i`'s part of the generated snippets: `calcShadowMoments`
@@ -122,6 +125,53 @@ impl MomentTest {
             ("BORDER_LIT", u32::from(self.border_lit).to_string()),
         ]
     }
+}
+
+/// The texels of a `size` map that light `index`'s casters (those its depth pass draws)
+/// can cover, seen through `view`: their world boxes' corners projected, clamped to the
+/// map. `None` when a corner is behind a perspective light's eye (the whole map, then).
+pub fn caster_footprint(
+    scene: &Scene,
+    index: usize,
+    view: &ShadowView,
+    size: MapSize,
+) -> Option<PixelRect> {
+    let clip = view.projection.as_dmat4() * view.view64;
+    let light = &scene.lights[index];
+    let boxes = fitted::item_world_boxes(scene);
+    let (mut lo, mut hi) = (DVec2::splat(1.0), DVec2::splat(-1.0));
+    for (k, item) in scene.items.iter().enumerate() {
+        let (a, b) = boxes[k];
+        if !item.casts_shadows || !may_land(light, view, a, b) {
+            continue;
+        }
+        for c in fitted::corners(a, b) {
+            let p = clip * c.extend(1.0);
+            if p.w <= 1e-9 {
+                return None;
+            }
+            let ndc = (p.truncate().truncate() / p.w).clamp(DVec2::splat(-1.0), DVec2::ONE);
+            lo = lo.min(ndc);
+            hi = hi.max(ndc);
+        }
+    }
+    if lo.x > hi.x || lo.y > hi.y {
+        return Some(PixelRect {
+            x: 0,
+            y: 0,
+            width: 0,
+            height: 0,
+        });
+    }
+    let texels = DVec2::new(f64::from(size.width), f64::from(size.height));
+    let a = ((lo + 1.0) * 0.5 * texels).floor();
+    let b = ((hi + 1.0) * 0.5 * texels).ceil().min(texels);
+    Some(PixelRect {
+        x: a.x as u32,
+        y: a.y as u32,
+        width: (b.x - a.x).max(0.0) as u32,
+        height: (b.y - a.y).max(0.0) as u32,
+    })
 }
 
 /// A light's filterable map, with the programs that draw and blur it.
@@ -228,8 +278,13 @@ impl Technique for Moments {
         }
         if settings.blur != Blur::None {
             self.prepare_blur(&gl, settings.blur)?;
-            if let Some((_, program)) = &self.blur {
-                self.map.blur(program, &self.triangle);
+            let footprint = caster_footprint(scene, index, &view, self.map.size());
+            let radius = settings.blur.taps() / 2;
+            match (&self.blur, footprint) {
+                // No caster lands: the map is all far moments, which a blur keeps.
+                (_, Some(f)) if f.width == 0 || f.height == 0 => {}
+                (Some((_, program)), f) => self.map.blur(program, &self.triangle, radius, f),
+                (None, _) => {}
             }
         }
         Ok(view)
@@ -350,5 +405,49 @@ mod tests {
         };
         assert!(MomentTest::of(&fitted.effective()).unwrap().border_lit);
         assert!(!test.border_lit);
+    }
+}
+
+#[cfg(test)]
+mod footprint_tests {
+    use super::*;
+
+    #[test]
+    fn the_blur_covers_the_casters_footprint_and_no_more() {
+        let scene = Scene::load("dummy").unwrap();
+        let s = scene.shadow;
+        let view = camera(&scene, 0, &s);
+        let size = s.map_size;
+        let f = caster_footprint(&scene, 0, &view, size).unwrap();
+        // The 5 x 5 plane and the cube in a 20 x 20 box: about a quarter of the map's side.
+        assert!(
+            f.x + f.width <= size.width && f.y + f.height <= size.height,
+            "{f:?}"
+        );
+        assert!(
+            f.width < size.width / 2 && f.height < size.height / 2,
+            "{f:?}"
+        );
+        // Every caster's centre projects inside it.
+        let clip = view.projection.as_dmat4() * view.view64;
+        for item in scene.items.iter().filter(|i| i.casts_shadows) {
+            let p = clip * item.position.as_dvec3().extend(1.0);
+            let t = (p.truncate().truncate() / p.w + 1.0) * 0.5 * f64::from(size.width);
+            assert!(
+                t.x >= f64::from(f.x)
+                    && t.x <= f64::from(f.x + f.width)
+                    && t.y >= f64::from(f.y)
+                    && t.y <= f64::from(f.y + f.height),
+                "{} at {t:?} outside {f:?}",
+                item.name
+            );
+        }
+        // No casters: nothing to blur.
+        let mut empty = scene.clone();
+        for item in &mut empty.items {
+            item.casts_shadows = false;
+        }
+        let none = caster_footprint(&empty, 0, &view, size).unwrap();
+        assert_eq!((none.width, none.height), (0, 0));
     }
 }
