@@ -2,7 +2,8 @@
 // The depth-map debug view (LearnOpenGL's debug quad). An orthographic map stores linear
 // depth and is shown raw; a perspective map is linearised first, or everything but the
 // nearest surfaces would look white. A cube map (CUBE) is shown as a panorama, a cascade
-// array (ARRAY) as its layers side by side.
+// array (ARRAY) as its layers side by side. A moment map shows its first moment (the mean
+// depth), an EVSM map unwarped back to depth.
 
 in vec2 texCoords;
 out vec4 fragColor;
@@ -16,6 +17,7 @@ uniform int layers;
 uniform sampler2D depthMap;
 #endif
 uniform int linearize;
+uniform float warp;
 uniform float nearPlane;
 uniform float farPlane;
 
@@ -41,6 +43,8 @@ void main()
     float shown = texture(depthMap, vec3(x - layer, texCoords.y, layer)).r;
 #else
     float d = texture(depthMap, texCoords).r;
+    // An EVSM map stores exp(warp (2 z - 1)): back to z (warp 0: a plain depth).
+    d = warp > 0.0 ? (log(max(d, 1e-30)) / warp + 1.0) * 0.5 : d;
     float shown = linearize == 1 ? linearDepth(d) : d;
 #endif
     fragColor = vec4(vec3(shown), 1.0);

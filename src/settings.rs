@@ -119,11 +119,21 @@ pub enum Filter {
     #[value(name = "pcss")]
     #[serde(rename = "pcss")]
     Pcss,
+    // Filterable maps (src/shadows/moments.rs): the map stores moments of depth, blurred,
+    // and the test reconstructs a visibility from them.
+    /// Variance shadow maps: (z, z^2), blurred, Chebyshev's upper bound.
+    Vsm,
+    /// Exponential variance shadow maps with the positive exponent only (2 components).
+    Evsm2,
+    /// Exponential variance shadow maps with both exponents (4 components).
+    Evsm4,
+    /// Moment shadow maps: (z, z^2, z^3, z^4), the Hamburger 4MSM reconstruction.
+    Msm,
 }
 
 impl Filter {
     /// The chapters' filters (hard tests; the bench's full grid); the soft ones are
-    /// [`Filter::SOFT`].
+    /// [`Filter::SOFT`], the moment maps' [`Filter::MOMENTS`].
     pub const ALL: [Filter; 5] = [
         Filter::Single,
         Filter::Pcf3x3,
@@ -136,6 +146,9 @@ impl Filter {
     /// [`Filter::works_with`].
     pub const SOFT: [Filter; 3] = [Filter::Pcf4x4Weighted, Filter::SoftPcf, Filter::Pcss];
 
+    /// The moment maps' filters (a map of their own, `src/shadows/moments.rs`).
+    pub const MOMENTS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
+
     /// Half the grid of lookups in texels (0 = one lookup); the soft filters have their
     /// own taps ([`Filter::kernel`]) and no grid.
     pub fn radius(self) -> u32 {
@@ -144,6 +157,8 @@ impl Filter {
             Filter::Pcf3x3 | Filter::Hardware3x3 => 1,
             Filter::Pcf5x5 => 2,
             Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => 0,
+            // One filtered lookup: the blur did the averaging.
+            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 0,
         }
     }
 
@@ -164,6 +179,8 @@ impl Filter {
         match self {
             Filter::Pcf4x4Weighted | Filter::SoftPcf => 16,
             Filter::Pcss => settings.pcss_blocker_taps + settings.pcss_filter_taps,
+            // One filtered lookup: the blur did the averaging.
+            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 1,
             _ => (2 * self.radius() + 1).pow(2),
         }
     }
@@ -191,6 +208,21 @@ impl Filter {
         }
     }
 
+    /// Whether the map stores moments of depth (a float colour map, blurred) rather than
+    /// depth: those filters need one 2D map (no cube maps, no cascades).
+    pub fn moments(self) -> bool {
+        self.moment_components() > 0
+    }
+
+    /// The components of a moment map's texel (0: a depth map).
+    pub fn moment_components(self) -> u32 {
+        match self {
+            Filter::Vsm | Filter::Evsm2 => 2,
+            Filter::Evsm4 | Filter::Msm => 4,
+            _ => 0,
+        }
+    }
+
     /// Whether lookups use the depth-compare hardware (`sampler2DShadow`, LINEAR).
     pub fn hardware(self) -> bool {
         matches!(self, Filter::Hardware2x2 | Filter::Hardware3x3)
@@ -206,6 +238,115 @@ impl Filter {
             Filter::Pcf4x4Weighted => "pcf4x4-weighted",
             Filter::SoftPcf => "soft-pcf",
             Filter::Pcss => "pcss",
+            Filter::Vsm => "vsm",
+            Filter::Evsm2 => "evsm2",
+            Filter::Evsm4 => "evsm4",
+            Filter::Msm => "msm",
+        }
+    }
+}
+
+/// The Gaussian blur a moment map gets before it is read: separable, one horizontal and
+/// one vertical pass. `playground3x3` is the shadow-playground's 3 x 3 kernel (corner /
+/// edge / centre 0.045 / 0.122 / 0.332 = the outer product of (0.2118, 0.5762, 0.2118));
+/// the others are Gaussians with sigma = taps / 6 (the kernel spans +-3 sigma),
+/// normalised.
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Blur {
+    /// No blur: only the lookup's bilinear filtering.
+    None,
+    /// The shadow-playground's 3 x 3.
+    #[default]
+    #[value(name = "playground3x3")]
+    #[serde(rename = "playground3x3")]
+    Playground3x3,
+    #[value(name = "gauss5")]
+    #[serde(rename = "gauss5")]
+    Gauss5,
+    #[value(name = "gauss7")]
+    #[serde(rename = "gauss7")]
+    Gauss7,
+    #[value(name = "gauss9")]
+    #[serde(rename = "gauss9")]
+    Gauss9,
+}
+
+impl Blur {
+    pub const ALL: [Blur; 5] = [
+        Blur::None,
+        Blur::Playground3x3,
+        Blur::Gauss5,
+        Blur::Gauss7,
+        Blur::Gauss9,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Blur::None => "none",
+            Blur::Playground3x3 => "playground3x3",
+            Blur::Gauss5 => "gauss5",
+            Blur::Gauss7 => "gauss7",
+            Blur::Gauss9 => "gauss9",
+        }
+    }
+
+    /// Taps of the 1D kernel (0: no blur).
+    pub fn taps(self) -> u32 {
+        match self {
+            Blur::None => 0,
+            Blur::Playground3x3 => 3,
+            Blur::Gauss5 => 5,
+            Blur::Gauss7 => 7,
+            Blur::Gauss9 => 9,
+        }
+    }
+
+    /// The 1D weights from the centre out (`weights[0]` the centre, then each side's),
+    /// summing to 1 over the whole kernel.
+    pub fn weights(self) -> Vec<f32> {
+        if self == Blur::Playground3x3 {
+            // The playground's 2D weights are this kernel's outer product: sqrt(0.332) in
+            // the centre, 0.122 / sqrt(0.332) either side (0.045 ~ 0.2118^2 in the corners).
+            let centre = 0.332f32.sqrt();
+            let side = 0.122 / centre;
+            let sum = centre + 2.0 * side;
+            return vec![centre / sum, side / sum];
+        }
+        let radius = (self.taps() / 2) as i32;
+        if radius == 0 {
+            return vec![1.0];
+        }
+        let sigma = self.taps() as f32 / 6.0;
+        let w: Vec<f32> = (0..=radius)
+            .map(|i| (-((i * i) as f32) / (2.0 * sigma * sigma)).exp())
+            .collect();
+        let sum = w[0] + 2.0 * w[1..].iter().sum::<f32>();
+        w.iter().map(|v| v / sum).collect()
+    }
+}
+
+/// The moment vector a moment shadow map's moments are pulled toward by `msm_bias`
+/// (against the numerical failures of a nearly singular Hankel matrix).
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum MsmToward {
+    /// (0.5, 0.5, 0.5, 0.5): half the weight at depth 0 and half at 1 (for [0, 1] depth).
+    #[default]
+    Half,
+    /// The shadow-playground's (0, 0.63, 0, 0.63).
+    Playground,
+}
+
+impl MsmToward {
+    pub fn vector(self) -> [f32; 4] {
+        match self {
+            MsmToward::Half => [0.5; 4],
+            MsmToward::Playground => [0.0, 0.63, 0.0, 0.63],
         }
     }
 }
@@ -493,6 +634,9 @@ pub fn parse_map_size(s: &str) -> Result<MapSize, String> {
 /// The points of PCSS's Poisson disk (shaders/lib/soft_filters.glsl): the most taps each
 /// of its two stages can take.
 pub const PCSS_MAX_TAPS: u32 = 32;
+/// EVSM's largest exponent: exp(2 x 42) ~ 3e36 stays below 32-bit floats' 3.4e38, so
+/// the warped depth's square cannot overflow.
+pub const EVSM_MAX_EXPONENT: f32 = 42.0;
 
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
 /// uniform arrays.
@@ -618,6 +762,30 @@ shadow_settings! {
         wrap: Wrap = Wrap::ClampToEdge;
         /// What fragments beyond the light's far plane get.
         beyond_far: BeyondFar = BeyondFar::Shadowed;
+    }
+    /// The filterable maps (`filter = "vsm"`, `"evsm2"`, `"evsm4"`, `"msm"`): a float
+    /// colour map of depth's moments, blurred, read with one filtered lookup.
+    "Moment maps" {
+        /// The blur before the lookup: the playground's 3 x 3, a wider Gaussian, or none.
+        blur: Blur = Blur::Playground3x3;
+        /// The least variance Chebyshev's bound assumes (VSM; EVSM scales it by each
+        /// exponent's slope), against acne where the map is flat.
+        min_variance: f32 = 1e-6,
+            arg(value_name = "V", value_parser = parse_finite, allow_negative_numbers = true);
+        /// Light-bleeding reduction (VSM, EVSM): bounds below this read as shadow, the rest
+        /// stretch to [0, 1] (0 = off; Filament's default 0.15, MJP's comparisons 0.25).
+        bleed_reduction: f32 = 0.15,
+            arg(value_name = "AMOUNT", value_parser = parse_finite, allow_negative_numbers = true);
+        /// EVSM's exponents [positive, negative] (40 and 5 by default); each is clamped to
+        /// 42 so exp(2c) stays inside 32-bit floats.
+        evsm_exponents: [f32; 2] = [40.0, 5.0],
+            arg(value_name = "POS,NEG", value_parser = parse_pair, allow_hyphen_values = true);
+        /// MSM's moment bias alpha: the moments move this far toward `msm_toward` (3e-5
+        /// for [0, 1] depth; the playground's preset: 9e-4 toward "playground").
+        msm_bias: f32 = 3e-5,
+            arg(value_name = "ALPHA", value_parser = parse_finite, allow_negative_numbers = true);
+        /// What MSM's moment bias pulls toward.
+        msm_toward: MsmToward = MsmToward::Half;
     }
     /// How the map is drawn.
     "Depth pass" {
@@ -773,6 +941,10 @@ impl ShadowSettings {
                 serde_json::Value::String(s) => s.clone(),
                 // Switches read as the flags spell them.
                 serde_json::Value::Bool(b) => if *b { "on" } else { "off" }.to_string(),
+                // Settings are f32: shown as f32 (0.4, not 0.4000000059604645).
+                serde_json::Value::Number(n) if n.is_f64() => {
+                    (n.as_f64().unwrap_or_default() as f32).to_string()
+                }
                 other => other.to_string(),
             };
             let part = match key.as_str() {
@@ -781,6 +953,13 @@ impl ShadowSettings {
                 | "cascade_blend" | "shadow_distance" => continue,
                 "perspective_fov" => continue,
                 "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => continue,
+                // The moment maps' knobs do nothing for a depth map.
+                "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
+                | "msm_toward"
+                    if !self.filter.moments() =>
+                {
+                    continue
+                }
                 "light_projection" if perspective => {
                     format!("perspective light, fov {}", self.perspective_fov)
                 }
@@ -869,6 +1048,35 @@ impl ShadowSettings {
             return bad(format!(
                 "shadow.shadow_distance = {}: expected a finite number >= 0 (0 = the camera's far plane)",
                 self.shadow_distance
+            ));
+        }
+        if !(self.min_variance.is_finite() && self.min_variance >= 0.0) {
+            return bad(format!(
+                "shadow.min_variance = {}: expected a finite number >= 0",
+                self.min_variance
+            ));
+        }
+        if !(0.0..1.0).contains(&self.bleed_reduction) {
+            return bad(format!(
+                "shadow.bleed_reduction = {}: expected 0 (off) to below 1",
+                self.bleed_reduction
+            ));
+        }
+        if self
+            .evsm_exponents
+            .iter()
+            .any(|c| !(c.is_finite() && *c > 0.0))
+        {
+            return bad(format!(
+                "shadow.evsm_exponents = {:?}: expected two numbers > 0 [positive, negative], \
+                 like [40, 5] (each is clamped to {EVSM_MAX_EXPONENT})",
+                self.evsm_exponents
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.msm_bias) {
+            return bad(format!(
+                "shadow.msm_bias = {}: expected 0 to 1 (3e-5 for [0, 1] depth)",
+                self.msm_bias
             ));
         }
         if self.polygon_offset.iter().any(|v| !v.is_finite()) {

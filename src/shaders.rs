@@ -39,6 +39,8 @@ shader!(depth_point_layered_geom, "depth_point_layered.geom");
 shader!(volume_vert, "volume.vert");
 shader!(volume_geom, "volume.geom");
 shader!(volume_frag, "volume.frag");
+shader!(moments_depth_frag, "moments_depth.frag");
+shader!(moments_blur_frag, "moments_blur.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
 
@@ -64,6 +66,10 @@ const LIBRARY: &[(&str, &str)] = &[
     (
         "lib/shadow_cascades.glsl",
         include_str!("../shaders/lib/shadow_cascades.glsl"),
+    ),
+    (
+        "lib/shadow_moments.glsl",
+        include_str!("../shaders/lib/shadow_moments.glsl"),
     ),
     (
         "lib/outputs.glsl",

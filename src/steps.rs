@@ -6,8 +6,8 @@
 use crate::error::{Error, Result};
 use crate::scene::{Scene, StepContext, StepList};
 use crate::settings::{
-    BeyondFar, BiasMode, Cull, Filter, LightProjection, MapSize, ShadowSettings, ShadowTechnique,
-    Wrap,
+    BeyondFar, BiasMode, Blur, Cull, Filter, LightProjection, MapSize, MsmToward, ShadowSettings,
+    ShadowTechnique, Wrap,
 };
 
 /// One step of the chapters.
@@ -188,6 +188,33 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
                    depth of their own texels are slightly darker.",
         cumulative: true,
         apply: |s, _| s.filter = Filter::SoftPcf,
+    },
+    Step {
+        name: "variance",
+        change: "Its variance demo: the map stores (z, z^2), blurred by its 3 x 3 Gaussian \
+                 (0.045 / 0.122 / 0.332), and Chebyshev's bound gives the lit fraction \
+                 (variance at least 1e-8, no bleeding reduction, as the demo).",
+        look_for: "Smooth edges from one filtered lookup; where the slab's shadow falls behind \
+                   the cube's, light bleeds into it.",
+        cumulative: true,
+        apply: |s, _| {
+            s.filter = Filter::Vsm;
+            s.blur = Blur::Playground3x3;
+            s.min_variance = 1e-8;
+            s.bleed_reduction = 0.0;
+        },
+    },
+    Step {
+        name: "moment",
+        change: "Its moment demo: (z, z^2, z^3, z^4), the same blur, the moments biased by \
+                 9e-4 toward (0, 0.63, 0, 0.63), the Hamburger four-moment reconstruction.",
+        look_for: "Edges as soft as the variance step's, with less light bleeding.",
+        cumulative: true,
+        apply: |s, _| {
+            s.filter = Filter::Msm;
+            s.msm_bias = 9e-4;
+            s.msm_toward = MsmToward::Playground;
+        },
     },
     Step {
         name: "pcss",

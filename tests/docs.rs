@@ -119,6 +119,7 @@ fn the_readme_lists_every_filter() {
     let all: Vec<&str> = Filter::ALL
         .iter()
         .chain(&Filter::SOFT)
+        .chain(&Filter::MOMENTS)
         .map(|f| f.name())
         .collect();
     assert_eq!(listed, all, "README: {line}");

@@ -5,11 +5,11 @@ mod common;
 
 use shadowmap::engine::check::object_exists;
 use shadowmap::engine::{
-    AdjacencyMesh, Mesh, RenderTarget, SamplesQuery, ShaderProgram, ShadowMap, Texture,
+    AdjacencyMesh, Mesh, MomentMap, RenderTarget, SamplesQuery, ShaderProgram, ShadowMap, Texture,
 };
 use shadowmap::geometry::MeshData;
 use shadowmap::image_data::ImageData;
-use shadowmap::settings::DepthFormat;
+use shadowmap::settings::{DepthFormat, MapSize};
 use shadowmap::shaders;
 use shadowmap::shadows::volumes::Adjacency;
 
@@ -47,6 +47,7 @@ fn ten_thousand_objects_leave_memory_flat_and_names_deleted() {
     let cube = MeshData::cube();
     let image = ImageData::wood(64);
     let mut last = None;
+    let mut last_moments = None;
     let cases: Vec<Case> = vec![
         (
             "shadow map 64^2",
@@ -54,6 +55,14 @@ fn ten_thousand_objects_leave_memory_flat_and_names_deleted() {
             Box::new(|| {
                 let m = ShadowMap::new(gl, 64, DepthFormat::D24).unwrap();
                 last = Some(m.depth_map_texture().id());
+            }),
+        ),
+        (
+            "moment map 64^2 (two RGBA32F textures, a depth buffer, two framebuffers)",
+            10_000,
+            Box::new(|| {
+                let m = MomentMap::new(gl, MapSize::square(64), 4).unwrap();
+                last_moments = Some(m.texture().id());
             }),
         ),
         (
@@ -110,6 +119,11 @@ fn ten_thousand_objects_leave_memory_flat_and_names_deleted() {
     assert!(
         !object_exists(gl, id),
         "a dropped texture is still a texture"
+    );
+    let id = last_moments.expect("made at least one");
+    assert!(
+        !object_exists(gl, id),
+        "a dropped moment map's texture is still a texture"
     );
     let kept = Texture::colour(gl, 4, 4).unwrap();
     assert!(object_exists(gl, kept.id()), "a live texture must exist");

@@ -338,8 +338,12 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
         ("soft-pcf", "16"),
         ("pcss", "32"),
     ] {
-        for r in rows.iter().filter(|r| r[col("filter")] == filter) {
-            assert_eq!(r[col("lookups")], lookups, "{r:?}");
+        // (Shadow volumes read no map: their row states 0.)
+        for r in rows
+            .iter()
+            .filter(|r| r[col("filter")] == filter && r[col("family")] != "volumes")
+        {
+            assert_eq!(r[col("taps")], lookups, "{r:?}");
         }
     }
     // The table shows them, with the area figures' columns.

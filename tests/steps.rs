@@ -337,7 +337,10 @@ fn the_playground_has_its_demo_pages_as_steps() {
     use shadowmap::settings::{Filter, MapSize};
     let scene = Scene::load("playground").unwrap();
     let names: Vec<&str> = steps::of(&scene).iter().map(|s| s.name).collect();
-    assert_eq!(names, ["basic", "pcf", "soft-pcf", "pcss"]);
+    assert_eq!(
+        names,
+        ["basic", "pcf", "soft-pcf", "variance", "moment", "pcss"]
+    );
     let at = |name| steps::settings_for(&scene, name).unwrap();
     let basic = at("basic");
     assert_eq!((basic.filter, basic.bias), (Filter::Single, 0.005));
@@ -374,7 +377,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     assert_eq!(
         e,
         "unknown step 'cull-front' for the playground scene (its [steps] list is \"playground\"): \
-         expected one of basic, pcf, soft-pcf, pcss"
+         expected one of basic, pcf, soft-pcf, variance, moment, pcss"
     );
     let dummy = Scene::load("dummy").unwrap();
     let e = steps::settings_for(&dummy, "soft-pcf")

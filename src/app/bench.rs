@@ -86,11 +86,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         counter
             .get_or_insert_with(|| Counter::new(configs.len() as u64))
             .step(&format!(
-                "{}: {:.2} ms, {} {:.3}%",
+                "{}: {:.2} ms, {} {:.3}% (taps / passes / map MiB: {})",
                 row.label(),
                 row.wall_ms.median,
                 row.error_name(),
-                row.error() * 100.0
+                row.error() * 100.0,
+                row.cost_label()
             ));
     })?;
     if let Some(counter) = counter {

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shadowmap::engine::window_context::WindowApi;
 use shadowmap::scene::Light;
-use shadowmap::settings::{Fit, LightProjection, ShadowPatch};
+use shadowmap::settings::{Filter, Fit, LightProjection, ShadowPatch};
 use shadowmap::shadows::ShadowKind;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
@@ -607,9 +607,12 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
         ));
     }
     let volumes = kinds.contains(&ShadowKind::Volume);
-    let maps = kinds
-        .iter()
-        .any(|k| matches!(k, ShadowKind::Map | ShadowKind::Cube | ShadowKind::Cascades));
+    let maps = kinds.iter().any(|k| {
+        matches!(
+            k,
+            ShadowKind::Map | ShadowKind::Moments | ShadowKind::Cube | ShadowKind::Cascades
+        )
+    });
     if volumes && !maps {
         for name in [
             "map_size",
@@ -634,6 +637,43 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
                     "every casting light has shadow volumes (technique = volumes): there \
                      is no map to size, test or draw"
                         .to_string(),
+                ));
+            }
+        }
+    }
+    // The moment maps' knobs, each for the filters that read it.
+    let moment_filters: Vec<Filter> = scene
+        .lights
+        .iter()
+        .zip(&kinds)
+        .filter(|(_, k)| **k == ShadowKind::Moments)
+        .map(|(l, _)| l.settings(settings).filter)
+        .collect();
+    let uses = |fs: &[Filter]| moment_filters.iter().any(|f| fs.contains(f));
+    let variance = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4];
+    for (names, filters, which) in [
+        (
+            &["blur"][..],
+            &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm][..],
+            "a moment filter (vsm, evsm2, evsm4, msm)",
+        ),
+        (
+            &["min_variance", "bleed_reduction"],
+            &variance,
+            "vsm, evsm2 or evsm4",
+        ),
+        (
+            &["evsm_exponents"],
+            &[Filter::Evsm2, Filter::Evsm4],
+            "evsm2 or evsm4",
+        ),
+        (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
+    ] {
+        if !uses(filters) {
+            for name in names {
+                idle.push((
+                    *name,
+                    format!("no light's filter reads it (it is for {which}, on a 2D map)"),
                 ));
             }
         }

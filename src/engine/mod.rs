@@ -8,6 +8,7 @@ pub mod baseline;
 pub mod check;
 pub mod headless;
 pub mod mesh;
+pub mod moment_map;
 pub mod render_target;
 pub mod sampler;
 pub mod shader_program;
@@ -26,7 +27,8 @@ pub type Gl = Rc<glow::Context>;
 
 pub use check::{check_gl, gl_limits, GlLimits};
 pub use headless::HeadlessContext;
-pub use mesh::Mesh;
+pub use mesh::{FullScreenTriangle, Mesh};
+pub use moment_map::MomentMap;
 pub use render_target::{Outputs, RenderTarget};
 pub use sampler::{BoundSampler, Sampler, Samplers, Sampling};
 pub use shader_program::{ShaderProgram, ShaderSource};

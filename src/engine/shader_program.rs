@@ -278,6 +278,12 @@ impl ShaderProgram {
         }
     }
 
+    pub fn set_vec2(&self, name: &'static str, v: [f32; 2]) {
+        if let Some(loc) = self.location(name) {
+            unsafe { self.gl.uniform_2_f32(Some(&loc), v[0], v[1]) };
+        }
+    }
+
     pub fn set_vec3(&self, name: &'static str, v: Vec3) {
         if let Some(loc) = self.location(name) {
             unsafe { self.gl.uniform_3_f32(Some(&loc), v.x, v.y, v.z) };

@@ -150,6 +150,24 @@ impl Texture {
         Ok(texture)
     }
 
+    /// An empty 32-bit float colour texture of 2 or 4 components (a moment shadow map):
+    /// NEAREST, clamped, ready to be a framebuffer's colour attachment. Float colour
+    /// targets are core in GL 3.3.
+    pub fn float_target(gl: &Gl, width: u32, height: u32, components: u32) -> Result<Texture> {
+        let (internal, format) = match components {
+            2 => (glow::RG32F, glow::RG),
+            4 => (glow::RGBA32F, glow::RGBA),
+            n => {
+                return Err(Error::Invalid(format!(
+                    "float target with {n} components: expected 2 or 4"
+                )))
+            }
+        };
+        let texture = Texture::attachment(gl, width, height, internal, format, glow::FLOAT)?;
+        texture.nearest_clamped();
+        Ok(texture)
+    }
+
     /// An empty colour texture used as a render-target attachment.
     pub(crate) fn attachment(
         gl: &Gl,

@@ -20,7 +20,7 @@ use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowPatch, ShadowSettings,
     ShadowTechnique,
 };
-use crate::shadows::ShadowKind;
+use crate::shadows::{filter_cost, FilterCost, ShadowKind};
 
 /// The bias configurations the sweep tries, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -255,6 +255,12 @@ pub fn sweep(
     for c in &mut out {
         c.family = Family::of(light, &c.settings);
     }
+    // Combinations the light refuses (a moment filter on a point light's cube map).
+    out.retain(|c| {
+        light
+            .settings_problem("the light", &light.settings(&c.settings))
+            .is_none()
+    });
     // The tutorials back in the middle of the whole sweep.
     let (tutorials, mut rest): (Vec<_>, Vec<_>) =
         out.into_iter().partition(|c| c.tutorial.is_some());
@@ -363,6 +369,8 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
             });
         }
     };
+    // The moment filters' maps hold 2 x 16 + 4 bytes a texel: tried at 1024^2 only.
+    let (moment_filters, depth_filters) = (Filter::MOMENTS, Filter::ALL);
     let grid = |sizes: &[u32], filters: &[Filter], biases: &[BiasPreset]| {
         let mut v = Vec::new();
         for &map_size in sizes {
@@ -392,13 +400,23 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         ) {
             push(s, b);
         }
+        for (s, b) in grid(&[1024], &moment_filters, &[BiasPreset::Book]) {
+            push(s, b);
+        }
         return out;
     }
     let sizes: Vec<u32> = [256, 512, 1024, 2048, 4096, 8192]
         .into_iter()
         .filter(|&s| s <= max_texture_size)
         .collect();
-    for (s, b) in grid(&sizes, &Filter::ALL, &BiasPreset::ALL) {
+    for (s, b) in grid(&sizes, &depth_filters, &BiasPreset::ALL) {
+        push(s, b);
+    }
+    for (s, b) in grid(
+        &[1024],
+        &moment_filters,
+        &[BiasPreset::Book, BiasPreset::Slope],
+    ) {
         push(s, b);
     }
     for cull in [Cull::Back, Cull::Front] {
@@ -515,6 +533,63 @@ impl BenchRow {
             0 => "misclassified receiver pixels",
             _ => "MAE against the area light",
         }
+    }
+
+    /// What the configuration's filter costs: lookups per pixel, passes per frame (a
+    /// cascade or a cube face drawn in its own pass counts as one) and blur reads.
+    pub fn cost(&self) -> FilterCost {
+        let s = &self.config.settings;
+        let mut cost = filter_cost(s);
+        match self.config.family {
+            Family::OneMap | Family::Soft | Family::PointLayered => {}
+            Family::Cascades => cost.passes *= s.cascades,
+            Family::PointSixPasses => cost.passes *= 6,
+            // Per light a stencil pass of volumes and a lit pass; no map is read.
+            Family::Volumes => {
+                return FilterCost {
+                    taps: 0,
+                    passes: 2,
+                    blur_taps: 0,
+                    bytes_per_texel: 0,
+                }
+            }
+        }
+        if matches!(
+            self.config.family,
+            Family::PointLayered | Family::PointSixPasses
+        ) {
+            // A cube map: one lookup, or LearnOpenGL's 20 on a disk (shadow_cube.glsl).
+            cost.taps = match s.filter.radius() {
+                0 => 1,
+                _ => 20,
+            };
+        }
+        cost
+    }
+
+    /// The cost as the table shows it: "9 / 1 / 4.0", a blur's reads after the passes.
+    pub fn cost_label(&self) -> String {
+        let c = self.cost();
+        let mib = self.map_bytes() as f64 / (1024.0 * 1024.0);
+        match c.blur_taps {
+            0 => format!("{} / {} / {mib:.1}", c.taps, c.passes),
+            b => format!(
+                "{} / {} (blur {b} reads a texel) / {mib:.1}",
+                c.taps, c.passes
+            ),
+        }
+    }
+
+    /// Bytes of the light's maps (every cascade, every cube face).
+    pub fn map_bytes(&self) -> u64 {
+        let s = &self.config.settings;
+        let layers = match self.config.family {
+            Family::OneMap | Family::Soft => 1,
+            Family::Cascades => u64::from(s.cascades),
+            Family::PointLayered | Family::PointSixPasses => 6,
+            Family::Volumes => 0,
+        };
+        s.map_size.texels() * layers * u64::from(filter_cost(s).bytes_per_texel)
     }
 
     /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
@@ -727,7 +802,7 @@ wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
 misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
 volume_pixels,area_rays,area_mae,light_bleed_rate,area_false_shadow_rate,penumbra_width_px,penumbra_width_truth_px,\
-penumbra_width_error_px,lookups";
+penumbra_width_error_px,taps,passes,blur_taps,map_bytes";
 
 /// The rows as CSV (one header line).
 pub fn to_csv(rows: &[BenchRow]) -> String {
@@ -736,6 +811,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
     for r in rows {
         let s = &r.config.settings;
         let m = &r.metrics;
+        let cost = r.cost();
         let fields = [
             r.config.tutorial.unwrap_or("-").to_string(),
             format!("{:?}", r.config.family).to_lowercase(),
@@ -783,17 +859,10 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             format!("{:.3}", a.penumbra_width_px),
             format!("{:.3}", a.penumbra_width_truth_px),
             format!("{:.3}", a.penumbra_width_error_px),
-            match r.config.family {
-                // A cube map: one lookup, or LearnOpenGL's 20 on a disk (shadow_cube.glsl).
-                Family::PointLayered | Family::PointSixPasses => match s.filter.radius() {
-                    0 => 1,
-                    _ => 20,
-                },
-                // The stencil decides: no map is read.
-                Family::Volumes => 0,
-                _ => s.filter.lookups(s),
-            }
-            .to_string(),
+            cost.taps.to_string(),
+            cost.passes.to_string(),
+            cost.blur_taps.to_string(),
+            r.map_bytes().to_string(),
         ];
         let fields: Vec<String> = fields.into_iter().chain(area).collect();
         out.push_str(&fields.join(","));
@@ -808,7 +877,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
 pub fn to_markdown(rows: &[BenchRow]) -> String {
     let area = rows.iter().any(|r| r.soft.rays > 0);
     let mut out = String::from(
-        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE |",
+        "| configuration | wall ms (median / p95) | shadow overhead ms | depth pass ms | scene pass ms | misclassified | false shadow | false light | outside band | MAE | cost: taps / passes / map MiB |",
     );
     if area {
         out.push_str(" MAE vs area light | light bleeding | penumbra width error px |");
@@ -843,7 +912,7 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} |",
+            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} | {} |",
             r.wall_ms.median,
             r.wall_ms.p95,
             r.overhead_ms,
@@ -854,6 +923,7 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             pct(m.false_light_rate),
             pct(m.misclassified_outside_band_rate),
             m.mae.map_or("n/a".into(), |v| format!("{v:.4}")),
+            r.cost_label(),
         ));
         if area {
             let a = &r.soft;

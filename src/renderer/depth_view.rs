@@ -38,7 +38,9 @@ impl DepthView {
     ) -> Result<()> {
         let kind = technique.depth_view();
         let (slot, cube, array) = match kind {
-            DepthViewKind::Flat => (&mut self.flat, false, false),
+            DepthViewKind::Flat | DepthViewKind::Exponential { .. } => {
+                (&mut self.flat, false, false)
+            }
             DepthViewKind::Cube => (&mut self.cube, true, false),
             DepthViewKind::Array { .. } => (&mut self.array, false, true),
         };
@@ -66,6 +68,11 @@ impl DepthView {
         if let DepthViewKind::Array { layers } = kind {
             p.set_i32("layers", layers as i32);
         }
+        let warp = match kind {
+            DepthViewKind::Exponential { exponent_bits } => f32::from_bits(exponent_bits),
+            _ => 0.0,
+        };
+        p.set_f32("warp", warp);
         technique.texture().bind(0);
         // A plain sampler: the map may be read in compare mode by the scene pass.
         let _sampler = samplers.get(gl, Sampling::PLAIN)?.bind(0);

@@ -468,6 +468,11 @@ impl Renderer {
             .enumerate()
         {
             let settings = light.settings(&self.settings);
+            // Combinations no technique draws (a moment filter on a cube map) are refused
+            // here too, for scenes built in code.
+            if let Some(problem) = light.settings_problem(&format!("light {i}"), &settings) {
+                return Err(Error::Invalid(problem));
+            }
             if !light.shadow_patch().given().is_empty() {
                 settings
                     .validate(self.max_texture_size)

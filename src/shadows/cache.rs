@@ -58,7 +58,7 @@ pub fn follows_camera(light: &Light, kind: ShadowKind, settings: &ShadowSettings
     match kind {
         ShadowKind::Cascades => true,
         // The same case `map2d::camera` fits to the scene.
-        ShadowKind::Map => {
+        ShadowKind::Map | ShadowKind::Moments => {
             matches!(light, Light::Directional(_))
                 && settings.light_projection == LightProjection::Ortho
                 && settings.fit == Fit::Scene

@@ -92,21 +92,15 @@ impl Technique for Map2d {
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         self.map.bind_for_writing();
         state::clear_depth(pass.gl);
-        program.set_mat4("orthoProjectionMatrix", &view.projection);
-        // Only casters that can land in the map: the rest would be clipped anyway.
-        let light = &scene.lights[index];
-        let boxes = pass.boxes;
-        let keep = |k: usize| may_land(light, &view, boxes[k].0, boxes[k].1);
-        let drawn = draw_casters(
+        draw_map_casters(
             pass.meshes,
+            pass.boxes,
+            pass.casters,
             scene,
+            index,
+            &view,
             program,
-            "modelLightViewMatrix",
-            view.view64,
-            keep,
         );
-        pass.casters.drawn += drawn as u64;
-        pass.casters.total += casters(scene);
         Ok(view)
     }
 
@@ -147,6 +141,33 @@ impl Technique for Map2d {
     fn depth_map(&self) -> Option<&ShadowMap> {
         Some(&self.map)
     }
+}
+
+/// Draws light `index`'s casters into the bound 2D map with `program` (depth.vert's
+/// uniforms), seen through `view`, and counts them: only casters that can land in the map,
+/// the rest would be clipped anyway.
+pub fn draw_map_casters(
+    meshes: &[crate::engine::Mesh],
+    boxes: &[(glam::DVec3, glam::DVec3)],
+    counts: &mut super::CasterCounts,
+    scene: &Scene,
+    index: usize,
+    view: &ShadowView,
+    program: &crate::engine::ShaderProgram,
+) {
+    program.set_mat4("orthoProjectionMatrix", &view.projection);
+    let light = &scene.lights[index];
+    let keep = |k: usize| may_land(light, view, boxes[k].0, boxes[k].1);
+    let drawn = draw_casters(
+        meshes,
+        scene,
+        program,
+        "modelLightViewMatrix",
+        view.view64,
+        keep,
+    );
+    counts.drawn += drawn as u64;
+    counts.total += casters(scene);
 }
 
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with

@@ -4,6 +4,8 @@
 //!   `calcShadow` in `shaders/lib/shadow_2d.glsl` ("Shadows"; LearnOpenGL "Shadow Mapping").
 //! - [`cube`]: a point light's depth cube map (LearnOpenGL "Point Shadows").
 //! - [`cascades`]: cascaded shadow maps for a directional light.
+//! - [`moments`]: filterable maps (VSM, EVSM, MSM): depth's moments in a float colour
+//!   map, blurred, for directional and spot lights.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
 //!   [`map2d`]).
 //! - [`volumes`]: the slides' stencil shadow volumes, beside the maps rather than behind
@@ -22,6 +24,7 @@ pub mod casters;
 pub mod cube;
 pub mod fitted;
 pub mod map2d;
+pub mod moments;
 pub mod program;
 pub mod slots;
 pub mod volumes;
@@ -46,6 +49,8 @@ pub enum ShadowKind {
     Cascades,
     /// No map: stencil shadow volumes ([`volumes`]), any kind of light.
     Volume,
+    /// One 2D map of depth's moments, blurred (a moment filter: vsm, evsm2, evsm4, msm).
+    Moments,
 }
 
 impl ShadowKind {
@@ -59,7 +64,7 @@ impl ShadowKind {
         lights
             .iter()
             .map(|l| match ShadowKind::of(l, &l.settings(settings)) {
-                ShadowKind::Cascades if cascaded => ShadowKind::Map,
+                ShadowKind::Cascades if cascaded => ShadowKind::one_map(&l.settings(settings)),
                 ShadowKind::Cascades => {
                     cascaded = true;
                     ShadowKind::Cascades
@@ -80,7 +85,16 @@ impl ShadowKind {
             {
                 ShadowKind::Cascades
             }
-            Light::Directional(_) | Light::Spot(_) => ShadowKind::Map,
+            Light::Directional(_) | Light::Spot(_) => ShadowKind::one_map(settings),
+        }
+    }
+
+    /// The kind of one 2D map under `settings`: a depth map, or with a moment filter a
+    /// moment map.
+    pub fn one_map(settings: &ShadowSettings) -> ShadowKind {
+        match settings.filter.moments() {
+            true => ShadowKind::Moments,
+            false => ShadowKind::Map,
         }
     }
 
@@ -92,7 +106,43 @@ impl ShadowKind {
             ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
             ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
             ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),
+            ShadowKind::Moments => Some(Box::new(moments::Moments::new(gl, settings)?)),
         })
+    }
+}
+
+/// What a filter costs per frame: lookups per shaded pixel, passes over the map and the
+/// bytes of its storage (the bench states these).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct FilterCost {
+    /// Texture lookups per shaded fragment (a bilinear or hardware-compared lookup is one).
+    pub taps: u32,
+    /// Passes per map per frame: the depth pass, and a moment map's two blur passes.
+    pub passes: u32,
+    /// Texture reads per map texel in the blur (0 without one).
+    pub blur_taps: u32,
+    /// Bytes per map texel.
+    pub bytes_per_texel: u32,
+}
+
+/// The cost of `settings`' filter on one 2D map.
+pub fn filter_cost(settings: &ShadowSettings) -> FilterCost {
+    let f = settings.filter;
+    let components = f.moment_components();
+    if components == 0 {
+        return FilterCost {
+            taps: f.lookups(settings),
+            passes: 1,
+            blur_taps: 0,
+            bytes_per_texel: 4,
+        };
+    }
+    let blur = settings.blur.taps();
+    FilterCost {
+        taps: 1,
+        passes: if blur > 0 { 3 } else { 1 },
+        blur_taps: 2 * blur,
+        bytes_per_texel: 2 * 4 * components + 4,
     }
 }
 
@@ -125,6 +175,10 @@ pub struct ShadowView {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DepthViewKind {
     Flat,
+    /// A 2D map that stores exp(c (2 z - 1)) (EVSM's first moment): shown as the depth z.
+    Exponential {
+        exponent_bits: u32,
+    },
     /// A cube map, as a panorama.
     Cube,
     /// A texture array, its layers side by side.
@@ -188,7 +242,8 @@ pub trait Technique {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView>;
-    /// The depth texture the scene pass samples.
+    /// The texture the scene pass samples: a depth texture, or a moment map's float colour
+    /// texture (its `sampling` says how it is read).
     fn texture(&self) -> &Texture;
     /// How the scene pass samples it under `settings`.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling;

@@ -220,5 +220,26 @@ mod tests {
             ..scene.shadow
         };
         assert_eq!(base, key(&blended).unwrap());
+        // The moment maps' knobs: nothing for a depth map, a new program for a moment one.
+        let less_bleeding = ShadowSettings {
+            bleed_reduction: 0.3,
+            ..scene.shadow
+        };
+        assert_eq!(base, key(&less_bleeding).unwrap());
+        let vsm = ShadowSettings {
+            filter: crate::settings::Filter::Vsm,
+            ..scene.shadow
+        };
+        let kinds = ShadowKind::for_lights(&scene.lights, &vsm);
+        assert_eq!(kinds, [ShadowKind::Moments]);
+        let key = |s: &ShadowSettings| ProgramKey::of(&scene, s, &kinds, 0, Outputs::default());
+        assert_ne!(
+            key(&vsm).unwrap(),
+            key(&ShadowSettings {
+                bleed_reduction: 0.3,
+                ..vsm
+            })
+            .unwrap()
+        );
     }
 }

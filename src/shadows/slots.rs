@@ -11,7 +11,8 @@
 //! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
 //! [`super::cascades::glsl`]).
 
-use super::{cascades, cube, map2d, volumes, ShadowKind};
+use super::moments::MomentTest;
+use super::{cascades, cube, map2d, moments, volumes, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
@@ -45,6 +46,8 @@ pub struct ShadowTest {
     pub pcss_filter_taps: u32,
     /// PCSS: the light's map is a perspective one (its depth is not linear).
     pub pcss_perspective: bool,
+    /// A moment filter's own constants.
+    pub moments: Option<MomentTest>,
 }
 
 impl ShadowTest {
@@ -61,6 +64,7 @@ impl ShadowTest {
             beyond_far_lit: s.beyond_far == BeyondFar::Lit,
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
+            moments: MomentTest::of(&s),
             kernel: s.filter.kernel(),
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
@@ -85,17 +89,18 @@ impl ShadowTest {
 
 impl ShadowTest {
     /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
-    /// How many constants [`ShadowTest::defines`] makes.
+    /// How many constants [`ShadowTest::defines`] makes for every light (a moment map's
+    /// add their own after them).
     pub const DEFINES: usize = 11;
 
-    fn defines(&self) -> [(&'static str, String); Self::DEFINES] {
+    fn defines(&self) -> Vec<(&'static str, String)> {
         let bit = |b: bool| u32::from(b).to_string();
         let mode = match self.bias_mode {
             BiasMode::None => 0,
             BiasMode::Constant => 1,
             BiasMode::Slope => 2,
         };
-        [
+        let mut d = vec![
             ("PCF_RADIUS", self.pcf_radius.to_string()),
             ("HW_PCF", bit(self.hardware)),
             ("BIAS_MODE", mode.to_string()),
@@ -114,7 +119,11 @@ impl ShadowTest {
             ("PCSS_BLOCKER_TAPS", self.pcss_blocker_taps.to_string()),
             ("PCSS_FILTER_TAPS", self.pcss_filter_taps.to_string()),
             ("PCSS_PERSPECTIVE", bit(self.pcss_perspective)),
-        ]
+        ];
+        if let Some(m) = &self.moments {
+            d.extend(m.defines());
+        }
+        d
     }
 }
 
@@ -135,7 +144,7 @@ pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     match kind {
         _ if index >= MAX_LIGHTS => None,
         ShadowKind::None | ShadowKind::Volume => None,
-        ShadowKind::Map => Some(map2d::SAMPLERS[index]),
+        ShadowKind::Map | ShadowKind::Moments => Some(map2d::SAMPLERS[index]),
         ShadowKind::Cube => Some(cube::SAMPLERS[index]),
         ShadowKind::Cascades => Some(cascades::SAMPLERS[index]),
     }
@@ -148,7 +157,7 @@ pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usiz
     kinds
         .into_iter()
         .map(|k| match k {
-            ShadowKind::Map | ShadowKind::Cube => {
+            ShadowKind::Map | ShadowKind::Cube | ShadowKind::Moments => {
                 next += 1;
                 Some(next - 1)
             }
@@ -198,6 +207,7 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
             ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
             ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
             ShadowKind::Cascades => Some(cascades::glsl(i, positional, cone, hardware)),
+            ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
         };
         let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
         else {
@@ -384,7 +394,8 @@ mod tests {
 
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        // Three lights of three kinds, one with cascades: every snippet is included.
+        // Four lights of four kinds, one with cascades, one with a moment map: every
+        // snippet is included.
         let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
         let slot = |shadow| LightSlot {
             shadow,
@@ -396,6 +407,7 @@ mod tests {
             slot(ShadowKind::Map),
             slot(ShadowKind::Cube),
             slot(ShadowKind::Cascades),
+            slot(ShadowKind::Moments),
         ]);
         // Included directly or by another snippet (the soft filters by the 2D test's).
         let resolved = crate::shaders::scene_frag(&generated).unwrap();

@@ -1,0 +1,461 @@
+//! Filterable shadow maps: variance (VSM), exponential variance (EVSM, 2 or 4 components)
+//! and moment shadow maps (MSM), for directional and spot lights with one 2D map. The
+//! shadow-playground's "variance" and "moment" demos, and the engines' EVSM.
+//!
+//! A depth map cannot be averaged: the mean of depths says nothing about how many of them
+//! a receiver is behind. Moments of depth can: the depth pass writes (z, z^2) (or four
+//! moments) into a float colour map, a separable Gaussian blur averages them
+//! ([`crate::engine::MomentMap::blur`], `shaders/moments_blur.frag`), and the scene pass
+//! reads one bilinear lookup and bounds the lit fraction from it
+//! (`shaders/lib/shadow_moments.glsl`). The price is light bleeding where occluders
+//! overlap, which the bleeding reduction, EVSM's warp and MSM's four moments each cut.
+//!
+//! Cube maps and cascades have no moment form here: `Light::settings_problem` refuses
+//! those combinations, naming the light and the filter.
+
+use glam::DVec2;
+
+use super::casters::{depth_state, may_land};
+use super::fitted;
+use super::map2d::{camera, draw_map_casters, SAMPLERS};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
+use crate::engine::{
+    DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
+};
+use crate::error::{Error, Result};
+use crate::scene::{Light, Scene};
+use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
+use crate::shaders;
+
+/// Light `i`'s part of the generated snippets: `calcShadowMoments`
+/// (shaders/lib/shadow_moments.glsl), a plain `sampler2D` (the moments are filtered, not
+/// compared) and its call with its map slot `p`.
+pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_moments.glsl",
+        functions: &[
+            "chebyshevUpperBound",
+            "reduceLightBleeding",
+            "momentVisibility",
+            "calcShadowMoments",
+            "addLightMoments",
+        ],
+        sampler_type: "sampler2D",
+        call: format!(
+            "addLightMoments_{i}({i}, {p}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    }
+}
+
+/// The shader's number for a moment filter (`MOMENT_MODE`); 0 for a depth filter.
+pub fn mode(filter: Filter) -> u32 {
+    match filter {
+        Filter::Vsm => 1,
+        Filter::Evsm2 => 2,
+        Filter::Evsm4 => 3,
+        Filter::Msm => 4,
+        _ => 0,
+    }
+}
+
+/// EVSM's exponents as the shaders use them: clamped so exp(2c) fits a 32-bit float.
+pub fn evsm_exponents(settings: &ShadowSettings) -> [f32; 2] {
+    settings.evsm_exponents.map(|c| c.min(EVSM_MAX_EXPONENT))
+}
+
+/// The moments of depth 1 (where no caster was drawn), which the map is cleared to.
+pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
+    let [p, n] = evsm_exponents(settings);
+    match settings.filter {
+        Filter::Evsm2 | Filter::Evsm4 => {
+            let (pos, neg) = (p.exp(), -(-n).exp());
+            [pos, pos * pos, neg, neg * neg]
+        }
+        Filter::Vsm => [1.0, 1.0, 0.0, 0.0],
+        _ => [1.0; 4],
+    }
+}
+
+/// The constants of shaders/lib/shadow_moments.glsl for one light (with bias.glsl's, from
+/// [`super::slots::ShadowTest`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct MomentTest {
+    pub mode: u32,
+    pub min_variance_bits: u32,
+    pub bleed_reduction_bits: u32,
+    pub evsm_bits: [u32; 2],
+    pub msm_bias_bits: u32,
+    pub msm_toward_bits: [u32; 4],
+    pub border_lit: bool,
+}
+
+impl MomentTest {
+    /// The test under `settings` (as [`ShadowSettings::effective`] made them), if its filter
+    /// is a moment one.
+    pub fn of(s: &ShadowSettings) -> Option<MomentTest> {
+        let mode = mode(s.filter);
+        (mode > 0).then(|| MomentTest {
+            mode,
+            min_variance_bits: s.min_variance.to_bits(),
+            bleed_reduction_bits: s.bleed_reduction.to_bits(),
+            evsm_bits: evsm_exponents(s).map(f32::to_bits),
+            msm_bias_bits: s.msm_bias.to_bits(),
+            msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
+            border_lit: s.wrap == Wrap::ClampToBorder,
+        })
+    }
+
+    pub fn defines(&self) -> Vec<(&'static str, String)> {
+        let f = |bits: u32| glsl_float(f32::from_bits(bits));
+        let t = self.msm_toward_bits.map(f);
+        vec![
+            ("MOMENT_MODE", self.mode.to_string()),
+            ("MIN_VARIANCE", f(self.min_variance_bits)),
+            ("BLEED_REDUCTION", f(self.bleed_reduction_bits)),
+            ("EVSM_POS", f(self.evsm_bits[0])),
+            ("EVSM_NEG", f(self.evsm_bits[1])),
+            ("MSM_BIAS", f(self.msm_bias_bits)),
+            (
+                "MSM_TOWARD",
+                format!("vec4({}, {}, {}, {})", t[0], t[1], t[2], t[3]),
+            ),
+            ("BORDER_LIT", u32::from(self.border_lit).to_string()),
+        ]
+    }
+}
+
+/// The texels of a `size` map that light `index`'s casters (those its depth pass draws)
+/// can cover, seen through `view`: their world boxes' corners projected, clamped to the
+/// map. `None` when a corner is behind a perspective light's eye (the whole map, then).
+pub fn caster_footprint(
+    scene: &Scene,
+    index: usize,
+    view: &ShadowView,
+    size: MapSize,
+) -> Option<PixelRect> {
+    let clip = view.projection.as_dmat4() * view.view64;
+    let light = &scene.lights[index];
+    let boxes = fitted::item_world_boxes(scene);
+    let (mut lo, mut hi) = (DVec2::splat(1.0), DVec2::splat(-1.0));
+    for (k, item) in scene.items.iter().enumerate() {
+        let (a, b) = boxes[k];
+        if !item.casts_shadows || !may_land(light, view, a, b) {
+            continue;
+        }
+        for c in fitted::corners(a, b) {
+            let p = clip * c.extend(1.0);
+            if p.w <= 1e-9 {
+                return None;
+            }
+            let ndc = (p.truncate().truncate() / p.w).clamp(DVec2::splat(-1.0), DVec2::ONE);
+            lo = lo.min(ndc);
+            hi = hi.max(ndc);
+        }
+    }
+    if lo.x > hi.x || lo.y > hi.y {
+        return Some(PixelRect {
+            x: 0,
+            y: 0,
+            width: 0,
+            height: 0,
+        });
+    }
+    let texels = DVec2::new(f64::from(size.width), f64::from(size.height));
+    let a = ((lo + 1.0) * 0.5 * texels).floor();
+    let b = ((hi + 1.0) * 0.5 * texels).ceil().min(texels);
+    Some(PixelRect {
+        x: a.x as u32,
+        y: a.y as u32,
+        width: (b.x - a.x).max(0.0) as u32,
+        height: (b.y - a.y).max(0.0) as u32,
+    })
+}
+
+/// A light's filterable map, with the programs that draw and blur it.
+pub struct Moments {
+    map: MomentMap,
+    /// The depth program and the (mode, exponents) it was compiled for.
+    depth: Option<((u32, [u32; 2]), ShaderProgram)>,
+    /// The blur program and its kernel.
+    blur: Option<(Blur, ShaderProgram)>,
+    triangle: FullScreenTriangle,
+    /// What the last depth pass stored, for the depth view: the filter and EVSM's
+    /// positive exponent.
+    map_mode: Filter,
+    evsm_positive: f32,
+}
+
+impl Moments {
+    pub fn new(gl: &Gl, settings: &ShadowSettings) -> Result<Moments> {
+        let components = settings.filter.moment_components();
+        if components == 0 {
+            return Err(Error::Invalid(format!(
+                "filter {} has no moment map",
+                settings.filter.name()
+            )));
+        }
+        Ok(Moments {
+            map: MomentMap::new(gl, settings.map_size, components)?,
+            depth: None,
+            blur: None,
+            triangle: FullScreenTriangle::new(gl)?,
+            map_mode: settings.filter,
+            evsm_positive: evsm_exponents(settings)[0],
+        })
+    }
+
+    /// Compiles the depth program for `s`' filter and exponents unless it is the one there.
+    fn prepare_depth(&mut self, gl: &Gl, s: &ShadowSettings) -> Result<()> {
+        let exponents = evsm_exponents(s);
+        let key = (mode(s.filter), exponents.map(f32::to_bits));
+        if self.depth.as_ref().map(|(k, _)| *k) != Some(key) {
+            let defines = vec![
+                ("MOMENT_MODE".to_string(), key.0.to_string()),
+                ("EVSM_POS".to_string(), glsl_float(exponents[0])),
+                ("EVSM_NEG".to_string(), glsl_float(exponents[1])),
+            ];
+            let program = ShaderProgram::new(
+                gl,
+                &shaders::depth_vert(),
+                &shaders::moments_depth_frag(),
+                &defines,
+            )?;
+            self.depth = Some((key, program));
+        }
+        Ok(())
+    }
+
+    /// Compiles the blur program for `blur` unless it is the one there.
+    fn prepare_blur(&mut self, gl: &Gl, blur: Blur) -> Result<()> {
+        if self.blur.as_ref().map(|(b, _)| *b) != Some(blur) {
+            let weights = blur.weights();
+            let list: Vec<String> = weights.iter().map(|w| glsl_float(*w)).collect();
+            let defines = vec![
+                ("BLUR_RADIUS".to_string(), (weights.len() - 1).to_string()),
+                ("BLUR_WEIGHTS".to_string(), list.join(", ")),
+            ];
+            let program = ShaderProgram::new(
+                gl,
+                &shaders::depth_view_vert(),
+                &shaders::moments_blur_frag(),
+                &defines,
+            )?;
+            self.blur = Some((blur, program));
+        }
+        Ok(())
+    }
+}
+
+impl Technique for Moments {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Moments
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.map.size() == s.map_size && self.map.components() == s.filter.moment_components()
+    }
+
+    /// The chapter's depth pass with moments for depth, then the blur.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let settings = pass.settings;
+        let view = camera(scene, index, settings);
+        self.map_mode = settings.filter;
+        self.evsm_positive = evsm_exponents(settings)[0];
+        let gl = pass.gl.clone();
+        self.prepare_depth(&gl, settings)?;
+        if let Some((_, program)) = &self.depth {
+            let _state = DepthPassGuard::begin(&gl, depth_state(settings), program);
+            self.map.begin_depth_pass(far_moments(settings));
+            draw_map_casters(
+                pass.meshes,
+                pass.boxes,
+                pass.casters,
+                scene,
+                index,
+                &view,
+                program,
+            );
+        }
+        if settings.blur != Blur::None {
+            self.prepare_blur(&gl, settings.blur)?;
+            let footprint = caster_footprint(scene, index, &view, self.map.size());
+            let radius = settings.blur.taps() / 2;
+            match (&self.blur, footprint) {
+                // No caster lands: the map is all far moments, which a blur keeps.
+                (_, Some(f)) if f.width == 0 || f.height == 0 => {}
+                (Some((_, program)), f) => self.map.blur(program, &self.triangle, radius, f),
+                (None, _) => {}
+            }
+        }
+        Ok(view)
+    }
+
+    fn texture(&self) -> &Texture {
+        self.map.texture()
+    }
+
+    /// Filtered, never compared: the blur and the bilinear lookup are the filter. Outside
+    /// the map the shader decides (`BORDER_LIT`): a border colour of depth 1 is not the
+    /// moments of depth 1 for every filter.
+    fn sampling(&self, _settings: &ShadowSettings) -> Sampling {
+        Sampling {
+            compare: false,
+            linear: true,
+            wrap: Wrap::ClampToEdge,
+        }
+    }
+
+    fn slot_transform(
+        &self,
+        _light: &Light,
+        view: &ShadowView,
+        settings: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        Some(SlotTransform {
+            from: view.view64,
+            projection: view.projection,
+            normal_offset: settings.normal_offset * view.texel_world,
+        })
+    }
+
+    fn bytes(&self) -> u64 {
+        self.map.bytes()
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        match self.map_mode {
+            Filter::Evsm2 | Filter::Evsm4 => DepthViewKind::Exponential {
+                exponent_bits: self.evsm_positive.to_bits(),
+            },
+            _ => DepthViewKind::Flat,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::settings::MsmToward;
+
+    #[test]
+    fn kernels_sum_to_one_and_the_playgrounds_is_its_3x3() {
+        for blur in Blur::ALL {
+            let w = blur.weights();
+            assert_eq!(w.len() as u32, blur.taps() / 2 + 1, "{}", blur.name());
+            let sum = w[0] + 2.0 * w[1..].iter().sum::<f32>();
+            assert!((sum - 1.0).abs() < 1e-6, "{}: {sum}", blur.name());
+            assert!(w.windows(2).all(|p| p[0] >= p[1]), "{}: {w:?}", blur.name());
+        }
+        // The outer product of the 1D kernel is the playground's 2D one.
+        let w = Blur::Playground3x3.weights();
+        for (got, want) in [
+            (w[1] * w[1], 0.045),
+            (w[0] * w[1], 0.122),
+            (w[0] * w[0], 0.332),
+        ] {
+            assert!((got - want).abs() < 1e-3, "{got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn evsm_exponents_are_clamped_so_the_cleared_map_is_finite() {
+        let s = ShadowSettings {
+            filter: Filter::Evsm4,
+            evsm_exponents: [500.0, 90.0],
+            ..ShadowSettings::default()
+        };
+        assert_eq!(evsm_exponents(&s), [EVSM_MAX_EXPONENT, EVSM_MAX_EXPONENT]);
+        assert!(far_moments(&s).iter().all(|m| m.is_finite()));
+        let [pos, pos2, neg, neg2] = far_moments(&ShadowSettings {
+            evsm_exponents: [40.0, 5.0],
+            ..s
+        });
+        assert_eq!((pos, pos2), (40f32.exp(), 40f32.exp() * 40f32.exp()));
+        assert_eq!((neg, neg2), (-(-5f32).exp(), (-5f32).exp() * (-5f32).exp()));
+    }
+
+    #[test]
+    fn moment_constants_reach_only_moment_programs() {
+        let pcf = ShadowSettings::default();
+        assert_eq!(MomentTest::of(&pcf), None);
+        let vsm = ShadowSettings {
+            filter: Filter::Vsm,
+            ..pcf
+        };
+        let test = MomentTest::of(&vsm).unwrap();
+        let defines = test.defines();
+        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
+        assert_eq!(get("MOMENT_MODE"), "1");
+        assert_eq!(get("BLEED_REDUCTION"), "0.15");
+        assert_eq!(get("MSM_TOWARD"), "vec4(0.5, 0.5, 0.5, 0.5)");
+        let playground = ShadowSettings {
+            filter: Filter::Msm,
+            msm_bias: 9e-4,
+            msm_toward: MsmToward::Playground,
+            ..pcf
+        };
+        let defines = MomentTest::of(&playground).unwrap().defines();
+        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
+        assert_eq!(get("MSM_TOWARD"), "vec4(0.0, 0.63, 0.0, 0.63)");
+        assert_eq!(get("MSM_BIAS"), "0.0009");
+        // A border of depth 1 is lit through the shader, not the sampler.
+        let fitted = ShadowSettings {
+            fit: crate::settings::Fit::Scene,
+            ..vsm
+        };
+        assert!(MomentTest::of(&fitted.effective()).unwrap().border_lit);
+        assert!(!test.border_lit);
+    }
+}
+
+#[cfg(test)]
+mod footprint_tests {
+    use super::*;
+
+    #[test]
+    fn the_blur_covers_the_casters_footprint_and_no_more() {
+        let scene = Scene::load("dummy").unwrap();
+        let s = scene.shadow;
+        let view = camera(&scene, 0, &s);
+        let size = s.map_size;
+        let f = caster_footprint(&scene, 0, &view, size).unwrap();
+        // The 5 x 5 plane and the cube in a 20 x 20 box: about a quarter of the map's side.
+        assert!(
+            f.x + f.width <= size.width && f.y + f.height <= size.height,
+            "{f:?}"
+        );
+        assert!(
+            f.width < size.width / 2 && f.height < size.height / 2,
+            "{f:?}"
+        );
+        // Every caster's centre projects inside it.
+        let clip = view.projection.as_dmat4() * view.view64;
+        for item in scene.items.iter().filter(|i| i.casts_shadows) {
+            let p = clip * item.position.as_dvec3().extend(1.0);
+            let t = (p.truncate().truncate() / p.w + 1.0) * 0.5 * f64::from(size.width);
+            assert!(
+                t.x >= f64::from(f.x)
+                    && t.x <= f64::from(f.x + f.width)
+                    && t.y >= f64::from(f.y)
+                    && t.y <= f64::from(f.y + f.height),
+                "{} at {t:?} outside {f:?}",
+                item.name
+            );
+        }
+        // No casters: nothing to blur.
+        let mut empty = scene.clone();
+        for item in &mut empty.items {
+            item.casts_shadows = false;
+        }
+        let none = caster_footprint(&empty, 0, &view, size).unwrap();
+        assert_eq!((none.width, none.height), (0, 0));
+    }
+}
