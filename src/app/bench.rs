@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use shadowmap::bench::{self, BenchOptions};
+use shadowmap::scale;
 use shadowmap::engine::{gl_limits, HeadlessContext};
 use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
 use shadowmap::{Error, Result};
@@ -11,6 +12,9 @@ use shadowmap::{Error, Result};
 use super::cli::BenchArgs;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
+    if args.scale {
+        return run_scale(args);
+    }
     let start = Instant::now();
     let mut scene = args.scene.load()?;
     // Time a still frame: the animation would change what is measured between frames.
@@ -154,5 +158,64 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             }
         }
     }
+    Ok(())
+}
+
+/// `bench --scale`: each pass' time against the work, with the fitted exponents.
+fn run_scale(args: &BenchArgs) -> Result<()> {
+    let start = Instant::now();
+    let dir = &args.out_dir;
+    check_output_dir("--out-dir", dir)?;
+    let activity = Activity::start("bench --scale: opening a headless OpenGL context");
+    let context = HeadlessContext::new()?;
+    let gl = context.gl();
+    activity.done(&shadowmap::engine::check::renderer_name(gl));
+    let max = gl_limits(gl).max_texture_size;
+    let points = scale::plan(args.quick, max);
+    let opts = scale::ScaleOptions::new(args.quick);
+    eprintln!(
+        "bench --scale: {} points, frames for about {:.1} s each ({} to {})",
+        points.len(),
+        opts.budget_ms / 1000.0,
+        opts.min_frames,
+        opts.max_frames
+    );
+    let mut counter = Counter::new(points.len() as u64);
+    let rows = scale::run(gl, &points, &opts, |row| {
+        counter.step(&format!(
+            "{} = {}: depth {:.2} ms, scene {:.2} ms ({} frames)",
+            row.point.axis.name(),
+            row.work,
+            row.depth_wall_ms.median,
+            row.scene_wall_ms.median,
+            row.frames
+        ))
+    })?;
+    counter.finish();
+    let fits = scale::fits(&rows);
+    let markdown = scale::fits_to_markdown(&fits);
+    let files = [
+        ("scale.csv", scale::to_csv(&rows).into_bytes(), "the table"),
+        (
+            "scale-fit.csv",
+            scale::fits_to_csv(&fits).into_bytes(),
+            "the exponents",
+        ),
+        ("scale.png", super::plot::scale_png(&rows, &fits)?, "the plot"),
+    ];
+    create_output_dir(dir)?;
+    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
+    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .collect();
+    write_files(&batch)?;
+    println!("{markdown}");
+    println!(
+        "wrote {}/scale.csv, scale-fit.csv, scale.png in {:.1} s",
+        dir.display(),
+        start.elapsed().as_secs_f64()
+    );
     Ok(())
 }

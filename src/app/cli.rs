@@ -218,6 +218,17 @@ pub struct BenchArgs {
     pub out_dir: PathBuf,
     #[arg(long, help = quick_help())]
     pub quick: bool,
+    /// Instead of the settings sweep: how each pass' time grows with the work. A generated
+    /// scene (64 spheres of rising detail over a floor, one axis moved at a time from 1e4
+    /// triangles, 640x360, a 1024^2 map, one light, one cascade): caster triangles 1e3 to
+    /// 1e6, frames 320x180 to 3840x2160, maps 256^2 to 8192^2, 1 to 4 lights, 1 to 4
+    /// cascades. Writes scale.csv, scale-fit.csv (the fitted exponents: least squares on
+    /// log-log) and scale.png. Each point gets frames enough for about 3 s (3 to 60), so
+    /// the full sweep takes about 4 minutes on llvmpipe; with --quick, two points an axis
+    /// at 320x180 and 2 to 5 frames each (seconds). The scene, settings and --frames flags
+    /// are not used.
+    #[arg(long)]
+    pub scale: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
     #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]

@@ -548,24 +548,7 @@ pub fn run(
             plain.finish();
             t.plain.push(ms(start.elapsed()));
         }
-        for _ in 0..block {
-            // glFinish after each pass splits the wall time per pass. A software driver like
-            // llvmpipe rasterises the depth pass only when its result is needed, so its GPU
-            // timer queries charge that work to the scene pass; the split wall times do not.
-            let start = Instant::now();
-            renderer.render_depth_map(scene)?;
-            renderer.finish();
-            let mid = Instant::now();
-            renderer.render_scene(scene, Target::Offscreen(&target))?;
-            renderer.finish();
-            let end = Instant::now();
-            t.wall.push(ms(end - start));
-            t.depth_wall.push(ms(mid - start));
-            t.scene_wall.push(ms(end - mid));
-            let [d, s] = timer.read_ms();
-            t.depth_gpu.push(d);
-            t.scene_gpu.push(s);
-        }
+        time_passes(&mut renderer, scene, &target, &timer, block, &mut t)?;
         let quieter = match best[i].take() {
             Some(old) if Stat::of(&old.wall).median <= Stat::of(&t.wall).median => old,
             _ => t,
@@ -596,18 +579,49 @@ pub fn run(
     Ok(rows)
 }
 
-#[derive(Default)]
-struct Timings {
-    wall: Vec<f64>,
-    /// Frames without shadows, next to the block.
-    plain: Vec<f64>,
-    depth_wall: Vec<f64>,
-    scene_wall: Vec<f64>,
-    depth_gpu: Vec<f64>,
-    scene_gpu: Vec<f64>,
+/// Times `frames` frames of `renderer`, each pass on its own, into `t`.
+pub(super) fn time_passes(
+    renderer: &mut Renderer,
+    scene: &Scene,
+    target: &RenderTarget,
+    timer: &GpuPassTimes,
+    frames: u32,
+    t: &mut Timings,
+) -> Result<()> {
+    for _ in 0..frames {
+        // glFinish after each pass splits the wall time per pass. A software driver like
+        // llvmpipe rasterises the depth pass only when its result is needed, so its GPU
+        // timer queries charge that work to the scene pass; the split wall times do not.
+        let start = Instant::now();
+        renderer.render_depth_map(scene)?;
+        renderer.finish();
+        let mid = Instant::now();
+        renderer.render_scene(scene, Target::Offscreen(target))?;
+        renderer.finish();
+        let end = Instant::now();
+        t.wall.push(ms(end - start));
+        t.depth_wall.push(ms(mid - start));
+        t.scene_wall.push(ms(end - mid));
+        let [d, s] = timer.read_ms();
+        t.depth_gpu.push(d);
+        t.scene_gpu.push(s);
+    }
+    Ok(())
 }
 
-fn ms(d: std::time::Duration) -> f64 {
+/// Frame and pass times of one block of frames, in milliseconds.
+#[derive(Default)]
+pub(super) struct Timings {
+    pub wall: Vec<f64>,
+    /// Frames without shadows, next to the block.
+    pub plain: Vec<f64>,
+    pub depth_wall: Vec<f64>,
+    pub scene_wall: Vec<f64>,
+    pub depth_gpu: Vec<f64>,
+    pub scene_gpu: Vec<f64>,
+}
+
+pub(super) fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1000.0
 }
 
