@@ -29,12 +29,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // Everything that can be checked without the driver, before any GL work or file
     // (--target-error is checked as it is parsed).
     args.settings.check_values(&scene, &base)?;
-    if !scene.light().casts_shadows() {
-        return Err(Error::Invalid(format!(
-            "{}: the first light does not cast shadows (casts_shadows = false): the sweep \
-             measures the first light; expected a scene whose first light casts",
-            scene.source.display()
-        )));
+    super::quality::check_first_light(&scene)?;
+    if args.settings.quality.is_some() {
+        return Err(Error::Invalid(
+            "--quality: bench sweeps the map size, filter, bias, culling and depth format \
+             itself, so a preset would be replaced; expected bench without it (the presets \
+             are chosen from its Pareto front)"
+                .into(),
+        ));
     }
     check_output_dir("--out-dir", dir)?;
     let activity = Activity::start("bench: opening a headless OpenGL context");
@@ -128,35 +130,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         start.elapsed().as_secs_f64()
     );
     if let Some(target) = args.target_error {
-        match bench::cheapest_under(&rows, target) {
-            Some(r) => println!(
-                "cheapest configuration with error <= {:.3}%: {} ({:.2} ms, {:.3}% misclassified)\n  \
-                 as flags: --map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} \
-                 --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {}",
-                target * 100.0,
-                r.label(),
-                r.wall_ms.median,
-                r.error() * 100.0,
-                r.config.settings.map_size,
-                r.config.settings.filter.name(),
-                r.config.settings.bias_mode.name(),
-                r.config.settings.bias,
-                r.config.settings.bias_min,
-                r.config.settings.normal_offset,
-                r.config.settings.polygon_offset[0],
-                r.config.settings.polygon_offset[1],
-                r.config.settings.cull.name(),
-                r.config.settings.depth_format.name(),
-            ),
-            None => {
-                return Err(Error::Invalid(format!(
-                    "--target-error {target}: no configuration reached an error of {:.3}% or \
-                     less (best: {:.3}%); the tables and plot above were written",
-                    target * 100.0,
-                    rows.iter().map(|r| r.error()).fold(f64::INFINITY, f64::min) * 100.0
-                )))
-            }
-        }
+        let chosen = super::quality::cheapest_or_error(&rows, target).map_err(|e| {
+            Error::Invalid(format!("{e}; the tables and plot above were written"))
+        })?;
+        println!("{}", super::quality::describe_choice(chosen, target));
     }
     Ok(())
 }

@@ -253,9 +253,9 @@ impl ScaleOptions {
                 max_frames: 5,
             },
             false => ScaleOptions {
-                budget_ms: 3000.0,
+                budget_ms: 6000.0,
                 min_frames: 3,
-                max_frames: 60,
+                max_frames: 200,
             },
         }
     }
