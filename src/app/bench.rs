@@ -101,7 +101,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         counter.finish();
     }
 
-    let markdown = bench::to_markdown(&rows);
+    let mut markdown = bench::to_markdown(&rows);
+    markdown.push('\n');
+    markdown.push_str(&bench::against_tutorials_text(&rows));
+    markdown.push_str("\nthe --quality rule (README, \"Quality presets\") on this front:\n");
+    for (level, row) in bench::preset_choices(&rows) {
+        markdown.push_str(&match row {
+            Some(r) => format!(
+                "  {level}: {} ({:.2} ms, {:.3}% misclassified)\n",
+                r.label(),
+                r.wall_ms.median,
+                r.error() * 100.0
+            ),
+            None => format!("  {level}: no configuration on the front meets the rule\n"),
+        });
+    }
     let title = format!(
         "{}: shadow error against frame time ({width}x{height})",
         scene.name

@@ -193,7 +193,7 @@ pub fn scale_png(rows: &[ScaleRow], fits: &[PowerFit]) -> Result<Vec<u8>> {
                 .configure_mesh()
                 .x_desc(axis.description())
                 .y_desc("ms")
-                .x_label_formatter(&|v| tick_label(*v))
+                .x_label_formatter(&|v| si_label(*v))
                 .y_label_formatter(&|v| tick_label(*v))
                 .label_style(("sans-serif", 12))
                 .draw()
@@ -281,6 +281,15 @@ pub fn tick_label(v: f64) -> String {
     match text.contains('.') {
         true => text.trim_end_matches('0').trim_end_matches('.').to_string(),
         false => text,
+    }
+}
+
+/// A tick value with k or M for thousands and millions (20k, 1.5M): work axes span them.
+fn si_label(v: f64) -> String {
+    match v {
+        v if v >= 1e6 => format!("{}M", tick_label(v / 1e6)),
+        v if v >= 1e3 => format!("{}k", tick_label(v / 1e3)),
+        v => tick_label(v),
     }
 }
 
