@@ -83,7 +83,8 @@ fn quick_scale_writes_every_column_a_plot_and_finite_exponents() {
     let fit_rows: Vec<Vec<&str>> = fits.lines().skip(1).map(|l| l.split(',').collect()).collect();
     assert_eq!(fit_rows.len(), 15, "{fits}");
     for r in &fit_rows {
-        let e: f64 = r[2].parse().unwrap();
+        assert_eq!(r[2], "all", "{r:?}");
+        let e: f64 = r[3].parse().unwrap();
         assert!(e.is_finite(), "{r:?}");
     }
     assert!(stdout.contains("| caster triangles |"), "{stdout}");

@@ -200,7 +200,9 @@ pub fn scale_png(rows: &[ScaleRow], fits: &[PowerFit]) -> Result<Vec<u8>> {
                 .map_err(|e| err(&e))?;
             for (pass, colour) in series {
                 let points: Vec<(f64, f64)> = on.iter().map(|r| (r.work, pass.of(r))).collect();
-                let fit = fits.iter().find(|f| f.axis == *axis && f.pass == pass);
+                let fit = fits
+                    .iter()
+                    .find(|f| f.axis == *axis && f.pass == pass && !f.upper);
                 let label = match fit {
                     Some(f) => format!("{}: exponent {:.2}", pass.name(), f.exponent),
                     None => pass.name().to_string(),

@@ -366,6 +366,9 @@ pub struct PowerFit {
     /// How much of the log-time variance the line explains.
     pub r2: f64,
     pub points: usize,
+    /// Fitted over the upper half of the axis only (where fixed costs no longer hide the
+    /// growth), not over all of it.
+    pub upper: bool,
 }
 
 /// Least squares on `(ln x, ln y)`; `None` with fewer than two distinct positive `x`.
@@ -392,22 +395,32 @@ pub fn fit_power(points: &[(f64, f64)]) -> Option<(f64, f64, f64)> {
     Some((slope, (my - slope * mx).exp(), r2))
 }
 
-/// Every axis' fit for every pass (axes with fewer than two points are left out).
+/// Every axis' fit for every pass over all its points, and for axes of four points or
+/// more also over its upper half (axes with fewer than two points are left out).
 pub fn fits(rows: &[ScaleRow]) -> Vec<PowerFit> {
     let mut out = Vec::new();
     for axis in Axis::ALL {
         let on: Vec<&ScaleRow> = rows.iter().filter(|r| r.point.axis == axis).collect();
-        for pass in Pass::ALL {
-            let points: Vec<(f64, f64)> = on.iter().map(|r| (r.work, pass.of(r))).collect();
-            if let Some((exponent, coefficient, r2)) = fit_power(&points) {
-                out.push(PowerFit {
-                    axis,
-                    pass,
-                    exponent,
-                    coefficient,
-                    r2,
-                    points: points.len(),
-                });
+        for upper in [false, true] {
+            let from = match (upper, on.len()) {
+                (false, _) => 0,
+                (true, n) if n >= 4 => n / 2,
+                (true, _) => continue,
+            };
+            for pass in Pass::ALL {
+                let points: Vec<(f64, f64)> =
+                    on[from..].iter().map(|r| (r.work, pass.of(r))).collect();
+                if let Some((exponent, coefficient, r2)) = fit_power(&points) {
+                    out.push(PowerFit {
+                        axis,
+                        pass,
+                        exponent,
+                        coefficient,
+                        r2,
+                        points: points.len(),
+                        upper,
+                    });
+                }
             }
         }
     }
@@ -452,16 +465,17 @@ pub fn to_csv(rows: &[ScaleRow]) -> String {
 }
 
 /// The `scale-fit.csv` columns, in order.
-pub const FIT_CSV_HEADER: &str = "axis,pass,exponent,coefficient_ms,r2,points";
+pub const FIT_CSV_HEADER: &str = "axis,pass,range,exponent,coefficient_ms,r2,points";
 
 pub fn fits_to_csv(fits: &[PowerFit]) -> String {
     let mut out = String::from(FIT_CSV_HEADER);
     out.push('\n');
     for f in fits {
         out.push_str(&format!(
-            "{},{},{:.4},{:.6e},{:.4},{}\n",
+            "{},{},{},{:.4},{:.6e},{:.4},{}\n",
             f.axis.name(),
             f.pass.name(),
+            if f.upper { "upper-half" } else { "all" },
             f.exponent,
             f.coefficient,
             f.r2,
@@ -471,18 +485,24 @@ pub fn fits_to_csv(fits: &[PowerFit]) -> String {
     out
 }
 
-/// A Markdown table of the exponents: one row per axis, one column per pass.
+/// A Markdown table of the exponents: one row per axis, one column per pass; each cell
+/// the fit over all points, then over the upper half where there is one.
 pub fn fits_to_markdown(fits: &[PowerFit]) -> String {
     let mut out = String::from(
         "| work | depth pass exponent | scene pass exponent | frame exponent |\n|---|---|---|---|\n",
     );
     for axis in Axis::ALL {
+        // "all points / upper half" where both were fitted.
         let cell = |pass: Pass| {
-            fits.iter()
-                .find(|f| f.axis == axis && f.pass == pass)
-                .map_or("-".to_string(), |f| {
-                    format!("{:.2} (r² {:.2})", f.exponent, f.r2)
-                })
+            let of = |upper: bool| {
+                fits.iter()
+                    .find(|f| f.axis == axis && f.pass == pass && f.upper == upper)
+            };
+            match (of(false), of(true)) {
+                (Some(a), Some(u)) => format!("{:.2} / {:.2}", a.exponent, u.exponent),
+                (Some(a), None) => format!("{:.2}", a.exponent),
+                _ => "-".to_string(),
+            }
         };
         if fits.iter().any(|f| f.axis == axis) {
             out.push_str(&format!(
