@@ -165,13 +165,14 @@ fn run_scale(args: &BenchArgs) -> Result<()> {
     let points = scale::plan(args.quick, max);
     let opts = scale::ScaleOptions::new(args.quick);
     eprintln!(
-        "bench --scale: {} points, frames for about {:.1} s each ({} to {})",
+        "bench --scale: {} points, each timed twice (forward, then in reverse) with frames \
+         for about {:.1} s ({} to {})",
         points.len(),
         opts.budget_ms / 1000.0,
         opts.min_frames,
         opts.max_frames
     );
-    let mut counter = Counter::new(points.len() as u64);
+    let mut counter = Counter::new(2 * points.len() as u64);
     let rows = scale::run(gl, &points, &opts, |row| {
         counter.step(&format!(
             "{} = {}: depth {:.2} ms, scene {:.2} ms ({} frames)",

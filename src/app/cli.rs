@@ -245,9 +245,11 @@ pub struct BenchArgs {
     /// triangles, 640x360, a 1024^2 map, one light, one cascade): caster triangles 1e3 to
     /// 1e6, frames 320x180 to 3840x2160, maps 256^2 to 8192^2, 1 to 4 lights, 1 to 4
     /// cascades. Writes scale.csv, scale-fit.csv (the fitted exponents: least squares on
-    /// log-log) and scale.png. Each point gets frames enough for about 6 s (3 to 200), so
-    /// the full sweep takes about 4 minutes on llvmpipe; with --quick, two points an axis
-    /// at 320x180 and 2 to 5 frames each (seconds). The scene, settings and --frames flags
+    /// log-log) and scale.png. Each point is timed twice (the second pass over the points in
+    /// reverse order; the quieter block counts), each time with frames enough for about
+    /// 3 s (3 to 100: a 1e6-triangle frame takes about half a second on llvmpipe), so the
+    /// full sweep takes about 3 to 5 minutes there; with --quick, two points an axis at
+    /// 320x180 and 2 to 5 frames each (seconds). The scene, settings and --frames flags
     /// are not used.
     #[arg(long)]
     pub scale: bool,

@@ -17,7 +17,7 @@ use crate::renderer::{Renderer, Target};
 use crate::scene::Scene;
 use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
-    BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass, ShadowPatch, ShadowSettings,
+    BiasMode, Cull, DepthFormat, Filter, Fit, MapSize, PointPass, ShadowPatch, ShadowSettings,
 };
 use crate::shadows::ShadowKind;
 
@@ -135,9 +135,12 @@ pub struct BenchConfig {
     pub family: Family,
 }
 
-/// The tutorials' own final configurations, on top of the scene's settings.
+/// The tutorials' own final configurations, on top of the scene's settings. Both keep the
+/// light's box as the scene gives it (neither fits it to the view), so a sweep run with
+/// `--fit scene` still measures the tutorials as they are.
 pub fn tutorial_configs(base: &ShadowSettings) -> Vec<BenchConfig> {
     let mut book = *base;
+    book.fit = Fit::Manual;
     book.map_size = MapSize::square(1024);
     book.filter = Filter::Pcf3x3;
     book.cull = Cull::None;
