@@ -104,16 +104,16 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut markdown = bench::to_markdown(&rows);
     markdown.push('\n');
     markdown.push_str(&bench::against_tutorials_text(&rows));
-    markdown.push_str("\nthe --quality rule (README, \"Quality presets\") on this front:\n");
+    markdown.push_str("\nthe --quality rule (README, \"Quality presets\") on this sweep:\n");
     for (level, row) in bench::preset_choices(&rows) {
         markdown.push_str(&match row {
             Some(r) => format!(
-                "  {level}: {} ({:.2} ms, {:.3}% misclassified)\n",
+                "  {level}: {} (overhead {:.2} ms, {:.3}% misclassified)\n",
                 r.label(),
-                r.wall_ms.median,
+                r.overhead_ms,
                 r.error() * 100.0
             ),
-            None => format!("  {level}: no configuration on the front meets the rule\n"),
+            None => format!("  {level}: no configuration meets the rule\n"),
         });
     }
     let title = format!(

@@ -443,8 +443,8 @@ impl BenchRow {
         self.metrics.misclassified_rate
     }
 
-    /// A short name: "2048 hw2x2 slope cull-none 24", "4x1024 ... cascades",
-    /// "... six-passes".
+    /// A short name: "2048 hw2x2 slope cull-none 24", "... fitted" (the box fitted to the
+    /// view), "4x1024 ... cascades", "... six-passes".
     pub fn label(&self) -> String {
         let s = &self.config.settings;
         let (size, suffix) = match self.config.family {
@@ -453,8 +453,12 @@ impl BenchRow {
             Family::PointLayered => (s.map_size.to_string(), " cube layered"),
             Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
         };
+        let fitted = match s.fit {
+            Fit::Scene if self.config.family != Family::Cascades => " fitted",
+            _ => "",
+        };
         format!(
-            "{size} {} {} cull-{} {}{suffix}",
+            "{size} {} {} cull-{} {}{fitted}{suffix}",
             s.filter.name(),
             self.config.bias_preset.name(),
             s.cull.name(),
@@ -826,31 +830,31 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
     out
 }
 
-/// The `--quality` presets' rule, on the Pareto front of (frame time, error): `low` the
-/// fastest configuration on it; `medium` the fastest at least as accurate as LearnOpenGL's
-/// final configuration; `high` the most accurate whose frame is no slower than that
-/// configuration's. A preset serves every kind of light, so only one-map rows count.
-/// Absent where the sweep has no such row (or no tutorial row).
+/// The `--quality` presets' rule, on the shadow overhead against LearnOpenGL's final
+/// configuration's: `low` the configuration with the least overhead; `medium` the most
+/// accurate with at most half the tutorial's overhead (the goal); `high` the most
+/// accurate with no more than the tutorial's. A preset serves every kind of light, so only
+/// one-map rows count. Absent where the sweep has no such row (or no tutorial row).
 pub fn preset_choices(rows: &[BenchRow]) -> [(&'static str, Option<&BenchRow>); 3] {
-    let front = || {
-        rows.iter().filter(|r| {
-            r.pareto && r.config.tutorial.is_none() && r.config.family == Family::OneMap
-        })
+    let one_map = || {
+        rows.iter()
+            .filter(|r| r.config.tutorial.is_none() && r.config.family == Family::OneMap)
     };
     let tutorial = rows
         .iter()
         .find(|r| r.config.tutorial == Some("learnopengl"));
-    let low = front().min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
-    let medium = tutorial.and_then(|t| {
-        front()
-            .filter(|r| r.error() <= t.error())
-            .min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median))
-    });
-    let high = tutorial.and_then(|t| {
-        front()
-            .filter(|r| r.wall_ms.median <= t.wall_ms.median)
-            .min_by(|a, b| a.error().total_cmp(&b.error()))
-    });
+    let most_accurate_within = |budget: f64| {
+        one_map()
+            .filter(|r| r.overhead_ms <= budget)
+            .min_by(|a, b| {
+                a.error()
+                    .total_cmp(&b.error())
+                    .then(a.overhead_ms.total_cmp(&b.overhead_ms))
+            })
+    };
+    let low = one_map().min_by(|a, b| a.overhead_ms.total_cmp(&b.overhead_ms));
+    let medium = tutorial.and_then(|t| most_accurate_within(0.5 * t.overhead_ms));
+    let high = tutorial.and_then(|t| most_accurate_within(t.overhead_ms));
     [("low", low), ("medium", medium), ("high", high)]
 }
 
@@ -900,11 +904,9 @@ mod tests {
         assert!(text.contains("0.40 of the tutorial's overhead"), "{text}");
         assert!(text.contains("20.0x fewer misclassified receivers"), "{text}");
 
-        let mut rows = rows;
-        mark_pareto(&mut rows);
         let [low, medium, high] = preset_choices(&rows);
-        assert_eq!(low.1.unwrap().wall_ms.median, 5.5);
-        assert_eq!(medium.1.unwrap().wall_ms.median, 6.0);
-        assert_eq!(high.1.unwrap().wall_ms.median, 6.9);
+        assert_eq!(low.1.unwrap().overhead_ms, 0.5);
+        assert_eq!(medium.1.unwrap().overhead_ms, 0.8);
+        assert_eq!(high.1.unwrap().overhead_ms, 1.9);
     }
 }
