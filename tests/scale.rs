@@ -38,7 +38,10 @@ fn quick_scale_writes_every_column_a_plot_and_finite_exponents() {
     let csv = std::fs::read_to_string(dir.join("scale.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header, shadowmap::scale::CSV_HEADER.split(',').collect::<Vec<_>>());
+    assert_eq!(
+        header,
+        shadowmap::scale::CSV_HEADER.split(',').collect::<Vec<_>>()
+    );
     for column in [
         "axis",
         "work",
@@ -65,7 +68,11 @@ fn quick_scale_writes_every_column_a_plot_and_finite_exponents() {
     }
     for row in &rows {
         assert_eq!(row.len(), header.len());
-        for name in ["depth_wall_ms_median", "scene_wall_ms_median", "frame_wall_ms_median"] {
+        for name in [
+            "depth_wall_ms_median",
+            "scene_wall_ms_median",
+            "frame_wall_ms_median",
+        ] {
             let v: f64 = row[col(name)].parse().unwrap();
             assert!(v.is_finite() && v > 0.0, "{name} = {v} in {row:?}");
         }
@@ -80,7 +87,11 @@ fn quick_scale_writes_every_column_a_plot_and_finite_exponents() {
     assert!((9000.0..11000.0).contains(&triangles[1]), "{triangles:?}");
     // An exponent for every axis and pass, each a finite number.
     let fits = std::fs::read_to_string(dir.join("scale-fit.csv")).unwrap();
-    let fit_rows: Vec<Vec<&str>> = fits.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let fit_rows: Vec<Vec<&str>> = fits
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
     assert_eq!(fit_rows.len(), 15, "{fits}");
     for r in &fit_rows {
         assert_eq!(r[2], "all", "{r:?}");
@@ -137,7 +148,8 @@ fn quality_presets_apply_and_flags_win() {
         let filter = &flags[flags.iter().position(|f| f == "--filter").unwrap() + 1];
         // The preset says what it set, and the frame's settings are those.
         assert!(
-            stdout.contains(&format!("quality {level}: ")) && stdout.contains(&format!("map_size {map}")),
+            stdout.contains(&format!("quality {level}: "))
+                && stdout.contains(&format!("map_size {map}")),
             "{stdout}"
         );
         assert!(
@@ -147,14 +159,21 @@ fn quality_presets_apply_and_flags_win() {
         // The same settings given as flags draw the same image.
         let args: Vec<&str> = flags.iter().map(String::as_str).collect();
         render(&args, &out);
-        assert_eq!(std::fs::read(&out).unwrap(), by_preset, "{level}: {flags:?}");
+        assert_eq!(
+            std::fs::read(&out).unwrap(),
+            by_preset,
+            "{level}: {flags:?}"
+        );
         images.push(by_preset);
     }
     // Each preset changes the frame: none draws the scene's own settings' image.
     render(&[], &out);
     let own = std::fs::read(&out).unwrap();
     for (level, image) in ["low", "medium", "high"].iter().zip(&images) {
-        assert!(*image != own, "--quality {level} draws the scene's own image");
+        assert!(
+            *image != own,
+            "--quality {level} draws the scene's own image"
+        );
     }
     // An explicit flag wins over the preset, and the preset's line says so.
     let mixed = render(&["--quality", "high", "--map-size", "256"], &out);
@@ -200,7 +219,14 @@ fn target_error_picks_a_configuration_that_meets_it() {
     let cmp = dir.join("cmp");
     common::stdout_of(
         common::bin()
-            .args(["compare", "--size", "160x90", "--supersample", "1", "--out-dir"])
+            .args([
+                "compare",
+                "--size",
+                "160x90",
+                "--supersample",
+                "1",
+                "--out-dir",
+            ])
             .arg(&cmp)
             .args(&args),
     );

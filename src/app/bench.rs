@@ -4,9 +4,9 @@
 use std::time::Instant;
 
 use shadowmap::bench::{self, BenchOptions};
-use shadowmap::scale;
 use shadowmap::engine::{gl_limits, HeadlessContext};
 use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
+use shadowmap::scale;
 use shadowmap::{Error, Result};
 
 use super::cli::BenchArgs;
@@ -144,9 +144,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         start.elapsed().as_secs_f64()
     );
     if let Some(target) = args.target_error {
-        let chosen = super::quality::cheapest_or_error(&rows, target).map_err(|e| {
-            Error::Invalid(format!("{e}; the tables and plot above were written"))
-        })?;
+        let chosen = super::quality::cheapest_or_error(&rows, target)
+            .map_err(|e| Error::Invalid(format!("{e}; the tables and plot above were written")))?;
         println!("{}", super::quality::describe_choice(chosen, target));
     }
     Ok(())
@@ -193,7 +192,11 @@ fn run_scale(args: &BenchArgs) -> Result<()> {
             scale::fits_to_csv(&fits).into_bytes(),
             "the exponents",
         ),
-        ("scale.png", super::plot::scale_png(&rows, &fits)?, "the plot"),
+        (
+            "scale.png",
+            super::plot::scale_png(&rows, &fits)?,
+            "the plot",
+        ),
     ];
     create_output_dir(dir)?;
     let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();

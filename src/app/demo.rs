@@ -20,9 +20,9 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
-use super::quality::choose_for_target;
 use super::cli::DemoArgs;
 use super::hud::{inset_rect, render_frames_with_overlays, Hud, HudInfo, Overlays};
+use super::quality::choose_for_target;
 
 /// The book's fixed update rate.
 const UPDATES_PER_SECOND: f64 = 30.0;

@@ -4,8 +4,8 @@
 
 use plotters::prelude::*;
 use shadowmap::bench::{BenchRow, Family};
-use shadowmap::scale::{Axis, Pass, PowerFit, ScaleRow};
 use shadowmap::image_data::ImageData;
+use shadowmap::scale::{Axis, Pass, PowerFit, ScaleRow};
 use shadowmap::{Error, Result};
 
 const WIDTH: u32 = 1100;

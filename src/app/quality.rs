@@ -48,10 +48,7 @@ impl Quality {
 /// measured, to lay over the scene's settings.
 pub fn patch_of(config: &BenchConfig) -> ShadowPatch {
     let s = &config.settings;
-    let cube = matches!(
-        config.family,
-        Family::PointLayered | Family::PointSixPasses
-    );
+    let cube = matches!(config.family, Family::PointLayered | Family::PointSixPasses);
     ShadowPatch {
         map_size: Some(s.map_size),
         filter: Some(s.filter),

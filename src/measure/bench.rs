@@ -778,13 +778,13 @@ pub fn against_tutorials(rows: &[BenchRow]) -> Vec<AgainstTutorial<'_>> {
             at_equal_error: others()
                 .filter(|r| r.error() <= t.error())
                 .min_by(|a, b| a.overhead_ms.total_cmp(&b.overhead_ms)),
-            at_equal_overhead: others()
-                .filter(|r| r.overhead_ms <= t.overhead_ms)
-                .min_by(|a, b| {
+            at_equal_overhead: others().filter(|r| r.overhead_ms <= t.overhead_ms).min_by(
+                |a, b| {
                     a.error()
                         .total_cmp(&b.error())
                         .then(a.overhead_ms.total_cmp(&b.overhead_ms))
-                }),
+                },
+            ),
         })
         .collect()
 }
@@ -814,7 +814,8 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
             None => out.push_str("  at equal error or better: no other configuration\n"),
         }
         match a.at_equal_overhead {
-            Some(r) => out.push_str(&format!(
+            Some(r) => {
+                out.push_str(&format!(
                 "  at equal overhead or less: {} misclassifies {:.3}% (overhead {:.2} ms): {}\n",
                 r.label(),
                 r.error() * 100.0,
@@ -823,7 +824,8 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
                     true => format!("{:.1}x fewer misclassified receivers", t.error() / r.error()),
                     false => "no misclassified receiver at all".to_string(),
                 }
-            )),
+            ))
+            }
             None => out.push_str("  at equal overhead or less: no other configuration\n"),
         }
     }
@@ -902,7 +904,10 @@ mod tests {
         assert_eq!(a.at_equal_overhead.unwrap().error(), 0.0005);
         let text = against_tutorials_text(&rows);
         assert!(text.contains("0.40 of the tutorial's overhead"), "{text}");
-        assert!(text.contains("20.0x fewer misclassified receivers"), "{text}");
+        assert!(
+            text.contains("20.0x fewer misclassified receivers"),
+            "{text}"
+        );
 
         let [low, medium, high] = preset_choices(&rows);
         assert_eq!(low.1.unwrap().overhead_ms, 0.5);

@@ -86,6 +86,14 @@ const DIRECTIONS: [[f32; 3]; 4] = [
     [-0.3, 1.0, -0.4],
 ];
 
+/// Each axis' values: triangles, frame sizes, map sides, light and cascade counts.
+type Values = (
+    &'static [u32],
+    &'static [(u32, u32)],
+    &'static [u32],
+    &'static [u32],
+);
+
 /// The points to time: the base, then each axis on its own. `quick` is a small sweep (two
 /// points an axis, small frames) for tests; the full one runs 1e3 to 1e6 triangles,
 /// 320 x 180 to 3840 x 2160, maps of 256^2 up to the driver's largest (at most 8192^2),
@@ -111,7 +119,7 @@ pub fn plan(quick: bool, max_texture_size: u32) -> Vec<ScalePoint> {
             cascades: 1,
         },
     };
-    let (triangles, sizes, maps, counts): (&[u32], &[(u32, u32)], &[u32], &[u32]) = match quick {
+    let (triangles, sizes, maps, counts): Values = match quick {
         true => (
             &[1_000, 10_000],
             &[(320, 180), (640, 360)],
@@ -119,9 +127,7 @@ pub fn plan(quick: bool, max_texture_size: u32) -> Vec<ScalePoint> {
             &[1, 2],
         ),
         false => (
-            &[
-                1_000, 3_000, 10_000, 30_000, 100_000, 300_000, 1_000_000,
-            ],
+            &[1_000, 3_000, 10_000, 30_000, 100_000, 300_000, 1_000_000],
             &[
                 (320, 180),
                 (640, 360),
