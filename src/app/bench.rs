@@ -34,7 +34,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         return Err(Error::Invalid(
             "--quality: bench sweeps the map size, filter, bias, culling and depth format \
              itself, so a preset would be replaced; expected bench without it (the presets \
-             are chosen from its Pareto front)"
+             are chosen from its measurements)"
                 .into(),
         ));
     }

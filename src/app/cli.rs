@@ -90,8 +90,8 @@ pub struct SettingsArgs {
     /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
     pub step: Option<String>,
-    /// A preset chosen from the bench's Pareto front (README, "Quality presets"): map
-    /// size, filter, bias and culling over the scene's (or the step's) settings; the flags
+    /// A preset chosen from the bench's measurements (README, "Quality presets"): map
+    /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags
     /// given here win over it.
     #[arg(long, value_name = "LEVEL", value_enum)]
     pub quality: Option<Quality>,
