@@ -1,5 +1,5 @@
 //! Settings chosen from measurements: the `--quality` presets (data, in
-//! `assets/quality.toml`, picked from the bench's Pareto front) and `--target-error`, which
+//! `assets/quality.toml`, picked from the bench's measurements) and `--target-error`, which
 //! runs the bench's quick sweep on the current scene and keeps the cheapest configuration
 //! accurate enough.
 
