@@ -698,6 +698,14 @@ macro_rules! shadow_settings {
                 }
             }
 
+            /// This patch over `under`: its own fields, and `under`'s where it gives none
+            /// (the flags over a `--quality` preset).
+            pub fn or(&self, under: &ShadowPatch) -> ShadowPatch {
+                ShadowPatch {
+                    $($( $field: self.$field.or(under.$field), )*)*
+                }
+            }
+
             /// The names (as the scene file spells them) of the fields it gives.
             pub fn given(&self) -> Vec<&'static str> {
                 let mut names = Vec::new();

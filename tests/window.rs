@@ -289,3 +289,53 @@ fn window_draws_the_same_frame_through_glx_and_through_egl() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
+    let dir = display_and_dir("target");
+    let shot = dir.join("window.png");
+    let headless = dir.join("headless.png");
+    let out = stdout_of(
+        bin()
+            .args([
+                "demo",
+                "--no-animation",
+                "--no-hud",
+                "--size",
+                "160x90",
+                "--target-error",
+                "0.02",
+                "--exit-after-frames",
+                "3",
+                "--screenshot",
+            ])
+            .arg(&shot),
+    );
+    let flags = out
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("as flags: "))
+        .unwrap_or_else(|| panic!("no choice printed: {out}"));
+    // The window draws what the chosen flags draw headless.
+    stdout_of(
+        bin()
+            .args(["render", "--size", "160x90"])
+            .args(flags.split_whitespace())
+            .arg("--out")
+            .arg(&headless),
+    );
+    let mean = mean_difference(&load(&shot), &load(&headless));
+    assert!(mean < 1.0, "window and headless differ by {mean} ({flags})");
+    let out = stdout_of(bin().args([
+        "demo",
+        "--no-animation",
+        "--size",
+        "160x90",
+        "--quality",
+        "low",
+        "--exit-after-frames",
+        "2",
+    ]));
+    assert!(out.contains("quality low: map_size "), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -6,11 +6,15 @@ use std::time::Instant;
 use shadowmap::bench::{self, BenchOptions};
 use shadowmap::engine::{gl_limits, HeadlessContext};
 use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
+use shadowmap::scale;
 use shadowmap::{Error, Result};
 
 use super::cli::BenchArgs;
 
 pub fn run(args: &BenchArgs) -> Result<()> {
+    if args.scale {
+        return run_scale(args);
+    }
     let start = Instant::now();
     let mut scene = args.scene.load()?;
     // Time a still frame: the animation would change what is measured between frames.
@@ -25,12 +29,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     // Everything that can be checked without the driver, before any GL work or file
     // (--target-error is checked as it is parsed).
     args.settings.check_values(&scene, &base)?;
-    if !scene.light().casts_shadows() {
-        return Err(Error::Invalid(format!(
-            "{}: the first light does not cast shadows (casts_shadows = false): the sweep \
-             measures the first light; expected a scene whose first light casts",
-            scene.source.display()
-        )));
+    super::quality::check_first_light(&scene)?;
+    if args.settings.quality.is_some() {
+        return Err(Error::Invalid(
+            "--quality: bench sweeps the map size, filter, bias, culling and depth format \
+             itself, so a preset would be replaced; expected bench without it (the presets \
+             are chosen from its measurements)"
+                .into(),
+        ));
     }
     check_output_dir("--out-dir", dir)?;
     let activity = Activity::start("bench: opening a headless OpenGL context");
@@ -98,7 +104,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         counter.finish();
     }
 
-    let markdown = bench::to_markdown(&rows);
+    let mut markdown = bench::to_markdown(&rows);
+    markdown.push('\n');
+    markdown.push_str(&bench::against_tutorials_text(&rows));
+    markdown.push_str("\nthe --quality rule (README, \"Quality presets\") on this sweep:\n");
+    for (level, row) in bench::preset_choices(&rows) {
+        markdown.push_str(&match row {
+            Some(r) => format!(
+                "  {level}: {} (overhead {:.2} ms, {:.3}% misclassified)\n",
+                r.label(),
+                r.overhead_ms,
+                r.error() * 100.0
+            ),
+            None => format!("  {level}: no configuration meets the rule\n"),
+        });
+    }
     let title = format!(
         "{}: shadow error against frame time ({width}x{height})",
         scene.name
@@ -127,36 +147,73 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         start.elapsed().as_secs_f64()
     );
     if let Some(target) = args.target_error {
-        match bench::cheapest_under(&rows, target) {
-            Some(r) => println!(
-                "cheapest configuration with error <= {:.3}%: {} ({:.2} ms, {} {:.3}%)\n  \
-                 as flags: --map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} \
-                 --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {}",
-                target * 100.0,
-                r.label(),
-                r.wall_ms.median,
-                r.error_name(),
-                r.error() * 100.0,
-                r.config.settings.map_size,
-                r.config.settings.filter.name(),
-                r.config.settings.bias_mode.name(),
-                r.config.settings.bias,
-                r.config.settings.bias_min,
-                r.config.settings.normal_offset,
-                r.config.settings.polygon_offset[0],
-                r.config.settings.polygon_offset[1],
-                r.config.settings.cull.name(),
-                r.config.settings.depth_format.name(),
-            ),
-            None => {
-                return Err(Error::Invalid(format!(
-                    "--target-error {target}: no configuration reached an error of {:.3}% or \
-                     less (best: {:.3}%); the tables and plot above were written",
-                    target * 100.0,
-                    rows.iter().map(|r| r.error()).fold(f64::INFINITY, f64::min) * 100.0
-                )))
-            }
-        }
+        let chosen = super::quality::cheapest_or_error(&rows, target)
+            .map_err(|e| Error::Invalid(format!("{e}; the tables and plot above were written")))?;
+        println!("{}", super::quality::describe_choice(chosen, target));
     }
+    Ok(())
+}
+
+/// `bench --scale`: each pass' time against the work, with the fitted exponents.
+fn run_scale(args: &BenchArgs) -> Result<()> {
+    let start = Instant::now();
+    let dir = &args.out_dir;
+    check_output_dir("--out-dir", dir)?;
+    let activity = Activity::start("bench --scale: opening a headless OpenGL context");
+    let context = HeadlessContext::new()?;
+    let gl = context.gl();
+    activity.done(&shadowmap::engine::check::renderer_name(gl));
+    let max = gl_limits(gl).max_texture_size;
+    let points = scale::plan(args.quick, max);
+    let opts = scale::ScaleOptions::new(args.quick);
+    eprintln!(
+        "bench --scale: {} points, each timed twice (forward, then in reverse) with frames \
+         for about {:.1} s ({} to {})",
+        points.len(),
+        opts.budget_ms / 1000.0,
+        opts.min_frames,
+        opts.max_frames
+    );
+    let mut counter = Counter::new(2 * points.len() as u64);
+    let rows = scale::run(gl, &points, &opts, |row| {
+        counter.step(&format!(
+            "{} = {}: depth {:.2} ms, scene {:.2} ms ({} frames)",
+            row.point.axis.name(),
+            row.work,
+            row.depth_wall_ms.median,
+            row.scene_wall_ms.median,
+            row.frames
+        ))
+    })?;
+    counter.finish();
+    let fits = scale::fits(&rows);
+    let markdown = scale::fits_to_markdown(&fits);
+    let files = [
+        ("scale.csv", scale::to_csv(&rows).into_bytes(), "the table"),
+        (
+            "scale-fit.csv",
+            scale::fits_to_csv(&fits).into_bytes(),
+            "the exponents",
+        ),
+        (
+            "scale.png",
+            super::plot::scale_png(&rows, &fits)?,
+            "the plot",
+        ),
+    ];
+    create_output_dir(dir)?;
+    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
+    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .collect();
+    write_files(&batch)?;
+    println!("{markdown}");
+    println!(
+        "wrote {}/scale.csv, scale-fit.csv, scale.png in {:.1} s",
+        dir.display(),
+        start.elapsed().as_secs_f64()
+    );
     Ok(())
 }

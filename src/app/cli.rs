@@ -10,6 +10,8 @@ use shadowmap::shadows::ShadowKind;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
 
+use super::quality::Quality;
+
 #[derive(Parser, Debug)]
 #[command(
     name = "shadowmap",
@@ -95,6 +97,11 @@ pub struct SettingsArgs {
     /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
     pub step: Option<String>,
+    /// A preset chosen from the bench's measurements (README, "Quality presets"): map
+    /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags
+    /// given here win over it.
+    #[arg(long, value_name = "LEVEL", value_enum)]
+    pub quality: Option<Quality>,
     #[command(flatten)]
     pub patch: ShadowPatch,
 }
@@ -105,6 +112,13 @@ pub struct DemoArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
+    /// against the exact reference, about half a minute) and use the cheapest
+    /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
+    /// and its measured error and time. Its map size, filter, bias, culling, depth format
+    /// and cascades replace the flags'.
+    #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
+    pub target_error: Option<f64>,
     /// Close the window after this many frames (for scripted runs).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub exit_after_frames: Option<u64>,
@@ -165,6 +179,7 @@ impl Default for DemoArgs {
                 camera_target: None,
             },
             settings: SettingsArgs::default(),
+            target_error: None,
             exit_after_frames: None,
             screenshot: None,
             no_animation: false,
@@ -182,6 +197,13 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
+    /// against the exact reference, about half a minute) and use the cheapest
+    /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
+    /// and its measured error and time. Its map size, filter, bias, culling, depth format
+    /// and cascades replace the flags'.
+    #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
+    pub target_error: Option<f64>,
     /// The rendered image.
     #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
     pub out: PathBuf,
@@ -270,6 +292,19 @@ pub struct BenchArgs {
     pub out_dir: PathBuf,
     #[arg(long, help = quick_help())]
     pub quick: bool,
+    /// Instead of the settings sweep: how each pass' time grows with the work. A generated
+    /// scene (64 spheres of rising detail over a floor, one axis moved at a time from 1e4
+    /// triangles, 640x360, a 1024^2 map, one light, one cascade): caster triangles 1e3 to
+    /// 1e6, frames 320x180 to 3840x2160, maps 256^2 to 8192^2, 1 to 4 lights, 1 to 4
+    /// cascades. Writes scale.csv, scale-fit.csv (the fitted exponents: least squares on
+    /// log-log) and scale.png. Each point is timed twice (the second pass over the points in
+    /// reverse order; the quieter block counts), each time with frames enough for about
+    /// 3 s (3 to 100: a 1e6-triangle frame takes about half a second on llvmpipe), so the
+    /// full sweep takes about 3 to 5 minutes there; with --quick, two points an axis at
+    /// 320x180 and 2 to 5 frames each (seconds). The scene, settings and --frames flags
+    /// are not used.
+    #[arg(long)]
+    pub scale: bool,
     /// Timed frames per block; each configuration gets two blocks (one per pass over the
     /// sweep) and the quieter block's median and p95 are reported.
     #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
@@ -516,6 +551,43 @@ impl SettingsArgs {
         }
     }
 
+    /// The flags over the `--quality` preset, if one is given.
+    pub fn effective_patch(&self) -> shadowmap::Result<ShadowPatch> {
+        match self.quality {
+            Some(q) => Ok(self.patch.or(&q.patch()?)),
+            None => Ok(self.patch),
+        }
+    }
+
+    /// The `--quality` preset's line for a summary: its name and what it set, without the
+    /// fields a flag replaced.
+    pub fn quality_summary(&self) -> shadowmap::Result<Option<String>> {
+        let Some(q) = self.quality else {
+            return Ok(None);
+        };
+        let preset = q.patch()?;
+        let mut set = ShadowSettings::default();
+        preset.apply_to(&mut set);
+        let given = self.patch.given();
+        let used: Vec<String> = preset
+            .given()
+            .into_iter()
+            .filter(|name| !given.contains(name))
+            .map(|name| format!("{} {}", name, setting_value(&set, name)))
+            .collect();
+        let replaced: Vec<String> = preset
+            .given()
+            .into_iter()
+            .filter(|name| given.contains(name))
+            .map(|name| format!("--{}", name.replace('_', "-")))
+            .collect();
+        let mut line = format!("quality {}: {}", q.name(), used.join(", "));
+        if !replaced.is_empty() {
+            line.push_str(&format!(" (flags win: {})", replaced.join(", ")));
+        }
+        Ok(Some(line))
+    }
+
     /// Whether the setting `name` (as the scene file spells it) was given as a flag.
     fn flag_given(&self, name: &str) -> bool {
         self.patch.given().contains(&name)
@@ -524,15 +596,16 @@ impl SettingsArgs {
     /// The scene's settings, then the step's preset, then the flags. The flags also win
     /// over the lights' own `shadow` tables: the fields they give are taken out of those.
     pub fn apply(&self, scene: &mut Scene) -> shadowmap::Result<ShadowSettings> {
+        let patch = self.effective_patch()?;
         for light in &mut scene.lights {
-            let own = light.shadow_patch().without(&self.patch);
+            let own = light.shadow_patch().without(&patch);
             *light.shadow_patch_mut() = own;
         }
         let mut s = match &self.step {
             Some(step) => steps::settings_for(scene, step)?,
             None => scene.shadow,
         };
-        self.patch.apply_to(&mut s);
+        patch.apply_to(&mut s);
         // Once per run, every command (values that are refused get their error instead).
         if s.validate_values().is_ok() {
             for w in self.warnings(scene, &s) {

@@ -22,6 +22,7 @@ use winit::window::{Window, WindowId};
 
 use super::cli::DemoArgs;
 use super::hud::{inset_rect, render_frames_with_overlays, Hud, HudInfo, Overlays};
+use super::quality::choose_for_target;
 
 /// The book's fixed update rate.
 const UPDATES_PER_SECOND: f64 = 30.0;
@@ -42,6 +43,19 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     args.settings.check_values(&scene, &settings)?;
     if let Some(path) = &args.screenshot {
         check_output_image("--screenshot", path)?;
+    }
+    if let Some(target) = args.target_error {
+        // Chosen headless before the window opens; then the demo runs as if the chosen
+        // configuration had been given as flags (a step key and back keeps it).
+        let size = args.scene.size(&scene);
+        let chosen = choose_for_target(&scene, &settings, size, target)?;
+        let mut args = args.clone();
+        args.settings.patch = chosen.or(&args.settings.patch);
+        args.target_error = None;
+        return run(&args);
+    }
+    if let Some(line) = args.settings.quality_summary()? {
+        println!("{line}");
     }
     if args.no_animation {
         scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);

@@ -8,5 +8,6 @@ pub mod gallery;
 pub mod hud;
 pub mod keys;
 pub mod plot;
+pub mod quality;
 pub mod render;
 pub mod soak;

@@ -5,6 +5,7 @@
 use plotters::prelude::*;
 use shadowmap::bench::{BenchRow, Family};
 use shadowmap::image_data::ImageData;
+use shadowmap::scale::{Axis, Pass, PowerFit, ScaleRow};
 use shadowmap::{Error, Result};
 
 const WIDTH: u32 = 1100;
@@ -147,6 +148,102 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
     rgb_image(WIDTH, HEIGHT, &buf).encode_png()
 }
 
+/// The PNG bytes of `scale.png`: one log-log panel per axis, each pass' median time against
+/// the work, with the fitted line and its exponent in the legend.
+pub fn scale_png(rows: &[ScaleRow], fits: &[PowerFit]) -> Result<Vec<u8>> {
+    let err = |e: &dyn std::fmt::Display| Error::Invalid(format!("cannot draw scale.png: {e}"));
+    register_font().map_err(|e| err(&e))?;
+    let (width, height) = (1500u32, 900u32);
+    let mut buf = vec![255u8; (width * height * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let root = root
+            .titled(
+                "time per pass against the work (median wall ms, log-log; exponent = fitted slope)",
+                ("sans-serif", 22),
+            )
+            .map_err(|e| err(&e))?;
+        let panels = root.split_evenly((2, 3));
+        let series = [
+            (Pass::Depth, RGBColor(30, 90, 200)),
+            (Pass::Scene, RGBColor(200, 50, 40)),
+            (Pass::Frame, RGBColor(90, 90, 90)),
+        ];
+        for (axis, panel) in Axis::ALL.iter().zip(panels.iter()) {
+            let on: Vec<&ScaleRow> = rows.iter().filter(|r| r.point.axis == *axis).collect();
+            if on.is_empty() {
+                continue;
+            }
+            let (x_lo, x_hi) = padded_range(on.iter().map(|r| r.work), 1.2);
+            let (y_lo, y_hi) = padded_range(
+                on.iter()
+                    .flat_map(|r| series.iter().map(move |(p, _)| p.of(r))),
+                1.5,
+            );
+            let mut chart = ChartBuilder::on(panel)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d(
+                    (x_lo..x_hi)
+                        .log_scale()
+                        .with_key_points(log_ticks(x_lo, x_hi)),
+                    (y_lo..y_hi)
+                        .log_scale()
+                        .with_key_points(log_ticks(y_lo, y_hi)),
+                )
+                .map_err(|e| err(&e))?;
+            chart
+                .configure_mesh()
+                .x_desc(axis.description())
+                .y_desc("ms")
+                .x_label_formatter(&|v| si_label(*v))
+                .y_label_formatter(&|v| tick_label(*v))
+                .label_style(("sans-serif", 12))
+                .draw()
+                .map_err(|e| err(&e))?;
+            for (pass, colour) in series {
+                let points: Vec<(f64, f64)> = on.iter().map(|r| (r.work, pass.of(r))).collect();
+                let fit = fits
+                    .iter()
+                    .find(|f| f.axis == *axis && f.pass == pass && !f.upper);
+                let label = match fit {
+                    Some(f) => format!("{}: exponent {:.2}", pass.name(), f.exponent),
+                    None => pass.name().to_string(),
+                };
+                chart
+                    .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                    .map_err(|e| err(&e))?
+                    .label(label)
+                    .legend(move |(x, y)| Circle::new((x, y), 3, colour.filled()));
+                if let Some(f) = fit {
+                    let line = (0..=40).map(|k| {
+                        let x = x_lo * (x_hi / x_lo).powf(k as f64 / 40.0);
+                        (x, f.coefficient * x.powf(f.exponent))
+                    });
+                    chart
+                        .draw_series(LineSeries::new(
+                            line.into_iter().filter(|(_, y)| (y_lo..=y_hi).contains(y)),
+                            colour.mix(0.6).stroke_width(1),
+                        ))
+                        .map_err(|e| err(&e))?;
+                }
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperLeft)
+                .border_style(BLACK)
+                .background_style(WHITE.mix(0.8))
+                .label_font(("sans-serif", 12))
+                .draw()
+                .map_err(|e| err(&e))?;
+        }
+        root.present().map_err(|e| err(&e))?;
+    }
+    rgb_image(width, height, &buf).encode_png()
+}
+
 /// The smallest and largest of `values` widened by `pad` times on a log scale (1 to 10 when
 /// there are none).
 fn padded_range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
@@ -191,6 +288,15 @@ pub fn tick_label(v: f64) -> String {
     match text.contains('.') {
         true => text.trim_end_matches('0').trim_end_matches('.').to_string(),
         false => text,
+    }
+}
+
+/// A tick value with k or M for thousands and millions (20k, 1.5M): work axes span them.
+fn si_label(v: f64) -> String {
+    match v {
+        v if v >= 1e6 => format!("{}M", tick_label(v / 1e6)),
+        v if v >= 1e3 => format!("{}k", tick_label(v / 1e3)),
+        v => tick_label(v),
     }
 }
 

@@ -15,15 +15,20 @@ use shadowmap::{Error, Result};
 
 use super::cli::RenderArgs;
 use super::hud::{inset_rect, render_frames_with_overlays, Overlays};
+use super::quality::choose_for_target;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&mut scene)?;
+    let mut settings = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     // Everything that can be checked without the driver, before any GL work or file.
     args.settings.check_values(&scene, &settings)?;
     check_outputs(args)?;
+    if let Some(target) = args.target_error {
+        let chosen = choose_for_target(&scene, &settings, (width, height), target)?;
+        chosen.apply_to(&mut settings);
+    }
     if let Some(path) = &args.depth_out {
         if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
             return Err(Error::Invalid(format!(
@@ -108,6 +113,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         super::cli::in_use(&scene, &settings).summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );
+    if let Some(line) = args.settings.quality_summary()? {
+        println!("{line}");
+    }
     if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
         let shown = match frame.depth_perspective {
             Some((near, far)) => format!(

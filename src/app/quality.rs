@@ -1,0 +1,197 @@
+//! Settings chosen from measurements: the `--quality` presets (data, in
+//! `assets/quality.toml`, picked from the bench's measurements) and `--target-error`, which
+//! runs the bench's quick sweep on the current scene and keeps the cheapest configuration
+//! accurate enough.
+
+use shadowmap::bench::{self, BenchConfig, BenchOptions, BenchRow, Family};
+use shadowmap::engine::{gl_limits, HeadlessContext};
+use shadowmap::output::{Activity, Counter};
+use shadowmap::settings::ShadowPatch;
+use shadowmap::{Error, Result, Scene, ShadowSettings};
+
+static PRESETS: &str = include_str!("../../assets/quality.toml");
+
+/// A preset of shadow settings, from cheap to accurate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Quality {
+    Low,
+    Medium,
+    High,
+}
+
+impl Quality {
+    pub fn name(self) -> &'static str {
+        match self {
+            Quality::Low => "low",
+            Quality::Medium => "medium",
+            Quality::High => "high",
+        }
+    }
+
+    /// The preset's settings (only the fields it gives).
+    pub fn patch(self) -> Result<ShadowPatch> {
+        let bad = |e: &dyn std::fmt::Display| {
+            Error::Invalid(format!(
+                "assets/quality.toml (built in), [{}]: {e}",
+                self.name()
+            ))
+        };
+        let mut tables: std::collections::BTreeMap<String, ShadowPatch> =
+            toml::from_str(PRESETS).map_err(|e| bad(&e))?;
+        tables
+            .remove(self.name())
+            .ok_or_else(|| bad(&"missing: expected a table for every preset"))
+    }
+}
+
+/// The settings the sweep varies, as flags would give them: a configuration the bench
+/// measured, to lay over the scene's settings.
+pub fn patch_of(config: &BenchConfig) -> ShadowPatch {
+    let s = &config.settings;
+    let cube = matches!(config.family, Family::PointLayered | Family::PointSixPasses);
+    ShadowPatch {
+        map_size: Some(s.map_size),
+        filter: Some(s.filter),
+        bias_mode: Some(s.bias_mode),
+        bias: Some(s.bias),
+        bias_min: Some(s.bias_min),
+        normal_offset: Some(s.normal_offset),
+        polygon_offset: Some(s.polygon_offset),
+        cull: Some(s.cull),
+        depth_format: Some(s.depth_format),
+        cascades: Some(s.cascades),
+        // Only where it does something (a flag that does nothing earns a warning).
+        point_pass: cube.then_some(s.point_pass),
+        ..ShadowPatch::default()
+    }
+}
+
+/// Refuses a scene whose first light casts no shadow: the sweep measures that light.
+pub fn check_first_light(scene: &Scene) -> Result<()> {
+    match scene.light().casts_shadows() {
+        true => Ok(()),
+        false => Err(Error::Invalid(format!(
+            "{}: the first light does not cast shadows (casts_shadows = false): the sweep \
+             measures the first light; expected a scene whose first light casts",
+            scene.source.display()
+        ))),
+    }
+}
+
+/// The cheapest row with an error of at most `target`, or the error saying none was.
+pub fn cheapest_or_error(rows: &[BenchRow], target: f64) -> Result<&BenchRow> {
+    bench::cheapest_under(rows, target).ok_or_else(|| {
+        Error::Invalid(format!(
+            "--target-error {target}: no configuration reached an error of {:.3}% or less \
+             (best: {:.3}% of receiver pixels misclassified)",
+            target * 100.0,
+            rows.iter().map(|r| r.error()).fold(f64::INFINITY, f64::min) * 100.0
+        ))
+    })
+}
+
+/// What was chosen, in one line, and the flags that give it.
+pub fn describe_choice(r: &BenchRow, target: f64) -> String {
+    let s = &r.config.settings;
+    format!(
+        "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as flags: --map-size {} --filter {} --bias-mode {} --bias {} \
+         --bias-min {} --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {} \
+         --cascades {}",
+        target * 100.0,
+        r.label(),
+        r.wall_ms.median,
+        r.error() * 100.0,
+        match r.soft.rays {
+            0 => "misclassified",
+            _ => "MAE against the area light",
+        },
+        s.map_size,
+        s.filter.name(),
+        s.bias_mode.name(),
+        s.bias,
+        s.bias_min,
+        s.normal_offset,
+        s.polygon_offset[0],
+        s.polygon_offset[1],
+        s.cull.name(),
+        s.depth_format.name(),
+        s.cascades,
+    )
+}
+
+/// `--target-error E` for render and demo: the bench's quick sweep over the scene's view
+/// at `size`, scored against the exact reference (10 timed frames a block), and the
+/// cheapest configuration meeting `target`, as a patch of flags. Prints what it chose.
+pub fn choose_for_target(
+    scene: &Scene,
+    base: &ShadowSettings,
+    size: (u32, u32),
+    target: f64,
+) -> Result<ShadowPatch> {
+    check_first_light(scene)?;
+    let mut scene = scene.clone();
+    // A still frame, as the bench times it.
+    scene
+        .items
+        .iter_mut()
+        .for_each(|i| i.spin = glam::Vec3::ZERO);
+    scene.size = [size.0, size.1];
+    let context = HeadlessContext::new()?;
+    let gl = context.gl();
+    let configs = bench::sweep(base, true, gl_limits(gl).max_texture_size, scene.light());
+    let opts = BenchOptions {
+        width: size.0,
+        height: size.1,
+        warmup: 3,
+        frames: 10,
+        supersample: 1,
+        band: 1,
+        rays: shadowmap::compare::AREA_RAYS,
+    };
+    let activity = Activity::start(format!(
+        "--target-error {target}: tracing the exact reference at {}x{}",
+        size.0, size.1
+    ));
+    let reference = bench::bench_reference(gl, &scene, base, &opts)?;
+    activity.done("");
+    eprintln!(
+        "--target-error {target}: timing and scoring {} configurations (bench --quick, {} \
+         frames a block)",
+        configs.len(),
+        opts.frames
+    );
+    let mut counter = Counter::new(configs.len() as u64);
+    let rows = bench::run(gl, &scene, &configs, &reference, &opts, |row| {
+        counter.step(&format!(
+            "{}: {:.2} ms, {:.3}% wrong",
+            row.label(),
+            row.wall_ms.median,
+            row.error() * 100.0
+        ))
+    })?;
+    counter.finish();
+    let chosen = cheapest_or_error(&rows, target)?;
+    println!("{}", describe_choice(chosen, target));
+    Ok(patch_of(&chosen.config))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_is_valid_and_they_differ() {
+        let settings: Vec<ShadowSettings> = [Quality::Low, Quality::Medium, Quality::High]
+            .iter()
+            .map(|q| {
+                let mut s = ShadowSettings::default();
+                q.patch().unwrap().apply_to(&mut s);
+                s.validate_values().unwrap();
+                s
+            })
+            .collect();
+        assert_ne!(settings[0], settings[1]);
+        assert_ne!(settings[1], settings[2]);
+        assert!(settings[0].map_size.max_side() <= settings[2].map_size.max_side());
+    }
+}
