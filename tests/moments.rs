@@ -14,8 +14,7 @@ use shadowmap::Scene;
 const MOMENT_FILTERS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
 
 fn overlap() -> Scene {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/overlap.toml");
-    Scene::load(path).unwrap_or_else(|e| panic!("{e}"))
+    Scene::load("overlap").unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn options(scene: &Scene) -> CompareOptions {

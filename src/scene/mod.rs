@@ -44,6 +44,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "three-lights",
         include_str!("../../assets/scenes/three-lights.toml"),
     ),
+    ("overlap", include_str!("../../assets/scenes/overlap.toml")),
 ];
 
 /// The lighting equation of the scene pass.
