@@ -60,6 +60,9 @@ pub fn patch_of(config: &BenchConfig) -> ShadowPatch {
         cull: Some(s.cull),
         depth_format: Some(s.depth_format),
         cascades: Some(s.cascades),
+        // The sweep's volumes row and its fixed-box tutorials differ from the base here.
+        technique: Some(s.technique),
+        fit: Some(s.fit),
         // Only where it does something (a flag that does nothing earns a warning).
         point_pass: cube.then_some(s.point_pass),
         ..ShadowPatch::default()
@@ -96,7 +99,7 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
     format!(
         "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as flags: --map-size {} --filter {} --bias-mode {} --bias {} \
          --bias-min {} --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {} \
-         --cascades {}",
+         --cascades {} --technique {} --fit {}",
         target * 100.0,
         r.label(),
         r.wall_ms.median,
@@ -116,6 +119,11 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
         s.cull.name(),
         s.depth_format.name(),
         s.cascades,
+        s.technique.name(),
+        match s.fit {
+            shadowmap::settings::Fit::Manual => "manual",
+            shadowmap::settings::Fit::Scene => "scene",
+        },
     )
 }
 
