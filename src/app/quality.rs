@@ -48,6 +48,13 @@ impl Quality {
 /// measured, to lay over the scene's settings.
 pub fn patch_of(config: &BenchConfig) -> ShadowPatch {
     let s = &config.settings;
+    if config.family == Family::Volumes {
+        // No map: the map's settings would do nothing (and each earn a warning).
+        return ShadowPatch {
+            technique: Some(s.technique),
+            ..ShadowPatch::default()
+        };
+    }
     let cube = matches!(config.family, Family::PointLayered | Family::PointSixPasses);
     ShadowPatch {
         map_size: Some(s.map_size),
@@ -96,10 +103,32 @@ pub fn cheapest_or_error(rows: &[BenchRow], target: f64) -> Result<&BenchRow> {
 /// What was chosen, in one line, and the flags that give it.
 pub fn describe_choice(r: &BenchRow, target: f64) -> String {
     let s = &r.config.settings;
+    let flags = match r.config.family {
+        Family::Volumes => "--technique volumes".to_string(),
+        _ => format!(
+            "--map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} --normal-offset {} \
+             --polygon-offset {},{} --cull {} --depth-format {} --cascades {} --fit {} \
+             --technique maps",
+            s.map_size,
+            s.filter.name(),
+            s.bias_mode.name(),
+            s.bias,
+            s.bias_min,
+            s.normal_offset,
+            s.polygon_offset[0],
+            s.polygon_offset[1],
+            s.cull.name(),
+            s.depth_format.name(),
+            s.cascades,
+            match s.fit {
+                shadowmap::settings::Fit::Manual => "manual",
+                shadowmap::settings::Fit::Scene => "scene",
+            },
+        ),
+    };
     format!(
-        "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as flags: --map-size {} --filter {} --bias-mode {} --bias {} \
-         --bias-min {} --normal-offset {} --polygon-offset {},{} --cull {} --depth-format {} \
-         --cascades {} --technique {} --fit {}",
+        "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as \
+         flags: {flags}",
         target * 100.0,
         r.label(),
         r.wall_ms.median,
@@ -107,22 +136,6 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
         match r.soft.rays {
             0 => "misclassified",
             _ => "MAE against the area light",
-        },
-        s.map_size,
-        s.filter.name(),
-        s.bias_mode.name(),
-        s.bias,
-        s.bias_min,
-        s.normal_offset,
-        s.polygon_offset[0],
-        s.polygon_offset[1],
-        s.cull.name(),
-        s.depth_format.name(),
-        s.cascades,
-        s.technique.name(),
-        match s.fit {
-            shadowmap::settings::Fit::Manual => "manual",
-            shadowmap::settings::Fit::Scene => "scene",
         },
     )
 }

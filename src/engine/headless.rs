@@ -108,3 +108,14 @@ impl HeadlessContext {
         &self.device_name
     }
 }
+
+impl Drop for HeadlessContext {
+    /// Releases the context from this thread before it is destroyed: a context left current
+    /// keeps the driver bound here, and a window's GLX context made current afterwards on
+    /// the same thread then fails with BadAccess (`demo --target-error` renders headless
+    /// first, then opens its window).
+    fn drop(&mut self) {
+        use glutin::context::PossiblyCurrentGlContext;
+        let _ = self._context.make_not_current_in_place();
+    }
+}
