@@ -209,6 +209,19 @@ pub fn check_output_dir(flag: &str, dir: &Path) -> Result<()> {
 }
 
 /// Creates the output folder (checked earlier by [`check_output_dir`]).
+/// Creates `dir` and writes `files` (a name in it, what the file is, its bytes) there as
+/// one batch ([`write_files`]: all of them or none).
+pub fn write_into(dir: &Path, files: &[(&str, &str, &[u8])]) -> Result<()> {
+    create_output_dir(dir)?;
+    let paths: Vec<PathBuf> = files.iter().map(|(name, ..)| dir.join(name)).collect();
+    let batch: Vec<(&Path, &str, &[u8])> = files
+        .iter()
+        .zip(&paths)
+        .map(|((_, what, bytes), path)| (path.as_path(), *what, *bytes))
+        .collect();
+    write_files(&batch)
+}
+
 pub fn create_output_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir)
         .map_err(|e| Error::file(dir, format!("cannot create the output folder: {e}")))

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use shadowmap::bench::{self, BenchOptions};
 use shadowmap::engine::{gl_limits, HeadlessContext};
-use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity, Counter};
+use shadowmap::output::{check_output_dir, write_into, Activity, Counter};
 use shadowmap::scale;
 use shadowmap::{Error, Result};
 
@@ -132,14 +132,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             "the plot",
         ),
     ];
-    create_output_dir(dir)?;
-    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
-    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+    let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
-        .zip(&paths)
-        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .map(|(name, bytes, what)| (*name, *what, bytes.as_slice()))
         .collect();
-    write_files(&batch)?;
+    write_into(dir, &batch)?;
     println!("{markdown}");
     println!(
         "wrote {}/bench.csv, bench.md, pareto.png in {:.1} s",
@@ -201,14 +198,11 @@ fn run_scale(args: &BenchArgs) -> Result<()> {
             "the plot",
         ),
     ];
-    create_output_dir(dir)?;
-    let paths: Vec<_> = files.iter().map(|(name, ..)| dir.join(name)).collect();
-    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+    let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
-        .zip(&paths)
-        .map(|((_, bytes, what), path)| (path.as_path(), *what, bytes.as_slice()))
+        .map(|(name, bytes, what)| (*name, *what, bytes.as_slice()))
         .collect();
-    write_files(&batch)?;
+    write_into(dir, &batch)?;
     println!("{markdown}");
     println!(
         "wrote {}/scale.csv, scale-fit.csv, scale.png in {:.1} s",

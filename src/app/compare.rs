@@ -1,11 +1,9 @@
 //! `shadowmap compare`: one frame scored against the exact reference, with pictures.
 
-use std::path::Path;
-
 use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
-use shadowmap::output::{check_output_dir, create_output_dir, write_files, Activity};
+use shadowmap::output::{check_output_dir, write_into, Activity};
 use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
 use shadowmap::settings::ShadowTechnique;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
@@ -157,20 +155,17 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         "area_light": area,
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
-    create_output_dir(dir)?;
-    let paths: Vec<_> = files.iter().map(|(name, _)| dir.join(name)).collect();
-    let batch: Vec<(&Path, &str, &[u8])> = files
+    let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
-        .zip(&paths)
-        .map(|((name, bytes), path)| {
+        .map(|(name, bytes)| {
             let what = match name.ends_with(".png") {
                 true => "the image",
                 false => "the file",
             };
-            (path.as_path(), what, bytes.as_slice())
+            (*name, what, bytes.as_slice())
         })
         .collect();
-    write_files(&batch)?;
+    write_into(dir, &batch)?;
     println!(
         "{}",
         summary(

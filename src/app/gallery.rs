@@ -8,7 +8,7 @@ use shadowmap::compare::render_visibility;
 use shadowmap::compare::{compute_reference, CompareOptions, Reference};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
-use shadowmap::output::{check_output_dir, create_output_dir, write_files};
+use shadowmap::output::{check_output_dir, write_into};
 use shadowmap::reference::{error_image, Metrics};
 use shadowmap::settings::LightProjection;
 use shadowmap::{steps, Error, Result, ShadowSettings};
@@ -203,20 +203,17 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     html.push_str("</body></html>\n");
     let path = dir.join("index.html");
     files.push(("index.html".into(), html.into_bytes()));
-    let paths: Vec<_> = files.iter().map(|(name, _)| dir.join(name)).collect();
-    let batch: Vec<(&std::path::Path, &str, &[u8])> = files
+    let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
-        .zip(&paths)
-        .map(|((name, bytes), path)| {
+        .map(|(name, bytes)| {
             let what = match name.ends_with(".png") {
                 true => "the image",
                 false => "the page",
             };
-            (path.as_path(), what, bytes.as_slice())
+            (name.as_str(), what, bytes.as_slice())
         })
         .collect();
-    create_output_dir(dir)?;
-    write_files(&batch)?;
+    write_into(dir, &batch)?;
     println!("wrote {} and {} images", path.display(), rows.len());
     Ok(())
 }

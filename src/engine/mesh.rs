@@ -31,55 +31,19 @@ impl Mesh {
         }
         let index_count = i32::try_from(data.indices.len())
             .map_err(|_| Error::Invalid(format!("mesh '{}': too many indices", data.name)))?;
-        unsafe {
-            let vao = gl
-                .create_vertex_array()
-                .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
-            let vbo = match gl.create_buffer() {
-                Ok(b) => b,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    return Err(Error::Create(format!("vertex buffer: {e}")));
-                }
-            };
-            let ebo = match gl.create_buffer() {
-                Ok(b) => b,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    gl.delete_buffer(vbo);
-                    return Err(Error::Create(format!("index buffer: {e}")));
-                }
-            };
-            gl.bind_vertex_array(Some(vao));
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-            gl.buffer_data_u8_slice(
-                glow::ARRAY_BUFFER,
-                as_bytes(&interleaved),
-                glow::STATIC_DRAW,
-            );
-            let stride = 8 * 4;
-            gl.enable_vertex_attrib_array(0);
-            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, stride, 0);
-            gl.enable_vertex_attrib_array(1);
-            gl.vertex_attrib_pointer_f32(1, 2, glow::FLOAT, false, stride, 3 * 4);
-            gl.enable_vertex_attrib_array(2);
-            gl.vertex_attrib_pointer_f32(2, 3, glow::FLOAT, false, stride, 5 * 4);
-            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
-            gl.buffer_data_u8_slice(
-                glow::ELEMENT_ARRAY_BUFFER,
-                as_bytes(&data.indices),
-                glow::STATIC_DRAW,
-            );
-            gl.bind_vertex_array(None);
-            gl.bind_buffer(glow::ARRAY_BUFFER, None);
-            Ok(Mesh {
-                gl: gl.clone(),
-                vao,
-                vbo,
-                ebo,
-                index_count,
-            })
-        }
+        let (vao, vbo, ebo) = upload(
+            gl,
+            as_bytes(&interleaved),
+            &[(0, 3), (1, 2), (2, 3)],
+            &data.indices,
+        )?;
+        Ok(Mesh {
+            gl: gl.clone(),
+            vao,
+            vbo,
+            ebo,
+            index_count,
+        })
     }
 
     /// Draws the mesh once with whatever program and uniforms are bound.
@@ -125,7 +89,7 @@ impl Drop for Mesh {
     }
 }
 
-fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
+pub(super) fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
     // f32 and u32 have no padding and any bit pattern is a valid byte sequence.
     unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
 }
@@ -159,5 +123,55 @@ impl FullScreenTriangle {
 impl Drop for FullScreenTriangle {
     fn drop(&mut self) {
         unsafe { self.gl.delete_vertex_array(self.vao) };
+    }
+}
+
+/// Creates a vertex array with its vertex and index buffers and uploads `vertices`
+/// (interleaved f32s: `attributes` are (location, components) in order) and `indices`;
+/// on an error nothing is left behind. The caller owns and deletes the three.
+pub(super) fn upload(
+    gl: &Gl,
+    vertices: &[u8],
+    attributes: &[(u32, i32)],
+    indices: &[u32],
+) -> Result<(glow::VertexArray, glow::Buffer, glow::Buffer)> {
+    unsafe {
+        let vao = gl
+            .create_vertex_array()
+            .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
+        let vbo = match gl.create_buffer() {
+            Ok(b) => b,
+            Err(e) => {
+                gl.delete_vertex_array(vao);
+                return Err(Error::Create(format!("vertex buffer: {e}")));
+            }
+        };
+        let ebo = match gl.create_buffer() {
+            Ok(b) => b,
+            Err(e) => {
+                gl.delete_vertex_array(vao);
+                gl.delete_buffer(vbo);
+                return Err(Error::Create(format!("index buffer: {e}")));
+            }
+        };
+        gl.bind_vertex_array(Some(vao));
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, vertices, glow::STATIC_DRAW);
+        let stride = attributes.iter().map(|(_, n)| n).sum::<i32>() * 4;
+        let mut offset = 0;
+        for &(location, components) in attributes {
+            gl.enable_vertex_attrib_array(location);
+            gl.vertex_attrib_pointer_f32(location, components, glow::FLOAT, false, stride, offset);
+            offset += components * 4;
+        }
+        gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+        gl.buffer_data_u8_slice(
+            glow::ELEMENT_ARRAY_BUFFER,
+            as_bytes(indices),
+            glow::STATIC_DRAW,
+        );
+        gl.bind_vertex_array(None);
+        gl.bind_buffer(glow::ARRAY_BUFFER, None);
+        Ok((vao, vbo, ebo))
     }
 }

@@ -4,6 +4,7 @@
 
 use glow::HasContext;
 
+use super::mesh::{as_bytes, upload};
 use super::Gl;
 use crate::error::{Error, Result};
 
@@ -33,46 +34,14 @@ impl AdjacencyMesh {
         }
         let index_count =
             i32::try_from(indices.len()).map_err(|_| bad("too many indices".into()))?;
-        unsafe {
-            let vao = gl
-                .create_vertex_array()
-                .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
-            let vbo = match gl.create_buffer() {
-                Ok(b) => b,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    return Err(Error::Create(format!("vertex buffer: {e}")));
-                }
-            };
-            let ebo = match gl.create_buffer() {
-                Ok(b) => b,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    gl.delete_buffer(vbo);
-                    return Err(Error::Create(format!("index buffer: {e}")));
-                }
-            };
-            gl.bind_vertex_array(Some(vao));
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, as_bytes(positions), glow::STATIC_DRAW);
-            gl.enable_vertex_attrib_array(0);
-            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
-            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
-            gl.buffer_data_u8_slice(
-                glow::ELEMENT_ARRAY_BUFFER,
-                as_bytes(indices),
-                glow::STATIC_DRAW,
-            );
-            gl.bind_vertex_array(None);
-            gl.bind_buffer(glow::ARRAY_BUFFER, None);
-            Ok(AdjacencyMesh {
-                gl: gl.clone(),
-                vao,
-                vbo,
-                ebo,
-                index_count,
-            })
-        }
+        let (vao, vbo, ebo) = upload(gl, as_bytes(positions), &[(0, 3)], indices)?;
+        Ok(AdjacencyMesh {
+            gl: gl.clone(),
+            vao,
+            vbo,
+            ebo,
+            index_count,
+        })
     }
 
     /// Draws the mesh once per item, `before_each` setting that item's uniforms.
@@ -105,11 +74,6 @@ impl Drop for AdjacencyMesh {
             self.gl.delete_buffer(self.ebo);
         }
     }
-}
-
-fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
-    // f32 and u32 arrays have no padding and any bit pattern is a valid byte sequence.
-    unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
 }
 
 /// How the volumes of one light are drawn.
