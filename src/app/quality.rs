@@ -193,7 +193,10 @@ pub fn choose_for_target(
     counter.finish();
     let chosen = cheapest_or_error(&rows, target)?;
     println!("{}", describe_choice(chosen, target));
-    Ok(patch_of(&chosen.config))
+    let patch = patch_of(&chosen.config);
+    // The demo's window comes next, on this thread.
+    context.release();
+    Ok(patch)
 }
 
 #[cfg(test)]

@@ -103,19 +103,20 @@ impl HeadlessContext {
         &self.gl
     }
 
+    /// Releases the context from this thread and frees it. A window's GLX context made
+    /// current afterwards on the same thread fails with BadAccess while an EGL context is
+    /// still current there (`demo --target-error` renders headless first, then opens its
+    /// window). Dropping without this leaves the context current until another is made so,
+    /// which nested contexts (tests) rely on.
+    pub fn release(self) {
+        use glutin::context::PossiblyCurrentGlContext;
+        if self._context.is_current() {
+            let _ = self._context.make_not_current_in_place();
+        }
+    }
+
     /// The EGL device the context runs on, for reports.
     pub fn device_name(&self) -> &str {
         &self.device_name
-    }
-}
-
-impl Drop for HeadlessContext {
-    /// Releases the context from this thread before it is destroyed: a context left current
-    /// keeps the driver bound here, and a window's GLX context made current afterwards on
-    /// the same thread then fails with BadAccess (`demo --target-error` renders headless
-    /// first, then opens its window).
-    fn drop(&mut self) {
-        use glutin::context::PossiblyCurrentGlContext;
-        let _ = self._context.make_not_current_in_place();
     }
 }
