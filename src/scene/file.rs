@@ -206,11 +206,11 @@ struct DirectionalFile {
     /// Whether it gets a shadow map (a light that does not cast lights all it faces).
     #[serde(default = "yes")]
     casts_shadows: bool,
-    /// Its own shadow settings over the scene's `[shadow]`.
     /// Its size: a directional light's angular diameter in degrees, a spot or point
     /// light's radius (0 = a point).
     #[serde(default)]
     size: f32,
+    /// Its own shadow settings over the scene's `[shadow]`.
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -238,11 +238,11 @@ struct SpotFile {
     far: f32,
     #[serde(default = "yes")]
     casts_shadows: bool,
-    /// Its own shadow settings over the scene's `[shadow]`.
     /// Its size: a directional light's angular diameter in degrees, a spot or point
     /// light's radius (0 = a point).
     #[serde(default)]
     size: f32,
+    /// Its own shadow settings over the scene's `[shadow]`.
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -265,11 +265,11 @@ struct PointFile {
     oscillate: Fixed<f32, 3>,
     #[serde(default = "yes")]
     casts_shadows: bool,
-    /// Its own shadow settings over the scene's `[shadow]`.
     /// Its size: a directional light's angular diameter in degrees, a spot or point
     /// light's radius (0 = a point).
     #[serde(default)]
     size: f32,
+    /// Its own shadow settings over the scene's `[shadow]`.
     #[serde(default)]
     shadow: ShadowPatch,
 }
