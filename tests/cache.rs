@@ -143,3 +143,25 @@ fn a_point_light_draws_each_caster_only_into_the_cube_faces_it_can_reach() {
         );
     }
 }
+
+#[test]
+fn a_cached_moment_map_and_a_soft_filter_give_the_uncached_frame() {
+    // The later techniques behind the same cache: a moment map (its blur is part of what is
+    // kept) and PCSS, on a scene whose map is reused (learnopengl) and one whose caster
+    // turns (dummy). At least one pass must have been skipped where nothing moves.
+    use shadowmap::settings::Filter;
+    for filter in [Filter::Vsm, Filter::Msm, Filter::Pcss] {
+        for name in ["learnopengl", "dummy"] {
+            let set = |s: &mut ShadowSettings| s.filter = filter;
+            let (cached, drawn, skipped) = last_frame(name, true, set);
+            let (fresh, ..) = last_frame(name, false, set);
+            assert!(
+                cached == fresh,
+                "{name}, {filter:?}: the cached frame differs"
+            );
+            if name == "learnopengl" {
+                assert_eq!((drawn, skipped), (1, u64::from(FRAMES) - 1), "{filter:?}");
+            }
+        }
+    }
+}
