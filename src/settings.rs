@@ -204,12 +204,21 @@ impl Filter {
                 "cascades take every filter but pcss (its penumbra is measured in one light \
                  camera's units, and each cascade has its own box)",
             ),
+            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cube => Some(
+                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a point light's \
+                 shadow is a cube map; give the light a depth filter of its own (shadow = { \
+                 filter = \"pcf3x3\" }) or use one for the scene",
+            ),
+            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cascades => Some(
+                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and cascades have one \
+                 per slice; use cascades = 1 or a depth filter (pcf3x3) for the light",
+            ),
             _ => None,
         }
     }
 
     /// Whether the map stores moments of depth (a float colour map, blurred) rather than
-    /// depth: those filters need one 2D map (no cube maps, no cascades).
+    /// depth: those filters need one 2D map (no cube maps, no cascades: [`Filter::refused_for`]).
     pub fn moments(self) -> bool {
         self.moment_components() > 0
     }

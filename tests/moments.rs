@@ -108,11 +108,11 @@ fn away_from_edges_the_moment_filters_agree_with_the_hard_reference() {
 
 /// The message `Light::settings_problem` gives a point light under a moment filter.
 fn point_light_refusal(filter: Filter, light: usize) -> String {
-    let f = filter.name();
     format!(
-        "shadow.filter = {f}: light {light} is a point light, and filter {f} works on a 2D map \
-         only (a point light's shadow is a cube map); give light {light} a depth filter of its \
-         own (shadow = {{ filter = \"pcf3x3\" }}) or use one for the scene"
+        "shadow.filter = {}: light {light} cannot use it: the moment maps (vsm, evsm2, evsm4, \
+         msm) need one 2D map and a point light's shadow is a cube map; give the light a depth \
+         filter of its own (shadow = {{ filter = \"pcf3x3\" }}) or use one for the scene",
+        filter.name()
     )
 }
 
@@ -200,8 +200,9 @@ fn cascades_and_the_cli_refuse_moment_filters_by_name() {
     assert_eq!(
         e.as_deref(),
         Some(
-            "shadow.filter = evsm4: light 0 has 3 cascades, and filter evsm4 works on one 2D map \
-             only; use cascades = 1 or a depth filter (pcf3x3) for light 0"
+            "shadow.filter = evsm4: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, msm) \
+             need one 2D map and cascades have one per slice; use cascades = 1 or a depth filter \
+             (pcf3x3) for the light"
         )
     );
     // On the command line: before any GL work, naming the flag.

@@ -388,9 +388,6 @@ impl Light {
                 settings.filter.name()
             ));
         }
-        if let Some(problem) = self.moments_problem(name, settings) {
-            return Some(problem);
-        }
         let square = match self {
             Light::Point(_) => Some("a point light's cube map"),
             Light::Directional(_)
@@ -409,34 +406,6 @@ impl Light {
                 size.max_side()
             )
         })
-    }
-
-    /// A moment filter (vsm, evsm, msm) needs one 2D map: a point light's cube map and a
-    /// sun's cascades have none (their blur and lookup would need a form of their own), so
-    /// the combination is refused, naming the light and the filter.
-    fn moments_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
-        let filter = settings.filter;
-        if !filter.moments() {
-            return None;
-        }
-        let f = filter.name();
-        match self {
-            Light::Point(_) => Some(format!(
-                "shadow.filter = {f}: {name} is a point light, and filter {f} works on a 2D map \
-                 only (a point light's shadow is a cube map); give {name} a depth filter of its \
-                 own (shadow = {{ filter = \"pcf3x3\" }}) or use one for the scene"
-            )),
-            Light::Directional(_)
-                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
-            {
-                Some(format!(
-                    "shadow.filter = {f}: {name} has {} cascades, and filter {f} works on one 2D \
-                     map only; use cascades = 1 or a depth filter (pcf3x3) for {name}",
-                    settings.cascades
-                ))
-            }
-            _ => None,
-        }
     }
 
     /// A short description for titles and reports (with its size, when it has one).
