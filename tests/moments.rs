@@ -94,6 +94,15 @@ fn away_from_edges_the_moment_filters_agree_with_the_hard_reference() {
             ));
             // Something is shadowed and something lit: not a blank map.
             assert!(m.receivers > 1000, "{} {}", scene.name, filter.name());
+            let vis = frame.visibility.as_deref().unwrap().iter().flatten();
+            let lit = vis.clone().filter(|v| **v > 0.9).count();
+            let dark = vis.filter(|v| **v < 0.1).count();
+            assert!(
+                lit > 100 && dark > 100,
+                "{} {}: {lit} lit, {dark} shadowed pixels",
+                scene.name,
+                filter.name()
+            );
         }
     }
     eprintln!("misclassified outside the band: {worst:?}");
@@ -312,8 +321,14 @@ fn the_blur_scissored_to_the_casters_changes_no_pixel() {
     wide.items.push(far_off);
     let view = shadowmap::shadows::light_camera(&scene, 0, &scene.shadow);
     let area = |s: &Scene| {
-        let f = shadowmap::shadows::moments::caster_footprint(s, 0, &view, scene.shadow.map_size)
-            .unwrap();
+        let f = shadowmap::shadows::moments::caster_footprint(
+            s,
+            &shadowmap::shadows::fitted::item_world_boxes(s),
+            0,
+            &view,
+            scene.shadow.map_size,
+        )
+        .unwrap();
         u64::from(f.width) * u64::from(f.height)
     };
     assert!(

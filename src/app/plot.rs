@@ -42,14 +42,7 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(80)
-            .build_cartesian_2d(
-                (x_lo..x_hi)
-                    .log_scale()
-                    .with_key_points(log_ticks(x_lo, x_hi)),
-                (y_lo..y_hi)
-                    .log_scale()
-                    .with_key_points(log_ticks(y_lo, y_hi)),
-            )
+            .build_cartesian_2d(log_axis(x_lo, x_hi), log_axis(y_lo, y_hi))
             .map_err(|e| err(&e))?;
         chart
             .configure_mesh()
@@ -185,14 +178,7 @@ pub fn scale_png(rows: &[ScaleRow], fits: &[PowerFit]) -> Result<Vec<u8>> {
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(55)
-                .build_cartesian_2d(
-                    (x_lo..x_hi)
-                        .log_scale()
-                        .with_key_points(log_ticks(x_lo, x_hi)),
-                    (y_lo..y_hi)
-                        .log_scale()
-                        .with_key_points(log_ticks(y_lo, y_hi)),
-                )
+                .build_cartesian_2d(log_axis(x_lo, x_hi), log_axis(y_lo, y_hi))
                 .map_err(|e| err(&e))?;
             chart
                 .configure_mesh()
@@ -256,6 +242,11 @@ fn padded_range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
         true => (lo / pad, hi * pad),
         false => (1.0, 10.0),
     }
+}
+
+/// A log axis from `lo` to `hi` labelled at [`log_ticks`] (both plots' axes).
+fn log_axis(lo: f64, hi: f64) -> plotters::coord::combinators::WithKeyPoints<LogCoord<f64>> {
+    (lo..hi).log_scale().with_key_points(log_ticks(lo, hi))
 }
 
 /// Ticks for a log axis from `lo` to `hi`: 1, 2 and 5 in each decade; every digit when

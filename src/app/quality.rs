@@ -105,7 +105,8 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
     let s = &r.config.settings;
     let flags = match r.config.family {
         Family::Volumes => "--technique volumes".to_string(),
-        _ => format!(
+        _ => {
+            format!(
             "--map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} --normal-offset {} \
              --polygon-offset {},{} --cull {} --depth-format {} --cascades {} --fit {} \
              --technique maps",
@@ -124,7 +125,12 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
                 shadowmap::settings::Fit::Manual => "manual",
                 shadowmap::settings::Fit::Scene => "scene",
             },
-        ),
+        ) + match patch_of(&r.config).point_pass {
+                Some(shadowmap::settings::PointPass::SixPasses) => " --point-pass six-passes",
+                Some(shadowmap::settings::PointPass::Layered) => " --point-pass layered",
+                None => "",
+            }
+        }
     };
     format!(
         "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as \

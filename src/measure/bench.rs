@@ -476,19 +476,8 @@ pub struct Stat {
 
 impl Stat {
     pub fn of(values: &[f64]) -> Stat {
-        let mut v = values.to_vec();
-        v.sort_by(f64::total_cmp);
-        let at = |q: f64| {
-            if v.is_empty() {
-                f64::NAN
-            } else {
-                v[((v.len() - 1) as f64 * q).round() as usize]
-            }
-        };
-        Stat {
-            median: at(0.5),
-            p95: at(0.95),
-        }
+        let (median, p95) = super::frame::median_p95(values).unwrap_or((f64::NAN, f64::NAN));
+        Stat { median, p95 }
     }
 }
 

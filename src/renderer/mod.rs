@@ -113,8 +113,9 @@ pub struct Renderer {
     volumes: Option<Volumes>,
     /// One samples-passed query per light, for the volumes' fill.
     volume_queries: Vec<SamplesQuery>,
-    /// Volume pixels that passed the depth test in the last frame.
-    volume_pixels: u64,
+    /// The queries of the last frame's volume passes (read only when asked: a read waits
+    /// for the frame).
+    volume_counted: Vec<usize>,
     /// Each light's camera in the last depth pass.
     views: Vec<Option<ShadowView>>,
     /// What each light's map holds ([`cache::content_key`]); `None`: draw it again.
@@ -169,7 +170,7 @@ impl Renderer {
             kinds: Vec::new(),
             volumes: None,
             volume_queries: Vec::new(),
-            volume_pixels: 0,
+            volume_counted: Vec::new(),
             views: Vec::new(),
             drawn: Vec::new(),
             passes: DepthPasses::default(),
@@ -241,7 +242,10 @@ impl Renderer {
     /// The pixels of shadow-volume faces that passed the depth test in the last frame
     /// (what z-fail counts: the fill the volumes cost); 0 without volumes.
     pub fn volume_pixels(&self) -> u64 {
-        self.volume_pixels
+        self.volume_counted
+            .iter()
+            .map(|&i| self.volume_queries[i].read())
+            .sum()
     }
 
     /// Shadow maps in use and the bytes they take.
@@ -345,8 +349,8 @@ impl Renderer {
                 scene,
                 target.size(),
             )
-            .map(|pixels| {
-                self.volume_pixels = pixels;
+            .map(|counted| {
+                self.volume_counted = counted;
                 if self.settings.show_volumes {
                     volume_pass::draw_debug(
                         volumes,
@@ -359,7 +363,7 @@ impl Renderer {
                 }
             }),
             _ => {
-                self.volume_pixels = 0;
+                self.volume_counted.clear();
                 scene_pass::draw(&inputs, &mut self.samplers, &self.gl, scene, target.size())
             }
         };

@@ -123,11 +123,7 @@ impl Technique for Map2d {
         view: &ShadowView,
         settings: &ShadowSettings,
     ) -> Option<SlotTransform> {
-        Some(SlotTransform {
-            from: view.view64,
-            projection: view.projection,
-            normal_offset: settings.normal_offset * view.texel_world,
-        })
+        Some(slot_transform(view, settings))
     }
 
     fn bytes(&self) -> u64 {
@@ -168,6 +164,17 @@ pub fn draw_map_casters(
     );
     counts.drawn += drawn as u64;
     counts.total += casters(scene);
+}
+
+/// The light-space transform of a 2D map drawn through `view` (the chapter's map and a
+/// moment map alike): world to the light's view, its projection, the normal offset in world
+/// units.
+pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTransform {
+    SlotTransform {
+        from: view.view64,
+        projection: view.projection,
+        normal_offset: settings.normal_offset * view.texel_world,
+    }
 }
 
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with

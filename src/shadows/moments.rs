@@ -13,7 +13,7 @@
 //! Cube maps and cascades have no moment form here: `Light::settings_problem` refuses
 //! those combinations, naming the light and the filter.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use super::casters::{depth_state, may_land};
 use super::fitted;
@@ -132,13 +132,13 @@ impl MomentTest {
 /// map. `None` when a corner is behind a perspective light's eye (the whole map, then).
 pub fn caster_footprint(
     scene: &Scene,
+    boxes: &[(DVec3, DVec3)],
     index: usize,
     view: &ShadowView,
     size: MapSize,
 ) -> Option<PixelRect> {
     let clip = view.projection.as_dmat4() * view.view64;
     let light = &scene.lights[index];
-    let boxes = fitted::item_world_boxes(scene);
     let (mut lo, mut hi) = (DVec2::splat(1.0), DVec2::splat(-1.0));
     for (k, item) in scene.items.iter().enumerate() {
         let (a, b) = boxes[k];
@@ -286,7 +286,7 @@ impl Technique for Moments {
         }
         if settings.blur != Blur::None {
             self.prepare_blur(&gl, settings.blur)?;
-            let footprint = caster_footprint(scene, index, &view, self.map.size());
+            let footprint = caster_footprint(scene, pass.boxes, index, &view, self.map.size());
             let radius = settings.blur.taps() / 2;
             match (&self.blur, footprint) {
                 // No caster lands: the map is all far moments, which a blur keeps.
@@ -319,11 +319,7 @@ impl Technique for Moments {
         view: &ShadowView,
         settings: &ShadowSettings,
     ) -> Option<SlotTransform> {
-        Some(SlotTransform {
-            from: view.view64,
-            projection: view.projection,
-            normal_offset: settings.normal_offset * view.texel_world,
-        })
+        Some(super::map2d::slot_transform(view, settings))
     }
 
     fn bytes(&self) -> u64 {
@@ -426,7 +422,8 @@ mod footprint_tests {
         let s = scene.shadow;
         let view = camera(&scene, 0, &s);
         let size = s.map_size;
-        let f = caster_footprint(&scene, 0, &view, size).unwrap();
+        let f =
+            caster_footprint(&scene, &fitted::item_world_boxes(&scene), 0, &view, size).unwrap();
         // The 5 x 5 plane and the cube in a 20 x 20 box: about a quarter of the map's side.
         assert!(
             f.x + f.width <= size.width && f.y + f.height <= size.height,
@@ -455,7 +452,8 @@ mod footprint_tests {
         for item in &mut empty.items {
             item.casts_shadows = false;
         }
-        let none = caster_footprint(&empty, 0, &view, size).unwrap();
+        let none =
+            caster_footprint(&empty, &fitted::item_world_boxes(&empty), 0, &view, size).unwrap();
         assert_eq!((none.width, none.height), (0, 0));
     }
 }

@@ -37,7 +37,7 @@ use super::Rays;
 use crate::engine::{AdjacencyMesh, Gl, ShaderProgram};
 use crate::error::Result;
 use crate::geometry::MeshData;
-use crate::scene::Scene;
+use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
 use crate::shaders;
 
@@ -178,7 +178,13 @@ pub fn call(i: usize, positional: bool, cone: bool) -> String {
 /// reference traces the same rays for both (a directional light shaded from a point, as
 /// LearnOpenGL's, casts parallel rays from its direction).
 pub fn rays(scene: &Scene, index: usize, settings: &ShadowSettings) -> Rays {
-    super::light_camera(scene, index, settings).rays
+    match (&scene.lights[index], settings.light_projection) {
+        // Parallel whatever its box (fitting one per frame would only give this back).
+        (Light::Directional(l), crate::settings::LightProjection::Ortho) => Rays::Parallel {
+            to_light: l.direction.normalize(),
+        },
+        _ => super::light_camera(scene, index, settings).rays,
+    }
 }
 
 /// The meshes with adjacency (and whether each casts from both sides: not closed) and the
