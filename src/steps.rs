@@ -229,12 +229,7 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
 
 /// The steps of `scene`'s list (`[steps] list`).
 pub fn of(scene: &Scene) -> &'static [Step] {
-    list(scene.steps.list)
-}
-
-/// The steps of a list.
-pub fn list(list: StepList) -> &'static [Step] {
-    match list {
+    match scene.steps.list {
         StepList::Chapters => STEPS,
         StepList::Playground => PLAYGROUND_STEPS,
     }

@@ -136,12 +136,13 @@ impl MomentMap {
         let _no_depth = NoDepthTest::begin(&self.gl);
         program.bind();
         program.set_i32("source", 0);
+        // Both passes draw into a map-sized target from unit 0, read without a sampler.
+        self.viewport();
+        unsafe { self.gl.bind_sampler(0, None) };
         for (from, step, scissor) in passes {
             unsafe {
                 self.gl
                     .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[1 - from]);
-                self.viewport();
-                self.gl.bind_sampler(0, None);
                 match scissor {
                     Some(s) => {
                         self.gl.enable(glow::SCISSOR_TEST);

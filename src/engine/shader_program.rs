@@ -233,24 +233,25 @@ impl ShaderProgram {
     pub fn set_mat4_array(&self, name: &'static str, ms: &[Mat4]) {
         let loc = self.location(name);
         if let Some(loc) = loc {
-            let flat: Vec<f32> = ms.iter().flat_map(|m| m.to_cols_array()).collect();
-            unsafe { self.gl.uniform_matrix_4_f32_slice(Some(&loc), false, &flat) };
+            // glam's matrices and vectors are plain f32s: no copy per call.
+            let flat: &[f32] = bytemuck::cast_slice(ms);
+            unsafe { self.gl.uniform_matrix_4_f32_slice(Some(&loc), false, flat) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_vec3_array(&self, name: &'static str, vs: &[Vec3]) {
         if let Some(loc) = self.location(name) {
-            let flat: Vec<f32> = vs.iter().flat_map(|v| v.to_array()).collect();
-            unsafe { self.gl.uniform_3_f32_slice(Some(&loc), &flat) };
+            let flat: &[f32] = bytemuck::cast_slice(vs);
+            unsafe { self.gl.uniform_3_f32_slice(Some(&loc), flat) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_vec4_array(&self, name: &'static str, vs: &[Vec4]) {
         if let Some(loc) = self.location(name) {
-            let flat: Vec<f32> = vs.iter().flat_map(|v| v.to_array()).collect();
-            unsafe { self.gl.uniform_4_f32_slice(Some(&loc), &flat) };
+            let flat: &[f32] = bytemuck::cast_slice(vs);
+            unsafe { self.gl.uniform_4_f32_slice(Some(&loc), flat) };
         }
     }
 
@@ -264,8 +265,8 @@ impl ShaderProgram {
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_mat3_array(&self, name: &'static str, ms: &[Mat3]) {
         if let Some(loc) = self.location(name) {
-            let flat: Vec<f32> = ms.iter().flat_map(|m| m.to_cols_array()).collect();
-            unsafe { self.gl.uniform_matrix_3_f32_slice(Some(&loc), false, &flat) };
+            let flat: &[f32] = bytemuck::cast_slice(ms);
+            unsafe { self.gl.uniform_matrix_3_f32_slice(Some(&loc), false, flat) };
         }
     }
 

@@ -218,6 +218,10 @@ impl Volumes {
             ],
             &[],
         )?;
+        // A constant of the program: set once.
+        program.bind();
+        program.set_f32("capNudge", CAP_NUDGE);
+        program.unbind();
         Ok(Volumes { meshes, program })
     }
 
@@ -255,7 +259,6 @@ impl Volumes {
                 .extend(1.0),
         };
         p.set_vec4("lightVector", light);
-        p.set_f32("capNudge", CAP_NUDGE);
         p.set_vec4("volumeColour", colour);
         for (mesh_id, (mesh, two_sided)) in self.meshes.iter().enumerate() {
             p.set_i32("twoSided", i32::from(*two_sided));

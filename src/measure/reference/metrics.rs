@@ -409,7 +409,6 @@ pub fn error_image(
         .collect()
 }
 
-/// JSON number; non-finite values (which the metrics never produce) as null.
 #[cfg(test)]
 mod tests {
     use super::*;
