@@ -551,6 +551,13 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
             scene.items.push(c);
         }
     }
+    // And a beam longer than the view is wide: the box holds only the part in view, so its
+    // side moves with the camera (the small cubes alone would keep it whole wherever the
+    // camera is, as a caster out of view is left out of the box altogether).
+    let mut beam = cube.clone();
+    beam.position = Vec3::new(0.0, 0.4, -3.0);
+    beam.scale = Vec3::new(30.0, 0.1, 0.1);
+    scene.items.push(beam);
     let changed = |snap: bool| {
         let s = ShadowSettings {
             fit: Fit::Scene,

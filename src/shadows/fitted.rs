@@ -42,15 +42,32 @@ impl FittedBox {
 }
 
 /// Fits the light's box to `scene` for a light shining from `to_light`, with a
-/// map of `map_size` (a square box: with a non-square map its texels are not square);
-/// `snap` quantises its size and snaps its position to whole texels.
+/// map of `map_size` (each side fitted on its own, so texels need not be square);
+/// `snap` quantises its sides and snaps its position to whole texels.
 pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -> FittedBox {
+    fit_ortho_casters(scene, to_light, map_size, snap).0
+}
+
+/// [`fit_ortho`], with the casters the box was fitted to (by item index): the only ones
+/// that can shadow a receiver the camera sees. The others (a floor with nothing behind
+/// it, a caster beside the view) need not be drawn into the map: where no caster is drawn
+/// the map holds its clear depth and reads as lit, which is what they would give.
+pub fn fit_ortho_casters(
+    scene: &Scene,
+    to_light: Vec3,
+    map_size: MapSize,
+    snap: bool,
+) -> (FittedBox, Vec<usize>) {
     let (texels_x, texels_y) = (f64::from(map_size.width), f64::from(map_size.height));
     let basis = light_basis(to_light.as_dvec3());
     let to_light_space = |p: DVec3| basis.transpose() * p;
 
     // Every item receives; casters can also shadow. Boxes in world space, then in light space.
-    let boxes = item_world_boxes(scene);
+    let item_corners = item_corners(scene);
+    let boxes: Vec<(DVec3, DVec3)> = item_corners
+        .iter()
+        .map(|c| aabb(c.iter().copied()))
+        .collect();
     let (rlo, rhi) = union(&boxes);
 
     // The part of the receivers the camera can see: their box cut by the view frustum's box.
@@ -70,9 +87,9 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -
         (rlo, rhi)
     };
     let (vl_lo, vl_hi) = aabb(corners(vlo, vhi).map(to_light_space).into_iter());
-    let light_boxes: Vec<(DVec3, DVec3)> = boxes
+    let light_boxes: Vec<(DVec3, DVec3)> = item_corners
         .iter()
-        .map(|(lo, hi)| aabb(corners(*lo, *hi).map(to_light_space).into_iter()))
+        .map(|c| aabb(c.iter().map(|&p| to_light_space(p))))
         .collect();
     let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
         a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
@@ -85,28 +102,88 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -
     let to_light = to_light.as_dvec3().normalize();
     // Each mesh's plane, found once per fit rather than once per pair of items.
     let planes: Vec<Option<(Vec3, Vec3)>> = scene.meshes.iter().map(|m| m.flat_plane()).collect();
-    let behind_plane = |c: usize, r: usize| -> bool {
-        let item = &scene.items[c];
-        let Some((point, normal)) = planes[item.mesh] else {
-            return true;
-        };
+    // Item `i`'s plane in world space, its normal towards the light, if its mesh is flat.
+    let world_plane = |i: usize| -> Option<(DVec3, DVec3)> {
+        let item = &scene.items[i];
+        let (point, normal) = planes[item.mesh]?;
         let m = item.model_matrix64();
         let p = m.transform_point3(point.as_dvec3());
-        let mut n = m
+        let n = m
             .inverse()
             .transpose()
             .transform_vector3(normal.as_dvec3())
             .normalize();
-        if n.dot(to_light) < 0.0 {
-            n = -n;
-        }
+        Some((p, if n.dot(to_light) < 0.0 { -n } else { n }))
+    };
+    let behind_plane = |c: usize, r: usize| -> bool {
+        let Some((p, n)) = world_plane(c) else {
+            return true;
+        };
         let eps = 1e-6 * p.abs().max_element().max(1.0);
         corners(boxes[r].0, boxes[r].1)
             .iter()
             .any(|q| n.dot(*q - p) < -eps)
     };
+    // A caster shadows only points along its rays, below it: the light-space box from its
+    // top down to the deepest receiver under it. If the camera cannot see any of that box,
+    // neither the caster nor its shadow is in view and the map need not cover it.
+    let frustum = frustum_corners(scene, reach);
+    let frustum_edges = [
+        frustum[1] - frustum[0],
+        frustum[2] - frustum[0],
+        frustum[4] - frustum[0],
+        frustum[5] - frustum[1],
+        frustum[6] - frustum[2],
+        frustum[7] - frustum[3],
+    ];
+    // The lowest light-space z of item `r` over the x, y rectangle of `over`: a flat item's
+    // plane at the rectangle's corners (a floor far larger than the caster), else its box.
+    let lowest_under = |r: usize, over: &(DVec3, DVec3)| -> f64 {
+        let within = light_boxes[r].0.z;
+        let Some((p, n)) = world_plane(r) else {
+            return within;
+        };
+        let (p, n) = (to_light_space(p), to_light_space(n));
+        if n.z.abs() < 1e-6 {
+            return within;
+        }
+        corners(over.0, over.1)
+            .iter()
+            .map(|q| p.z - (n.x * (q.x - p.x) + n.y * (q.y - p.y)) / n.z)
+            .fold(f64::INFINITY, f64::min)
+            .max(within)
+    };
+    let sweep_in_view = |c: usize| {
+        let lo = light_boxes[c].0;
+        let deepest = (0..scene.items.len())
+            .filter(|&r| overlaps_xy(&light_boxes[r], &light_boxes[c]))
+            .map(|r| lowest_under(r, &light_boxes[c]))
+            .fold(lo.z, f64::min);
+        // The caster's box corners and the same corners slid down its rays to that depth:
+        // their hull holds everything the caster can shadow.
+        let sweep: Vec<DVec3> = item_corners[c]
+            .iter()
+            .flat_map(|&p| {
+                let drop = to_light_space(p).z - deepest;
+                [p, p - to_light * drop]
+            })
+            .collect();
+        let axes = item_corners[c];
+        let sweep_edges = [
+            axes[1] - axes[0],
+            axes[2] - axes[0],
+            axes[4] - axes[0],
+            to_light,
+            // The box's edges slid onto the plane: the same edges less their drop.
+            axes[1] - axes[0] - to_light * to_light_space(axes[1] - axes[0]).z,
+            axes[2] - axes[0] - to_light * to_light_space(axes[2] - axes[0]).z,
+            axes[4] - axes[0] - to_light * to_light_space(axes[4] - axes[0]).z,
+        ];
+        hulls_overlap(&sweep, &sweep_edges, &frustum, &frustum_edges)
+    };
     let relevant: Vec<usize> = (0..scene.items.len())
         .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
+        .filter(|&c| sweep_in_view(c))
         .filter(|&c| {
             planes[scene.items[c].mesh].is_none()
                 || (0..scene.items.len()).any(|r| {
@@ -154,34 +231,40 @@ pub fn fit_ortho(scene: &Scene, to_light: Vec3, map_size: MapSize, snap: bool) -
             llo.z = z_deep;
         }
     }
-    let mut size = (lhi.x - llo.x).max(lhi.y - llo.y).max(1e-6);
+    // Each side fitted on its own: a box longer one way gets finer texels the other way.
+    let texels = DVec3::new(texels_x, texels_y, 1.0);
+    let mut size = (lhi - llo).max(DVec3::splat(1e-6));
     let mut centre = DVec3::new((llo.x + lhi.x) * 0.5, (llo.y + lhi.y) * 0.5, 0.0);
     // Two texels of room for filters that reach beside the looked-up texel.
-    size *= 1.0 + 4.0 / texels_x.min(texels_y);
+    size.x *= 1.0 + 4.0 / texels_x;
+    size.y *= 1.0 + 4.0 / texels_y;
     let (mut z_lo, mut z_hi) = (llo.z, z_top);
     if snap {
-        // Size to the next 1/8 of its power of two, so small camera moves keep it.
-        let step = 2f64.powf(size.log2().floor()) / 8.0;
-        size = (size / step).ceil() * step;
-        let (texel_x, texel_y) = (size / texels_x, size / texels_y);
-        centre.x = (centre.x / texel_x).floor() * texel_x;
-        centre.y = (centre.y / texel_y).floor() * texel_y;
-        let zstep = step;
+        // Each side to the next 1/8 of its power of two, so small camera moves keep it.
+        let step = |side: f64| 2f64.powf(side.log2().floor()) / 8.0;
+        let (step_x, step_y) = (step(size.x), step(size.y));
+        size.x = (size.x / step_x).ceil() * step_x;
+        size.y = (size.y / step_y).ceil() * step_y;
+        let texel = size / texels;
+        centre.x = (centre.x / texel.x).floor() * texel.x;
+        centre.y = (centre.y / texel.y).floor() * texel.y;
+        let zstep = step_x.max(step_y);
         z_lo = (z_lo / zstep).floor() * zstep;
         z_hi = (z_hi / zstep).ceil() * zstep;
     }
     // Depth room: a little beyond both ends so nothing sits exactly on a plane.
-    let pad = (z_hi - z_lo).max(size) * 0.01;
+    let pad = (z_hi - z_lo).max(size.x).max(size.y) * 0.01;
     z_lo -= pad;
     z_hi += pad;
     // The eye sits on the box's top face, so view coordinates stay small wherever the scene is.
     let eye = basis * DVec3::new(centre.x, centre.y, z_hi);
-    let half = size * 0.5;
-    FittedBox {
+    let (half_x, half_y) = (size.x * 0.5, size.y * 0.5);
+    let fitted = FittedBox {
         view: light_view(eye, basis),
-        bounds: [-half, half, -half, half, 0.0, z_hi - z_lo],
-        texel: size / texels_x.min(texels_y),
-    }
+        bounds: [-half_x, half_x, -half_y, half_y, 0.0, z_hi - z_lo],
+        texel: (size.x / texels_x).max(size.y / texels_y),
+    };
+    (fitted, relevant)
 }
 
 /// The lowest z of a light-space triangle clipped to the x, y box [lo, hi], if any of it
@@ -217,6 +300,15 @@ fn clipped_min_z(t: &[DVec3; 3], lo: DVec3, hi: DVec3) -> Option<f64> {
 
 /// Each item's axis-aligned box in world space, in the scene's item order.
 pub fn item_world_boxes(scene: &Scene) -> Vec<(DVec3, DVec3)> {
+    item_corners(scene)
+        .into_iter()
+        .map(|c| aabb(c.into_iter()))
+        .collect()
+}
+
+/// The corners of each item's mesh box placed in the world (turned with the item, so
+/// tighter than the axis-aligned box around them), in the scene's item order.
+fn item_corners(scene: &Scene) -> Vec<[DVec3; 8]> {
     let mesh_bounds: Vec<(Vec3, Vec3)> = scene.meshes.iter().map(|m| m.bounds()).collect();
     scene
         .items
@@ -224,11 +316,7 @@ pub fn item_world_boxes(scene: &Scene) -> Vec<(DVec3, DVec3)> {
         .map(|i| {
             let (lo, hi) = mesh_bounds[i.mesh];
             let m = i.model_matrix64();
-            aabb(
-                corners(lo.as_dvec3(), hi.as_dvec3())
-                    .map(|c| m.transform_point3(c))
-                    .into_iter(),
-            )
+            corners(lo.as_dvec3(), hi.as_dvec3()).map(|c| m.transform_point3(c))
         })
         .collect()
 }
@@ -257,6 +345,41 @@ fn union(boxes: &[(DVec3, DVec3)]) -> (DVec3, DVec3) {
     aabb(boxes.iter().flat_map(|(a, b)| [*a, *b]))
 }
 
+/// Whether the convex hulls of the points `a` and `b` meet, given every direction of
+/// their edges (`a_edges`, `b_edges`): the separating axis test, on the edges' cross
+/// products (the faces' normals among them).
+fn hulls_overlap(a: &[DVec3], a_edges: &[DVec3], b: &[DVec3], b_edges: &[DVec3]) -> bool {
+    let span = |points: &[DVec3], axis: DVec3| {
+        points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                let d = p.dot(axis);
+                (lo.min(d), hi.max(d))
+            })
+    };
+    let edges: Vec<DVec3> = a_edges.iter().chain(b_edges).copied().collect();
+    let scale = a
+        .iter()
+        .chain(b)
+        .map(|p| p.abs().max_element())
+        .fold(1.0, f64::max);
+    for (i, e) in edges.iter().enumerate() {
+        for f in &edges[i + 1..] {
+            let axis = e.cross(*f);
+            if axis.length_squared() < 1e-18 * e.length_squared() * f.length_squared() {
+                continue;
+            }
+            let ((alo, ahi), (blo, bhi)) = (span(a, axis), span(b, axis));
+            // A little slack so a hull touching the frustum still counts as in view.
+            let slack = 1e-9 * scale * axis.length();
+            if ahi < blo - slack || bhi < alo - slack {
+                return false;
+            }
+        }
+    }
+    true
+}
+
 /// The camera frustum's corners, its far plane pulled in to `reach`.
 fn frustum_corners(scene: &Scene, reach: f64) -> [DVec3; 8] {
     let cam = scene.fitting_camera();
@@ -272,4 +395,99 @@ fn frustum_corners(scene: &Scene, reach: f64) -> [DVec3; 8] {
         let y = if i & 2 == 0 { -1.0 } else { 1.0 } * d * t.tan();
         inv_view.transform_point3(DVec3::new(x, y, -d))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Camera, Light};
+
+    fn fit(scene: &Scene) -> (FittedBox, Vec<usize>) {
+        let Light::Directional(l) = &scene.lights[0] else {
+            panic!("learnopengl's light is directional");
+        };
+        fit_ortho_casters(scene, l.direction, MapSize::square(1024), true)
+    }
+
+    #[test]
+    fn the_box_covers_only_casters_whose_shadow_the_camera_can_see() {
+        let mut scene = Scene::load("learnopengl").unwrap();
+        let names = |casters: &[usize]| -> Vec<String> {
+            casters
+                .iter()
+                .map(|&c| scene.items[c].name.clone())
+                .collect()
+        };
+        // From the tutorial's camera: the floor has nothing behind it, and cube2 (beside
+        // the view, its shadow beside it too) is out of sight; cube3's hull reaches the
+        // corner of the view.
+        let (tutorial_box, casters) = fit(&scene);
+        assert_eq!(names(&casters), ["cube1", "cube3"]);
+        // From above, every cube and its shadow is in view: the box grows to hold cube2.
+        scene.camera = Camera::look_at(Vec3::new(0.0, 12.0, 0.5), Vec3::ZERO).expect("a direction");
+        let (above_box, casters) = fit(&scene);
+        assert_eq!(names(&casters), ["cube1", "cube2", "cube3"]);
+        let area = |b: &FittedBox| (b.bounds[1] - b.bounds[0]) * (b.bounds[3] - b.bounds[2]);
+        assert!(area(&above_box) > area(&tutorial_box) * 1.2);
+        // Looking away from every cube: nothing to cover.
+        scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::new(0.0, 0.0, 10.0))
+            .expect("a direction");
+        assert!(fit(&scene).1.is_empty());
+    }
+
+    #[test]
+    fn each_side_of_the_box_is_fitted_on_its_own() {
+        // The tutorial's two covered cubes lie side by side in the light's view: the box is
+        // wider than it is tall, each side snapped to its own step.
+        let scene = Scene::load("learnopengl").unwrap();
+        let [l, r, b, t, ..] = fit(&scene).0.bounds;
+        let (w, h) = (r - l, t - b);
+        assert!(w > h * 1.3 || h > w * 1.3, "{w} x {h}");
+        let snapped = |side: f64| {
+            let step = 2f64.powf(side.log2().floor()) / 8.0;
+            (side / step - (side / step).round()).abs() < 1e-9
+        };
+        assert!(snapped(w) && snapped(h), "{w} x {h}");
+    }
+
+    #[test]
+    fn separating_axes_tell_touching_hulls_from_apart_ones() {
+        let cube = |o: DVec3| corners(o, o + DVec3::ONE).to_vec();
+        let axes = [DVec3::X, DVec3::Y, DVec3::Z];
+        assert!(hulls_overlap(
+            &cube(DVec3::ZERO),
+            &axes,
+            &cube(DVec3::splat(0.5)),
+            &axes
+        ));
+        assert!(!hulls_overlap(
+            &cube(DVec3::ZERO),
+            &axes,
+            &cube(DVec3::new(1.5, 0.0, 0.0)),
+            &axes
+        ));
+        // Apart only along a diagonal: no face normal separates them, an edge cross does.
+        // A tetrahedron beside the cube's edge at x = y = 1: their shadows on x, y and z
+        // overlap; the plane x + y = 2 (a cross of their edges) parts them.
+        let tetra = vec![
+            DVec3::new(1.2, 0.9, 0.0),
+            DVec3::new(0.9, 1.2, 0.0),
+            DVec3::new(1.2, 1.2, 0.0),
+            DVec3::new(1.2, 1.2, 1.0),
+        ];
+        let tetra_edges = [
+            DVec3::new(-1.0, 1.0, 0.0),
+            DVec3::X,
+            DVec3::Y,
+            DVec3::new(0.0, 0.3, 1.0),
+            DVec3::new(0.3, 0.0, 1.0),
+            DVec3::Z,
+        ];
+        assert!(!hulls_overlap(
+            &cube(DVec3::ZERO),
+            &axes,
+            &tetra,
+            &tetra_edges
+        ));
+    }
 }

@@ -87,7 +87,7 @@ impl Technique for Map2d {
                 return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
             }
         }
-        let view = camera(scene, index, pass.settings);
+        let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         let program = pass.programs.flat(pass.gl)?;
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         self.map.bind_for_writing();
@@ -100,6 +100,7 @@ impl Technique for Map2d {
             index,
             &view,
             program,
+            fitted_casters.as_deref(),
         );
         Ok(view)
     }
@@ -141,7 +142,9 @@ impl Technique for Map2d {
 
 /// Draws light `index`'s casters into the bound 2D map with `program` (depth.vert's
 /// uniforms), seen through `view`, and counts them: only casters that can land in the map,
-/// the rest would be clipped anyway.
+/// the rest would be clipped anyway, and of those only the ones in `only` when given (the
+/// casters a fitted box was fitted to).
+#[allow(clippy::too_many_arguments)]
 pub fn draw_map_casters(
     meshes: &[crate::engine::Mesh],
     boxes: &[(glam::DVec3, glam::DVec3)],
@@ -150,10 +153,13 @@ pub fn draw_map_casters(
     index: usize,
     view: &ShadowView,
     program: &crate::engine::ShaderProgram,
+    only: Option<&[usize]>,
 ) {
     program.set_mat4("orthoProjectionMatrix", &view.projection);
     let light = &scene.lights[index];
-    let keep = |k: usize| may_land(light, view, boxes[k].0, boxes[k].1);
+    let keep = |k: usize| {
+        only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
+    };
     let drawn = draw_casters(
         meshes,
         scene,
@@ -180,13 +186,24 @@ pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTrans
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with
 /// `fit = "scene"` an orthographic box fitted to this scene ([`fitted::fit_ortho`]).
 pub fn camera(scene: &Scene, index: usize, settings: &ShadowSettings) -> ShadowView {
+    camera_and_casters(scene, index, settings).0
+}
+
+/// [`camera`], with the casters a fitted box was fitted to: the only ones its depth pass
+/// needs (`None`: the light's own camera, every caster that lands in it).
+pub fn camera_and_casters(
+    scene: &Scene,
+    index: usize,
+    settings: &ShadowSettings,
+) -> (ShadowView, Option<Vec<usize>>) {
     let light = &scene.lights[index];
     match (light, settings.light_projection, settings.fit) {
         (Light::Directional(l), LightProjection::Ortho, Fit::Scene) => {
-            fitted::fit_ortho(scene, l.direction, settings.map_size, settings.snap)
-                .shadow_view(l.direction)
+            let (fitted, casters) =
+                fitted::fit_ortho_casters(scene, l.direction, settings.map_size, settings.snap);
+            (fitted.shadow_view(l.direction), Some(casters))
         }
-        _ => own_camera(light, settings),
+        _ => (own_camera(light, settings), None),
     }
 }
 

@@ -282,6 +282,7 @@ impl Technique for Moments {
                 index,
                 &view,
                 program,
+                None,
             );
         }
         if settings.blur != Blur::None {
