@@ -16,9 +16,10 @@
 // Defines (made in one place, src/shadows/program.rs, from a typed key; each exists only
 // when a light uses it): the lighting's (BLINN, SPECULAR_POWER), the lights' layout
 // (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; USES_CASCADES, CASCADES, CASCADE_BLEND,
-// SHOW_CASCADES for a cascaded light; MULTIPASS when a light has shadow volumes) and the
-// target's outputs (OUTPUT_VISIBILITY,
-// OUTPUT_GBUFFER). The shadow tests' constants are each light's, in the generated snippet.
+// SHOW_CASCADES for a cascaded light; MULTIPASS when a light has shadow volumes), the
+// cached shadow mask's (SHADOW_MASK_WRITE, SHADOW_MASK_READ) and the target's outputs
+// (OUTPUT_VISIBILITY, OUTPUT_GBUFFER). The shadow tests' constants are each light's, in the
+// generated snippet.
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -49,6 +50,13 @@ uniform sampler2D textureSampler;  // unit 0; shadow maps on units 1, 2, ... (on
 uniform int passLight;
 #endif
 
+#ifdef SHADOW_MASK_READ
+// The cached shadow mask (src/renderer/shadow_mask.rs): each light's test at this pixel,
+// as a frame with the same camera, items and maps computed it (light i in component i).
+uniform sampler2D shadowMask;
+vec4 maskedLit;
+#endif
+
 #include "lib/lighting.glsl"
 #include "lib/outputs.glsl"
 #include "generated/samplers.glsl"
@@ -65,8 +73,19 @@ void main()
     f.light = vec3(0.0);
     f.visibility = 1.0;
     f.cascade = -1;
+#ifdef SHADOW_MASK_WRITE
+    f.lit = vec4(1.0);
+#endif
+#ifdef SHADOW_MASK_READ
+    maskedLit = texelFetch(shadowMask, ivec2(gl_FragCoord.xy), 0);
+#endif
 
     addLights(f);
+#ifdef SHADOW_MASK_WRITE
+    // The mask's pass: the tests, not a colour.
+    fragColor = f.lit;
+    return;
+#endif
 
     // Ambient light is not shadowed. The book clamps to [0, 1]; the colour buffer is
     // normalised fixed point, which clamps on the way in, so the shader need not.

@@ -12,8 +12,22 @@ const FRAMES: u32 = 6;
 
 /// The last of `FRAMES` animated frames with the cache on or off, and the passes drawn.
 fn last_frame(name: &str, cache: bool, extra: impl Fn(&mut ShadowSettings)) -> (Vec<u8>, u64, u64) {
+    let (bytes, passes, _) = last_frame_of(Scene::load(name).unwrap(), cache, extra);
+    (bytes, passes.drawn, passes.skipped)
+}
+
+/// [`last_frame`] of a scene given, with the frames' use of the shadow mask.
+fn last_frame_of(
+    mut scene: Scene,
+    cache: bool,
+    extra: impl Fn(&mut ShadowSettings),
+) -> (
+    Vec<u8>,
+    shadowmap::renderer::DepthPasses,
+    shadowmap::renderer::MaskUses,
+) {
     let ctx = common::context();
-    let mut scene = Scene::load(name).unwrap();
+    let name = scene.name.clone();
     let mut s = ShadowSettings {
         shadow_cache: cache,
         ..scene.shadow
@@ -33,7 +47,7 @@ fn last_frame(name: &str, cache: bool, extra: impl Fn(&mut ShadowSettings)) -> (
             .iter()
             .map(|v| v.map_or(0, |v| (v * 255.0) as u8)),
     );
-    (bytes, frame.depth_passes.drawn, frame.depth_passes.skipped)
+    (bytes, frame.depth_passes, frame.mask_uses)
 }
 
 #[test]
@@ -56,6 +70,79 @@ fn a_cached_frame_equals_an_uncached_one_on_every_built_in_scene() {
         assert_eq!(drawn + skipped, lights * u64::from(FRAMES), "{name}");
         assert!(drawn >= lights, "{name}: each map is drawn at least once");
     }
+}
+
+#[test]
+fn a_still_frame_takes_its_shadow_tests_from_the_mask_and_equals_a_fresh_one() {
+    // Every built-in scene held still (nothing spins, no light moves), with its own
+    // settings and with the techniques whose tests differ most: the mask is written once
+    // (the second frame: the first unchanged one) and read from then on, and the frame is
+    // the uncached one, pixel for pixel.
+    use shadowmap::settings::{Filter, Fit, ShadowTechnique as Technique};
+    type Variant = (&'static str, fn(&mut ShadowSettings));
+    let variants: [Variant; 6] = [
+        ("its own settings", |_| {}),
+        ("pcss", |s| s.filter = Filter::Pcss),
+        ("vsm", |s| s.filter = Filter::Vsm),
+        ("hw2x2, fitted", |s| {
+            s.filter = Filter::Hardware2x2;
+            s.fit = Fit::Scene
+        }),
+        ("3 cascades", |s| s.cascades = 3),
+        ("volumes", |s| s.technique = Technique::Volumes),
+    ];
+    let mut read_somewhere = 0;
+    for name in Scene::builtin_names() {
+        let mut still = Scene::load(name).unwrap();
+        still
+            .items
+            .iter_mut()
+            .for_each(|i| i.spin = glam::Vec3::ZERO);
+        for light in &mut still.lights {
+            if let shadowmap::scene::Light::Point(p) = light {
+                p.oscillate = glam::Vec3::ZERO;
+            }
+        }
+        for (what, variant) in variants {
+            let refused = |s: &ShadowSettings| {
+                still.lights.iter().enumerate().any(|(i, l)| {
+                    l.settings_problem(&format!("light {i}"), &l.settings(s))
+                        .is_some()
+                })
+            };
+            let mut probe = still.shadow;
+            variant(&mut probe);
+            if refused(&probe) {
+                continue;
+            }
+            let (cached, passes, uses) = last_frame_of(still.clone(), true, variant);
+            let (fresh, _, fresh_uses) = last_frame_of(still.clone(), false, variant);
+            assert!(
+                cached == fresh,
+                "{name}, {what}: the frame read from the mask differs"
+            );
+            assert_eq!(fresh_uses.written + fresh_uses.read, 0, "{name}, {what}");
+            if probe.technique == Technique::Volumes {
+                assert_eq!(uses.read, 0, "{name}, {what}: volumes test by the stencil");
+                continue;
+            }
+            assert_eq!(
+                passes.drawn + passes.skipped,
+                passes.drawn.max(1) * u64::from(FRAMES),
+                "{name}, {what}: each map drawn once, {passes:?}"
+            );
+            assert_eq!(
+                (uses.written, uses.read),
+                (1, u64::from(FRAMES) - 1),
+                "{name}, {what}"
+            );
+            read_somewhere += 1;
+        }
+    }
+    assert!(
+        read_somewhere >= 20,
+        "{read_somewhere} still scenes read the mask"
+    );
 }
 
 #[test]

@@ -10,6 +10,9 @@ struct Fragment
     vec3 light;        // diffuse + specular so far, per unit of base colour
     float visibility;  // VISIBILITY_LIGHT's shadow test
     int cascade;       // the cascade used, for SHOW_CASCADES (-1: none)
+#ifdef SHADOW_MASK_WRITE
+    vec4 lit;          // each light's shadow test (light i in component i), for the mask
+#endif
 };
 
 // Diffuse plus specular of one light (the book's calcLightColour), per unit of texture
@@ -55,6 +58,9 @@ void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)
     if (i == VISIBILITY_LIGHT) {
         f.visibility = lit;
     }
+#ifdef SHADOW_MASK_WRITE
+    f.lit[i] = lit;
+#endif
 }
 
 // A light that casts no shadow lights everything it faces.

@@ -160,6 +160,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             frame.casters.drawn,
             frame.casters.total
         );
+        let m = frame.mask_uses;
+        if m.written + m.read > 0 {
+            println!(
+                "shadow mask: written in {} frames, read in {} (each pixel's tests kept while \
+                 nothing changes)",
+                m.written, m.read
+            );
+        }
         if frame.volume_pixels > 0 {
             println!(
                 "shadow volumes: {} volume pixels passed the depth test in the last frame \

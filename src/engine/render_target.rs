@@ -45,6 +45,34 @@ impl RenderTarget {
             glow::RGBA,
             glow::UNSIGNED_BYTE,
         )?;
+        Self::around(gl, colour, width, height, outputs)
+    }
+
+    /// A target whose colour holds `channels` (1 to 4) floats a pixel, exactly (the cached
+    /// shadow mask: each light's test as the scene shader computed it).
+    pub fn float(gl: &Gl, width: u32, height: u32, channels: usize) -> Result<RenderTarget> {
+        let (internal, format) = match channels {
+            0 | 1 => (glow::R32F, glow::RED),
+            2 => (glow::RG32F, glow::RG),
+            3 => (glow::RGB32F, glow::RGB),
+            _ => (glow::RGBA32F, glow::RGBA),
+        };
+        let colour = Texture::attachment(gl, width, height, internal, format, glow::FLOAT)?;
+        Self::around(gl, colour, width, height, Outputs::default())
+    }
+
+    /// The colour texture (to sample what was drawn).
+    pub fn colour(&self) -> &Texture {
+        &self.colour
+    }
+
+    fn around(
+        gl: &Gl,
+        colour: Texture,
+        width: u32,
+        height: u32,
+        outputs: Outputs,
+    ) -> Result<RenderTarget> {
         let visibility = outputs
             .visibility
             .then(|| {

@@ -33,6 +33,8 @@ pub struct Frame {
     pub origin: DVec3,
     /// Depth passes drawn and skipped over the frames (the shadow cache).
     pub depth_passes: DepthPasses,
+    /// Frames that wrote and read the cached shadow mask.
+    pub mask_uses: crate::renderer::MaskUses,
     /// Casters drawn into maps against casters offered, over the frames.
     pub casters: crate::shadows::CasterCounts,
     /// Shadow-volume pixels that passed the depth test in the last frame (0 without
@@ -236,6 +238,7 @@ pub fn render_frames_with(
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),
+        mask_uses: renderer.mask_uses(),
         casters: renderer.caster_counts(),
         volume_pixels: renderer.volume_pixels(),
     })

@@ -12,7 +12,10 @@
 
 mod depth_view;
 mod scene_pass;
+mod shadow_mask;
 mod volume_pass;
+
+pub use shadow_mask::MaskUses;
 
 use std::rc::Rc;
 
@@ -24,6 +27,7 @@ use crate::scene::{Scene, MAX_LIGHTS};
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::program::ProgramKey;
+use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::{cache, fitted, CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
 
@@ -124,6 +128,8 @@ pub struct Renderer {
     passes: DepthPasses,
     /// Casters drawn into maps against casters offered, so far.
     casters: CasterCounts,
+    /// Every pixel's shadow tests, kept while nothing changes ([`shadow_mask`]).
+    mask: shadow_mask::ShadowMask,
     depth_programs: DepthPrograms,
     /// Scene programs by what they were compiled for, the last used first (a bench
     /// alternates a timed target without extra outputs and a scored one with them).
@@ -175,6 +181,7 @@ impl Renderer {
             drawn: Vec::new(),
             passes: DepthPasses::default(),
             casters: CasterCounts::default(),
+            mask: shadow_mask::ShadowMask::default(),
             depth_programs: DepthPrograms::default(),
             scene_programs: Vec::new(),
             samplers: Samplers::default(),
@@ -186,7 +193,7 @@ impl Renderer {
         };
         renderer.prepare_shadows(scene)?;
         // Compile the scene program now, so a shader error shows before the first frame.
-        renderer.use_program(scene, Outputs::default())?;
+        renderer.use_program(scene, Outputs::default(), MaskMode::Off)?;
         check_gl(gl, "renderer setup")?;
         Ok(renderer)
     }
@@ -231,6 +238,11 @@ impl Renderer {
     /// Depth passes drawn and skipped so far ([`DepthPasses`]).
     pub fn depth_passes(&self) -> DepthPasses {
         self.passes
+    }
+
+    /// Frames that wrote the cached shadow mask and frames that read it, so far.
+    pub fn mask_uses(&self) -> MaskUses {
+        self.mask.uses
     }
 
     /// Casters drawn into maps against casters offered so far (culled per light volume;
@@ -324,9 +336,27 @@ impl Renderer {
                 "render_scene before render_depth_map: there are no shadow maps yet".into(),
             ));
         }
-        self.use_program(scene, target.outputs())?;
-        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        let uses_volumes = self.volumes.is_some() && self.kinds.contains(&ShadowKind::Volume);
+        let plan = match uses_volumes {
+            true => shadow_mask::Plan::Test,
+            false => {
+                let key = self.mask_key(scene, target.size())?;
+                self.mask.plan(key)
+            }
+        };
         self.hook(Pass::Scene, true);
+        if plan == shadow_mask::Plan::Write {
+            self.write_mask(scene, target.size())?;
+        }
+        let mode = match plan {
+            shadow_mask::Plan::Test => MaskMode::Off,
+            _ => MaskMode::Read,
+        };
+        if mode == MaskMode::Read {
+            self.mask.uses.read += 1;
+        }
+        self.use_program(scene, target.outputs(), mode)?;
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         let inputs = scene_pass::Inputs {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
@@ -336,6 +366,10 @@ impl Renderer {
             textures: &self.textures,
             white: &self.white,
             pass_light: -1,
+            mask: match mode {
+                MaskMode::Read => self.mask.texture(),
+                _ => None,
+            },
         };
         let result = match &self.volumes {
             Some(volumes) if self.kinds.contains(&ShadowKind::Volume) => volume_pass::draw(
@@ -505,21 +539,11 @@ impl Renderer {
 
     /// Moves the program for this frame's key to the front of the cache, compiling it if it
     /// is not there (the cache keeps the last few).
-    fn use_program(&mut self, scene: &Scene, outputs: Outputs) -> Result<()> {
-        const KEEP: usize = 4;
-        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
-        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
-        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
-            *k = *kind;
-        }
-        let n = self.kinds.len().min(MAX_LIGHTS);
-        let key = ProgramKey::of(
-            scene,
-            &self.settings,
-            &kinds[..n],
-            self.visibility_light,
-            outputs,
-        )?;
+    fn use_program(&mut self, scene: &Scene, outputs: Outputs, mask: MaskMode) -> Result<()> {
+        // A bench alternates a timed target and a scored one, each maybe with the mask
+        // written and read.
+        const KEEP: usize = 6;
+        let key = self.program_key(scene, outputs)?.with_mask(mask);
         match self.scene_programs.iter().position(|(k, _)| *k == key) {
             Some(0) => {}
             Some(i) => {
@@ -532,6 +556,73 @@ impl Renderer {
                 self.scene_programs.truncate(KEEP);
             }
         }
+        Ok(())
+    }
+
+    /// The scene program's key for this frame's lights and `outputs`, before the mask.
+    fn program_key(&self, scene: &Scene, outputs: Outputs) -> Result<ProgramKey> {
+        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
+        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
+        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
+            *k = *kind;
+        }
+        let n = self.kinds.len().min(MAX_LIGHTS);
+        ProgramKey::of(
+            scene,
+            &self.settings,
+            &kinds[..n],
+            self.visibility_light,
+            outputs,
+        )
+    }
+
+    /// What this frame's shadow tests depend on ([`shadow_mask::frame_key`]); `None` when
+    /// the mask cannot stand for them: no light with a map, a map drawn every frame
+    /// (`shadow_cache` off), or a program the mask cannot serve.
+    fn mask_key(&self, scene: &Scene, size: (u32, u32)) -> Result<Option<u64>> {
+        let program = self.program_key(scene, Outputs::default())?;
+        let maps: Vec<Option<u64>> = self
+            .shadows
+            .iter()
+            .zip(&self.drawn)
+            .filter(|(t, _)| t.is_some())
+            .map(|(_, key)| *key)
+            .collect();
+        if maps.is_empty() || !program.maskable() {
+            return Ok(None);
+        }
+        Ok(shadow_mask::frame_key(scene, size, &program, &maps))
+    }
+
+    /// Draws every pixel's shadow tests into the mask (the scene pass with
+    /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size).
+    fn write_mask(&mut self, scene: &Scene, (width, height): (u32, u32)) -> Result<()> {
+        let Some(key) = self.mask_key(scene, (width, height))? else {
+            return Ok(());
+        };
+        self.use_program(scene, Outputs::default(), MaskMode::Write)?;
+        let channels = 1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0);
+        let target = self.mask.begin_write(&self.gl, (width, height), channels)?;
+        target.bind_and_clear([1.0; 4]);
+        let inputs = scene_pass::Inputs {
+            program: &self.scene_programs[0].1,
+            shadows: &self.shadows,
+            views: &self.views,
+            settings: &self.settings,
+            meshes: &self.meshes,
+            textures: &self.textures,
+            white: &self.white,
+            pass_light: -1,
+            mask: None,
+        };
+        scene_pass::draw(
+            &inputs,
+            &mut self.samplers,
+            &self.gl,
+            scene,
+            (width, height),
+        )?;
+        self.mask.written(key);
         Ok(())
     }
 

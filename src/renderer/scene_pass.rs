@@ -8,7 +8,7 @@ use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene, Shading};
 use crate::settings::ShadowSettings;
-use crate::shadows::slots::{self, MATERIAL_UNIT};
+use crate::shadows::slots::{self, MASK_UNIT, MATERIAL_UNIT};
 use crate::shadows::{ShadowView, Technique};
 
 /// What the pass reads.
@@ -23,6 +23,8 @@ pub struct Inputs<'a> {
     /// With shadow volumes, the light this pass adds (-1: the ambient pass); unused
     /// otherwise.
     pub pass_light: i32,
+    /// The cached shadow mask, for a program that reads it.
+    pub mask: Option<&'a Texture>,
 }
 
 /// Draws every item with `inputs.program` (bound here) into the bound target.
@@ -58,6 +60,10 @@ pub fn draw(
     p.set_mat4_array("orthoProjectionMatrix", &u.projection);
     p.set_i32("textureSampler", MATERIAL_UNIT as i32);
     p.set_i32("passLight", inputs.pass_light);
+    if let Some(mask) = inputs.mask {
+        p.set_i32("shadowMask", MASK_UNIT as i32);
+        mask.bind(MASK_UNIT);
+    }
     // Each light's map and sampler on its unit, for the pass; the samplers unbind when
     // `bound` drops.
     let mut bound: Vec<BoundSampler> = Vec::with_capacity(inputs.shadows.len());

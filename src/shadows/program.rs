@@ -3,7 +3,7 @@
 //! so they are compile-time constants; the key is a small `Copy` value compared every frame
 //! without allocating, and its text is made only when a program is compiled.
 
-use super::slots::{self, LightSlot, ShadowTest};
+use super::slots::{self, LightSlot, MaskMode, ShadowTest};
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram};
 use crate::error::{Error, Result};
@@ -35,6 +35,8 @@ pub struct ProgramKey {
     /// A light has shadow volumes: the frame is drawn in passes, one light each
     /// (`MULTIPASS`, the uniform `passLight`).
     multipass: bool,
+    /// Whether it writes or reads the cached shadow mask.
+    mask: MaskMode,
 }
 
 impl ProgramKey {
@@ -85,7 +87,20 @@ impl ProgramKey {
             visibility_light,
             outputs,
             multipass: kinds.contains(&ShadowKind::Volume),
+            mask: MaskMode::Off,
         })
+    }
+
+    /// The same program writing or reading the cached shadow mask.
+    pub fn with_mask(self, mask: MaskMode) -> ProgramKey {
+        ProgramKey { mask, ..self }
+    }
+
+    /// Whether the shadow mask can stand for these lights' tests: not with shadow volumes
+    /// (their test is the stencil, per pass) nor with cascades tinted (the tint needs the
+    /// cascade the test chose).
+    pub fn maskable(&self) -> bool {
+        !self.multipass && !self.cascades.is_some_and(|c| c.show)
     }
 
     /// The lights' slots, in the scene's order.
@@ -131,6 +146,11 @@ impl ProgramKey {
         if self.multipass {
             set("MULTIPASS", "1".into());
         }
+        match self.mask {
+            MaskMode::Off => {}
+            MaskMode::Write => set("SHADOW_MASK_WRITE", "1".into()),
+            MaskMode::Read => set("SHADOW_MASK_READ", "1".into()),
+        }
         if let Some(c) = &self.cascades {
             set("USES_CASCADES", "1".into());
             set("CASCADES", c.count.to_string());
@@ -156,7 +176,7 @@ impl ProgramKey {
                 slots.len()
             )));
         }
-        let fragment = shaders::scene_frag(&slots::snippets(&slots))?;
+        let fragment = shaders::scene_frag(&slots::snippets(&slots, self.mask))?;
         ShaderProgram::new(gl, &shaders::scene_vert(), &fragment, &self.defines())
     }
 }

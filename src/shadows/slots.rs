@@ -22,6 +22,9 @@ use crate::settings::{
 /// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
 pub const MATERIAL_UNIT: u32 = 0;
 
+/// The texture unit of the cached shadow mask (after every light's map).
+pub const MASK_UNIT: u32 = 1 + crate::scene::MAX_LIGHTS as u32;
+
 /// The texture unit of light `index`'s shadow map.
 pub fn texture_unit(index: usize) -> u32 {
     1 + index as u32
@@ -139,6 +142,18 @@ pub struct LightSlot {
     pub test: Option<ShadowTest>,
 }
 
+/// What a scene program does with the cached shadow mask (`src/renderer/shadow_mask.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum MaskMode {
+    /// Each light's test, computed per fragment: the chapters' scene pass.
+    #[default]
+    Off,
+    /// The same tests, written out per light instead of a colour (`SHADOW_MASK_WRITE`).
+    Write,
+    /// The tests read back from the mask (`SHADOW_MASK_READ`).
+    Read,
+}
+
 /// The sampler uniform of light `index`'s shadow, if it has one.
 pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
     match kind {
@@ -185,7 +200,10 @@ pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
 /// test's constants as `#define`s and its technique's library snippet, with the snippet's
 /// functions renamed after the light (`calcShadow` becomes `calcShadow_0`); then
 /// `addLights`, one add... call per light in order.
-pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
+///
+/// With `mask` = [`MaskMode::Read`] no test is compiled in: each casting light takes its
+/// test from the cached shadow mask (`maskedLit`, read once per fragment in scene.frag).
+pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String); 2] {
     let mut samplers =
         String::from("// Made by src/shadows/slots.rs: one sampler per casting light.\n");
     let mut lights = String::from(
@@ -216,6 +234,12 @@ pub fn snippets(slots: &[LightSlot]) -> [(&'static str, String); 2] {
             ));
             continue;
         };
+        if mask == MaskMode::Read {
+            calls.push_str(&format!(
+                "    addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);\n"
+            ));
+            continue;
+        }
         samplers.push_str(&format!("uniform {} {name};\n", glsl.sampler_type));
         let defines: Vec<(String, String)> = test
             .defines()
@@ -303,7 +327,7 @@ mod tests {
             slot(ShadowKind::Cube, true, &book),
             slot(ShadowKind::Cascades, false, &hw),
         ];
-        let [(samplers_name, samplers), (lights_name, lights)] = snippets(&slots);
+        let [(samplers_name, samplers), (lights_name, lights)] = snippets(&slots, MaskMode::Off);
         assert_eq!(samplers_name, "generated/samplers.glsl");
         assert_eq!(lights_name, "generated/lights.glsl");
         let lines = |t: &str| -> Vec<String> {
@@ -403,12 +427,15 @@ mod tests {
             cone: false,
             test: Some(test),
         };
-        let generated = snippets(&[
-            slot(ShadowKind::Map),
-            slot(ShadowKind::Cube),
-            slot(ShadowKind::Cascades),
-            slot(ShadowKind::Moments),
-        ]);
+        let generated = snippets(
+            &[
+                slot(ShadowKind::Map),
+                slot(ShadowKind::Cube),
+                slot(ShadowKind::Cascades),
+                slot(ShadowKind::Moments),
+            ],
+            MaskMode::Off,
+        );
         // Included directly or by another snippet (the soft filters by the 2D test's).
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
         for name in crate::shaders::library() {

@@ -1,0 +1,126 @@
+//! The cached shadow mask (past the chapters, which test every light at every pixel every
+//! frame). With `shadow_cache` on, a frame whose camera, items, target size, programs and
+//! shadow maps are all as they were the frame before has the same tests at every pixel. The
+//! second such frame writes them into a float target, one light per component, with the
+//! scene shader's own tests (`SHADOW_MASK_WRITE`); from then on the scene pass reads them
+//! back (`SHADOW_MASK_READ`: one fetch a pixel instead of each light's filter) until
+//! something changes. The mask holds the very floats the tests give, so a frame drawn from
+//! it is the same, pixel for pixel, as one drawn without it (`tests/cache.rs`).
+
+use std::collections::hash_map::DefaultHasher;
+use std::hash::{Hash, Hasher};
+
+use crate::engine::{Gl, RenderTarget, Texture};
+use crate::error::Result;
+use crate::scene::Scene;
+use crate::shadows::program::ProgramKey;
+
+/// What a frame does with the mask.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plan {
+    /// Test every light per pixel: something changed since the last frame, or the frame
+    /// cannot be cached.
+    Test,
+    /// The frame is as the last one: write the tests into the mask, then read them.
+    Write,
+    /// The mask holds this frame's tests: read them.
+    Read,
+}
+
+/// Frames drawn writing the mask and reading it, so far.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct MaskUses {
+    pub written: u64,
+    pub read: u64,
+}
+
+/// The mask's target and what it holds.
+#[derive(Default)]
+pub struct ShadowMask {
+    /// The target, and how many lights' channels it has (one float each: a scene with one
+    /// light fetches 4 bytes a pixel, not 16).
+    target: Option<(RenderTarget, usize)>,
+    /// The key of the frame whose tests the mask holds.
+    holds: Option<u64>,
+    /// The key of the last frame drawn.
+    last: Option<u64>,
+    pub uses: MaskUses,
+}
+
+impl ShadowMask {
+    /// What this frame, summed up by `key` (`None`: it cannot be cached), does with the
+    /// mask. A frame that changes nothing twice in a row is worth writing down; one that
+    /// changes every frame never pays for the write.
+    pub fn plan(&mut self, key: Option<u64>) -> Plan {
+        let previous = std::mem::replace(&mut self.last, key);
+        match key {
+            None => Plan::Test,
+            Some(k) if self.holds == Some(k) => Plan::Read,
+            Some(k) if previous == Some(k) => Plan::Write,
+            Some(_) => Plan::Test,
+        }
+    }
+
+    /// The mask's target at `width` x `height` with a channel for each of the first
+    /// `channels` lights (made or remade to fit), forgetting what it held: the caller
+    /// writes it now.
+    pub fn begin_write(
+        &mut self,
+        gl: &Gl,
+        (width, height): (u32, u32),
+        channels: usize,
+    ) -> Result<&RenderTarget> {
+        self.holds = None;
+        let fits = self
+            .target
+            .as_ref()
+            .is_some_and(|(t, c)| (t.width(), t.height()) == (width, height) && *c == channels);
+        if !fits {
+            self.target = None;
+            self.target = Some((RenderTarget::float(gl, width, height, channels)?, channels));
+        }
+        match &self.target {
+            Some((t, _)) => Ok(t),
+            None => Err(crate::Error::Invalid("the shadow mask is missing".into())),
+        }
+    }
+
+    /// The mask now holds the tests of the frame `key`.
+    pub fn written(&mut self, key: u64) {
+        self.holds = Some(key);
+        self.uses.written += 1;
+    }
+
+    /// The mask's texture, for a frame that reads it.
+    pub fn texture(&self) -> Option<&Texture> {
+        self.holds
+            .and(self.target.as_ref())
+            .map(|(t, _)| t.colour())
+    }
+}
+
+/// A number that changes whenever a pixel's shadow tests could: the camera, the target's
+/// size, every item's mesh and placement (receivers as well as casters: they decide which
+/// surface a pixel shows), the scene program, and what each light's map holds (`maps`, the
+/// shadow cache's keys; `None` when a map is drawn every frame: then nothing is cached).
+pub fn frame_key(
+    scene: &Scene,
+    size: (u32, u32),
+    program: &ProgramKey,
+    maps: &[Option<u64>],
+) -> Option<u64> {
+    let mut h = DefaultHasher::new();
+    for key in maps {
+        key.ok_or(()).ok()?.hash(&mut h);
+    }
+    format!("{:?}", scene.camera).hash(&mut h);
+    size.hash(&mut h);
+    program.hash(&mut h);
+    for item in &scene.items {
+        item.mesh.hash(&mut h);
+        for v in [item.position, item.rotation, item.scale] {
+            v.to_array().map(f32::to_bits).hash(&mut h);
+        }
+    }
+    Some(h.finish())
+}
