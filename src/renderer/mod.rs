@@ -345,8 +345,25 @@ impl Renderer {
             }
         };
         self.hook(Pass::Scene, true);
+        // The samplers leave the renderer for the pass, so the inputs can borrow the rest.
+        let mut samplers = std::mem::take(&mut self.samplers);
+        let result = self.draw_scene(scene, target, plan, &mut samplers);
+        self.samplers = samplers;
+        self.hook(Pass::Scene, false);
+        result?;
+        check_gl(&self.gl, "the scene pass")
+    }
+
+    /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
+    fn draw_scene(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        plan: shadow_mask::Plan,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
         if plan == shadow_mask::Plan::Write {
-            self.write_mask(scene, target.size())?;
+            self.write_mask(scene, target.size(), samplers)?;
         }
         let mode = match plan {
             shadow_mask::Plan::Test => MaskMode::Off,
@@ -357,7 +374,39 @@ impl Renderer {
         }
         self.use_program(scene, target.outputs(), mode)?;
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
-        let inputs = scene_pass::Inputs {
+        let inputs = self.scene_inputs(mode);
+        let (gl, size) = (&self.gl, target.size());
+        match &self.volumes {
+            Some(volumes) if self.kinds.contains(&ShadowKind::Volume) => {
+                let counted = volume_pass::draw(
+                    &inputs,
+                    volumes,
+                    &self.kinds,
+                    self.visibility_light,
+                    &self.volume_queries,
+                    samplers,
+                    gl,
+                    scene,
+                    size,
+                )?;
+                if self.settings.show_volumes {
+                    volume_pass::draw_debug(volumes, &self.kinds, &self.settings, gl, scene, size);
+                }
+                self.volume_counted = counted;
+                Ok(())
+            }
+            _ => {
+                scene_pass::draw(&inputs, samplers, gl, scene, size)?;
+                self.volume_counted.clear();
+                Ok(())
+            }
+        }
+    }
+
+    /// The scene pass' inputs: the program in front of the cache, the lights' techniques
+    /// and views, the mask when the program reads it.
+    fn scene_inputs(&self, mode: MaskMode) -> scene_pass::Inputs<'_> {
+        scene_pass::Inputs {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
             views: &self.views,
@@ -370,40 +419,7 @@ impl Renderer {
                 MaskMode::Read => self.mask.texture(),
                 _ => None,
             },
-        };
-        let result = match &self.volumes {
-            Some(volumes) if self.kinds.contains(&ShadowKind::Volume) => volume_pass::draw(
-                &inputs,
-                volumes,
-                &self.kinds,
-                self.visibility_light,
-                &self.volume_queries,
-                &mut self.samplers,
-                &self.gl,
-                scene,
-                target.size(),
-            )
-            .map(|counted| {
-                self.volume_counted = counted;
-                if self.settings.show_volumes {
-                    volume_pass::draw_debug(
-                        volumes,
-                        &self.kinds,
-                        &self.settings,
-                        &self.gl,
-                        scene,
-                        target.size(),
-                    );
-                }
-            }),
-            _ => {
-                self.volume_counted.clear();
-                scene_pass::draw(&inputs, &mut self.samplers, &self.gl, scene, target.size())
-            }
-        };
-        self.hook(Pass::Scene, false);
-        result?;
-        check_gl(&self.gl, "the scene pass")
+        }
     }
 
     /// The chapters' debug quad: a light's shadow map on the whole target (see
@@ -596,32 +612,22 @@ impl Renderer {
 
     /// Draws every pixel's shadow tests into the mask (the scene pass with
     /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size).
-    fn write_mask(&mut self, scene: &Scene, (width, height): (u32, u32)) -> Result<()> {
+    fn write_mask(
+        &mut self,
+        scene: &Scene,
+        (width, height): (u32, u32),
+        samplers: &mut Samplers,
+    ) -> Result<()> {
         let Some(key) = self.mask_key(scene, (width, height))? else {
             return Ok(());
         };
         self.use_program(scene, Outputs::default(), MaskMode::Write)?;
         let channels = 1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0);
-        let target = self.mask.begin_write(&self.gl, (width, height), channels)?;
-        target.bind_and_clear([1.0; 4]);
-        let inputs = scene_pass::Inputs {
-            program: &self.scene_programs[0].1,
-            shadows: &self.shadows,
-            views: &self.views,
-            settings: &self.settings,
-            meshes: &self.meshes,
-            textures: &self.textures,
-            white: &self.white,
-            pass_light: -1,
-            mask: None,
-        };
-        scene_pass::draw(
-            &inputs,
-            &mut self.samplers,
-            &self.gl,
-            scene,
-            (width, height),
-        )?;
+        self.mask
+            .begin_write(&self.gl, (width, height), channels)?
+            .bind_and_clear([1.0; 4]);
+        let inputs = self.scene_inputs(MaskMode::Write);
+        scene_pass::draw(&inputs, samplers, &self.gl, scene, (width, height))?;
         self.mask.written(key);
         Ok(())
     }
