@@ -392,8 +392,9 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         v
     };
     if quick {
+        // From 256^2: a box fitted to few casters may need no more texels than that.
         for (s, b) in grid(
-            &[512, 1024, 2048],
+            &[256, 512, 1024, 2048],
             &[Filter::Single, Filter::Pcf3x3, Filter::Hardware2x2],
             &[
                 BiasPreset::Book,
