@@ -4,7 +4,8 @@
 //! render + glFinish. Run with `cargo bench --bench learnopengl_baseline`;
 //! `SHADOWMAP_BENCH_BLOCKS=N` changes the number of blocks per side (default 10). Two more
 //! sides give the shadows' overhead: `plain` (no shadows) and `cached` (the map and every
-//! pixel's tests kept while nothing moves, `shadow_cache`); ours draws its map every frame, as the baseline does.
+//! pixel's tests kept while nothing moves, `shadow_cache`); ours draws its map every frame,
+//! as the baseline does.
 //!
 //! Wall time on this machine drifts by more than the difference measured, so the frames
 //! can also be counted in instructions, which do not drift: `SHADOWMAP_BENCH_ONLY=baseline`
