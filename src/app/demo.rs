@@ -577,6 +577,10 @@ impl Demo {
                 show_keys: self.show_keys,
                 azimuth: self.azimuth,
                 angle_keys_idle: self.angle_keys_idle,
+                reuse: Some((
+                    running.renderer.depth_passes(),
+                    running.renderer.mask_uses(),
+                )),
             };
             if let Err(e) = hud.draw(&info, w, h) {
                 return self.fail(event_loop, e);

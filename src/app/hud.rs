@@ -12,6 +12,7 @@ use glam::Vec3;
 use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
 use shadowmap::engine::{Gl, HeadlessContext, Outputs, PixelRect, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
+use shadowmap::renderer::{DepthPasses, MaskUses};
 use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
@@ -50,6 +51,9 @@ pub struct HudInfo<'a> {
     pub azimuth: Option<Vec3>,
     /// The angle keys were pressed but the first light is a spot or point light.
     pub angle_keys_idle: bool,
+    /// Shadow-map passes drawn and reused and frames that read the shadow mask, so far
+    /// (`shadow_cache`); `None`: not shown.
+    pub reuse: Option<(DepthPasses, MaskUses)>,
 }
 
 /// Said once when the angle keys are pressed on a scene whose first light has no angle.
@@ -101,6 +105,12 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         Some(ms) => format!("Frame time: {ms:.2} ms"),
         None => "Frame time: -".to_string(),
     });
+    if let Some((passes, mask)) = info.reuse {
+        lines.push(format!(
+            "Shadow maps: {} drawn, {} reused; tests from the mask in {} frames",
+            passes.drawn, passes.skipped, mask.read
+        ));
+    }
     if info.keys.is_some() && !info.show_keys {
         lines.push("H: keys".to_string());
     }
@@ -278,6 +288,7 @@ pub fn render_frames_with_overlays(
                 show_keys: false,
                 azimuth: None,
                 angle_keys_idle: false,
+                reuse: Some((renderer.depth_passes(), renderer.mask_uses())),
             };
             hud.draw(&info, target.width(), target.height())
         };
@@ -311,7 +322,29 @@ mod tests {
             show_keys: false,
             azimuth: None,
             angle_keys_idle: false,
+            reuse: None,
         }
+    }
+
+    #[test]
+    fn the_hud_counts_maps_drawn_and_reused_and_frames_read_from_the_mask() {
+        let scene = Scene::load("learnopengl").unwrap();
+        let settings = scene.shadow;
+        let mut i = info(&scene, &settings, None);
+        assert!(!status_lines(&i).iter().any(|l| l.starts_with("Shadow maps")));
+        i.reuse = Some((
+            DepthPasses {
+                drawn: 1,
+                skipped: 59,
+            },
+            MaskUses {
+                written: 1,
+                read: 58,
+            },
+        ));
+        assert!(status_lines(&i).contains(
+            &"Shadow maps: 1 drawn, 59 reused; tests from the mask in 58 frames".to_string()
+        ));
     }
 
     #[test]
