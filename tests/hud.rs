@@ -33,7 +33,7 @@ fn render_hud_changes_only_its_corner() {
     };
     let (with, with_vis) = render("hud", true);
     let (without, without_vis) = render("plain", false);
-    let d = hud_difference(&with, &without, (0, 0, 420, 130));
+    let d = hud_difference(&with, &without, (0, 0, 420, 160));
     assert_eq!(d.outside, 0, "the HUD drew outside its corner: {d:?}");
     assert!(d.inside > 3000, "too little of the HUD: {d:?}");
     assert!(d.glyphs > 800, "too few bright glyph pixels: {d:?}");
