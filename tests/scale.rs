@@ -260,7 +260,7 @@ fn target_error_out_of_reach_is_refused_with_the_best_reached() {
         stderr.contains(
             "error: --target-error 0.00001: no configuration reached an error of 0.001% or less \
              (best: "
-        ) && stderr.contains("% of receiver pixels misclassified)"),
+        ) && stderr.contains("% misclassified)"),
         "{stderr}"
     );
     assert!(!out.exists());

@@ -111,10 +111,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     for (level, row) in bench::preset_choices(&rows) {
         markdown.push_str(&match row {
             Some(r) => format!(
-                "  {level}: {} (overhead {:.2} ms, {:.3}% misclassified)\n",
+                "  {level}: {} (overhead {:.2} ms, {})\n",
                 r.label(),
                 r.overhead_ms,
-                r.error() * 100.0
+                r.error_text()
             ),
             None => format!("  {level}: no configuration meets the rule\n"),
         });

@@ -93,9 +93,11 @@ pub fn cheapest_or_error(rows: &[BenchRow], target: f64) -> Result<&BenchRow> {
     bench::cheapest_under(rows, target).ok_or_else(|| {
         Error::Invalid(format!(
             "--target-error {target}: no configuration reached an error of {:.3}% or less \
-             (best: {:.3}% of receiver pixels misclassified)",
+             (best: {})",
             target * 100.0,
-            rows.iter().map(|r| r.error()).fold(f64::INFINITY, f64::min) * 100.0
+            rows.iter()
+                .min_by(|a, b| a.error().total_cmp(&b.error()))
+                .map_or("no configuration ran".to_string(), |r| r.error_text())
         ))
     })
 }
@@ -133,16 +135,12 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
         }
     };
     format!(
-        "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {:.3}% {})\n  as \
+        "cheapest configuration with error <= {:.3}%: {} ({:.2} ms a frame, {})\n  as \
          flags: {flags}",
         target * 100.0,
         r.label(),
         r.wall_ms.median,
-        r.error() * 100.0,
-        match r.soft.rays {
-            0 => "misclassified",
-            _ => "MAE against the area light",
-        },
+        r.error_text(),
     )
 }
 

@@ -520,6 +520,31 @@ impl BenchRow {
         }
     }
 
+    /// [`BenchRow::error`] as messages say it: "0.014% misclassified", or for a light with
+    /// a size "MAE 0.0050 against the area light".
+    pub fn error_text(&self) -> String {
+        match self.soft.rays {
+            0 => format!("{:.3}% misclassified", self.error() * 100.0),
+            _ => format!("MAE {:.4} against the area light", self.error()),
+        }
+    }
+
+    /// How many times less error `self` has than `other`, as messages say it.
+    fn fewer_errors_than(&self, other: &BenchRow) -> String {
+        match (self.error() > 0.0, self.soft.rays) {
+            (true, 0) => format!(
+                "{:.1}x fewer misclassified receivers",
+                other.error() / self.error()
+            ),
+            (true, _) => format!(
+                "{:.1}x lower MAE against the area light",
+                other.error() / self.error()
+            ),
+            (false, 0) => "no misclassified receiver at all".to_string(),
+            (false, _) => "no error against the area light at all".to_string(),
+        }
+    }
+
     /// What [`BenchRow::error`] is, for axes and messages.
     pub fn error_name(&self) -> &'static str {
         match self.soft.rays {
@@ -1001,35 +1026,30 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
         let t = a.tutorial;
         let name = t.config.tutorial.unwrap_or_default();
         out.push_str(&format!(
-            "against {name} ({}: overhead {:.2} ms, {:.3}% misclassified):\n",
+            "against {name} ({}: overhead {:.2} ms, {}):\n",
             t.label(),
             t.overhead_ms,
-            t.error() * 100.0
+            t.error_text()
         ));
         match a.at_equal_error {
             Some(r) => out.push_str(&format!(
-                "  at equal error or better: {} with overhead {:.2} ms ({:.3}% misclassified): \
+                "  at equal error or better: {} with overhead {:.2} ms ({}): \
                  {:.2} of the tutorial's overhead\n",
                 r.label(),
                 r.overhead_ms,
-                r.error() * 100.0,
+                r.error_text(),
                 r.overhead_ms / t.overhead_ms
             )),
             None => out.push_str("  at equal error or better: no other configuration\n"),
         }
         match a.at_equal_overhead {
-            Some(r) => {
-                out.push_str(&format!(
-                "  at equal overhead or less: {} misclassifies {:.3}% (overhead {:.2} ms): {}\n",
+            Some(r) => out.push_str(&format!(
+                "  at equal overhead or less: {}, {} (overhead {:.2} ms): {}\n",
                 r.label(),
-                r.error() * 100.0,
+                r.error_text(),
                 r.overhead_ms,
-                match r.error() > 0.0 {
-                    true => format!("{:.1}x fewer misclassified receivers", t.error() / r.error()),
-                    false => "no misclassified receiver at all".to_string(),
-                }
-            ))
-            }
+                r.fewer_errors_than(t)
+            )),
             None => out.push_str("  at equal overhead or less: no other configuration\n"),
         }
     }
@@ -1119,5 +1139,35 @@ mod tests {
         assert_eq!(low.1.unwrap().overhead_ms, 0.5);
         assert_eq!(medium.1.unwrap().overhead_ms, 0.8);
         assert_eq!(high.1.unwrap().overhead_ms, 1.9);
+    }
+
+    #[test]
+    fn a_sized_lights_comparison_speaks_of_its_area_mae_not_of_misclassified_pixels() {
+        let soft = |tutorial, wall, overhead, mae| {
+            let mut r = row(tutorial, wall, overhead, 0.5);
+            r.soft.rays = 64;
+            r.soft.mae = mae;
+            r
+        };
+        let rows = vec![
+            soft(Some("learnopengl"), 7.0, 2.0, 0.010),
+            soft(None, 6.0, 0.8, 0.009),
+            soft(None, 6.9, 1.9, 0.0025),
+        ];
+        assert_eq!(rows[1].error_text(), "MAE 0.0090 against the area light");
+        let text = against_tutorials_text(&rows);
+        assert!(
+            text.contains("(MAE 0.0090 against the area light)"),
+            "{text}"
+        );
+        assert!(
+            text.contains("4.0x lower MAE against the area light"),
+            "{text}"
+        );
+        assert!(!text.contains("misclassif"), "{text}");
+        assert_eq!(
+            row(None, 1.0, 1.0, 0.00014).error_text(),
+            "0.014% misclassified"
+        );
     }
 }
