@@ -124,9 +124,10 @@ pub fn fit_ortho_casters(
             .iter()
             .any(|q| n.dot(*q - p) < -eps)
     };
-    // A caster shadows only points along its rays, below it: the light-space box from its
-    // top down to the deepest receiver under it. If the camera cannot see any of that box,
-    // neither the caster nor its shadow is in view and the map need not cover it.
+    // A caster shadows only points along its rays, below it: inside the hull of its box and
+    // that box slid down the rays to the deepest receiver under it. If the view frustum
+    // misses that hull, neither the caster nor its shadow is in view and the map need not
+    // cover it.
     let frustum = frustum_corners(scene, reach);
     let frustum_edges = [
         frustum[1] - frustum[0],
