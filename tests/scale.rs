@@ -266,3 +266,81 @@ fn target_error_out_of_reach_is_refused_with_the_best_reached() {
     assert!(!out.exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn target_error_keeps_to_the_settings_given_as_flags() {
+    let dir = tmp("target-flags");
+    std::fs::create_dir_all(&dir).unwrap();
+    // With --technique maps the volumes (exact, so the answer for a tight error) are not
+    // searched: the choice is a map, drawn with the flag still holding.
+    let out = dir.join("maps.png");
+    let run = common::bin()
+        .args([
+            "render",
+            "--scene",
+            "learnopengl",
+            "--size",
+            "160x90",
+            "--target-error",
+            "0.01",
+            "--technique",
+            "maps",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{stdout}");
+    // Every configuration of the quick sweep but the volumes row was timed.
+    let scene = shadowmap::Scene::load("learnopengl").unwrap();
+    let all = shadowmap::bench::sweep(&scene.shadow, true, 16384, scene.light());
+    let volumes = all
+        .iter()
+        .filter(|c| c.family == shadowmap::bench::Family::Volumes)
+        .count();
+    assert_eq!(volumes, 1);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains(&format!(
+            "timing and scoring {} configurations",
+            all.len() - volumes
+        )),
+        "{stderr}"
+    );
+    let flags = stdout
+        .lines()
+        .find(|l| l.trim_start().starts_with("as flags:"))
+        .unwrap_or_else(|| panic!("no flags in {stdout}"));
+    assert!(flags.contains("--technique maps"), "{flags}");
+    assert!(out.exists());
+    // Flags no configuration of the sweep has: said, and nothing written.
+    let out = dir.join("none.png");
+    let run = common::bin()
+        .args([
+            "render",
+            "--scene",
+            "learnopengl",
+            "--size",
+            "160x90",
+            "--target-error",
+            "0.01",
+            "--map-size",
+            "300",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success());
+    assert!(
+        stderr.contains(
+            "error: --target-error 0.01: no configuration of the quick sweep has the settings \
+             given as flags (map_size): give fewer of them, or leave out --target-error"
+        ),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -48,7 +48,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         // Chosen headless before the window opens; then the demo runs as if the chosen
         // configuration had been given as flags (a step key and back keeps it).
         let size = args.scene.size(&scene);
-        let chosen = choose_for_target(&scene, &settings, size, target)?;
+        let chosen = choose_for_target(&scene, &settings, size, target, &args.settings.patch)?;
         let mut args = args.clone();
         args.settings.patch = chosen.or(&args.settings.patch);
         args.target_error = None;

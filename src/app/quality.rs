@@ -147,11 +147,16 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
 /// `--target-error E` for render and demo: the bench's quick sweep over the scene's view
 /// at `size`, scored against the exact reference (10 timed frames a block), and the
 /// cheapest configuration meeting `target`, as a patch of flags. Prints what it chose.
+///
+/// `given`: the settings given as flags. The search keeps to the configurations that have
+/// them (`--technique maps` leaves out the volumes, `--map-size 1024` the other sizes), so
+/// what is drawn is what was measured and the flags still hold.
 pub fn choose_for_target(
     scene: &Scene,
     base: &ShadowSettings,
     size: (u32, u32),
     target: f64,
+    given: &ShadowPatch,
 ) -> Result<ShadowPatch> {
     check_first_light(scene)?;
     let mut scene = scene.clone();
@@ -163,7 +168,11 @@ pub fn choose_for_target(
     scene.size = [size.0, size.1];
     let context = HeadlessContext::new()?;
     let gl = context.gl();
-    let configs = bench::sweep(base, true, gl_limits(gl).max_texture_size, scene.light());
+    let configs = keeping_flags(
+        bench::sweep(base, true, gl_limits(gl).max_texture_size, scene.light()),
+        given,
+        target,
+    )?;
     let opts = BenchOptions {
         width: size.0,
         height: size.1,
@@ -203,9 +212,71 @@ pub fn choose_for_target(
     Ok(patch)
 }
 
+/// The configurations whose settings the flags in `given` leave unchanged; an error naming
+/// the flags when none does.
+fn keeping_flags(
+    configs: Vec<BenchConfig>,
+    given: &ShadowPatch,
+    target: f64,
+) -> Result<Vec<BenchConfig>> {
+    let keeps = |c: &BenchConfig| {
+        let mut s = c.settings;
+        given.apply_to(&mut s);
+        s == c.settings
+    };
+    let kept: Vec<BenchConfig> = configs.into_iter().filter(keeps).collect();
+    if kept.is_empty() {
+        return Err(Error::Invalid(format!(
+            "--target-error {target}: no configuration of the quick sweep has the settings \
+             given as flags ({}): give fewer of them, or leave out --target-error",
+            given.given().join(", ")
+        )));
+    }
+    Ok(kept)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_search_keeps_to_the_configurations_the_flags_allow() {
+        let scene = Scene::load("learnopengl").unwrap();
+        let base = scene.shadow;
+        let all = || bench::sweep(&base, true, 16384, scene.light());
+        let maps = ShadowPatch {
+            technique: Some(shadowmap::settings::ShadowTechnique::Maps),
+            ..ShadowPatch::default()
+        };
+        let kept = keeping_flags(all(), &maps, 0.01).unwrap();
+        assert!(kept.len() < all().len());
+        assert!(kept.iter().all(|c| c.family != Family::Volumes));
+        let size = ShadowPatch {
+            map_size: Some(shadowmap::settings::MapSize::square(1024)),
+            ..ShadowPatch::default()
+        };
+        let kept = keeping_flags(all(), &size, 0.01).unwrap();
+        assert!(kept
+            .iter()
+            .all(|c| c.settings.map_size == shadowmap::settings::MapSize::square(1024)));
+        let odd = ShadowPatch {
+            map_size: Some(shadowmap::settings::MapSize::square(300)),
+            ..ShadowPatch::default()
+        };
+        let e = keeping_flags(all(), &odd, 0.01).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "--target-error 0.01: no configuration of the quick sweep has the settings given \
+             as flags (map_size): give fewer of them, or leave out --target-error"
+        );
+        // No flags: every configuration.
+        assert_eq!(
+            keeping_flags(all(), &ShadowPatch::default(), 0.01)
+                .unwrap()
+                .len(),
+            all().len()
+        );
+    }
 
     #[test]
     fn every_preset_is_valid_and_they_differ() {

@@ -26,7 +26,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     args.settings.check_values(&scene, &settings)?;
     check_outputs(args)?;
     if let Some(target) = args.target_error {
-        let chosen = choose_for_target(&scene, &settings, (width, height), target)?;
+        let chosen = choose_for_target(
+            &scene,
+            &settings,
+            (width, height),
+            target,
+            &args.settings.patch,
+        )?;
         chosen.apply_to(&mut settings);
     }
     if let Some(path) = &args.depth_out {
