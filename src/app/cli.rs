@@ -115,8 +115,8 @@ pub struct DemoArgs {
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
-    /// and its measured error and time. Its map size, filter, bias, culling, depth format
-    /// and cascades replace the flags'.
+    /// and its measured error and time. Settings given as flags keep the search to the
+    /// configurations that have them (`--technique maps`: no volumes).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
     pub target_error: Option<f64>,
     /// Close the window after this many frames (for scripted runs).
@@ -200,8 +200,8 @@ pub struct RenderArgs {
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
-    /// and its measured error and time. Its map size, filter, bias, culling, depth format
-    /// and cascades replace the flags'.
+    /// and its measured error and time. Settings given as flags keep the search to the
+    /// configurations that have them (`--technique maps`: no volumes).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
     pub target_error: Option<f64>,
     /// The rendered image.
