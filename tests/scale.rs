@@ -233,27 +233,39 @@ fn target_error_picks_a_configuration_that_meets_it() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `shadowmap render --scene SCENE --size 160x90 --target-error E [extra] --out OUT`, run to
+/// its end whatever it says.
+fn target_error_run(
+    scene: &str,
+    target: &str,
+    extra: &[&str],
+    out: &std::path::Path,
+) -> std::process::Output {
+    common::bin()
+        .args([
+            "render",
+            "--scene",
+            scene,
+            "--size",
+            "160x90",
+            "--target-error",
+            target,
+        ])
+        .args(extra)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 #[test]
 fn target_error_out_of_reach_is_refused_with_the_best_reached() {
     let dir = tmp("target-none");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("none.png");
-    let run = common::bin()
-        // The large scene's best quick configuration (its shadow volumes) misclassifies
-        // about 0.013% at 160 x 90; no configuration reaches 0.001%.
-        .args([
-            "render",
-            "--scene",
-            "large",
-            "--size",
-            "160x90",
-            "--target-error",
-            "0.00001",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    // The large scene's best quick configuration (its shadow volumes) misclassifies
+    // about 0.013% at 160 x 90; no configuration reaches 0.001%.
+    let run = target_error_run("large", "0.00001", &[], &out);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success());
     assert!(
@@ -274,22 +286,7 @@ fn target_error_keeps_to_the_settings_given_as_flags() {
     // With --technique maps the volumes (exact, so the answer for a tight error) are not
     // searched: the choice is a map, drawn with the flag still holding.
     let out = dir.join("maps.png");
-    let run = common::bin()
-        .args([
-            "render",
-            "--scene",
-            "learnopengl",
-            "--size",
-            "160x90",
-            "--target-error",
-            "0.01",
-            "--technique",
-            "maps",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let run = target_error_run("learnopengl", "0.01", &["--technique", "maps"], &out);
     let stdout = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{stdout}");
     // Every configuration of the quick sweep but the volumes row was timed.
@@ -316,22 +313,7 @@ fn target_error_keeps_to_the_settings_given_as_flags() {
     assert!(out.exists());
     // Flags no configuration of the sweep has: said, and nothing written.
     let out = dir.join("none.png");
-    let run = common::bin()
-        .args([
-            "render",
-            "--scene",
-            "learnopengl",
-            "--size",
-            "160x90",
-            "--target-error",
-            "0.01",
-            "--map-size",
-            "300",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let run = target_error_run("learnopengl", "0.01", &["--map-size", "300"], &out);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success());
     assert!(
