@@ -362,8 +362,8 @@ impl Renderer {
         plan: shadow_mask::Plan,
         samplers: &mut Samplers,
     ) -> Result<()> {
-        if plan == shadow_mask::Plan::Write {
-            self.write_mask(scene, target.size(), samplers)?;
+        if let shadow_mask::Plan::Write(key) = plan {
+            self.write_mask(scene, target.size(), key, samplers)?;
         }
         let mode = match plan {
             shadow_mask::Plan::Test => MaskMode::Off,
@@ -611,16 +611,15 @@ impl Renderer {
     }
 
     /// Draws every pixel's shadow tests into the mask (the scene pass with
-    /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size).
+    /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size), as the
+    /// tests of the frame `key`.
     fn write_mask(
         &mut self,
         scene: &Scene,
         (width, height): (u32, u32),
+        key: u64,
         samplers: &mut Samplers,
     ) -> Result<()> {
-        let Some(key) = self.mask_key(scene, (width, height))? else {
-            return Ok(());
-        };
         self.use_program(scene, Outputs::default(), MaskMode::Write)?;
         let channels = 1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0);
         self.mask

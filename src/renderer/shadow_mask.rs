@@ -21,8 +21,9 @@ pub enum Plan {
     /// Test every light per pixel: something changed since the last frame, or the frame
     /// cannot be cached.
     Test,
-    /// The frame is as the last one: write the tests into the mask, then read them.
-    Write,
+    /// The frame (this key) is as the last one: write the tests into the mask, then read
+    /// them.
+    Write(u64),
     /// The mask holds this frame's tests: read them.
     Read,
 }
@@ -56,7 +57,7 @@ impl ShadowMask {
         match key {
             None => Plan::Test,
             Some(k) if self.holds == Some(k) => Plan::Read,
-            Some(k) if previous == Some(k) => Plan::Write,
+            Some(k) if previous == Some(k) => Plan::Write(k),
             Some(_) => Plan::Test,
         }
     }
