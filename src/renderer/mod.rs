@@ -369,9 +369,6 @@ impl Renderer {
             shadow_mask::Plan::Test => MaskMode::Off,
             _ => MaskMode::Read,
         };
-        if mode == MaskMode::Read {
-            self.mask.uses.read += 1;
-        }
         self.use_program(scene, target.outputs(), mode)?;
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         let inputs = self.scene_inputs(mode);

@@ -67,7 +67,12 @@ pub fn draw(
     // Each light's map and sampler on its unit, for the pass; the samplers unbind when
     // `bound` drops.
     let mut bound: Vec<BoundSampler> = Vec::with_capacity(inputs.shadows.len());
-    for (i, (shadow, light)) in inputs.shadows.iter().zip(&scene.lights).enumerate() {
+    // A program reading the mask has no test: nothing to bind for the maps.
+    let tested = match inputs.mask {
+        Some(_) => &[][..],
+        None => inputs.shadows,
+    };
+    for (i, (shadow, light)) in tested.iter().zip(&scene.lights).enumerate() {
         let Some(t) = shadow else { continue };
         let settings = light.settings(inputs.settings);
         t.set_scene_uniforms(p, scene, &settings);

@@ -54,12 +54,16 @@ impl ShadowMask {
     /// changes every frame never pays for the write.
     pub fn plan(&mut self, key: Option<u64>) -> Plan {
         let previous = std::mem::replace(&mut self.last, key);
-        match key {
+        let plan = match key {
             None => Plan::Test,
             Some(k) if self.holds == Some(k) => Plan::Read,
             Some(k) if previous == Some(k) => Plan::Write(k),
             Some(_) => Plan::Test,
+        };
+        if plan != Plan::Test {
+            self.uses.read += 1;
         }
+        plan
     }
 
     /// The mask's target at `width` x `height` with a channel for each of the first
@@ -118,10 +122,7 @@ pub fn frame_key(
     size.hash(&mut h);
     program.hash(&mut h);
     for item in &scene.items {
-        item.mesh.hash(&mut h);
-        for v in [item.position, item.rotation, item.scale] {
-            v.to_array().map(f32::to_bits).hash(&mut h);
-        }
+        crate::shadows::cache::hash_placement(item, &mut h);
     }
     Some(h.finish())
 }

@@ -39,16 +39,21 @@ pub fn content_key(
         if !item.casts_shadows || !seen {
             continue;
         }
-        item.mesh.hash(&mut h);
-        for v in [item.position, item.rotation, item.scale] {
-            v.to_array().map(f32::to_bits).hash(&mut h);
-        }
+        hash_placement(item, &mut h);
     }
     if follows_camera {
         format!("{:?}", scene.fitting_camera()).hash(&mut h);
         scene.size.hash(&mut h);
     }
     h.finish()
+}
+
+/// Hashes what an item is and where: its mesh, position, rotation and scale, bit for bit.
+pub fn hash_placement(item: &crate::scene::GameItem, h: &mut impl Hasher) {
+    item.mesh.hash(h);
+    for v in [item.position, item.rotation, item.scale] {
+        v.to_array().map(f32::to_bits).hash(h);
+    }
 }
 
 /// Whether `light`'s map of kind `kind` under `settings` follows the camera (its box is fitted to what the
