@@ -211,13 +211,13 @@ pub fn check_output_dir(flag: &str, dir: &Path) -> Result<()> {
 /// Creates the output folder (checked earlier by [`check_output_dir`]).
 /// Creates `dir` and writes `files` (a name in it, what the file is, its bytes) there as
 /// one batch ([`write_files`]: all of them or none).
-pub fn write_into(dir: &Path, files: &[(&str, &str, &[u8])]) -> Result<()> {
+pub fn write_into<B: AsRef<[u8]>>(dir: &Path, files: &[(&str, &str, B)]) -> Result<()> {
     create_output_dir(dir)?;
     let paths: Vec<PathBuf> = files.iter().map(|(name, ..)| dir.join(name)).collect();
     let batch: Vec<(&Path, &str, &[u8])> = files
         .iter()
         .zip(&paths)
-        .map(|((_, what, bytes), path)| (path.as_path(), *what, *bytes))
+        .map(|((_, what, bytes), path)| (path.as_path(), *what, bytes.as_ref()))
         .collect();
     write_files(&batch)
 }

@@ -124,19 +124,15 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         scene.name
     );
     let files = [
-        ("bench.csv", bench::to_csv(&rows).into_bytes(), "the table"),
-        ("bench.md", markdown.clone().into_bytes(), "the table"),
+        ("bench.csv", "the table", bench::to_csv(&rows).into_bytes()),
+        ("bench.md", "the table", markdown.clone().into_bytes()),
         (
             "pareto.png",
-            super::plot::pareto_png(&title, &rows)?,
             "the plot",
+            super::plot::pareto_png(&title, &rows)?,
         ),
     ];
-    let batch: Vec<(&str, &str, &[u8])> = files
-        .iter()
-        .map(|(name, bytes, what)| (*name, *what, bytes.as_slice()))
-        .collect();
-    write_into(dir, &batch)?;
+    write_into(dir, &files)?;
     println!("{markdown}");
     println!(
         "wrote {}/bench.csv, bench.md, pareto.png in {:.1} s",
@@ -186,23 +182,19 @@ fn run_scale(args: &BenchArgs) -> Result<()> {
     let fits = scale::fits(&rows);
     let markdown = scale::fits_to_markdown(&fits);
     let files = [
-        ("scale.csv", scale::to_csv(&rows).into_bytes(), "the table"),
+        ("scale.csv", "the table", scale::to_csv(&rows).into_bytes()),
         (
             "scale-fit.csv",
-            scale::fits_to_csv(&fits).into_bytes(),
             "the exponents",
+            scale::fits_to_csv(&fits).into_bytes(),
         ),
         (
             "scale.png",
-            super::plot::scale_png(&rows, &fits)?,
             "the plot",
+            super::plot::scale_png(&rows, &fits)?,
         ),
     ];
-    let batch: Vec<(&str, &str, &[u8])> = files
-        .iter()
-        .map(|(name, bytes, what)| (*name, *what, bytes.as_slice()))
-        .collect();
-    write_into(dir, &batch)?;
+    write_into(dir, &files)?;
     println!("{markdown}");
     println!(
         "wrote {}/scale.csv, scale-fit.csv, scale.png in {:.1} s",
