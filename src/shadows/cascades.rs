@@ -383,7 +383,7 @@ impl Technique for Cascades {
         let spec = CascadeSpec::of(pass.settings, l.ortho.far - l.ortho.near);
         self.cascades = fit_cascades(scene, boxes, l.direction, &spec);
         let program = pass.programs.flat(pass.gl)?;
-        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
         for (layer, c) in self.cascades.iter().enumerate() {
             self.array.bind_layer(layer as u32);
             state::clear_depth(pass.gl);
@@ -396,7 +396,7 @@ impl Technique for Cascades {
             pass.casters.drawn += draw_casters(
                 pass.meshes,
                 scene,
-                program,
+                &program,
                 "modelLightViewMatrix",
                 c.fitted.view,
                 keep,

@@ -2,6 +2,8 @@
 //! draws the shadow casters ("Shadows": the depth pass draws every game item with the
 //! light's matrices).
 
+use std::rc::Rc;
+
 use glam::{DMat4, DVec3};
 
 use crate::engine::{DepthState, Gl, Mesh, ShaderProgram};
@@ -15,24 +17,25 @@ use super::ShadowView;
 /// The depth programs, each compiled when a technique first needs it.
 #[derive(Default)]
 pub struct DepthPrograms {
-    flat: Option<ShaderProgram>,
+    /// Shared, so a pass can hold it while it hands its [`super::DepthPass`] on.
+    flat: Option<Rc<ShaderProgram>>,
     /// A point light's program and whether it is the layered one.
     point: Option<(ShaderProgram, PointPass)>,
 }
 
 impl DepthPrograms {
     /// The book's depth shaders (depth.vert / depth.frag): 2D maps and cascades.
-    pub fn flat(&mut self, gl: &Gl) -> Result<&ShaderProgram> {
+    pub fn flat(&mut self, gl: &Gl) -> Result<Rc<ShaderProgram>> {
         if self.flat.is_none() {
-            self.flat = Some(ShaderProgram::new(
+            self.flat = Some(Rc::new(ShaderProgram::new(
                 gl,
                 &shaders::depth_vert(),
                 &shaders::depth_frag(),
                 &[],
-            )?);
+            )?));
         }
         match &self.flat {
-            Some(p) => Ok(p),
+            Some(p) => Ok(Rc::clone(p)),
             None => Err(crate::Error::Invalid("the depth program is missing".into())),
         }
     }

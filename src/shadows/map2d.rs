@@ -89,17 +89,15 @@ impl Technique for Map2d {
         }
         let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         let program = pass.programs.flat(pass.gl)?;
-        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
         self.map.bind_for_writing();
         state::clear_depth(pass.gl);
         draw_map_casters(
-            pass.meshes,
-            pass.boxes,
-            pass.casters,
+            pass,
             scene,
             index,
             &view,
-            program,
+            &program,
             fitted_casters.as_deref(),
         );
         Ok(view)
@@ -144,11 +142,8 @@ impl Technique for Map2d {
 /// uniforms), seen through `view`, and counts them: only casters that can land in the map,
 /// the rest would be clipped anyway, and of those only the ones in `only` when given (the
 /// casters a fitted box was fitted to).
-#[allow(clippy::too_many_arguments)]
 pub fn draw_map_casters(
-    meshes: &[crate::engine::Mesh],
-    boxes: &[(glam::DVec3, glam::DVec3)],
-    counts: &mut super::CasterCounts,
+    pass: &mut DepthPass,
     scene: &Scene,
     index: usize,
     view: &ShadowView,
@@ -157,19 +152,20 @@ pub fn draw_map_casters(
 ) {
     program.set_mat4("orthoProjectionMatrix", &view.projection);
     let light = &scene.lights[index];
+    let boxes = pass.boxes;
     let keep = |k: usize| {
         only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
     };
     let drawn = draw_casters(
-        meshes,
+        pass.meshes,
         scene,
         program,
         "modelLightViewMatrix",
         view.view64,
         keep,
     );
-    counts.drawn += drawn as u64;
-    counts.total += casters(scene);
+    pass.casters.drawn += drawn as u64;
+    pass.casters.total += casters(scene);
 }
 
 /// The light-space transform of a 2D map drawn through `view` (the chapter's map and a

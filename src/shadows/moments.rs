@@ -274,16 +274,7 @@ impl Technique for Moments {
         if let Some((_, program)) = &self.depth {
             let _state = DepthPassGuard::begin(&gl, depth_state(settings), program);
             self.map.begin_depth_pass(far_moments(settings));
-            draw_map_casters(
-                pass.meshes,
-                pass.boxes,
-                pass.casters,
-                scene,
-                index,
-                &view,
-                program,
-                None,
-            );
+            draw_map_casters(pass, scene, index, &view, program, None);
         }
         if settings.blur != Blur::None {
             self.prepare_blur(&gl, settings.blur)?;
