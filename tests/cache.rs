@@ -3,17 +3,45 @@
 
 mod common;
 
-use shadowmap::engine::Outputs;
+use shadowmap::engine::{Outputs, RenderTarget};
 use shadowmap::frame::render_frames;
+use shadowmap::renderer::DepthPasses;
 use shadowmap::settings::ShadowSettings;
-use shadowmap::Scene;
+use shadowmap::{Renderer, Scene, Target};
 
 const FRAMES: u32 = 6;
 
+const OUTPUTS: Outputs = Outputs {
+    visibility: true,
+    gbuffer: false,
+};
+
 /// The last of `FRAMES` animated frames with the cache on or off, and the passes drawn.
-fn last_frame(name: &str, cache: bool, extra: impl Fn(&mut ShadowSettings)) -> (Vec<u8>, u64, u64) {
+fn last_frame(
+    name: &str,
+    cache: bool,
+    extra: impl Fn(&mut ShadowSettings),
+) -> (Vec<u8>, DepthPasses) {
     let (bytes, passes, _) = last_frame_of(Scene::load(name).unwrap(), cache, extra);
-    (bytes, passes.drawn, passes.skipped)
+    (bytes, passes)
+}
+
+/// A frame's colour, its visibility (as bytes) and the first light's 2D map, if it has one
+/// (its depths' bits), as one run of bytes to compare.
+fn frame_bytes(colour: &[u8], visibility: &[Option<f32>], depth: Option<&[f32]>) -> Vec<u8> {
+    let mut bytes = colour.to_vec();
+    bytes.extend(
+        visibility
+            .iter()
+            .map(|v| v.map_or(0, |v| (v * 255.0) as u8)),
+    );
+    bytes.extend(
+        depth
+            .unwrap_or_default()
+            .iter()
+            .flat_map(|d| d.to_bits().to_ne_bytes()),
+    );
+    bytes
 }
 
 /// [`last_frame`] of a scene given, with the frames' use of the shadow mask.
@@ -33,28 +61,50 @@ fn last_frame_of(
         ..scene.shadow
     };
     extra(&mut s);
-    let outputs = Outputs {
-        visibility: true,
-        gbuffer: false,
-    };
-    let frame = render_frames(ctx.gl(), &mut scene, &s, 240, 160, FRAMES, outputs)
+    let frame = render_frames(ctx.gl(), &mut scene, &s, 240, 160, FRAMES, OUTPUTS)
         .unwrap_or_else(|e| panic!("{name}: {e}"));
-    let mut bytes = frame.colour.rgba.clone();
-    bytes.extend(
-        frame
-            .visibility
-            .unwrap()
-            .iter()
-            .map(|v| v.map_or(0, |v| (v * 255.0) as u8)),
+    let bytes = frame_bytes(
+        &frame.colour.rgba,
+        &frame.visibility.unwrap(),
+        frame.depth_map.as_ref().map(|(_, d)| d.as_slice()),
     );
     (bytes, frame.depth_passes, frame.mask_uses)
+}
+
+/// [`last_frame_of`] with `step` run on the scene before each frame after the first (given
+/// the frame's number) in place of the scene's own update: a light can move too.
+fn last_frame_stepped(
+    mut scene: Scene,
+    cache: bool,
+    step: impl Fn(&mut Scene, u32),
+) -> (Vec<u8>, DepthPasses) {
+    let ctx = common::context();
+    let s = ShadowSettings {
+        shadow_cache: cache,
+        ..scene.shadow
+    };
+    scene.size = [240, 160];
+    let mut renderer = Renderer::new(ctx.gl(), &scene, &s).unwrap();
+    let target = RenderTarget::new(ctx.gl(), 240, 160, OUTPUTS).unwrap();
+    for i in 0..FRAMES {
+        if i > 0 {
+            step(&mut scene, i);
+        }
+        renderer
+            .render(&scene, Target::Offscreen(&target))
+            .unwrap_or_else(|e| panic!("frame {i}: {e}"));
+    }
+    let depth = renderer.shadow_map().map(|m| m.read_depth());
+    let visibility = target.read_visibility().unwrap();
+    let bytes = frame_bytes(&target.read_colour(), &visibility, depth.as_deref());
+    (bytes, renderer.depth_passes())
 }
 
 #[test]
 fn a_cached_frame_equals_an_uncached_one_on_every_built_in_scene() {
     for name in Scene::builtin_names() {
-        let (cached, drawn, skipped) = last_frame(name, true, |_| {});
-        let (fresh, fresh_drawn, fresh_skipped) = last_frame(name, false, |_| {});
+        let (cached, passes) = last_frame(name, true, |_| {});
+        let (fresh, fresh_passes) = last_frame(name, false, |_| {});
         assert!(cached == fresh, "{name}: the cached frame differs");
         let lights = Scene::load(name)
             .unwrap()
@@ -63,12 +113,23 @@ fn a_cached_frame_equals_an_uncached_one_on_every_built_in_scene() {
             .filter(|l| l.casts_shadows())
             .count() as u64;
         assert_eq!(
-            (fresh_drawn, fresh_skipped),
-            (lights * u64::from(FRAMES), 0),
-            "{name}: without the cache every map is drawn every frame"
+            fresh_passes,
+            DepthPasses {
+                drawn: lights * u64::from(FRAMES),
+                ..DepthPasses::default()
+            },
+            "{name}: without the cache every map is drawn whole every frame"
         );
-        assert_eq!(drawn + skipped, lights * u64::from(FRAMES), "{name}");
-        assert!(drawn >= lights, "{name}: each map is drawn at least once");
+        let p = passes;
+        assert_eq!(
+            p.drawn + p.patched + p.skipped,
+            lights * u64::from(FRAMES),
+            "{name}"
+        );
+        assert!(
+            p.drawn >= lights,
+            "{name}: each map is drawn whole at least once"
+        );
     }
 }
 
@@ -148,11 +209,15 @@ fn a_still_frame_takes_its_shadow_tests_from_the_mask_and_equals_a_fresh_one() {
 #[test]
 fn only_maps_whose_light_sees_a_change_are_drawn_again() {
     // LearnOpenGL's scene does not move: its one map is drawn once.
-    let (_, drawn, skipped) = last_frame("learnopengl", true, |_| {});
-    assert_eq!((drawn, skipped), (1, u64::from(FRAMES) - 1));
-    // The DummyGame's cube turns: its map is drawn every frame.
-    let (_, drawn, skipped) = last_frame("dummy", true, |_| {});
-    assert_eq!((drawn, skipped), (u64::from(FRAMES), 0));
+    let (_, p) = last_frame("learnopengl", true, |_| {});
+    assert_eq!(
+        (p.drawn, p.patched, p.skipped),
+        (1, 0, u64::from(FRAMES) - 1)
+    );
+    // The DummyGame's cube turns: its map is drawn again every frame (patched where the
+    // cube is, see below).
+    let (_, p) = last_frame("dummy", true, |_| {});
+    assert_eq!((p.drawn + p.patched, p.skipped), (u64::from(FRAMES), 0));
     // A caster turning outside the light's box does not make it draw again: LearnOpenGL's
     // light with a spinning cube 50 units away, beyond its +-10 box.
     let ctx = common::context();
@@ -179,10 +244,10 @@ fn only_maps_whose_light_sees_a_change_are_drawn_again() {
     let c = renderer.caster_counts();
     assert_eq!((c.drawn, c.total), (4, 5), "{c:?}");
     // A box fitted to the view follows the camera, which stays put: drawn once.
-    let (_, drawn, _) = last_frame("learnopengl", true, |s| {
+    let (_, p) = last_frame("learnopengl", true, |s| {
         s.fit = shadowmap::settings::Fit::Scene
     });
-    assert_eq!(drawn, 1);
+    assert_eq!(p.drawn, 1);
 }
 
 #[test]
@@ -240,15 +305,100 @@ fn a_cached_moment_map_and_a_soft_filter_give_the_uncached_frame() {
     for filter in [Filter::Vsm, Filter::Msm, Filter::Pcss] {
         for name in ["learnopengl", "dummy"] {
             let set = |s: &mut ShadowSettings| s.filter = filter;
-            let (cached, drawn, skipped) = last_frame(name, true, set);
-            let (fresh, ..) = last_frame(name, false, set);
+            let (cached, p) = last_frame(name, true, set);
+            let (fresh, _) = last_frame(name, false, set);
             assert!(
                 cached == fresh,
                 "{name}, {filter:?}: the cached frame differs"
             );
             if name == "learnopengl" {
-                assert_eq!((drawn, skipped), (1, u64::from(FRAMES) - 1), "{filter:?}");
+                assert_eq!(
+                    (p.drawn, p.skipped),
+                    (1, u64::from(FRAMES) - 1),
+                    "{filter:?}"
+                );
+            }
+            if name == "dummy" {
+                // A moment map is blurred: drawn whole, never patched; PCSS reads a depth map.
+                let patched = match filter {
+                    Filter::Pcss => u64::from(FRAMES) - 1,
+                    _ => 0,
+                };
+                assert_eq!(p.patched, patched, "{filter:?}");
             }
         }
+    }
+}
+
+#[test]
+fn the_dummy_games_turning_cube_patches_its_map_and_equals_a_full_redraw() {
+    // Issue 16, movers redrawn: only the cube turns under the book's fixed box, so after the
+    // first frame its map is patched where the cube was and is; the frame and the map are
+    // the uncached ones, bit for bit.
+    let (cached, p) = last_frame("dummy", true, |_| {});
+    let (fresh, fresh_p) = last_frame("dummy", false, |_| {});
+    assert!(cached == fresh, "the patched frame or map differs");
+    assert_eq!((fresh_p.drawn, fresh_p.patched), (u64::from(FRAMES), 0));
+    assert_eq!(
+        (p.drawn, p.patched, p.skipped),
+        (1, u64::from(FRAMES) - 1, 0),
+        "{p:?}"
+    );
+    // The cube (1 x 1 in the 20 x 20 box of a 1024 map) and its turn: a small part of it.
+    let texels = 1024 * 1024;
+    assert!(
+        p.patched_texels > 0 && p.patched_texels < p.patched * texels / 50,
+        "{p:?}"
+    );
+}
+
+#[test]
+fn a_map_whose_light_moves_or_whose_mover_covers_most_of_it_is_drawn_whole() {
+    // The patch is not taken, and the frame is still the uncached one: the light turns
+    // every frame; the light turns once (the frames after it patch again); the cube grown
+    // to cover most of the map.
+    let dummy = || Scene::load("dummy").unwrap();
+    type Case = (&'static str, Scene, fn(&mut Scene, u32), (u64, u64));
+    let mut big = dummy();
+    big.items[0].scale = glam::Vec3::splat(8.0);
+    let frames = u64::from(FRAMES);
+    let cases: [Case; 3] = [
+        (
+            "the light turns each frame",
+            dummy(),
+            |s, i| {
+                s.update();
+                assert!(s.set_light_angle(45.0 + i as f32));
+            },
+            (frames, 0),
+        ),
+        (
+            "the light turns at frame 3",
+            dummy(),
+            |s, i| {
+                s.update();
+                if i == 3 {
+                    assert!(s.set_light_angle(50.0));
+                }
+            },
+            (2, frames - 2),
+        ),
+        (
+            "a cube over most of the map",
+            big,
+            |s, _| s.update(),
+            (frames, 0),
+        ),
+    ];
+    for (what, scene, step, (drawn, patched)) in cases {
+        let (cached, p) = last_frame_stepped(scene.clone(), true, step);
+        let (fresh, fresh_p) = last_frame_stepped(scene, false, step);
+        assert!(cached == fresh, "{what}: the cached frame or map differs");
+        assert_eq!(fresh_p.drawn, frames, "{what}");
+        assert_eq!(
+            (p.drawn, p.patched, p.skipped),
+            (drawn, patched, 0),
+            "{what}: {p:?}"
+        );
     }
 }

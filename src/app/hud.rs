@@ -51,7 +51,7 @@ pub struct HudInfo<'a> {
     pub azimuth: Option<Vec3>,
     /// The angle keys were pressed but the first light is a spot or point light.
     pub angle_keys_idle: bool,
-    /// Shadow-map passes drawn and reused and frames that read the shadow mask, so far
+    /// Shadow-map passes drawn, patched and reused and frames that read the shadow mask, so far
     /// (`shadow_cache`); `None`: not shown.
     pub reuse: Option<(DepthPasses, MaskUses)>,
 }
@@ -107,8 +107,8 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
     });
     if let Some((passes, mask)) = info.reuse {
         lines.push(format!(
-            "Shadow maps: {} drawn, {} reused",
-            passes.drawn, passes.skipped
+            "Shadow maps: {} drawn, {} patched, {} reused",
+            passes.drawn, passes.patched, passes.skipped
         ));
         lines.push(format!("Tests from the mask: {} frames", mask.read));
     }
@@ -328,7 +328,7 @@ mod tests {
     }
 
     #[test]
-    fn the_hud_counts_maps_drawn_and_reused_and_frames_read_from_the_mask() {
+    fn the_hud_counts_maps_drawn_patched_and_reused_and_frames_read_from_the_mask() {
         let scene = Scene::load("learnopengl").unwrap();
         let settings = scene.shadow;
         let mut i = info(&scene, &settings, None);
@@ -338,7 +338,9 @@ mod tests {
         i.reuse = Some((
             DepthPasses {
                 drawn: 1,
-                skipped: 59,
+                skipped: 20,
+                patched: 39,
+                patched_texels: 39 * 5000,
             },
             MaskUses {
                 written: 1,
@@ -348,7 +350,7 @@ mod tests {
         let lines = status_lines(&i);
         let at = lines
             .iter()
-            .position(|l| l == "Shadow maps: 1 drawn, 59 reused");
+            .position(|l| l == "Shadow maps: 1 drawn, 39 patched, 20 reused");
         assert!(at.is_some(), "{lines:?}");
         assert_eq!(
             lines.get(at.unwrap_or(0) + 1).map(String::as_str),

@@ -159,8 +159,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
         let p = frame.depth_passes;
         println!(
-            "shadow maps: {} depth passes drawn, {} reused (shadow_cache {}); casters drawn {} of {} offered",
+            "shadow maps: {} depth passes drawn, {} patched ({} texels redrawn), {} reused (shadow_cache {}); casters drawn {} of {} offered",
             p.drawn,
+            p.patched,
+            p.patched_texels,
             p.skipped,
             if settings.shadow_cache { "on" } else { "off" },
             frame.casters.drawn,

@@ -1,7 +1,7 @@
 //! Fixed-function state as values: a pass says what it needs, a guard applies it and puts
 //! the renderer's resting state back when it drops, on an error's early return too. The
-//! resting state between passes: depth test on, no culling, no polygon offset, the default
-//! framebuffer and no program bound.
+//! resting state between passes: depth test on, no culling, no polygon offset, no scissor
+//! test, the default framebuffer and no program bound.
 
 use glow::HasContext;
 
@@ -15,10 +15,12 @@ pub struct DepthState {
     pub cull: Cull,
     /// `glPolygonOffset(factor, units)`; [0, 0] leaves it off.
     pub polygon_offset: [f32; 2],
+    /// The only texels the pass may clear and draw (a patched map); `None`: all of them.
+    pub scissor: Option<PixelRect>,
 }
 
-/// A depth pass in progress: culling, polygon offset and its program applied; dropping it
-/// restores the resting state (and unbinds the shadow map's framebuffer).
+/// A depth pass in progress: culling, polygon offset, scissor and its program applied;
+/// dropping it restores the resting state (and unbinds the shadow map's framebuffer).
 pub struct DepthPassGuard {
     gl: Gl,
 }
@@ -43,6 +45,10 @@ impl DepthPassGuard {
                     gl.cull_face(glow::FRONT);
                 }
             }
+            if let Some(r) = state.scissor {
+                gl.enable(glow::SCISSOR_TEST);
+                gl.scissor(r.x as i32, r.y as i32, r.width as i32, r.height as i32);
+            }
         }
         program.bind();
         DepthPassGuard { gl: gl.clone() }
@@ -55,12 +61,14 @@ impl Drop for DepthPassGuard {
             self.gl.use_program(None);
             self.gl.disable(glow::CULL_FACE);
             self.gl.disable(glow::POLYGON_OFFSET_FILL);
+            self.gl.disable(glow::SCISSOR_TEST);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
 }
 
-/// Clears the bound framebuffer's depth (a shadow map, before its casters are drawn).
+/// Clears the bound framebuffer's depth (a shadow map, before its casters are drawn); only
+/// the scissor's texels while a [`DepthPassGuard`] with one lives.
 pub fn clear_depth(gl: &Gl) {
     unsafe { gl.clear(glow::DEPTH_BUFFER_BIT) };
 }

@@ -26,6 +26,7 @@ use crate::image_data::ImageData;
 use crate::scene::{Scene, MAX_LIGHTS};
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
+use crate::shadows::patch::{MapRecord, Patch};
 use crate::shadows::program::ProgramKey;
 use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
@@ -76,12 +77,29 @@ impl Target<'_> {
     }
 }
 
-/// How many lights' depth passes were drawn, and how many were skipped because the map
-/// still held what the light sees (`shadow_cache`).
+/// How many lights' depth passes were drawn whole, how many were skipped because the map
+/// still held what the light sees, and how many drew only the part moved casters changed
+/// (`shadow_cache`; [`crate::shadows::patch`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DepthPasses {
     pub drawn: u64,
     pub skipped: u64,
+    pub patched: u64,
+    /// The texels the patches cleared and drew again, summed.
+    pub patched_texels: u64,
+}
+
+impl DepthPasses {
+    /// Counts a pass drawn whole, or `patch`.
+    fn count(&mut self, patch: Option<&Patch>) {
+        match patch {
+            Some(p) => {
+                self.patched += 1;
+                self.patched_texels += p.region.texels();
+            }
+            None => self.drawn += 1,
+        }
+    }
 }
 
 /// The passes of a frame, for [`PassHooks`].
@@ -124,6 +142,8 @@ pub struct Renderer {
     views: Vec<Option<ShadowView>>,
     /// What each light's map holds ([`cache::content_key`]); `None`: draw it again.
     drawn: Vec<Option<u64>>,
+    /// What each patchable map was drawn with, to patch it when only casters move.
+    records: Vec<Option<MapRecord>>,
     /// Depth passes drawn and skipped (the map was still right) so far.
     passes: DepthPasses,
     /// Casters drawn into maps against casters offered, so far.
@@ -179,6 +199,7 @@ impl Renderer {
             volume_counted: Vec::new(),
             views: Vec::new(),
             drawn: Vec::new(),
+            records: Vec::new(),
             passes: DepthPasses::default(),
             casters: CasterCounts::default(),
             mask: shadow_mask::ShadowMask::default(),
@@ -235,7 +256,7 @@ impl Renderer {
         self.views.first()?.as_ref()
     }
 
-    /// Depth passes drawn and skipped so far ([`DepthPasses`]).
+    /// Depth passes drawn, skipped and patched so far ([`DepthPasses`]).
     pub fn depth_passes(&self) -> DepthPasses {
         self.passes
     }
@@ -297,19 +318,25 @@ impl Renderer {
                 *view = None;
                 continue;
             };
-            let key = settings.shadow_cache.then(|| {
-                cache::content_key(
-                    scene,
-                    &boxes,
-                    index,
-                    &settings,
-                    cache::follows_camera(light, technique.kind(), &settings),
-                )
-            });
+            let follows = cache::follows_camera(light, technique.kind(), &settings);
+            let key = settings
+                .shadow_cache
+                .then(|| cache::content_key(scene, &boxes, index, &settings, follows));
             if key.is_some() && key == self.drawn[index] && view.is_some() {
                 self.passes.skipped += 1;
                 continue;
             }
+            // A kept map of a fixed camera can be patched where only casters moved.
+            let record = (key.is_some() && technique.patches() && !follows).then(|| {
+                let camera = crate::shadows::light_camera(scene, index, &settings);
+                MapRecord::of(scene, &boxes, index, &settings, &camera)
+            });
+            let patch = match (&self.records[index], &record) {
+                (Some(old), Some(now)) if self.drawn[index].is_some() && view.is_some() => {
+                    old.patch_to(now)
+                }
+                _ => None,
+            };
             let mut pass = DepthPass {
                 gl: &self.gl,
                 meshes: &self.meshes,
@@ -320,9 +347,14 @@ impl Renderer {
             };
             // Forget the key first: a failed pass leaves the map to be drawn again.
             self.drawn[index] = None;
-            *view = Some(technique.render_depth(&mut pass, scene, index)?);
+            self.records[index] = None;
+            *view = Some(match &patch {
+                Some(p) => technique.render_depth_patch(&mut pass, scene, index, p)?,
+                None => technique.render_depth(&mut pass, scene, index)?,
+            });
             self.drawn[index] = key;
-            self.passes.drawn += 1;
+            self.records[index] = record;
+            self.passes.count(patch.as_ref());
         }
         self.hook(Pass::Depth, false);
         check_gl(&self.gl, "the depth-map pass")
@@ -512,6 +544,7 @@ impl Renderer {
         self.shadows.resize_with(kinds.len(), || None);
         self.views.resize(kinds.len(), None);
         self.drawn.resize(kinds.len(), None);
+        self.records.resize(kinds.len(), None);
         for (i, ((kind, shadow), light)) in kinds
             .into_iter()
             .zip(&mut self.shadows)
@@ -545,6 +578,7 @@ impl Renderer {
             if !fits {
                 *shadow = kind.create(&self.gl, &settings)?;
                 self.drawn[i] = None;
+                self.records[i] = None;
             }
         }
         Ok(())

@@ -27,10 +27,7 @@ pub fn content_key(
     let light = &scene.lights[index];
     let camera = (!follows_camera).then(|| super::light_camera(scene, index, settings));
     let mut h = DefaultHasher::new();
-    // Debug text hashes every field of the light and the settings, floats bit for bit
-    // (their `Debug` prints the shortest exact form), without a Hash impl on each type.
-    format!("{light:?}").hash(&mut h);
-    format!("{settings:?}").hash(&mut h);
+    hash_light(light, settings, &mut h);
     for (item, (lo, hi)) in scene.items.iter().zip(boxes) {
         let seen = match &camera {
             Some(c) => super::casters::may_land(light, c, *lo, *hi),
@@ -46,6 +43,14 @@ pub fn content_key(
         scene.size.hash(&mut h);
     }
     h.finish()
+}
+
+/// Hashes a light and its shadow settings, every field.
+pub fn hash_light(light: &Light, settings: &ShadowSettings, h: &mut impl Hasher) {
+    // Debug text hashes every field of the light and the settings, floats bit for bit
+    // (their `Debug` prints the shortest exact form), without a Hash impl on each type.
+    format!("{light:?}").hash(h);
+    format!("{settings:?}").hash(h);
 }
 
 /// Hashes what an item is and where: its mesh, position, rotation and scale, bit for bit.

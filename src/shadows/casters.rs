@@ -76,11 +76,12 @@ pub fn casters(scene: &Scene) -> u64 {
     scene.items.iter().filter(|i| i.casts_shadows).count() as u64
 }
 
-/// The depth pass' state under `settings`: culling and polygon offset.
+/// The depth pass' state under `settings`: culling and polygon offset, the whole map.
 pub fn depth_state(settings: &ShadowSettings) -> DepthState {
     DepthState {
         cull: settings.cull,
         polygon_offset: settings.polygon_offset,
+        scissor: None,
     }
 }
 

@@ -13,11 +13,12 @@
 
 use super::camera::{perspective_view, point_camera, Perspective};
 use super::casters::{casters, depth_state, draw_casters, may_land};
+use super::patch::Patch;
 use super::{
     fitted, DepthPass, DepthViewKind, LightGlsl, Rays, ShadowKind, ShadowView, SlotTransform,
     Technique,
 };
-use crate::engine::{state, DepthPassGuard, Gl, Sampling, ShadowMap, Texture};
+use crate::engine::{state, DepthPassGuard, DepthState, Gl, Sampling, ShadowMap, Texture};
 use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
@@ -62,6 +63,41 @@ impl Map2d {
             map: ShadowMap::new(gl, settings.map_size, settings.depth_format)?,
         })
     }
+
+    /// The depth pass: the whole map, or with `patch` its region alone (scissored: the
+    /// clear and the casters touch nothing else) with its casters.
+    fn draw(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+        patch: Option<&Patch>,
+    ) -> Result<ShadowView> {
+        // Scene files and flags are checked before any frame; this guards scenes built in
+        // code (the book's angles would turn the map away from the light without a word).
+        if let Light::Directional(l) = &scene.lights[index] {
+            if let Some(problem) = l.book_angles_problem(&format!("light {index}"), pass.settings) {
+                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
+            }
+        }
+        let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
+        // A fitted box's casters, of those the patch draws.
+        let only = match (fitted_casters, patch) {
+            (only, None) => only,
+            (None, Some(p)) => Some(p.casters.clone()),
+            (Some(f), Some(p)) => Some(f.into_iter().filter(|k| p.casters.contains(k)).collect()),
+        };
+        let program = pass.programs.flat(pass.gl)?;
+        let depth = DepthState {
+            scissor: patch.map(|p| p.region.pixels()),
+            ..depth_state(pass.settings)
+        };
+        let _state = DepthPassGuard::begin(pass.gl, depth, &program);
+        self.map.bind_for_writing();
+        state::clear_depth(pass.gl);
+        draw_map_casters(pass, scene, index, &view, &program, only.as_deref());
+        Ok(view)
+    }
 }
 
 impl Technique for Map2d {
@@ -80,27 +116,21 @@ impl Technique for Map2d {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView> {
-        // Scene files and flags are checked before any frame; this guards scenes built in
-        // code (the book's angles would turn the map away from the light without a word).
-        if let Light::Directional(l) = &scene.lights[index] {
-            if let Some(problem) = l.book_angles_problem(&format!("light {index}"), pass.settings) {
-                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
-            }
-        }
-        let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
-        let program = pass.programs.flat(pass.gl)?;
-        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
-        self.map.bind_for_writing();
-        state::clear_depth(pass.gl);
-        draw_map_casters(
-            pass,
-            scene,
-            index,
-            &view,
-            &program,
-            fitted_casters.as_deref(),
-        );
-        Ok(view)
+        self.draw(pass, scene, index, None)
+    }
+
+    fn patches(&self) -> bool {
+        true
+    }
+
+    fn render_depth_patch(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+        patch: &Patch,
+    ) -> Result<ShadowView> {
+        self.draw(pass, scene, index, Some(patch))
     }
 
     fn texture(&self) -> &Texture {

@@ -8,6 +8,7 @@
 //!   map, blurred, for directional and spot lights.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
 //!   [`map2d`]).
+//! - [`patch`]: the part of a cached 2D map that moved casters dirtied, drawn again alone.
 //! - [`volumes`]: the slides' stencil shadow volumes, beside the maps rather than behind
 //!   [`Technique`]: no storage, no depth pass; the renderer draws them per light into the
 //!   stencil buffer (`renderer::volume_pass`).
@@ -25,6 +26,7 @@ pub mod cube;
 pub mod fitted;
 pub mod map2d;
 pub mod moments;
+pub mod patch;
 pub mod program;
 pub mod slots;
 pub mod volumes;
@@ -242,6 +244,23 @@ pub trait Technique {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView>;
+    /// Whether [`Technique::render_depth_patch`] draws part of the map ([`patch`]: only
+    /// the chapter's 2D depth map).
+    fn patches(&self) -> bool {
+        false
+    }
+    /// [`Technique::render_depth`] into `patch.region` of the map alone, drawing only
+    /// `patch.casters` (the map keeps the rest). Without [`Technique::patches`]: the whole
+    /// pass.
+    fn render_depth_patch(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+        _patch: &patch::Patch,
+    ) -> Result<ShadowView> {
+        self.render_depth(pass, scene, index)
+    }
     /// The texture the scene pass samples: a depth texture, or a moment map's float colour
     /// texture (its `sampling` says how it is read).
     fn texture(&self) -> &Texture;

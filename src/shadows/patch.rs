@@ -1,0 +1,262 @@
+//! Patching a cached 2D depth map (issue 16, "the movers' light-space rectangles redrawn"):
+//! when the light's camera, the light, its settings, the map and the set of casters are the
+//! ones the map was drawn with and only some casters moved, only the texels those movers
+//! covered before and cover now are cleared and drawn again, by the casters that can reach
+//! them. A texel's depth is the nearest of the fragments drawn into it whatever their order,
+//! and the scissor only drops fragments, so the patched map is the full redraw's, bit for bit.
+//!
+//! Only the chapter's depth map ([`super::map2d`]) is patched. A box fitted to the scene
+//! and cascades follow the camera and the casters, so their view changes and they are drawn
+//! whole; a moment map is blurred (a texel depends on its neighbours) and a cube map has six
+//! faces: both are drawn whole too.
+
+use std::collections::hash_map::DefaultHasher;
+use std::hash::Hasher;
+
+use glam::{DMat4, DVec3};
+
+use super::ShadowView;
+use crate::engine::PixelRect;
+use crate::scene::Scene;
+use crate::settings::{MapSize, ShadowSettings};
+
+/// A rectangle of map texels, `x0..x1` by `y0..y1` (half-open) from the bottom-left corner,
+/// GL's way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TexelRect {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+impl TexelRect {
+    /// The whole of a `size` map.
+    pub fn whole(size: MapSize) -> TexelRect {
+        TexelRect {
+            x0: 0,
+            y0: 0,
+            x1: size.width,
+            y1: size.height,
+        }
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+
+    pub fn texels(self) -> u64 {
+        match self.is_empty() {
+            true => 0,
+            false => u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0),
+        }
+    }
+
+    /// The smallest rectangle holding both (an empty one adds nothing).
+    pub fn union(self, other: TexelRect) -> TexelRect {
+        match (self.is_empty(), other.is_empty()) {
+            (true, _) => other,
+            (_, true) => self,
+            _ => TexelRect {
+                x0: self.x0.min(other.x0),
+                y0: self.y0.min(other.y0),
+                x1: self.x1.max(other.x1),
+                y1: self.y1.max(other.y1),
+            },
+        }
+    }
+
+    /// Grown by `by` texels on every side, clipped to a `size` map (empty stays empty).
+    pub fn grown(self, by: u32, size: MapSize) -> TexelRect {
+        if self.is_empty() {
+            return self;
+        }
+        TexelRect {
+            x0: self.x0.saturating_sub(by),
+            y0: self.y0.saturating_sub(by),
+            x1: self.x1.saturating_add(by).min(size.width),
+            y1: self.y1.saturating_add(by).min(size.height),
+        }
+    }
+
+    /// Whether they share a texel.
+    pub fn overlaps(self, other: TexelRect) -> bool {
+        !self.is_empty()
+            && !other.is_empty()
+            && self.x0 < other.x1
+            && other.x0 < self.x1
+            && self.y0 < other.y1
+            && other.y0 < self.y1
+    }
+
+    pub fn pixels(self) -> PixelRect {
+        PixelRect {
+            x: self.x0,
+            y: self.y0,
+            width: self.x1.saturating_sub(self.x0),
+            height: self.y1.saturating_sub(self.y0),
+        }
+    }
+}
+
+/// The texels of a `size` map seen through `view` that the world box `lo..hi` can cover:
+/// its corners' light-space rectangle widened to whole texels, clipped to the map. A texel
+/// is drawn when its centre is inside a triangle, so this holds every texel the box's
+/// contents can write with half a texel to spare. A box reaching behind a perspective
+/// light's eye (or not a number) can cover the whole map.
+pub fn footprint(view: &ShadowView, size: MapSize, lo: DVec3, hi: DVec3) -> TexelRect {
+    let clip = view.projection.as_dmat4() * view.view64;
+    footprint_in(clip, size, lo, hi)
+}
+
+fn footprint_in(clip: DMat4, size: MapSize, lo: DVec3, hi: DVec3) -> TexelRect {
+    let (w, h) = (f64::from(size.width), f64::from(size.height));
+    let mut min = glam::DVec2::INFINITY;
+    let mut max = glam::DVec2::NEG_INFINITY;
+    for c in super::fitted::corners(lo, hi) {
+        let p = clip * c.extend(1.0);
+        if p.w <= 0.0 || !p.is_finite() {
+            return TexelRect::whole(size);
+        }
+        // Normalised device coordinates to the map's texels (the viewport is the map).
+        let t = glam::DVec2::new((p.x / p.w + 1.0) * 0.5 * w, (p.y / p.w + 1.0) * 0.5 * h);
+        min = min.min(t);
+        max = max.max(t);
+    }
+    // Clamped before the cast, so a box far off the map is an empty rectangle at its edge.
+    let texel = |v: f64, side: f64| v.clamp(0.0, side) as u32;
+    TexelRect {
+        x0: texel(min.x.floor(), w),
+        y0: texel(min.y.floor(), h),
+        x1: texel(max.x.ceil(), w),
+        y1: texel(max.y.ceil(), h),
+    }
+}
+
+/// Whether redrawing `region` of a `size` map is cheaper than drawing it whole: when it is
+/// at most half the map. A patch clears and fills at most half the texels and draws only
+/// the casters over the region (their vertices are the full pass' at most); past half the
+/// saving is under half the fill while the casters over the region are most of them, so
+/// the one full pass (no scissor) is as cheap and simpler.
+pub fn cheaper(region: TexelRect, size: MapSize) -> bool {
+    region.texels() * 2 <= size.texels()
+}
+
+/// A patch of a map: the texels to clear and draw again (the scissor) and the casters that
+/// can reach them (by item index).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Patch {
+    pub region: TexelRect,
+    pub casters: Vec<usize>,
+}
+
+/// A casting item as its map was drawn: where it was ([`super::cache::hash_placement`]) and
+/// the texels it could cover.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Placed {
+    placement: u64,
+    rect: TexelRect,
+}
+
+/// What a 2D map was drawn with, to tell what a later frame must draw again.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapRecord {
+    /// The light camera's matrices, bit for bit.
+    camera: Vec<u64>,
+    /// The light and its settings ([`super::cache::hash_light`]).
+    light: u64,
+    size: MapSize,
+    /// Per scene item: `None` for one that does not cast.
+    items: Vec<Option<Placed>>,
+}
+
+impl MapRecord {
+    /// Light `index`'s map of `scene` drawn through `view` under `settings`, `boxes` being
+    /// the items' world boxes ([`super::fitted::item_world_boxes`]).
+    pub fn of(
+        scene: &Scene,
+        boxes: &[(DVec3, DVec3)],
+        index: usize,
+        settings: &ShadowSettings,
+        view: &ShadowView,
+    ) -> MapRecord {
+        let mut h = DefaultHasher::new();
+        super::cache::hash_light(&scene.lights[index], settings, &mut h);
+        let size = settings.map_size;
+        let items = scene
+            .items
+            .iter()
+            .zip(boxes)
+            .map(|(item, (lo, hi))| {
+                item.casts_shadows.then(|| {
+                    let mut h = DefaultHasher::new();
+                    super::cache::hash_placement(item, &mut h);
+                    Placed {
+                        placement: h.finish(),
+                        rect: footprint(view, size, *lo, *hi),
+                    }
+                })
+            })
+            .collect();
+        MapRecord {
+            camera: camera_bits(view),
+            light: h.finish(),
+            size,
+            items,
+        }
+    }
+
+    /// What must be drawn to turn the map recorded by `self` into the one `now` records:
+    /// `None` to draw it whole (the camera, light, settings, map or casters differ, or the
+    /// patch is not [`cheaper`]). The region is the texels of every moved caster, where it
+    /// was and where it is, grown by one texel on every side for safety and clipped to the
+    /// map; the casters are those whose texels meet it.
+    pub fn patch_to(&self, now: &MapRecord) -> Option<Patch> {
+        let same_casters = self.items.len() == now.items.len()
+            && self
+                .items
+                .iter()
+                .zip(&now.items)
+                .all(|(a, b)| a.is_some() == b.is_some());
+        let same_view = self.camera == now.camera && self.light == now.light;
+        if !same_view || self.size != now.size || !same_casters {
+            return None;
+        }
+        let moved = self
+            .items
+            .iter()
+            .zip(&now.items)
+            .filter_map(|(a, b)| Some((a.as_ref()?, b.as_ref()?)))
+            .filter(|(a, b)| a.placement != b.placement);
+        let region = moved
+            .fold(TexelRect::default(), |r, (a, b)| {
+                r.union(a.rect).union(b.rect)
+            })
+            .grown(1, self.size);
+        if !cheaper(region, self.size) {
+            return None;
+        }
+        let casters = now
+            .items
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.is_some_and(|p| p.rect.overlaps(region)))
+            .map(|(k, _)| k)
+            .collect();
+        Some(Patch { region, casters })
+    }
+}
+
+/// A light camera's matrices as bits: equal only if every float is the same.
+fn camera_bits(view: &ShadowView) -> Vec<u64> {
+    let singles = [view.view, view.projection]
+        .into_iter()
+        .flat_map(|m| m.to_cols_array())
+        .map(|f| u64::from(f.to_bits()));
+    view.view64
+        .to_cols_array()
+        .into_iter()
+        .map(f64::to_bits)
+        .chain(singles)
+        .collect()
+}
