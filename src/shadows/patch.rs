@@ -260,3 +260,138 @@ fn camera_bits(view: &ShadowView) -> Vec<u64> {
         .chain(singles)
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{Mat4, Vec3};
+
+    const MAP: MapSize = MapSize::square(1024);
+
+    /// A light looking down -Z from the origin through `projection`.
+    fn view(projection: Mat4, perspective: bool) -> ShadowView {
+        ShadowView {
+            view: Mat4::IDENTITY,
+            view64: DMat4::IDENTITY,
+            projection,
+            perspective,
+            near: 1.0,
+            far: 20.0,
+            texel_world: 20.0 / 1024.0,
+            rays: super::super::Rays::Parallel { to_light: Vec3::Z },
+        }
+    }
+
+    fn ortho() -> ShadowView {
+        view(
+            Mat4::orthographic_rh_gl(-10.0, 10.0, -10.0, 10.0, -1.0, 20.0),
+            false,
+        )
+    }
+
+    fn rect(x0: u32, y0: u32, x1: u32, y1: u32) -> TexelRect {
+        TexelRect { x0, y0, x1, y1 }
+    }
+
+    #[test]
+    fn a_box_covers_the_whole_texels_its_light_space_rectangle_touches() {
+        // 20 units over 1024 texels: x from 0 to 1 is texels 512 to 563.2, so 512..564;
+        // y from -0.5 to 0.25 is 486.4 to 524.8, so 486..525.
+        let lo = DVec3::new(0.0, -0.5, -5.0);
+        let hi = DVec3::new(1.0, 0.25, -4.0);
+        assert_eq!(footprint(&ortho(), MAP, lo, hi), rect(512, 486, 564, 525));
+        // Clipped to the map at its edge, and empty off it.
+        let edge = footprint(
+            &ortho(),
+            MAP,
+            DVec3::new(9.5, 9.5, -5.0),
+            DVec3::splat(12.0),
+        );
+        assert_eq!(edge, rect(998, 998, 1024, 1024));
+        let off = footprint(
+            &ortho(),
+            MAP,
+            DVec3::new(11.0, 0.0, -5.0),
+            DVec3::splat(12.0),
+        );
+        assert!(off.is_empty() && off.texels() == 0, "{off:?}");
+        // Behind a perspective light's eye: the whole map.
+        let p = view(Mat4::perspective_rh_gl(1.5, 1.0, 1.0, 20.0), true);
+        let behind = footprint(&p, MAP, DVec3::new(-1.0, -1.0, -2.0), DVec3::splat(1.0));
+        assert_eq!(behind, TexelRect::whole(MAP));
+    }
+
+    #[test]
+    fn rectangles_join_grow_within_the_map_and_meet() {
+        let a = rect(10, 20, 30, 40);
+        let b = rect(100, 0, 110, 5);
+        assert_eq!(a.union(b), rect(10, 0, 110, 40));
+        assert_eq!(TexelRect::default().union(a), a);
+        assert_eq!(a.union(TexelRect::default()), a);
+        assert_eq!(a.grown(1, MAP), rect(9, 19, 31, 41));
+        assert_eq!(rect(0, 3, 1024, 1024).grown(1, MAP), rect(0, 2, 1024, 1024));
+        assert!(TexelRect::default().grown(1, MAP).is_empty());
+        assert!(a.overlaps(rect(29, 39, 31, 41)));
+        // Half-open: touching edges share no texel.
+        assert!(!a.overlaps(rect(30, 20, 40, 40)));
+        assert!(!a.overlaps(TexelRect::default()));
+        assert_eq!(
+            a.pixels(),
+            PixelRect {
+                x: 10,
+                y: 20,
+                width: 20,
+                height: 20
+            }
+        );
+    }
+
+    #[test]
+    fn a_patch_is_cheaper_up_to_half_the_map() {
+        assert!(cheaper(rect(0, 0, 1024, 512), MAP));
+        assert!(!cheaper(rect(0, 0, 1024, 513), MAP));
+        assert!(cheaper(TexelRect::default(), MAP));
+    }
+
+    #[test]
+    fn a_moved_caster_dirties_where_it_was_and_is_and_what_reaches_there_is_drawn() {
+        let mut scene = Scene::load("dummy").unwrap();
+        let s = scene.shadow;
+        let record = |sc: &Scene| {
+            let boxes = crate::shadows::fitted::item_world_boxes(sc);
+            MapRecord::of(sc, &boxes, 0, &s, &super::super::light_camera(sc, 0, &s))
+        };
+        let before = record(&scene);
+        assert_eq!(
+            before.patch_to(&before),
+            Some(Patch {
+                region: TexelRect::default(),
+                casters: vec![]
+            })
+        );
+        scene.items[0].position.x += 2.0;
+        let after = record(&scene);
+        let patch = before.patch_to(&after).unwrap();
+        let (was, is) = (before.items[0].unwrap().rect, after.items[0].unwrap().rect);
+        assert_ne!(was, is);
+        assert_eq!(patch.region, was.union(is).grown(1, MAP));
+        // The plane under the cube reaches the region too.
+        assert_eq!(patch.casters, vec![0, 1]);
+        // A cube over most of the map, a turned light, a new setting or one more caster:
+        // drawn whole.
+        let mut big = scene.clone();
+        big.items[0].scale = Vec3::splat(8.0);
+        assert_eq!(after.patch_to(&record(&big)), None);
+        let mut turned = scene.clone();
+        turned.set_light_angle(50.0);
+        assert_eq!(after.patch_to(&record(&turned)), None);
+        let biased = ShadowSettings { bias: 0.01, ..s };
+        let boxes = crate::shadows::fitted::item_world_boxes(&scene);
+        let camera = super::super::light_camera(&scene, 0, &biased);
+        let other = MapRecord::of(&scene, &boxes, 0, &biased, &camera);
+        assert_eq!(after.patch_to(&other), None);
+        let mut more = scene.clone();
+        more.items.push(scene.items[0].clone());
+        assert_eq!(after.patch_to(&record(&more)), None);
+    }
+}
