@@ -2,7 +2,9 @@
 //! map is drawn again only when what it sees changed. What it sees is summed up in a
 //! [`content_key`]: the light, its settings, every caster's mesh and placement, and, for a
 //! map that follows the camera (a fitted box, cascades), the camera and the frame's shape.
-//! An unchanged key means the depth pass would write the same texels, so it is skipped.
+//! An unchanged key means the depth pass would write the same texels, so it is skipped; a
+//! changed one where only casters moved may redraw just the part they dirtied
+//! ([`super::patch`]).
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
