@@ -327,14 +327,11 @@ impl Renderer {
                 continue;
             }
             // A kept map of a fixed camera can be patched where only casters moved.
-            let record = (key.is_some() && technique.patches() && !follows).then(|| {
-                let camera = crate::shadows::light_camera(scene, index, &settings);
-                MapRecord::of(scene, &boxes, index, &settings, &camera)
-            });
+            let record = (key.is_some() && technique.patches() && !follows)
+                .then(|| MapRecord::of(scene, &boxes, index, &settings));
+            let kept = self.drawn[index].is_some() && view.is_some();
             let patch = match (&self.records[index], &record) {
-                (Some(old), Some(now)) if self.drawn[index].is_some() && view.is_some() => {
-                    old.patch_to(now)
-                }
+                (Some(old), Some(now)) if kept => old.patch_to(now),
                 _ => None,
             };
             let mut pass = DepthPass {

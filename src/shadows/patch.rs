@@ -171,15 +171,15 @@ pub struct MapRecord {
 }
 
 impl MapRecord {
-    /// Light `index`'s map of `scene` drawn through `view` under `settings`, `boxes` being
-    /// the items' world boxes ([`super::fitted::item_world_boxes`]).
+    /// Light `index`'s map of `scene` under `settings` as it would be drawn now, `boxes`
+    /// being the items' world boxes ([`super::fitted::item_world_boxes`]).
     pub fn of(
         scene: &Scene,
         boxes: &[(DVec3, DVec3)],
         index: usize,
         settings: &ShadowSettings,
-        view: &ShadowView,
     ) -> MapRecord {
+        let view = &super::light_camera(scene, index, settings);
         let mut h = DefaultHasher::new();
         super::cache::hash_light(&scene.lights[index], settings, &mut h);
         let size = settings.map_size;
@@ -357,11 +357,11 @@ mod tests {
     fn a_moved_caster_dirties_where_it_was_and_is_and_what_reaches_there_is_drawn() {
         let mut scene = Scene::load("dummy").unwrap();
         let s = scene.shadow;
-        let record = |sc: &Scene| {
+        let record = |sc: &Scene, s: &ShadowSettings| {
             let boxes = crate::shadows::fitted::item_world_boxes(sc);
-            MapRecord::of(sc, &boxes, 0, &s, &super::super::light_camera(sc, 0, &s))
+            MapRecord::of(sc, &boxes, 0, s)
         };
-        let before = record(&scene);
+        let before = record(&scene, &s);
         assert_eq!(
             before.patch_to(&before),
             Some(Patch {
@@ -370,7 +370,7 @@ mod tests {
             })
         );
         scene.items[0].position.x += 2.0;
-        let after = record(&scene);
+        let after = record(&scene, &s);
         let patch = before.patch_to(&after).unwrap();
         let (was, is) = (before.items[0].unwrap().rect, after.items[0].unwrap().rect);
         assert_ne!(was, is);
@@ -381,17 +381,14 @@ mod tests {
         // drawn whole.
         let mut big = scene.clone();
         big.items[0].scale = Vec3::splat(8.0);
-        assert_eq!(after.patch_to(&record(&big)), None);
+        assert_eq!(after.patch_to(&record(&big, &s)), None);
         let mut turned = scene.clone();
         turned.set_light_angle(50.0);
-        assert_eq!(after.patch_to(&record(&turned)), None);
+        assert_eq!(after.patch_to(&record(&turned, &s)), None);
         let biased = ShadowSettings { bias: 0.01, ..s };
-        let boxes = crate::shadows::fitted::item_world_boxes(&scene);
-        let camera = super::super::light_camera(&scene, 0, &biased);
-        let other = MapRecord::of(&scene, &boxes, 0, &biased, &camera);
-        assert_eq!(after.patch_to(&other), None);
+        assert_eq!(after.patch_to(&record(&scene, &biased)), None);
         let mut more = scene.clone();
         more.items.push(scene.items[0].clone());
-        assert_eq!(after.patch_to(&record(&more)), None);
+        assert_eq!(after.patch_to(&record(&more, &s)), None);
     }
 }
