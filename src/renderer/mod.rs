@@ -311,6 +311,11 @@ impl Renderer {
             true => fitted::item_world_boxes(scene),
             false => Vec::new(),
         };
+        // Each item's placement, once for every light's cache key and patch record.
+        let placements = match self.settings.shadow_cache && !boxes.is_empty() {
+            true => cache::placements(scene),
+            false => Vec::new(),
+        };
         for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
             let light = &scene.lights[index];
             let settings = light.settings(&self.settings);
@@ -319,16 +324,20 @@ impl Renderer {
                 continue;
             };
             let follows = cache::follows_camera(light, technique.kind(), &settings);
-            let key = settings
+            let facts = settings
                 .shadow_cache
-                .then(|| cache::content_key(scene, &boxes, index, &settings, follows));
+                .then(|| cache::LightFacts::of(scene, index, &settings, follows));
+            let key = facts
+                .as_ref()
+                .map(|f| cache::content_key(scene, &boxes, &placements, index, f));
             if key.is_some() && key == self.drawn[index] && view.is_some() {
                 self.passes.skipped += 1;
                 continue;
             }
             // A kept map of a fixed camera can be patched where only casters moved.
-            let record = (key.is_some() && technique.patches() && !follows)
-                .then(|| MapRecord::of(scene, &boxes, index, &settings));
+            let record = facts
+                .filter(|_| technique.patches())
+                .and_then(|f| MapRecord::of(scene, &boxes, &placements, &f, settings.map_size));
             let kept = self.drawn[index].is_some() && view.is_some();
             let patch = match (&self.records[index], &record) {
                 (Some(old), Some(now)) if kept => old.patch_to(now),

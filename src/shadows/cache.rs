@@ -11,36 +11,73 @@ use std::hash::{Hash, Hasher};
 
 use glam::DVec3;
 
-use super::ShadowKind;
+use super::{ShadowKind, ShadowView};
 use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
 
-/// A number that changes whenever light `index`'s depth pass could draw something else.
-/// `follows_camera`: the technique's box depends on the viewer (then every caster counts);
-/// otherwise only the casters that can land in the light's volume count, so a caster
-/// turning out of its sight does not make it draw again.
+/// What light `index`'s map depends on this frame besides its casters, worked out once a
+/// frame for both the cache key and the patch record ([`super::patch::MapRecord`]).
+pub struct LightFacts {
+    /// The light and its settings ([`hash_light`]).
+    pub hash: u64,
+    /// The light's own camera; `None` for a map that follows the viewer (its box depends on
+    /// the camera and the casters, so every caster counts).
+    pub camera: Option<ShadowView>,
+}
+
+impl LightFacts {
+    pub fn of(
+        scene: &Scene,
+        index: usize,
+        settings: &ShadowSettings,
+        follows_camera: bool,
+    ) -> LightFacts {
+        let mut h = DefaultHasher::new();
+        hash_light(&scene.lights[index], settings, &mut h);
+        LightFacts {
+            hash: h.finish(),
+            camera: (!follows_camera).then(|| super::light_camera(scene, index, settings)),
+        }
+    }
+}
+
+/// Each item's [`hash_placement`], once a frame for every light's key and record.
+pub fn placements(scene: &Scene) -> Vec<u64> {
+    scene
+        .items
+        .iter()
+        .map(|item| {
+            let mut h = DefaultHasher::new();
+            hash_placement(item, &mut h);
+            h.finish()
+        })
+        .collect()
+}
+
+/// A number that changes whenever light `index`'s depth pass could draw something else:
+/// `facts`, and the placements of the casters that can land in its map (all casters for a
+/// map that follows the viewer, with the camera and the frame's shape), so a caster
+/// turning out of a fixed camera's sight does not make it draw again.
 pub fn content_key(
     scene: &Scene,
     boxes: &[(DVec3, DVec3)],
+    placements: &[u64],
     index: usize,
-    settings: &ShadowSettings,
-    follows_camera: bool,
+    facts: &LightFacts,
 ) -> u64 {
     let light = &scene.lights[index];
-    let camera = (!follows_camera).then(|| super::light_camera(scene, index, settings));
     let mut h = DefaultHasher::new();
-    hash_light(light, settings, &mut h);
-    for (item, (lo, hi)) in scene.items.iter().zip(boxes) {
-        let seen = match &camera {
+    facts.hash.hash(&mut h);
+    for ((item, (lo, hi)), placement) in scene.items.iter().zip(boxes).zip(placements) {
+        let seen = match &facts.camera {
             Some(c) => super::casters::may_land(light, c, *lo, *hi),
             None => true,
         };
-        if !item.casts_shadows || !seen {
-            continue;
+        if item.casts_shadows && seen {
+            placement.hash(&mut h);
         }
-        hash_placement(item, &mut h);
     }
-    if follows_camera {
+    if facts.camera.is_none() {
         format!("{:?}", scene.fitting_camera()).hash(&mut h);
         scene.size.hash(&mut h);
     }
@@ -89,13 +126,9 @@ mod tests {
         let s = scene.shadow;
         let key = |sc: &Scene, s: &ShadowSettings| {
             let boxes = crate::shadows::fitted::item_world_boxes(sc);
-            content_key(
-                sc,
-                &boxes,
-                0,
-                s,
-                follows_camera(&sc.lights[0], ShadowKind::Map, s),
-            )
+            let follows = follows_camera(&sc.lights[0], ShadowKind::Map, s);
+            let facts = LightFacts::of(sc, 0, s, follows);
+            content_key(sc, &boxes, &placements(sc), 0, &facts)
         };
         let k0 = key(&scene, &s);
         assert_eq!(k0, key(&scene, &s));

@@ -10,15 +10,13 @@
 //! whole; a moment map is blurred (a texel depends on its neighbours) and a cube map has six
 //! faces: both are drawn whole too.
 
-use std::collections::hash_map::DefaultHasher;
-use std::hash::Hasher;
-
 use glam::{DMat4, DVec3};
 
+use super::cache::LightFacts;
 use super::ShadowView;
 use crate::engine::PixelRect;
 use crate::scene::Scene;
-use crate::settings::{MapSize, ShadowSettings};
+use crate::settings::MapSize;
 
 /// A rectangle of map texels, `x0..x1` by `y0..y1` (half-open) from the bottom-left corner,
 /// GL's way.
@@ -171,39 +169,36 @@ pub struct MapRecord {
 }
 
 impl MapRecord {
-    /// Light `index`'s map of `scene` under `settings` as it would be drawn now, `boxes`
-    /// being the items' world boxes ([`super::fitted::item_world_boxes`]).
+    /// A map of `size` as it would be drawn now through the fixed camera in `facts`
+    /// (`None` for a map that follows the viewer: it is not patched), `boxes` and
+    /// `placements` being the items' world boxes and placement hashes this frame
+    /// ([`super::fitted::item_world_boxes`], [`super::cache::placements`]).
     pub fn of(
         scene: &Scene,
         boxes: &[(DVec3, DVec3)],
-        index: usize,
-        settings: &ShadowSettings,
-    ) -> MapRecord {
-        let view = &super::light_camera(scene, index, settings);
-        let mut h = DefaultHasher::new();
-        super::cache::hash_light(&scene.lights[index], settings, &mut h);
-        let size = settings.map_size;
+        placements: &[u64],
+        facts: &LightFacts,
+        size: MapSize,
+    ) -> Option<MapRecord> {
+        let view = facts.camera.as_ref()?;
         let items = scene
             .items
             .iter()
             .zip(boxes)
-            .map(|(item, (lo, hi))| {
-                item.casts_shadows.then(|| {
-                    let mut h = DefaultHasher::new();
-                    super::cache::hash_placement(item, &mut h);
-                    Placed {
-                        placement: h.finish(),
-                        rect: footprint(view, size, *lo, *hi),
-                    }
+            .zip(placements)
+            .map(|((item, (lo, hi)), &placement)| {
+                item.casts_shadows.then(|| Placed {
+                    placement,
+                    rect: footprint(view, size, *lo, *hi),
                 })
             })
             .collect();
-        MapRecord {
+        Some(MapRecord {
             camera: camera_bits(view),
-            light: h.finish(),
+            light: facts.hash,
             size,
             items,
-        }
+        })
     }
 
     /// What must be drawn to turn the map recorded by `self` into the one `now` records:
@@ -264,6 +259,7 @@ fn camera_bits(view: &ShadowView) -> Vec<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::settings::ShadowSettings;
     use glam::{Mat4, Vec3};
 
     const MAP: MapSize = MapSize::square(1024);
@@ -359,7 +355,10 @@ mod tests {
         let s = scene.shadow;
         let record = |sc: &Scene, s: &ShadowSettings| {
             let boxes = crate::shadows::fitted::item_world_boxes(sc);
-            MapRecord::of(sc, &boxes, 0, s)
+            let facts = LightFacts::of(sc, 0, s, false);
+            let placements = crate::shadows::cache::placements(sc);
+            MapRecord::of(sc, &boxes, &placements, &facts, s.map_size)
+                .expect("a fixed camera is recorded")
         };
         let before = record(&scene, &s);
         assert_eq!(
