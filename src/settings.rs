@@ -753,6 +753,12 @@ shadow_settings! {
         /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4
         /// = that many `map_size` layers of a depth texture array, one per slice of the view.
         cascades: u32 = 1, arg(value_name = "N", allow_negative_numbers = true);
+        /// Caster groups for a directional light with one cascade: 1 = one box (the
+        /// chapters, or with `fit = "scene"` one box fitted to the view), 2 to 4 = the
+        /// casters whose shadow is in view split into up to that many groups, each with its
+        /// own box fitted to it in a `map_size` layer of a depth array (casters far apart
+        /// keep fine texels). Always fitted to the view.
+        caster_groups: u32 = 1, arg(value_name = "N", allow_negative_numbers = true);
     }
     /// How a fragment is tested against the map.
     "Shadow test" {
@@ -931,6 +937,8 @@ impl ShadowSettings {
                 extra.push_str(&format!(", to depth {}", self.shadow_distance));
             }
             extra.push(')');
+        } else if self.caster_groups > 1 {
+            extra.push_str(&format!(", {} caster groups", self.caster_groups));
         }
         let size = self.map_size.label();
         let mut line = format!(
@@ -949,7 +957,7 @@ impl ShadowSettings {
             return line;
         };
         let perspective = self.light_projection == LightProjection::Perspective;
-        let fitted = self.fit == Fit::Scene || self.cascades > 1;
+        let fitted = self.fit == Fit::Scene || self.cascades > 1 || self.caster_groups > 1;
         for (key, value) in &mine {
             if base.get(key) == Some(value) {
                 continue;
@@ -966,8 +974,8 @@ impl ShadowSettings {
             };
             let part = match key.as_str() {
                 "map_size" | "depth_format" | "filter" | "bias_mode" | "bias" | "bias_min"
-                | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "cascade_lambda"
-                | "cascade_blend" | "shadow_distance" => continue,
+                | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "caster_groups"
+                | "cascade_lambda" | "cascade_blend" | "shadow_distance" => continue,
                 "perspective_fov" => continue,
                 "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => continue,
                 // The moment maps' knobs do nothing for a depth map.
@@ -1051,6 +1059,12 @@ impl ShadowSettings {
             return bad(format!(
                 "shadow.cascades = {}: expected 1 (one map) to {max}",
                 self.cascades
+            ));
+        }
+        if !(1..=max).contains(&self.caster_groups) {
+            return bad(format!(
+                "shadow.caster_groups = {}: expected 1 (one box) to {max}",
+                self.caster_groups
             ));
         }
         for (name, v, hi) in [

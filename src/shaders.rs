@@ -64,8 +64,16 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/shadow_cube.glsl"),
     ),
     (
+        "lib/shadow_layers.glsl",
+        include_str!("../shaders/lib/shadow_layers.glsl"),
+    ),
+    (
         "lib/shadow_cascades.glsl",
         include_str!("../shaders/lib/shadow_cascades.glsl"),
+    ),
+    (
+        "lib/shadow_groups.glsl",
+        include_str!("../shaders/lib/shadow_groups.glsl"),
     ),
     (
         "lib/shadow_moments.glsl",

@@ -3,46 +3,11 @@
 // covering a slice of the view. Compiled with the defines of bias.glsl and:
 //   CASCADES       layers (2 to 4)
 //   CASCADE_BLEND  the last fraction of each cascade that fades into the next
-//   SHADOW_TEXEL, PCF_RADIUS, FILTER_KERNEL as for the 2D test (PCSS is refused for
-//                  cascades: src/settings.rs, Filter::refused_for)
+// and those of shadow_layers.glsl (a layer's test, which it includes).
 
-// The cascaded light's position in each cascade's clip space (scene.vert: one light has
-// cascades, so they fit among the vertex outputs).
-in vec4 cascadePos[CASCADES];
+#include "lib/shadow_layers.glsl"
+
 uniform float cascadeSplit[CASCADES + 1];  // view depths: cascade c serves [c, c + 1)
-
-#define KERNEL_MAP SHADOW_SAMPLER_ARRAY map, float layer
-#define KERNEL_DEPTH(uv) texture(map, vec3(uv, layer)).r
-#include "lib/soft_filters.glsl"
-#undef KERNEL_MAP
-#undef KERNEL_DEPTH
-
-// The PCF grid of calcShadow (or the playground's soft taps), in one layer of the array.
-float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
-{
-#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
-    return softTaps(map, layer, uv, current);
-#else
-    vec2 inc = SHADOW_TEXEL;
-    float lit = 0.0;
-    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
-        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
-            lit += LIT_ARRAY(map, uv + vec2(row, col) * inc, layer, current);
-        }
-    }
-    return lit / PCF_TAPS;
-#endif
-}
-
-// The test in cascade `c` (the position already pushed along the normal by the cascade's
-// own texel size, in scene.vert). A cascade covers exactly its slice: beyond it is lit.
-float cascadeLookup(SHADOW_SAMPLER_ARRAY map, int c, vec3 normal, vec3 toLightDir)
-{
-    vec3 projCoords = cascadePos[c].xyz * 0.5 + 0.5;
-    float lit = pcfArray(map, projCoords.xy, float(c),
-                         projCoords.z - depthBias(normal, toLightDir));
-    return projCoords.z > 1.0 ? 1.0 : lit;
-}
 
 // The cascade is chosen by view depth; over the last CASCADE_BLEND of its range it fades
 // into the next one, so the seam does not show. Past the last split (the shadow distance)
@@ -64,12 +29,12 @@ float calcShadowCascades(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir,
         c += depth >= splits[k] ? 1 : 0;
     }
     f.cascade = c;
-    float lit = cascadeLookup(map, c, normal, toLightDir);
+    float lit = layerLookup(map, c, normal, toLightDir);
     if (CASCADE_BLEND > 0.0 && c + 1 < CASCADES) {
         float end = splits[c + 1];
         float start = end - CASCADE_BLEND * (end - splits[c]);
         if (depth > start) {
-            float next = cascadeLookup(map, c + 1, normal, toLightDir);
+            float next = layerLookup(map, c + 1, normal, toLightDir);
             lit = mix(lit, next, (depth - start) / (end - start));
         }
     }

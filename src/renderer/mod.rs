@@ -570,7 +570,7 @@ impl Renderer {
             }
             // Checked before any frame by the commands; this guards scenes built in code (a
             // cube map would otherwise take a soft filter as one lookup without a word).
-            let (cube, cascaded) = (kind == ShadowKind::Cube, kind == ShadowKind::Cascades);
+            let (cube, cascaded) = (kind == ShadowKind::Cube, kind.layered());
             if let Some(why) = settings.filter.refused_for(cube, cascaded) {
                 return Err(Error::Invalid(format!(
                     "shadow.filter = {}: light {i} cannot use it: {why}",

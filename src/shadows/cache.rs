@@ -105,7 +105,7 @@ pub fn hash_placement(item: &crate::scene::GameItem, h: &mut impl Hasher) {
 pub fn follows_camera(light: &Light, kind: ShadowKind, settings: &ShadowSettings) -> bool {
     use crate::settings::{Fit, LightProjection};
     match kind {
-        ShadowKind::Cascades => true,
+        ShadowKind::Cascades | ShadowKind::Groups => true,
         // The same case `map2d::camera` fits to the scene.
         ShadowKind::Map | ShadowKind::Moments => {
             matches!(light, Light::Directional(_))

@@ -13,19 +13,18 @@
 //!   receivers occupy, not the camera's whole far plane (the DummyGame's camera reaches
 //!   1000 units over a scene 5 across: cascades that size lose the shadow).
 
-use glam::{DMat4, DVec3, Mat4, Vec3};
+use glam::{DVec3, Vec3};
 
-use super::casters::{casters, depth_state, draw_casters};
+use super::casters::casters;
 use super::fitted::{aabb, corners, FittedBox};
+use super::layers::Layers;
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
 };
-use crate::engine::{
-    state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
-};
+use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::{Camera, Light, Scene};
-use crate::settings::{ShadowSettings, Wrap};
+use crate::settings::ShadowSettings;
 use crate::transformation::{light_basis, light_view};
 
 /// `count + 1` view depths from `near` to `far`: the practical split scheme with `lambda`
@@ -298,15 +297,6 @@ impl Cascade {
     }
 }
 
-/// Camera-relative world position to the cascade's light clip space (the scene shader's
-/// `worldPos` is relative to the camera, which keeps its digits far from the origin).
-pub fn camera_relative_matrix(cascade: &Cascade, camera_position: Vec3) -> DMat4 {
-    let [l, r, b, t, n, f] = cascade.fitted.bounds;
-    DMat4::orthographic_rh_gl(l, r, b, t, n, f)
-        * cascade.fitted.view
-        * DMat4::from_translation(camera_position.as_dvec3())
-}
-
 /// Its sampler in the scene shader, per light.
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["cascadeMap0", "cascadeMap1", "cascadeMap2", "cascadeMap3"];
@@ -319,7 +309,7 @@ pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl
         functions: &[
             "softTaps",
             "pcfArray",
-            "cascadeLookup",
+            "layerLookup",
             "calcShadowCascades",
             "addLightCascades",
         ],
@@ -335,21 +325,17 @@ pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl
     }
 }
 
-/// A cascaded light's storage: the depth array and the cascades of the last depth pass.
+/// A cascaded light's storage: the depth array ([`Layers`], a layer per cascade) and the
+/// cascades of the last depth pass.
 pub struct Cascades {
-    array: CascadeShadowMap,
+    layers: Layers,
     cascades: Vec<Cascade>,
 }
 
 impl Cascades {
     pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Cascades> {
         Ok(Cascades {
-            array: CascadeShadowMap::new(
-                gl,
-                s.map_size.square_side("cascades")?,
-                s.cascades,
-                s.depth_format,
-            )?,
+            layers: Layers::new(gl, s, s.cascades, "cascades")?,
             cascades: Vec::new(),
         })
     }
@@ -361,9 +347,7 @@ impl Technique for Cascades {
     }
 
     fn fits(&self, s: &ShadowSettings) -> bool {
-        self.array.size() == s.map_size
-            && self.array.format() == s.depth_format
-            && self.array.layers() == s.cascades
+        self.layers.fits(s, s.cascades)
     }
 
     /// One depth pass per cascade, into its layer, with the casters that can land in it.
@@ -382,26 +366,15 @@ impl Technique for Cascades {
         let boxes = pass.boxes;
         let spec = CascadeSpec::of(pass.settings, l.ortho.far - l.ortho.near);
         self.cascades = fit_cascades(scene, boxes, l.direction, &spec);
-        let program = pass.programs.flat(pass.gl)?;
-        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
-        for (layer, c) in self.cascades.iter().enumerate() {
-            self.array.bind_layer(layer as u32);
-            state::clear_depth(pass.gl);
-            let [l, r, b, t, n, f] = c.fitted.bounds;
-            let projection = DMat4::orthographic_rh_gl(l, r, b, t, n, f).as_mat4();
-            program.set_mat4("orthoProjectionMatrix", &projection);
-            let keep = |i: usize| c.may_hold(boxes[i].0, boxes[i].1);
-            // Counted per cascade: a caster in two cascades is two of those offered.
-            pass.casters.total += casters(scene);
-            pass.casters.drawn += draw_casters(
-                pass.meshes,
-                scene,
-                &program,
-                "modelLightViewMatrix",
-                c.fitted.view,
-                keep,
-            ) as u64;
-        }
+        // Counted per cascade: a caster in two cascades is two of those offered.
+        pass.casters.total += casters(scene) * self.cascades.len() as u64;
+        let cascades = &self.cascades;
+        self.layers.draw(
+            pass,
+            scene,
+            cascades.iter().map(|c| c.fitted).collect(),
+            |layer, i| cascades[layer].may_hold(boxes[i].0, boxes[i].1),
+        )?;
         // The first cascade stands for the light's camera (reports, the depth view's near
         // and far).
         Ok(match self.cascades.first() {
@@ -415,18 +388,12 @@ impl Technique for Cascades {
     }
 
     fn texture(&self) -> &Texture {
-        self.array.texture()
+        self.layers.texture()
     }
 
-    /// A cascade covers exactly its slice and the casters that reach it: outside it is lit
-    /// (a border of depth 1), whatever the settings' wrap.
+    /// A cascade covers exactly its slice and the casters that reach it ([`Layers::sampling`]).
     fn sampling(&self, settings: &ShadowSettings) -> Sampling {
-        let hardware = settings.filter.hardware();
-        Sampling {
-            compare: hardware,
-            linear: hardware,
-            wrap: Wrap::ClampToBorder,
-        }
+        Layers::sampling(settings)
     }
 
     fn slot_transform(
@@ -438,34 +405,22 @@ impl Technique for Cascades {
         None
     }
 
-    /// Camera-relative world to each cascade's clip space, the split depths and each
-    /// cascade's normal offset (its own texel size).
+    /// The layers' matrices and normal offsets ([`Layers::set_uniforms`]) and the split
+    /// depths.
     fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
-        let matrices: Vec<Mat4> = self
-            .cascades
-            .iter()
-            .map(|c| camera_relative_matrix(c, scene.camera.position).as_mat4())
-            .collect();
+        self.layers
+            .set_uniforms(p, scene.camera.position, s.normal_offset);
         let mut splits: Vec<f32> = self.cascades.iter().map(|c| c.near as f32).collect();
         splits.extend(self.cascades.last().map(|c| c.far as f32));
-        let offsets: Vec<f32> = self
-            .cascades
-            .iter()
-            .map(|c| s.normal_offset * c.fitted.texel as f32)
-            .collect();
-        p.set_mat4_array("cascadeMatrix", &matrices);
         p.set_f32_array("cascadeSplit", &splits);
-        p.set_f32_array("cascadeNormalOffset", &offsets);
     }
 
     fn bytes(&self) -> u64 {
-        u64::from(self.array.layers()) * u64::from(self.array.size()).pow(2) * 4
+        self.layers.bytes()
     }
 
     fn depth_view(&self) -> DepthViewKind {
-        DepthViewKind::Array {
-            layers: self.array.layers(),
-        }
+        self.layers.depth_view()
     }
 }
 

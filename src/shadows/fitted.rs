@@ -58,214 +58,263 @@ pub fn fit_ortho_casters(
     map_size: MapSize,
     snap: bool,
 ) -> (FittedBox, Vec<usize>) {
-    let (texels_x, texels_y) = (f64::from(map_size.width), f64::from(map_size.height));
-    let basis = light_basis(to_light.as_dvec3());
-    let to_light_space = |p: DVec3| basis.transpose() * p;
+    let fit = LightFit::new(scene, to_light);
+    (
+        fit.fit_box(&fit.casters, map_size, snap),
+        fit.casters.clone(),
+    )
+}
 
-    // Every item receives; casters can also shadow. Boxes in world space, then in light space.
-    let item_corners = item_corners(scene);
-    let boxes: Vec<(DVec3, DVec3)> = item_corners
-        .iter()
-        .map(|c| aabb(c.iter().copied()))
-        .collect();
-    let (rlo, rhi) = union(&boxes);
+/// What a directional light's fitted boxes are built on: the light's basis, each item's
+/// box in light space, the part of the receivers the camera can see and the casters that
+/// can shadow it. One box around all those casters is [`fit_ortho_casters`]; a box per
+/// group of them is [`super::groups`].
+pub struct LightFit<'a> {
+    scene: &'a Scene,
+    basis: glam::DMat3,
+    light_boxes: Vec<(DVec3, DVec3)>,
+    /// The receivers in view, in light space.
+    visible: (DVec3, DVec3),
+    /// The casters whose shadow the camera can see, by item index.
+    pub casters: Vec<usize>,
+}
 
-    // The part of the receivers the camera can see: their box cut by the view frustum's box.
-    // The camera the fit follows: the viewer, or `fit_camera` (to watch the fit from elsewhere).
-    let cam = scene.fitting_camera();
-    let eye = cam.position.as_dvec3();
-    let reach = corners(rlo, rhi)
-        .iter()
-        .map(|c| (*c - eye).length())
-        .fold(0.0, f64::max)
-        .min(cam.far as f64);
-    let (flo, fhi) = aabb(frustum_corners(scene, reach).into_iter());
-    let (vlo, vhi) = (rlo.max(flo), rhi.min(fhi));
-    let (vlo, vhi) = if vlo.cmple(vhi).all() {
-        (vlo, vhi)
-    } else {
-        (rlo, rhi)
-    };
-    let (vl_lo, vl_hi) = aabb(corners(vlo, vhi).map(to_light_space).into_iter());
-    let light_boxes: Vec<(DVec3, DVec3)> = item_corners
-        .iter()
-        .map(|c| aabb(c.iter().map(|&p| to_light_space(p))))
-        .collect();
-    let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
-        a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
-    };
-    let visible = (vl_lo, vl_hi);
-    // Along parallel rays only a caster with the same light-space x, y can shadow a point,
-    // and only one above it (towards the light). A flat caster (a floor) cannot shadow
-    // itself, nor anything on its side facing the light: it matters only if some visible
-    // receiver reaches behind its plane.
-    let to_light = to_light.as_dvec3().normalize();
-    // Each mesh's plane, found once per fit rather than once per pair of items.
-    let planes: Vec<Option<(Vec3, Vec3)>> = scene.meshes.iter().map(|m| m.flat_plane()).collect();
-    // Item `i`'s plane in world space, its normal towards the light, if its mesh is flat.
-    let world_plane = |i: usize| -> Option<(DVec3, DVec3)> {
-        let item = &scene.items[i];
-        let (point, normal) = planes[item.mesh]?;
-        let m = item.model_matrix64();
-        let p = m.transform_point3(point.as_dvec3());
-        let n = m
-            .inverse()
-            .transpose()
-            .transform_vector3(normal.as_dvec3())
-            .normalize();
-        Some((p, if n.dot(to_light) < 0.0 { -n } else { n }))
-    };
-    let behind_plane = |c: usize, r: usize| -> bool {
-        let Some((p, n)) = world_plane(c) else {
-            return true;
+impl<'a> LightFit<'a> {
+    /// Each caster's box in light space (z towards the light), by item index.
+    pub fn light_box(&self, item: usize) -> (DVec3, DVec3) {
+        self.light_boxes[item]
+    }
+
+    pub fn new(scene: &'a Scene, to_light: Vec3) -> LightFit<'a> {
+        let basis = light_basis(to_light.as_dvec3());
+        let to_light_space = |p: DVec3| basis.transpose() * p;
+
+        // Every item receives; casters can also shadow. Boxes in world space, then in light space.
+        let item_corners = item_corners(scene);
+        let boxes: Vec<(DVec3, DVec3)> = item_corners
+            .iter()
+            .map(|c| aabb(c.iter().copied()))
+            .collect();
+        let (rlo, rhi) = union(&boxes);
+
+        // The part of the receivers the camera can see: their box cut by the view frustum's box.
+        // The camera the fit follows: the viewer, or `fit_camera` (to watch the fit from elsewhere).
+        let cam = scene.fitting_camera();
+        let eye = cam.position.as_dvec3();
+        let reach = corners(rlo, rhi)
+            .iter()
+            .map(|c| (*c - eye).length())
+            .fold(0.0, f64::max)
+            .min(cam.far as f64);
+        let (flo, fhi) = aabb(frustum_corners(scene, reach).into_iter());
+        let (vlo, vhi) = (rlo.max(flo), rhi.min(fhi));
+        let (vlo, vhi) = if vlo.cmple(vhi).all() {
+            (vlo, vhi)
+        } else {
+            (rlo, rhi)
         };
-        let eps = 1e-6 * p.abs().max_element().max(1.0);
-        corners(boxes[r].0, boxes[r].1)
+        let (vl_lo, vl_hi) = aabb(corners(vlo, vhi).map(to_light_space).into_iter());
+        let light_boxes: Vec<(DVec3, DVec3)> = item_corners
             .iter()
-            .any(|q| n.dot(*q - p) < -eps)
-    };
-    // A caster shadows only points along its rays, below it: inside the hull of its box and
-    // that box slid down the rays to the deepest receiver under it. If the view frustum
-    // misses that hull, neither the caster nor its shadow is in view and the map need not
-    // cover it.
-    let frustum = frustum_corners(scene, reach);
-    let frustum_edges = [
-        frustum[1] - frustum[0],
-        frustum[2] - frustum[0],
-        frustum[4] - frustum[0],
-        frustum[5] - frustum[1],
-        frustum[6] - frustum[2],
-        frustum[7] - frustum[3],
-    ];
-    // The lowest light-space z of item `r` over the x, y rectangle of `over`: a flat item's
-    // plane at the rectangle's corners (a floor far larger than the caster), else its box.
-    let lowest_under = |r: usize, over: &(DVec3, DVec3)| -> f64 {
-        let within = light_boxes[r].0.z;
-        let Some((p, n)) = world_plane(r) else {
-            return within;
+            .map(|c| aabb(c.iter().map(|&p| to_light_space(p))))
+            .collect();
+        let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
+            a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
         };
-        let (p, n) = (to_light_space(p), to_light_space(n));
-        if n.z.abs() < 1e-6 {
-            return within;
-        }
-        corners(over.0, over.1)
-            .iter()
-            .map(|q| p.z - (n.x * (q.x - p.x) + n.y * (q.y - p.y)) / n.z)
-            .fold(f64::INFINITY, f64::min)
-            .max(within)
-    };
-    let sweep_in_view = |c: usize| {
-        let lo = light_boxes[c].0;
-        let deepest = (0..scene.items.len())
-            .filter(|&r| overlaps_xy(&light_boxes[r], &light_boxes[c]))
-            .map(|r| lowest_under(r, &light_boxes[c]))
-            .fold(lo.z, f64::min);
-        // The caster's box corners and the same corners slid down its rays to that depth:
-        // their hull holds everything the caster can shadow.
-        let sweep: Vec<DVec3> = item_corners[c]
-            .iter()
-            .flat_map(|&p| {
-                let drop = to_light_space(p).z - deepest;
-                [p, p - to_light * drop]
+        let visible = (vl_lo, vl_hi);
+        // Along parallel rays only a caster with the same light-space x, y can shadow a point,
+        // and only one above it (towards the light). A flat caster (a floor) cannot shadow
+        // itself, nor anything on its side facing the light: it matters only if some visible
+        // receiver reaches behind its plane.
+        let to_light = to_light.as_dvec3().normalize();
+        // Each mesh's plane, found once per fit rather than once per pair of items.
+        let planes: Vec<Option<(Vec3, Vec3)>> =
+            scene.meshes.iter().map(|m| m.flat_plane()).collect();
+        // Item `i`'s plane in world space, its normal towards the light, if its mesh is flat.
+        let world_plane = |i: usize| -> Option<(DVec3, DVec3)> {
+            let item = &scene.items[i];
+            let (point, normal) = planes[item.mesh]?;
+            let m = item.model_matrix64();
+            let p = m.transform_point3(point.as_dvec3());
+            let n = m
+                .inverse()
+                .transpose()
+                .transform_vector3(normal.as_dvec3())
+                .normalize();
+            Some((p, if n.dot(to_light) < 0.0 { -n } else { n }))
+        };
+        let behind_plane = |c: usize, r: usize| -> bool {
+            let Some((p, n)) = world_plane(c) else {
+                return true;
+            };
+            let eps = 1e-6 * p.abs().max_element().max(1.0);
+            corners(boxes[r].0, boxes[r].1)
+                .iter()
+                .any(|q| n.dot(*q - p) < -eps)
+        };
+        // A caster shadows only points along its rays, below it: inside the hull of its box and
+        // that box slid down the rays to the deepest receiver under it. If the view frustum
+        // misses that hull, neither the caster nor its shadow is in view and the map need not
+        // cover it.
+        let frustum = frustum_corners(scene, reach);
+        let frustum_edges = [
+            frustum[1] - frustum[0],
+            frustum[2] - frustum[0],
+            frustum[4] - frustum[0],
+            frustum[5] - frustum[1],
+            frustum[6] - frustum[2],
+            frustum[7] - frustum[3],
+        ];
+        // The lowest light-space z of item `r` over the x, y rectangle of `over`: a flat item's
+        // plane at the rectangle's corners (a floor far larger than the caster), else its box.
+        let lowest_under = |r: usize, over: &(DVec3, DVec3)| -> f64 {
+            let within = light_boxes[r].0.z;
+            let Some((p, n)) = world_plane(r) else {
+                return within;
+            };
+            let (p, n) = (to_light_space(p), to_light_space(n));
+            if n.z.abs() < 1e-6 {
+                return within;
+            }
+            corners(over.0, over.1)
+                .iter()
+                .map(|q| p.z - (n.x * (q.x - p.x) + n.y * (q.y - p.y)) / n.z)
+                .fold(f64::INFINITY, f64::min)
+                .max(within)
+        };
+        let sweep_in_view = |c: usize| {
+            let lo = light_boxes[c].0;
+            let deepest = (0..scene.items.len())
+                .filter(|&r| overlaps_xy(&light_boxes[r], &light_boxes[c]))
+                .map(|r| lowest_under(r, &light_boxes[c]))
+                .fold(lo.z, f64::min);
+            // The caster's box corners and the same corners slid down its rays to that depth:
+            // their hull holds everything the caster can shadow.
+            let sweep: Vec<DVec3> = item_corners[c]
+                .iter()
+                .flat_map(|&p| {
+                    let drop = to_light_space(p).z - deepest;
+                    [p, p - to_light * drop]
+                })
+                .collect();
+            let axes = item_corners[c];
+            let sweep_edges = [
+                axes[1] - axes[0],
+                axes[2] - axes[0],
+                axes[4] - axes[0],
+                to_light,
+                // The box's edges slid onto the plane: the same edges less their drop.
+                axes[1] - axes[0] - to_light * to_light_space(axes[1] - axes[0]).z,
+                axes[2] - axes[0] - to_light * to_light_space(axes[2] - axes[0]).z,
+                axes[4] - axes[0] - to_light * to_light_space(axes[4] - axes[0]).z,
+            ];
+            hulls_overlap(&sweep, &sweep_edges, &frustum, &frustum_edges)
+        };
+        let relevant: Vec<usize> = (0..scene.items.len())
+            .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
+            .filter(|&c| sweep_in_view(c))
+            .filter(|&c| {
+                planes[scene.items[c].mesh].is_none()
+                    || (0..scene.items.len()).any(|r| {
+                        r != c
+                            && overlaps_xy(&light_boxes[r], &visible)
+                            && overlaps_xy(&light_boxes[r], &light_boxes[c])
+                            && light_boxes[r].0.z < light_boxes[c].1.z
+                            && behind_plane(c, r)
+                    })
             })
             .collect();
-        let axes = item_corners[c];
-        let sweep_edges = [
-            axes[1] - axes[0],
-            axes[2] - axes[0],
-            axes[4] - axes[0],
-            to_light,
-            // The box's edges slid onto the plane: the same edges less their drop.
-            axes[1] - axes[0] - to_light * to_light_space(axes[1] - axes[0]).z,
-            axes[2] - axes[0] - to_light * to_light_space(axes[2] - axes[0]).z,
-            axes[4] - axes[0] - to_light * to_light_space(axes[4] - axes[0]).z,
-        ];
-        hulls_overlap(&sweep, &sweep_edges, &frustum, &frustum_edges)
-    };
-    let relevant: Vec<usize> = (0..scene.items.len())
-        .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
-        .filter(|&c| sweep_in_view(c))
-        .filter(|&c| {
-            planes[scene.items[c].mesh].is_none()
-                || (0..scene.items.len()).any(|r| {
-                    r != c
-                        && overlaps_xy(&light_boxes[r], &visible)
-                        && overlaps_xy(&light_boxes[r], &light_boxes[c])
-                        && light_boxes[r].0.z < light_boxes[c].1.z
-                        && behind_plane(c, r)
-                })
-        })
-        .collect();
-    let (mut llo, mut lhi) = visible;
-    let mut z_top = lhi.z;
-    if relevant.is_empty() {
-        // Nothing can cast here: a minimal box; everything reads as lit.
-        let c = (llo + lhi) * 0.5;
-        (llo, lhi) = (c - DVec3::splat(1e-3), c + DVec3::splat(1e-3));
-    } else {
-        let (clo, chi) = union(&relevant.iter().map(|&c| light_boxes[c]).collect::<Vec<_>>());
-        llo = DVec3::new(llo.x.max(clo.x), llo.y.max(clo.y), llo.z);
-        lhi = DVec3::new(lhi.x.min(chi.x), lhi.y.min(chi.y), lhi.z);
-        z_top = chi.z;
-        // The deepest receiver point inside the box's x, y: whole items when they fit in
-        // it, their triangles clipped to it when they reach past it (a floor).
-        let mut z_deep = f64::INFINITY;
-        for (i, lb) in light_boxes.iter().enumerate() {
-            if !overlaps_xy(lb, &(llo, lhi)) {
-                continue;
-            }
-            let inside = lb.0.x >= llo.x && lb.1.x <= lhi.x && lb.0.y >= llo.y && lb.1.y <= lhi.y;
-            if inside {
-                z_deep = z_deep.min(lb.0.z);
-                continue;
-            }
-            let item = &scene.items[i];
-            let m = item.model_matrix64();
-            for t in scene.meshes[item.mesh].triangles() {
-                let t = t.map(|p| to_light_space(m.transform_point3(p.as_dvec3())));
-                if let Some(z) = clipped_min_z(&t, llo, lhi) {
-                    z_deep = z_deep.min(z);
+        LightFit {
+            scene,
+            basis,
+            light_boxes,
+            visible,
+            casters: relevant,
+        }
+    }
+
+    /// The box around `casters` (item indices, from [`LightFit::casters`]) and the
+    /// receivers in view they can shadow, for a map of `map_size` (each side fitted on its
+    /// own, so texels need not be square); `snap` quantises its sides and snaps its
+    /// position to whole texels. No casters: a minimal box, where everything reads lit.
+    pub fn fit_box(&self, casters: &[usize], map_size: MapSize, snap: bool) -> FittedBox {
+        let (scene, basis, light_boxes) = (self.scene, self.basis, &self.light_boxes);
+        let to_light_space = |p: DVec3| basis.transpose() * p;
+        let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
+            a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
+        };
+        let (texels_x, texels_y) = (f64::from(map_size.width), f64::from(map_size.height));
+        let (mut llo, mut lhi) = self.visible;
+        let mut z_top = lhi.z;
+        if casters.is_empty() {
+            // Nothing can cast here: a minimal box; everything reads as lit.
+            let c = (llo + lhi) * 0.5;
+            (llo, lhi) = (c - DVec3::splat(1e-3), c + DVec3::splat(1e-3));
+        } else {
+            let (clo, chi) = union(&casters.iter().map(|&c| light_boxes[c]).collect::<Vec<_>>());
+            llo = DVec3::new(llo.x.max(clo.x), llo.y.max(clo.y), llo.z);
+            lhi = DVec3::new(lhi.x.min(chi.x), lhi.y.min(chi.y), lhi.z);
+            z_top = chi.z;
+            // The deepest receiver point inside the box's x, y: whole items when they fit in
+            // it, their triangles clipped to it when they reach past it (a floor).
+            let mut z_deep = f64::INFINITY;
+            for (i, lb) in light_boxes.iter().enumerate() {
+                if !overlaps_xy(lb, &(llo, lhi)) {
+                    continue;
+                }
+                let inside =
+                    lb.0.x >= llo.x && lb.1.x <= lhi.x && lb.0.y >= llo.y && lb.1.y <= lhi.y;
+                if inside {
+                    z_deep = z_deep.min(lb.0.z);
+                    continue;
+                }
+                let item = &scene.items[i];
+                let m = item.model_matrix64();
+                for t in scene.meshes[item.mesh].triangles() {
+                    let t = t.map(|p| to_light_space(m.transform_point3(p.as_dvec3())));
+                    if let Some(z) = clipped_min_z(&t, llo, lhi) {
+                        z_deep = z_deep.min(z);
+                    }
                 }
             }
+            if z_deep.is_finite() {
+                llo.z = z_deep;
+            }
         }
-        if z_deep.is_finite() {
-            llo.z = z_deep;
+        // Each side fitted on its own: a box longer one way gets finer texels the other way.
+        let texels = DVec3::new(texels_x, texels_y, 1.0);
+        let mut size = (lhi - llo).max(DVec3::splat(1e-6));
+        let mut centre = DVec3::new((llo.x + lhi.x) * 0.5, (llo.y + lhi.y) * 0.5, 0.0);
+        // Two texels of room for filters that reach beside the looked-up texel.
+        size.x *= 1.0 + 4.0 / texels_x;
+        size.y *= 1.0 + 4.0 / texels_y;
+        let (mut z_lo, mut z_hi) = (llo.z, z_top);
+        if snap {
+            // Each side to the next 1/8 of its power of two, so small camera moves keep it.
+            let step = |side: f64| 2f64.powf(side.log2().floor()) / 8.0;
+            let (step_x, step_y) = (step(size.x), step(size.y));
+            size.x = (size.x / step_x).ceil() * step_x;
+            size.y = (size.y / step_y).ceil() * step_y;
+            let texel = size / texels;
+            centre.x = (centre.x / texel.x).floor() * texel.x;
+            centre.y = (centre.y / texel.y).floor() * texel.y;
+            let zstep = step_x.max(step_y);
+            z_lo = (z_lo / zstep).floor() * zstep;
+            z_hi = (z_hi / zstep).ceil() * zstep;
+        }
+        // Depth room: a little beyond both ends so nothing sits exactly on a plane.
+        let pad = (z_hi - z_lo).max(size.x).max(size.y) * 0.01;
+        z_lo -= pad;
+        z_hi += pad;
+        // The eye sits on the box's top face, so view coordinates stay small wherever the scene is.
+        let eye = basis * DVec3::new(centre.x, centre.y, z_hi);
+        let (half_x, half_y) = (size.x * 0.5, size.y * 0.5);
+        FittedBox {
+            view: light_view(eye, basis),
+            bounds: [-half_x, half_x, -half_y, half_y, 0.0, z_hi - z_lo],
+            texel: (size.x / texels_x).max(size.y / texels_y),
         }
     }
-    // Each side fitted on its own: a box longer one way gets finer texels the other way.
-    let texels = DVec3::new(texels_x, texels_y, 1.0);
-    let mut size = (lhi - llo).max(DVec3::splat(1e-6));
-    let mut centre = DVec3::new((llo.x + lhi.x) * 0.5, (llo.y + lhi.y) * 0.5, 0.0);
-    // Two texels of room for filters that reach beside the looked-up texel.
-    size.x *= 1.0 + 4.0 / texels_x;
-    size.y *= 1.0 + 4.0 / texels_y;
-    let (mut z_lo, mut z_hi) = (llo.z, z_top);
-    if snap {
-        // Each side to the next 1/8 of its power of two, so small camera moves keep it.
-        let step = |side: f64| 2f64.powf(side.log2().floor()) / 8.0;
-        let (step_x, step_y) = (step(size.x), step(size.y));
-        size.x = (size.x / step_x).ceil() * step_x;
-        size.y = (size.y / step_y).ceil() * step_y;
-        let texel = size / texels;
-        centre.x = (centre.x / texel.x).floor() * texel.x;
-        centre.y = (centre.y / texel.y).floor() * texel.y;
-        let zstep = step_x.max(step_y);
-        z_lo = (z_lo / zstep).floor() * zstep;
-        z_hi = (z_hi / zstep).ceil() * zstep;
-    }
-    // Depth room: a little beyond both ends so nothing sits exactly on a plane.
-    let pad = (z_hi - z_lo).max(size.x).max(size.y) * 0.01;
-    z_lo -= pad;
-    z_hi += pad;
-    // The eye sits on the box's top face, so view coordinates stay small wherever the scene is.
-    let eye = basis * DVec3::new(centre.x, centre.y, z_hi);
-    let (half_x, half_y) = (size.x * 0.5, size.y * 0.5);
-    let fitted = FittedBox {
-        view: light_view(eye, basis),
-        bounds: [-half_x, half_x, -half_y, half_y, 0.0, z_hi - z_lo],
-        texel: (size.x / texels_x).max(size.y / texels_y),
-    };
-    (fitted, relevant)
 }
 
 /// The lowest z of a light-space triangle clipped to the x, y box [lo, hi], if any of it

@@ -4,6 +4,8 @@
 //!   `calcShadow` in `shaders/lib/shadow_2d.glsl` ("Shadows"; LearnOpenGL "Shadow Mapping").
 //! - [`cube`]: a point light's depth cube map (LearnOpenGL "Point Shadows").
 //! - [`cascades`]: cascaded shadow maps for a directional light.
+//! - [`groups`]: a directional light's box fitted per group of casters.
+//! - [`layers`]: the depth array with a box per layer that cascades and groups share.
 //! - [`moments`]: filterable maps (VSM, EVSM, MSM): depth's moments in a float colour
 //!   map, blurred, for directional and spot lights.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
@@ -24,6 +26,8 @@ pub mod cascades;
 pub mod casters;
 pub mod cube;
 pub mod fitted;
+pub mod groups;
+pub mod layers;
 pub mod map2d;
 pub mod moments;
 pub mod patch;
@@ -49,6 +53,9 @@ pub enum ShadowKind {
     Cube,
     /// A depth texture array, one layer per cascade (directional lights with cascades).
     Cascades,
+    /// A depth texture array, one layer per group of casters (directional lights with
+    /// `caster_groups` > 1).
+    Groups,
     /// No map: stencil shadow volumes ([`volumes`]), any kind of light.
     Volume,
     /// One 2D map of depth's moments, blurred (a moment filter: vsm, evsm2, evsm4, msm).
@@ -58,22 +65,26 @@ pub enum ShadowKind {
 impl ShadowKind {
     /// The kind each of a scene's lights gets under the scene's `settings` (with each
     /// light's own table on top): as [`ShadowKind::of`], except that only the first casting
-    /// directional light gets cascades (the sun; its cascades' positions are computed per
-    /// vertex, and one light's fit among GL 3.3's 64 vertex outputs), the others one map
-    /// each.
+    /// directional light gets cascades or caster groups (the sun; its layers' positions are
+    /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
+    /// others one map each.
     pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
-        let mut cascaded = false;
+        let mut layered = false;
         lights
             .iter()
             .map(|l| match ShadowKind::of(l, &l.settings(settings)) {
-                ShadowKind::Cascades if cascaded => ShadowKind::one_map(&l.settings(settings)),
-                ShadowKind::Cascades => {
-                    cascaded = true;
-                    ShadowKind::Cascades
+                kind if kind.layered() && layered => ShadowKind::one_map(&l.settings(settings)),
+                kind => {
+                    layered |= kind.layered();
+                    kind
                 }
-                kind => kind,
             })
             .collect()
+    }
+
+    /// Whether the kind is a depth array with a box per layer ([`layers`]).
+    pub fn layered(self) -> bool {
+        matches!(self, ShadowKind::Cascades | ShadowKind::Groups)
     }
 
     /// The kind a light gets under its own `settings`, alone in its scene.
@@ -86,6 +97,12 @@ impl ShadowKind {
                 if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
             {
                 ShadowKind::Cascades
+            }
+            Light::Directional(_)
+                if settings.caster_groups > 1
+                    && settings.light_projection == LightProjection::Ortho =>
+            {
+                ShadowKind::Groups
             }
             Light::Directional(_) | Light::Spot(_) => ShadowKind::one_map(settings),
         }
@@ -108,6 +125,7 @@ impl ShadowKind {
             ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
             ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
             ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),
+            ShadowKind::Groups => Some(Box::new(groups::Groups::new(gl, settings)?)),
             ShadowKind::Moments => Some(Box::new(moments::Moments::new(gl, settings)?)),
         })
     }

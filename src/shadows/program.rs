@@ -69,6 +69,15 @@ impl ProgramKey {
                     show: own.show_cascades,
                 });
             }
+            // Caster groups share the cascades' layers (shadow_layers.glsl): their count,
+            // no blend between them and nothing to tint.
+            if shadow == ShadowKind::Groups {
+                cascades = Some(CascadeLayout {
+                    count: own.caster_groups,
+                    blend_bits: 0f32.to_bits(),
+                    show: false,
+                });
+            }
             *slot = Some(LightSlot {
                 shadow,
                 positional,

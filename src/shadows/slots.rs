@@ -12,7 +12,7 @@
 //! [`super::cascades::glsl`]).
 
 use super::moments::MomentTest;
-use super::{cascades, cube, map2d, moments, volumes, ShadowKind};
+use super::{cascades, cube, groups, map2d, moments, volumes, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
@@ -162,6 +162,7 @@ pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
         ShadowKind::Map | ShadowKind::Moments => Some(map2d::SAMPLERS[index]),
         ShadowKind::Cube => Some(cube::SAMPLERS[index]),
         ShadowKind::Cascades => Some(cascades::SAMPLERS[index]),
+        ShadowKind::Groups => Some(groups::SAMPLERS[index]),
     }
 }
 
@@ -176,7 +177,9 @@ pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usiz
                 next += 1;
                 Some(next - 1)
             }
-            ShadowKind::None | ShadowKind::Cascades | ShadowKind::Volume => None,
+            ShadowKind::None | ShadowKind::Cascades | ShadowKind::Groups | ShadowKind::Volume => {
+                None
+            }
         })
         .collect()
 }
@@ -191,7 +194,7 @@ pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
         .iter()
         .flatten()
         .count();
-    let cascaded = slots.iter().any(|s| s.shadow == ShadowKind::Cascades);
+    let cascaded = slots.iter().any(|s| s.shadow.layered());
     8 + 4 * mapped + if cascaded { 4 * cascades as usize } else { 0 } + 4 + 6 * slots.len()
 }
 
@@ -225,6 +228,7 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
             ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
             ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
             ShadowKind::Cascades => Some(cascades::glsl(i, positional, cone, hardware)),
+            ShadowKind::Groups => Some(groups::glsl(i, positional, cone, hardware)),
             ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
         };
         let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))

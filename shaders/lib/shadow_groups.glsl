@@ -1,0 +1,25 @@
+// Caster groups (past the chapters; src/shadows/groups.rs): a directional light's casters
+// split into groups, each with its own box fitted to it in a layer of the depth array.
+// Compiled with the defines of shadow_layers.glsl (CASCADES: here the groups' layers).
+
+#include "lib/shadow_layers.glsl"
+
+// Every layer is read and the darkest wins: a caster is drawn only in its group's layer,
+// whose box covers every receiver it can shadow, and reads lit in the others (outside
+// their boxes, or where they hold none of its depths).
+float calcShadowGroups(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir)
+{
+    float lit = 1.0;
+    for (int c = 0; c < CASCADES; ++c) {
+        lit = min(lit, layerLookup(map, c, normal, toLightDir));
+    }
+    return lit;
+}
+
+// The light i with caster groups.
+void addLightGroups(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool cone,
+                    inout Fragment f)
+{
+    vec3 toLight = toLightOf(i, positional);
+    addLight(i, toLight, cone, calcShadowGroups(map, f.normal, toLight), f);
+}

@@ -1,0 +1,267 @@
+//! Caster groups: a directional light's box fitted per group of casters (past the chapters,
+//! and past [`super::fitted`]'s one box).
+//!
+//! One fitted box must hold every caster whose shadow the camera sees; two casters far
+//! apart in the light's view make it large, and its texels coarse over both (LearnOpenGL's
+//! scene: cube1 in the middle and cube3, whose shadow reaches the frame's corner). Here the
+//! casters are grouped by where they lie across the light's view and each group gets its
+//! own box ([`LightFit::fit_box`]) in a layer of a depth array ([`Layers`]), so each group's
+//! texels are as fine as if it were alone. The scene pass tests every layer and keeps the
+//! darkest (`shaders/lib/shadow_groups.glsl`): a caster is drawn in its group's layer only,
+//! and that layer's box covers every receiver in view it can shadow.
+
+use super::casters::casters;
+use super::fitted::LightFit;
+use super::layers::Layers;
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
+use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
+use crate::error::Result;
+use crate::scene::{Light, Scene};
+use crate::settings::ShadowSettings;
+
+/// Its sampler in the scene shader, per light.
+pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
+    ["groupMap0", "groupMap1", "groupMap2", "groupMap3"];
+
+/// Light `i`'s part of the generated snippets: shaders/lib/shadow_groups.glsl, its sampler
+/// and its `addLightGroups` call (one light is layered).
+pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
+    LightGlsl {
+        snippet: "lib/shadow_groups.glsl",
+        functions: &[
+            "softTaps",
+            "pcfArray",
+            "layerLookup",
+            "calcShadowGroups",
+            "addLightGroups",
+        ],
+        sampler_type: if hardware {
+            "sampler2DArrayShadow"
+        } else {
+            "sampler2DArray"
+        },
+        call: format!(
+            "addLightGroups_{i}({i}, {}, {positional}, {cone}, f);",
+            SAMPLERS[i]
+        ),
+    }
+}
+
+/// `fit`'s casters in at most `count` groups (item indices, each group in item order, the
+/// groups by their first item). Starting from one group per caster, the two groups whose
+/// rectangles across the light's view grow least when joined (the union's area less
+/// theirs) are joined until `count` are left: casters side by side share a box, casters
+/// far apart keep their own.
+pub fn group_casters(fit: &LightFit, count: usize) -> Vec<Vec<usize>> {
+    let rect = |i: usize| {
+        let (lo, hi) = fit.light_box(i);
+        [lo.x, lo.y, hi.x, hi.y]
+    };
+    let mut groups: Vec<(Vec<usize>, [f64; 4])> =
+        fit.casters.iter().map(|&c| (vec![c], rect(c))).collect();
+    let area = |r: &[f64; 4]| (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0);
+    let join = |a: &[f64; 4], b: &[f64; 4]| {
+        [
+            a[0].min(b[0]),
+            a[1].min(b[1]),
+            a[2].max(b[2]),
+            a[3].max(b[3]),
+        ]
+    };
+    while groups.len() > count.max(1) {
+        let mut best = (f64::INFINITY, 0, 1);
+        for a in 0..groups.len() {
+            for b in a + 1..groups.len() {
+                let (ra, rb) = (&groups[a].1, &groups[b].1);
+                let growth = area(&join(ra, rb)) - area(ra) - area(rb);
+                if growth < best.0 {
+                    best = (growth, a, b);
+                }
+            }
+        }
+        let (_, a, b) = best;
+        let (items, r) = groups.remove(b);
+        groups[a].0.extend(items);
+        groups[a].1 = join(&groups[a].1, &r);
+    }
+    let mut out: Vec<Vec<usize>> = groups
+        .into_iter()
+        .map(|(mut items, _)| {
+            items.sort_unstable();
+            items
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// A light's caster groups: the depth array (a layer per group, `caster_groups` of them)
+/// and the groups of the last depth pass.
+pub struct Groups {
+    layers: Layers,
+    groups: Vec<Vec<usize>>,
+}
+
+impl Groups {
+    pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Groups> {
+        Ok(Groups {
+            layers: Layers::new(gl, s, s.caster_groups, "caster groups")?,
+            groups: Vec::new(),
+        })
+    }
+
+    /// The groups (item indices) the last depth pass drew, by layer; layers past them hold
+    /// no caster.
+    pub fn groups(&self) -> &[Vec<usize>] {
+        &self.groups
+    }
+}
+
+impl Technique for Groups {
+    fn kind(&self) -> ShadowKind {
+        ShadowKind::Groups
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.layers.fits(s, s.caster_groups)
+    }
+
+    /// The groups fitted to what the camera sees, then one depth pass per layer with its
+    /// group's casters (a layer with no group is cleared and reads lit).
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let Light::Directional(l) = &scene.lights[index] else {
+            return Err(crate::Error::Invalid(format!(
+                "light {index} has caster groups but is not a directional light"
+            )));
+        };
+        let s = pass.settings;
+        let fit = LightFit::new(scene, l.direction);
+        let count = s.caster_groups as usize;
+        self.groups = group_casters(&fit, count);
+        let boxes = (0..count)
+            .map(|k| {
+                let group = self.groups.get(k).map_or(&[][..], Vec::as_slice);
+                fit.fit_box(group, s.map_size, s.snap)
+            })
+            .collect::<Vec<_>>();
+        let to_light = l.direction;
+        // Each caster is offered once, to its group's layer.
+        pass.casters.total += casters(scene);
+        let groups = &self.groups;
+        self.layers.draw(pass, scene, boxes, |layer, i| {
+            groups
+                .get(layer)
+                .is_some_and(|g| g.binary_search(&i).is_ok())
+        })?;
+        // The first layer stands for the light's camera (reports, the depth view's near
+        // and far, the reference's rays).
+        match self.layers.boxes().first() {
+            Some(first) => Ok(first.shadow_view(to_light)),
+            None => Err(crate::Error::Internal(format!(
+                "light {index}: caster groups have no layer"
+            ))),
+        }
+    }
+
+    fn texture(&self) -> &Texture {
+        self.layers.texture()
+    }
+
+    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
+        Layers::sampling(settings)
+    }
+
+    fn slot_transform(
+        &self,
+        _: &Light,
+        _: &ShadowView,
+        _: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        None
+    }
+
+    fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
+        self.layers
+            .set_uniforms(p, scene.camera.position, s.normal_offset);
+    }
+
+    fn bytes(&self) -> u64 {
+        self.layers.bytes()
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        self.layers.depth_view()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    fn learnopengl_fit(scene: &Scene) -> LightFit<'_> {
+        let Light::Directional(l) = &scene.lights[0] else {
+            panic!("learnopengl's light is directional");
+        };
+        LightFit::new(scene, l.direction)
+    }
+
+    fn names(scene: &Scene, groups: &[Vec<usize>]) -> Vec<Vec<String>> {
+        groups
+            .iter()
+            .map(|g| g.iter().map(|&i| scene.items[i].name.clone()).collect())
+            .collect()
+    }
+
+    #[test]
+    fn far_apart_casters_get_their_own_groups_and_near_ones_share() {
+        let mut scene = Scene::load("learnopengl").unwrap();
+        // From the tutorial's camera: cube1 and cube3, far apart, one each.
+        let fit = learnopengl_fit(&scene);
+        assert_eq!(
+            names(&scene, &group_casters(&fit, 2)),
+            [["cube1"], ["cube3"]]
+        );
+        assert_eq!(
+            names(&scene, &group_casters(&fit, 1)),
+            [vec!["cube1", "cube3"]]
+        );
+        // From above all three cubes are in view: with two groups, the two nearest each
+        // other across the light's view share one.
+        scene.camera = crate::scene::Camera::look_at(Vec3::new(0.0, 12.0, 0.5), Vec3::ZERO)
+            .expect("a direction");
+        let fit = learnopengl_fit(&scene);
+        let two = group_casters(&fit, 2);
+        assert_eq!(two.len(), 2);
+        assert_eq!(two.iter().map(Vec::len).sum::<usize>(), 3);
+        assert_eq!(
+            group_casters(&fit, 4).len(),
+            3,
+            "one group per caster at most"
+        );
+    }
+
+    #[test]
+    fn a_groups_box_is_smaller_than_the_box_around_every_caster() {
+        let scene = Scene::load("learnopengl").unwrap();
+        let fit = learnopengl_fit(&scene);
+        let size = crate::settings::MapSize::square(1024);
+        let all = fit.fit_box(&fit.casters, size, true);
+        for group in group_casters(&fit, 2) {
+            let own = fit.fit_box(&group, size, true);
+            assert!(
+                own.texel < all.texel * 0.75,
+                "{group:?}: texel {} against {}",
+                own.texel,
+                all.texel
+            );
+        }
+    }
+}
