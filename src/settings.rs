@@ -192,8 +192,8 @@ impl Filter {
 
     /// Whether a light whose shadow is stored as `storage` ("a cube map", "cascades", "a 2D
     /// map") can use this filter: the soft filters read a 2D texel grid, which a cube map
-    /// has not; PCSS needs one light camera per map, which cascades have not (each layer
-    /// has its own box). `None` when it can; otherwise why not.
+    /// has not; PCSS needs one light camera per map, which cascades and caster groups have
+    /// not (each layer has its own box). `None` when it can; otherwise why not.
     pub fn refused_for(self, cube: bool, cascades: bool) -> Option<&'static str> {
         match self {
             Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss if cube => Some(
@@ -201,8 +201,8 @@ impl Filter {
                  soft filters read a 2D map's texel grid)",
             ),
             Filter::Pcss if cascades => Some(
-                "cascades take every filter but pcss (its penumbra is measured in one light \
-                 camera's units, and each cascade has its own box)",
+                "cascades and caster groups take every filter but pcss (its penumbra is \
+                 measured in one light camera's units, and each layer has its own box)",
             ),
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cube => Some(
                 "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a point light's \
@@ -210,8 +210,9 @@ impl Filter {
                  filter = \"pcf3x3\" }) or use one for the scene",
             ),
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cascades => Some(
-                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and cascades have one \
-                 per slice; use cascades = 1 or a depth filter (pcf3x3) for the light",
+                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and cascades and \
+                 caster groups have a layer each; use cascades = 1 and caster_groups = 1, or \
+                 a depth filter (pcf3x3) for the light",
             ),
             _ => None,
         }

@@ -331,6 +331,23 @@ fn a_cached_moment_map_and_a_soft_filter_give_the_uncached_frame() {
 }
 
 #[test]
+fn cached_caster_groups_give_the_uncached_frame() {
+    // The layered map behind the same cache: kept where nothing moves (learnopengl), drawn
+    // whole every frame where the cube turns (groups follow the camera: never patched).
+    for name in ["learnopengl", "dummy"] {
+        let set = |s: &mut ShadowSettings| s.caster_groups = 2;
+        let (cached, p) = last_frame(name, true, set);
+        let (fresh, _) = last_frame(name, false, set);
+        assert!(cached == fresh, "{name}: the cached frame differs");
+        let expected = match name {
+            "learnopengl" => (1, 0, u64::from(FRAMES) - 1),
+            _ => (u64::from(FRAMES), 0, 0),
+        };
+        assert_eq!((p.drawn, p.patched, p.skipped), expected, "{name}");
+    }
+}
+
+#[test]
 fn the_dummy_games_turning_cube_patches_its_map_and_equals_a_full_redraw() {
     // Issue 16, movers redrawn: only the cube turns under the book's fixed box, so after the
     // first frame its map is patched where the cube was and is; the frame and the map are

@@ -210,8 +210,8 @@ fn cascades_and_the_cli_refuse_moment_filters_by_name() {
         e.as_deref(),
         Some(
             "shadow.filter = evsm4: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, msm) \
-             need one 2D map and cascades have one per slice; use cascades = 1 or a depth filter \
-             (pcf3x3) for the light"
+             need one 2D map and cascades and caster groups have a layer each; use cascades = 1 \
+             and caster_groups = 1, or a depth filter (pcf3x3) for the light"
         )
     );
     // On the command line: before any GL work, naming the flag.

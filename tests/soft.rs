@@ -252,7 +252,7 @@ fn every_soft_filter_draws_on_every_built_in_scene_or_is_refused_with_its_reason
 fn the_command_line_refuses_what_a_light_cannot_use_with_its_reason() {
     let dir = std::env::temp_dir().join(format!("shadowmap-soft-refused-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let cases: [(&[&str], &str); 3] = [
+    let cases: [(&[&str], &str); 4] = [
         (
             &["--scene", "point-shadows", "--filter", "soft-pcf"],
             "error: --filter: shadow.filter = soft-pcf: light 0 cannot use it: a point light's \
@@ -261,9 +261,22 @@ fn the_command_line_refuses_what_a_light_cannot_use_with_its_reason() {
         ),
         (
             &["--scene", "large", "--cascades", "4", "--filter", "pcss"],
-            "error: --filter: shadow.filter = pcss: light 0 cannot use it: cascades take every \
-             filter but pcss (its penumbra is measured in one light camera's units, and each \
-             cascade has its own box)",
+            "error: --filter: shadow.filter = pcss: light 0 cannot use it: cascades and caster \
+             groups take every filter but pcss (its penumbra is measured in one light camera's \
+             units, and each layer has its own box)",
+        ),
+        (
+            &[
+                "--scene",
+                "learnopengl",
+                "--caster-groups",
+                "2",
+                "--filter",
+                "pcss",
+            ],
+            "error: --filter: shadow.filter = pcss: light 0 cannot use it: cascades and caster \
+             groups take every filter but pcss (its penumbra is measured in one light camera's \
+             units, and each layer has its own box)",
         ),
         (
             &["--scene", "dummy", "--light-size", "90"],

@@ -639,6 +639,20 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
         };
         idle.push(("cascades", why));
     }
+    if settings.caster_groups > 1 && !kinds.contains(&ShadowKind::Groups) {
+        let why = match suns.is_empty() {
+            true => "no directional light casts shadows in this scene, and only one gets \
+                     caster groups; each light keeps one map"
+                .to_string(),
+            false if settings.cascades > 1 => "cascades are set (--cascades), and a light \
+                                               has cascades or caster groups, not both"
+                .to_string(),
+            false => "caster groups need an orthographic light projection \
+                      (--light-projection perspective is set); the light keeps one map"
+                .to_string(),
+        };
+        idle.push(("caster_groups", why));
+    }
     if !kinds.contains(&ShadowKind::Cube) {
         idle.push((
             "point_pass",
@@ -670,7 +684,8 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
         }
     }
     let snapped = |s: &ShadowSettings| {
-        s.light_projection == LightProjection::Ortho && (s.fit == Fit::Scene || s.cascades > 1)
+        s.light_projection == LightProjection::Ortho
+            && (s.fit == Fit::Scene || s.cascades > 1 || s.caster_groups > 1)
     };
     if !suns.iter().any(snapped) {
         idle.push((
@@ -683,7 +698,11 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
     let maps = kinds.iter().any(|k| {
         matches!(
             k,
-            ShadowKind::Map | ShadowKind::Moments | ShadowKind::Cube | ShadowKind::Cascades
+            ShadowKind::Map
+                | ShadowKind::Moments
+                | ShadowKind::Cube
+                | ShadowKind::Cascades
+                | ShadowKind::Groups
         )
     });
     if volumes && !maps {
@@ -691,6 +710,7 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
             "map_size",
             "depth_format",
             "cascades",
+            "caster_groups",
             "filter",
             "bias_mode",
             "bias",

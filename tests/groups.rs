@@ -1,0 +1,82 @@
+//! Caster groups (src/shadows/groups.rs): a box per group of casters, measured against the
+//! exact reference where one fitted box must stretch over casters far apart, and checked
+//! to read as one fitted box where there is a single caster (the spare layer is lit).
+
+mod common;
+
+use shadowmap::compare::{compare, CompareOptions};
+use shadowmap::settings::{Filter, Fit, MapSize, ShadowSettings};
+
+fn settings(scene: &shadowmap::Scene, groups: u32, size: u32) -> ShadowSettings {
+    ShadowSettings {
+        fit: Fit::Scene,
+        filter: Filter::Hardware2x2,
+        map_size: MapSize::square(size),
+        caster_groups: groups,
+        ..scene.shadow
+    }
+}
+
+#[test]
+fn two_groups_cut_learnopengls_error_where_one_fitted_box_cannot() {
+    // LearnOpenGL's camera sees the shadows of cube1 (in the middle) and of cube3 (at the
+    // frame's corner): one box holds both and its texels are coarse over cube1's shadow
+    // edge; a box each keeps cube1's as fine as if it were alone.
+    let ctx = common::context();
+    let scene = common::frozen("learnopengl");
+    let opts = CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
+        width: 800,
+        height: 600,
+        supersample: 1,
+        band: 1,
+        light: 0,
+    };
+    let measure = |s: &ShadowSettings| compare(ctx.gl(), &scene, s, &opts).unwrap().metrics;
+    for size in [512, 1024] {
+        let one = measure(&settings(&scene, 1, size));
+        let two = measure(&settings(&scene, 2, size));
+        eprintln!(
+            "learnopengl {size}^2 hw2x2: one fitted box {:.4}% misclassified, two caster groups \
+             {:.4}%",
+            one.misclassified_rate * 100.0,
+            two.misclassified_rate * 100.0
+        );
+        assert!(one.receivers > 200_000, "the floor must fill the view");
+        assert!(
+            two.misclassified * 2 < one.misclassified,
+            "{size}: two groups misclassify {} pixels, one box {}",
+            two.misclassified,
+            one.misclassified
+        );
+        // Every error left lies on the shadows' edges.
+        assert_eq!(two.misclassified_outside_band_rate, 0.0, "{size}");
+    }
+}
+
+#[test]
+fn one_caster_in_two_groups_reads_as_one_fitted_box() {
+    // The DummyGame's light shadows one cube: the first layer's box is the fitted box, the
+    // second holds nothing and must read lit everywhere.
+    let ctx = common::context();
+    let mut scene = common::dummy(60.0);
+    let (s1, s2) = (settings(&scene, 1, 1024), settings(&scene, 2, 1024));
+    let one = common::render(&ctx, &mut scene, &s1, 320, 180);
+    let two = common::render(&ctx, &mut scene, &s2, 320, 180);
+    let (a, b) = (one.visibility.unwrap(), two.visibility.unwrap());
+    let shadowed = a.iter().flatten().filter(|v| **v < 0.5).count();
+    let differ = a
+        .iter()
+        .zip(&b)
+        .filter(|(x, y)| match (x, y) {
+            (Some(x), Some(y)) => (x - y).abs() > 0.5,
+            (x, y) => x.is_some() != y.is_some(),
+        })
+        .count();
+    eprintln!("dummy: {shadowed} shadowed pixels, {differ} differ between one box and two groups");
+    assert!(shadowed > 1000, "the cube's shadow must be in view");
+    assert!(
+        differ * 200 < shadowed,
+        "{differ} of {shadowed} shadowed pixels differ"
+    );
+}
