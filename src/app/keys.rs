@@ -19,6 +19,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("B", "draw the shadow volumes over the scene"),
     ("C", "tint the cascades"),
     ("K", "cascades: 1, 2, 3, 4, 1, ..."),
+    ("G", "caster groups: 1, 2, 3, 4, 1, ..."),
     ("I", "the shadow-map inset (bottom-right)"),
     ("H", "show / hide these keys"),
     ("F12", "save a screenshot (PNG, current folder)"),

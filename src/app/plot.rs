@@ -61,14 +61,16 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             .map_err(|e| err(&e))?;
         // One series per kind of shadow (one map, cascades, a point light's two ways of
         // drawing its cube), each in its own colour.
-        for (family, colour) in [
-            (Family::OneMap, RGBColor(150, 150, 150)),
-            (Family::Cascades, RGBColor(20, 150, 60)),
-            (Family::PointLayered, RGBColor(140, 60, 190)),
-            (Family::PointSixPasses, RGBColor(230, 140, 20)),
-            (Family::Volumes, RGBColor(220, 30, 30)),
-            (Family::Soft, RGBColor(30, 110, 220)),
-        ] {
+        for family in Family::ALL {
+            let colour = match family {
+                Family::OneMap => RGBColor(150, 150, 150),
+                Family::Cascades => RGBColor(20, 150, 60),
+                Family::Groups => RGBColor(0, 170, 200),
+                Family::PointLayered => RGBColor(140, 60, 190),
+                Family::PointSixPasses => RGBColor(230, 140, 20),
+                Family::Volumes => RGBColor(220, 30, 30),
+                Family::Soft => RGBColor(30, 110, 220),
+            };
             let points: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| r.config.family == family)
@@ -299,6 +301,7 @@ fn short_label(r: &BenchRow) -> String {
     }
     let mut name = match r.config.family {
         Family::Cascades => format!("{}x{}", s.cascades, s.map_size),
+        Family::Groups => format!("{}x{} groups", s.caster_groups, s.map_size),
         _ => s.map_size.to_string(),
     };
     name.push_str(&format!(

@@ -67,6 +67,7 @@ pub fn patch_of(config: &BenchConfig) -> ShadowPatch {
         cull: Some(s.cull),
         depth_format: Some(s.depth_format),
         cascades: Some(s.cascades),
+        caster_groups: Some(s.caster_groups),
         // The sweep's volumes row and its fixed-box tutorials differ from the base here.
         technique: Some(s.technique),
         fit: Some(s.fit),
@@ -110,8 +111,8 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
         _ => {
             format!(
             "--map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} --normal-offset {} \
-             --polygon-offset {},{} --cull {} --depth-format {} --cascades {} --fit {} \
-             --technique maps",
+             --polygon-offset {},{} --cull {} --depth-format {} --cascades {} --caster-groups {} \
+             --fit {} --technique maps",
             s.map_size,
             s.filter.name(),
             s.bias_mode.name(),
@@ -123,6 +124,7 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
             s.cull.name(),
             s.depth_format.name(),
             s.cascades,
+            s.caster_groups,
             match s.fit {
                 shadowmap::settings::Fit::Manual => "manual",
                 shadowmap::settings::Fit::Scene => "scene",

@@ -100,6 +100,8 @@ pub enum Family {
     OneMap,
     /// A directional light's cascades.
     Cascades,
+    /// A directional light's box per group of casters (`caster_groups`).
+    Groups,
     /// A point light's cube map drawn in one layered pass.
     PointLayered,
     /// A point light's cube map drawn face by face.
@@ -111,9 +113,21 @@ pub enum Family {
 }
 
 impl Family {
+    /// Every family, in the order plots list them.
+    pub const ALL: [Family; 7] = [
+        Family::OneMap,
+        Family::Cascades,
+        Family::Groups,
+        Family::PointLayered,
+        Family::PointSixPasses,
+        Family::Volumes,
+        Family::Soft,
+    ];
+
     pub fn of(light: &Light, s: &ShadowSettings) -> Family {
         match (ShadowKind::of(light, &light.settings(s)), s.point_pass) {
             (ShadowKind::Cascades, _) => Family::Cascades,
+            (ShadowKind::Groups, _) => Family::Groups,
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
             (ShadowKind::Volume, _) => Family::Volumes,
@@ -126,6 +140,7 @@ impl Family {
         match self {
             Family::OneMap => "one map",
             Family::Cascades => "cascades",
+            Family::Groups => "caster groups",
             Family::PointLayered => "point light, layered",
             Family::PointSixPasses => "point light, six passes",
             Family::Volumes => "shadow volumes",
@@ -190,6 +205,7 @@ pub fn sweep(
 ) -> Vec<BenchConfig> {
     let base = &ShadowSettings {
         cascades: 1,
+        caster_groups: 1,
         ..*base
     };
     let mut out = sweep_grid(base, quick, max_texture_size);
@@ -206,21 +222,31 @@ pub fn sweep(
             (Family::OneMap, _)
                 if Family::of(light, &ShadowSettings { cascades: 2, ..s }) == Family::Cascades =>
             {
-                // Cascades: the same total memory as some one-map sizes (4 x 1024^2 = 2048^2).
-                let keep = matches!(s.filter, Filter::Single | Filter::Hardware2x2)
+                // The layered kinds (a directional light's), at the filters and biases the
+                // fitted one-map rows do best with.
+                let layered = matches!(s.filter, Filter::Single | Filter::Hardware2x2)
                     && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
                     && s.cull == Cull::None
-                    && s.depth_format == DepthFormat::D24
-                    && (512..=2048).contains(&s.map_size.max_side())
-                    && (!quick || s.map_size == MapSize::square(1024));
-                let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
-                match keep {
-                    true => counts
-                        .iter()
-                        .map(|&n| ShadowSettings { cascades: n, ..s })
-                        .collect(),
-                    false => Vec::new(),
+                    && s.depth_format == DepthFormat::D24;
+                let side = s.map_size.max_side();
+                let mut out = Vec::new();
+                // Cascades: the same total memory as some one-map sizes (4 x 1024^2 = 2048^2).
+                if layered
+                    && (512..=2048).contains(&side)
+                    && (!quick || s.map_size == MapSize::square(1024))
+                {
+                    let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
+                    out.extend(counts.iter().map(|&n| ShadowSettings { cascades: n, ..s }));
                 }
+                // Caster groups: a box per group of casters, each layer the one map's size.
+                if layered && (256..=1024).contains(&side) && (!quick || side >= 512) {
+                    let counts: &[u32] = if quick { &[2] } else { &[2, 4] };
+                    out.extend(counts.iter().map(|&n| ShadowSettings {
+                        caster_groups: n,
+                        ..s
+                    }));
+                }
+                out
             }
             (Family::PointLayered, _)
                 if s.cull == Cull::None && s.depth_format == DepthFormat::D24 =>
@@ -561,6 +587,11 @@ impl BenchRow {
         match self.config.family {
             Family::OneMap | Family::Soft | Family::PointLayered => {}
             Family::Cascades => cost.passes *= s.cascades,
+            // Every layer is drawn and read.
+            Family::Groups => {
+                cost.passes *= s.caster_groups;
+                cost.taps *= s.caster_groups;
+            }
             Family::PointSixPasses => cost.passes *= 6,
             // Per light a stencil pass of volumes and a lit pass; no map is read.
             Family::Volumes => {
@@ -604,6 +635,7 @@ impl BenchRow {
         let layers = match self.config.family {
             Family::OneMap | Family::Soft => 1,
             Family::Cascades => u64::from(s.cascades),
+            Family::Groups => u64::from(s.caster_groups),
             Family::PointLayered | Family::PointSixPasses => 6,
             Family::Volumes => 0,
         };
@@ -617,6 +649,10 @@ impl BenchRow {
         let (size, suffix) = match self.config.family {
             Family::OneMap => (s.map_size.to_string(), ""),
             Family::Cascades => (format!("{}x{}", s.cascades, s.map_size), " cascades"),
+            Family::Groups => (
+                format!("{}x{}", s.caster_groups, s.map_size),
+                " caster groups",
+            ),
             Family::PointLayered => (s.map_size.to_string(), " cube layered"),
             Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
             Family::Volumes => {
@@ -628,7 +664,9 @@ impl BenchRow {
             Family::Soft => (s.map_size.to_string(), ""),
         };
         let fitted = match s.fit {
-            Fit::Scene if self.config.family != Family::Cascades => " fitted",
+            Fit::Scene if !matches!(self.config.family, Family::Cascades | Family::Groups) => {
+                " fitted"
+            }
             _ => "",
         };
         format!(
@@ -843,7 +881,7 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
 /// The CSV columns, in order (the `area_*`, `light_bleed_rate` and `penumbra_*` ones are
 /// against the area truth, or with `area_rays` 0 against the hard reference of a point
 /// light; `lookups`: shadow-map reads per fragment, [`Filter::lookups`]).
-pub const CSV_HEADER: &str = "tutorial,family,cascades,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
+pub const CSV_HEADER: &str = "tutorial,family,cascades,caster_groups,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
 normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
 wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
 scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
@@ -863,6 +901,7 @@ pub fn to_csv(rows: &[BenchRow]) -> String {
             r.config.tutorial.unwrap_or("-").to_string(),
             format!("{:?}", r.config.family).to_lowercase(),
             s.cascades.to_string(),
+            s.caster_groups.to_string(),
             format!("{:?}", s.point_pass).to_lowercase(),
             s.map_size.to_string(),
             s.filter.name().to_string(),
