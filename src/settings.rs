@@ -892,7 +892,27 @@ pub fn parse_pair(s: &str) -> Result<[f32; 2], String> {
     Ok([a, b])
 }
 
+/// The layers a directional light's map gets ([`ShadowSettings::directional_layers`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DirectionalLayers {
+    /// A layer per slice of the view (`cascades` > 1).
+    Cascades,
+    /// A layer per group of casters (`caster_groups` > 1).
+    CasterGroups,
+}
+
 impl ShadowSettings {
+    /// The layers a directional light's map is split into under these settings, if any:
+    /// cascades, or else caster groups; both need an orthographic light projection.
+    pub fn directional_layers(&self) -> Option<DirectionalLayers> {
+        match self.light_projection {
+            LightProjection::Perspective => None,
+            _ if self.cascades > 1 => Some(DirectionalLayers::Cascades),
+            _ if self.caster_groups > 1 => Some(DirectionalLayers::CasterGroups),
+            _ => None,
+        }
+    }
+
     /// A short human summary, for window titles and reports: the map and its test, then
     /// every other field that differs from the defaults (the book's final configuration),
     /// so two settings that render differently never read the same. Fields that do nothing

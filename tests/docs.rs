@@ -49,22 +49,28 @@ fn the_bench_counts_are_the_sweeps() {
     let full = sweep(&dummy.shadow, false, 16384, dummy.light());
     let quick = sweep(&dummy.shadow, true, 16384, dummy.light());
     let cascaded = full.iter().filter(|c| c.family == Family::Cascades).count();
+    let grouped = full.iter().filter(|c| c.family == Family::Groups).count();
     let volumes = full.iter().filter(|c| c.family == Family::Volumes).count();
     assert_eq!(volumes, 1, "the sweep has the volumes once");
     assert_eq!(
-        number_after(&text, "2 to 4 cascades: "),
+        number_after(&text, "2 or 4 caster groups: "),
         full.len(),
         "the full sweep"
     );
     assert_eq!(
         number_after(&text, "configurations on the DummyGame ("),
-        full.len() - cascaded - volumes,
+        full.len() - cascaded - grouped - volumes,
         "one-map configurations"
     );
     assert_eq!(
         number_after(&text, " with one map, "),
         cascaded,
         "configurations with cascades"
+    );
+    assert_eq!(
+        number_after(&text, " with cascades, "),
+        grouped,
+        "configurations with caster groups"
     );
     assert_eq!(number_after(&text, "`--quick` runs "), quick.len());
     let counts = configuration_counts(16384);

@@ -242,6 +242,38 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_chosen_configuration_laid_over_the_scene_is_what_was_measured() {
+        // The patch (and so the printed flags) must carry every setting the sweep varies:
+        // without `caster_groups` a chosen caster-groups row was drawn as one map.
+        for name in ["learnopengl", "point-shadows"] {
+            let scene = Scene::load(name).unwrap();
+            for c in bench::sweep(&scene.shadow, true, 16384, scene.light()) {
+                let mut s = scene.shadow;
+                patch_of(&c).apply_to(&mut s);
+                assert_eq!(
+                    Family::of(scene.light(), &s),
+                    c.family,
+                    "{name}: {}",
+                    c.family.name()
+                );
+                if c.family != Family::Volumes {
+                    assert_eq!(
+                        (s.map_size, s.filter, s.cascades, s.caster_groups, s.fit),
+                        (
+                            c.settings.map_size,
+                            c.settings.filter,
+                            c.settings.cascades,
+                            c.settings.caster_groups,
+                            c.settings.fit
+                        ),
+                        "{name}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn the_search_keeps_to_the_configurations_the_flags_allow() {
         let scene = Scene::load("learnopengl").unwrap();
         let base = scene.shadow;

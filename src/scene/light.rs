@@ -6,7 +6,9 @@
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{Fit, LightProjection, LightView, ShadowPatch, ShadowSettings};
+use crate::settings::{
+    DirectionalLayers, Fit, LightProjection, LightView, ShadowPatch, ShadowSettings,
+};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -379,10 +381,11 @@ impl Light {
             }
         }
         let cube = matches!(self, Light::Point(_));
-        let cascades = matches!(self, Light::Directional(_))
-            && settings.cascades > 1
-            && settings.light_projection == LightProjection::Ortho;
-        if let Some(why) = settings.filter.refused_for(cube, cascades) {
+        let layers = match self {
+            Light::Directional(_) => settings.directional_layers(),
+            _ => None,
+        };
+        if let Some(why) = settings.filter.refused_for(cube, layers.is_some()) {
             return Some(format!(
                 "shadow.filter = {}: {name} cannot use it: {why}",
                 settings.filter.name()
@@ -390,12 +393,11 @@ impl Light {
         }
         let square = match self {
             Light::Point(_) => Some("a point light's cube map"),
-            Light::Directional(_)
-                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
-            {
-                Some("cascades")
-            }
-            _ => None,
+            _ => match layers {
+                Some(DirectionalLayers::Cascades) => Some("cascades"),
+                Some(DirectionalLayers::CasterGroups) => Some("caster groups"),
+                None => None,
+            },
         };
         let what = square?;
         let size = settings.map_size;

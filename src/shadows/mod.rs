@@ -40,7 +40,7 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
-use crate::settings::{LightProjection, ShadowSettings, ShadowTechnique};
+use crate::settings::{DirectionalLayers, ShadowSettings, ShadowTechnique};
 
 /// What a light's shadow is stored in, and so which technique draws it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -93,18 +93,12 @@ impl ShadowKind {
             l if !l.casts_shadows() || !settings.shadows => ShadowKind::None,
             _ if settings.technique == ShadowTechnique::Volumes => ShadowKind::Volume,
             Light::Point(_) => ShadowKind::Cube,
-            Light::Directional(_)
-                if settings.cascades > 1 && settings.light_projection == LightProjection::Ortho =>
-            {
-                ShadowKind::Cascades
-            }
-            Light::Directional(_)
-                if settings.caster_groups > 1
-                    && settings.light_projection == LightProjection::Ortho =>
-            {
-                ShadowKind::Groups
-            }
-            Light::Directional(_) | Light::Spot(_) => ShadowKind::one_map(settings),
+            Light::Directional(_) => match settings.directional_layers() {
+                Some(DirectionalLayers::Cascades) => ShadowKind::Cascades,
+                Some(DirectionalLayers::CasterGroups) => ShadowKind::Groups,
+                None => ShadowKind::one_map(settings),
+            },
+            Light::Spot(_) => ShadowKind::one_map(settings),
         }
     }
 

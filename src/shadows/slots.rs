@@ -423,7 +423,8 @@ mod tests {
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
         // Four lights of four kinds, one with cascades, one with a moment map: every
-        // snippet is included.
+        // snippet is included but caster groups' (only one light is layered), which a
+        // second set of lights includes.
         let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
         let slot = |shadow| LightSlot {
             shadow,
@@ -442,9 +443,12 @@ mod tests {
         );
         // Included directly or by another snippet (the soft filters by the 2D test's).
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
+        let groups = snippets(&[slot(ShadowKind::Groups)], MaskMode::Off);
+        let resolved_groups = crate::shaders::scene_frag(&groups).unwrap();
         for name in crate::shaders::library() {
+            let file = format!("shaders/{name}");
             assert!(
-                resolved.files.contains(&format!("shaders/{name}")),
+                resolved.files.contains(&file) || resolved_groups.files.contains(&file),
                 "{name} is never included"
             );
         }
