@@ -17,10 +17,8 @@ use glam::{DVec3, Vec3};
 
 use super::casters::casters;
 use super::fitted::{aabb, corners, FittedBox};
-use super::layers::Layers;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::layers::{self, Layers};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::{Camera, Light, Scene};
@@ -301,29 +299,20 @@ impl Cascade {
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["cascadeMap0", "cascadeMap1", "cascadeMap2", "cascadeMap3"];
 
-/// Light `i`'s part of the generated snippets: shaders/lib/shadow_cascades.glsl, its
-/// sampler and its `addLightCascades` call (one light has cascades).
-pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
-    LightGlsl {
-        snippet: "lib/shadow_cascades.glsl",
-        functions: &[
-            "softTaps",
-            "pcfArray",
-            "layerLookup",
-            "calcShadowCascades",
-            "addLightCascades",
-        ],
-        sampler_type: if hardware {
-            "sampler2DArrayShadow"
-        } else {
-            "sampler2DArray"
-        },
-        call: format!(
-            "addLightCascades_{i}({i}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
-        ),
-    }
-}
+/// Its part of the generated snippets (one light has cascades): shaders/lib/shadow_cascades.glsl
+/// and its `addLightCascades` call.
+pub const SNIPPET: layers::Snippet = layers::Snippet {
+    file: "lib/shadow_cascades.glsl",
+    functions: &[
+        "softTaps",
+        "pcfArray",
+        "layerLookup",
+        "calcShadowCascades",
+        "addLightCascades",
+    ],
+    add: "addLightCascades",
+    samplers: SAMPLERS,
+};
 
 /// A cascaded light's storage: the depth array ([`Layers`], a layer per cascade) and the
 /// cascades of the last depth pass.

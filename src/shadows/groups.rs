@@ -12,10 +12,8 @@
 
 use super::casters::casters;
 use super::fitted::LightFit;
-use super::layers::Layers;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::layers::{self, Layers};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
@@ -25,29 +23,20 @@ use crate::settings::ShadowSettings;
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["groupMap0", "groupMap1", "groupMap2", "groupMap3"];
 
-/// Light `i`'s part of the generated snippets: shaders/lib/shadow_groups.glsl, its sampler
-/// and its `addLightGroups` call (one light is layered).
-pub fn glsl(i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
-    LightGlsl {
-        snippet: "lib/shadow_groups.glsl",
-        functions: &[
-            "softTaps",
-            "pcfArray",
-            "layerLookup",
-            "calcShadowGroups",
-            "addLightGroups",
-        ],
-        sampler_type: if hardware {
-            "sampler2DArrayShadow"
-        } else {
-            "sampler2DArray"
-        },
-        call: format!(
-            "addLightGroups_{i}({i}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
-        ),
-    }
-}
+/// Its part of the generated snippets (one light is layered): shaders/lib/shadow_groups.glsl
+/// and its `addLightGroups` call.
+pub const SNIPPET: layers::Snippet = layers::Snippet {
+    file: "lib/shadow_groups.glsl",
+    functions: &[
+        "softTaps",
+        "pcfArray",
+        "layerLookup",
+        "calcShadowGroups",
+        "addLightGroups",
+    ],
+    add: "addLightGroups",
+    samplers: SAMPLERS,
+};
 
 /// `fit`'s casters in at most `count` groups (item indices, each group in item order, the
 /// groups by their first item). Starting from one group per caster, the two groups whose

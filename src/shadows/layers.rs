@@ -12,13 +12,42 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::FittedBox;
-use super::{DepthPass, DepthViewKind};
+use super::{DepthPass, DepthViewKind, LightGlsl};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::{ShadowSettings, Wrap};
+
+/// A layered technique's shader snippet: its file (which includes shadow_layers.glsl), the
+/// functions it defines with the layer test's (renamed per light), its `addLight...`
+/// function and its sampler's name per light.
+pub struct Snippet {
+    pub file: &'static str,
+    pub functions: &'static [&'static str],
+    pub add: &'static str,
+    pub samplers: [&'static str; crate::scene::MAX_LIGHTS],
+}
+
+impl Snippet {
+    /// Light `i`'s part of the generated snippets: the file, its array sampler and its call.
+    pub fn glsl(&self, i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
+        LightGlsl {
+            snippet: self.file,
+            functions: self.functions,
+            sampler_type: if hardware {
+                "sampler2DArrayShadow"
+            } else {
+                "sampler2DArray"
+            },
+            call: format!(
+                "{}_{i}({i}, {}, {positional}, {cone}, f);",
+                self.add, self.samplers[i]
+            ),
+        }
+    }
+}
 
 /// The depth array and the box each layer was last drawn with.
 pub struct Layers {

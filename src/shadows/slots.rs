@@ -9,7 +9,7 @@
 //! `generated/samplers.glsl` and `generated/lights.glsl`, included by `shaders/scene.frag`
 //! like the library's (so a compile error in them names the generated file and its line).
 //! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
-//! [`super::cascades::glsl`]).
+//! [`super::layers::Snippet::glsl`]).
 
 use super::moments::MomentTest;
 use super::{cascades, cube, groups, map2d, moments, volumes, ShadowKind};
@@ -227,8 +227,8 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
             ShadowKind::None => None,
             ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
             ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
-            ShadowKind::Cascades => Some(cascades::glsl(i, positional, cone, hardware)),
-            ShadowKind::Groups => Some(groups::glsl(i, positional, cone, hardware)),
+            ShadowKind::Cascades => Some(cascades::SNIPPET.glsl(i, positional, cone, hardware)),
+            ShadowKind::Groups => Some(groups::SNIPPET.glsl(i, positional, cone, hardware)),
             ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
         };
         let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
