@@ -17,11 +17,10 @@ use glam::{DVec3, Vec3};
 
 use super::casters::casters;
 use super::fitted::{aabb, corners, FittedBox};
-use super::layers::{self, Layers};
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
-use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
-use crate::error::Result;
-use crate::scene::{Camera, Light, Scene};
+use super::layers::{self, Layout};
+use super::{DepthPass, ShadowKind};
+use crate::engine::ShaderProgram;
+use crate::scene::{Camera, DirectionalLight, Scene};
 use crate::settings::ShadowSettings;
 use crate::transformation::{light_basis, light_view};
 
@@ -314,102 +313,42 @@ pub const SNIPPET: layers::Snippet = layers::Snippet {
     samplers: SAMPLERS,
 };
 
-/// A cascaded light's storage: the depth array ([`Layers`], a layer per cascade) and the
-/// cascades of the last depth pass.
+/// Cascades as a [`Layout`]: a layer per slice of the view, fitted each depth pass.
+#[derive(Default)]
 pub struct Cascades {
-    layers: Layers,
     cascades: Vec<Cascade>,
 }
 
-impl Cascades {
-    pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Cascades> {
-        Ok(Cascades {
-            layers: Layers::new(gl, s, s.cascades, "cascades")?,
-            cascades: Vec::new(),
-        })
-    }
-}
+impl Layout for Cascades {
+    const KIND: ShadowKind = ShadowKind::Cascades;
+    const NAME: &'static str = "cascades";
 
-impl Technique for Cascades {
-    fn kind(&self) -> ShadowKind {
-        ShadowKind::Cascades
+    fn count(s: &ShadowSettings) -> u32 {
+        s.cascades
     }
 
-    fn fits(&self, s: &ShadowSettings) -> bool {
-        self.layers.fits(s, s.cascades)
-    }
-
-    /// One depth pass per cascade, into its layer, with the casters that can land in it.
-    fn render_depth(
-        &mut self,
-        pass: &mut DepthPass,
-        scene: &Scene,
-        index: usize,
-    ) -> Result<ShadowView> {
-        let Light::Directional(l) = &scene.lights[index] else {
-            return Err(crate::Error::Invalid(format!(
-                "light {index} has cascades but is not a directional light"
-            )));
-        };
-        // Items' world boxes, once: the cascades are fitted above them and culled by them.
-        let boxes = pass.boxes;
+    /// The slices' boxes; the box reaches the casters over it.
+    fn fit(&mut self, pass: &DepthPass, scene: &Scene, l: &DirectionalLight) -> Vec<FittedBox> {
         let spec = CascadeSpec::of(pass.settings, l.ortho.far - l.ortho.near);
-        self.cascades = fit_cascades(scene, boxes, l.direction, &spec);
-        // Counted per cascade: a caster in two cascades is two of those offered.
-        pass.casters.total += casters(scene) * self.cascades.len() as u64;
-        let cascades = &self.cascades;
-        self.layers.draw(
-            pass,
-            scene,
-            cascades.iter().map(|c| c.fitted).collect(),
-            |layer, i| cascades[layer].may_hold(boxes[i].0, boxes[i].1),
-        )?;
-        // The first cascade stands for the light's camera (reports, the depth view's near
-        // and far).
-        Ok(match self.cascades.first() {
-            Some(first) => first.fitted.shadow_view(l.direction),
-            None => {
-                return Err(crate::Error::Internal(format!(
-                    "light {index}: cascades were fitted but there are none"
-                )))
-            }
-        })
+        self.cascades = fit_cascades(scene, pass.boxes, l.direction, &spec);
+        self.cascades.iter().map(|c| c.fitted).collect()
     }
 
-    fn texture(&self) -> &Texture {
-        self.layers.texture()
+    /// The casters that can land in the cascade.
+    fn keeps(&self, layer: usize, _: usize, (lo, hi): &(DVec3, DVec3)) -> bool {
+        self.cascades[layer].may_hold(*lo, *hi)
     }
 
-    /// A cascade covers exactly its slice and the casters that reach it ([`Layers::sampling`]).
-    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
-        Layers::sampling(settings)
+    /// Counted per cascade: a caster in two cascades is two of those offered.
+    fn offered(&self, scene: &Scene) -> u64 {
+        casters(scene) * self.cascades.len() as u64
     }
 
-    fn slot_transform(
-        &self,
-        _: &Light,
-        _: &ShadowView,
-        _: &ShadowSettings,
-    ) -> Option<SlotTransform> {
-        None
-    }
-
-    /// The layers' matrices and normal offsets ([`Layers::set_uniforms`]) and the split
-    /// depths.
-    fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
-        self.layers
-            .set_uniforms(p, scene.camera.position, s.normal_offset);
+    /// The split depths (`cascadeSplit`).
+    fn set_uniforms(&self, p: &ShaderProgram) {
         let mut splits: Vec<f32> = self.cascades.iter().map(|c| c.near as f32).collect();
         splits.extend(self.cascades.last().map(|c| c.far as f32));
         p.set_f32_array("cascadeSplit", &splits);
-    }
-
-    fn bytes(&self) -> u64 {
-        self.layers.bytes()
-    }
-
-    fn depth_view(&self) -> DepthViewKind {
-        self.layers.depth_view()
     }
 }
 

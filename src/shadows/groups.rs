@@ -5,18 +5,18 @@
 //! apart in the light's view make it large, and its texels coarse over both (LearnOpenGL's
 //! scene: cube1 in the middle and cube3, whose shadow reaches the frame's corner). Here the
 //! casters are grouped by where they lie across the light's view and each group gets its
-//! own box ([`LightFit::fit_box`]) in a layer of a depth array ([`Layers`]), so each group's
+//! own box ([`LightFit::fit_box`]) in a layer of a depth array ([`layers`]), so each group's
 //! texels are as fine as if it were alone. The scene pass tests every layer and keeps the
 //! darkest (`shaders/lib/shadow_groups.glsl`): a caster is drawn in its group's layer only,
 //! and that layer's box covers every receiver in view it can shadow.
 
+use glam::DVec3;
+
 use super::casters::casters;
-use super::fitted::LightFit;
-use super::layers::{self, Layers};
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
-use crate::engine::{Gl, Sampling, ShaderProgram, Texture};
-use crate::error::Result;
-use crate::scene::{Light, Scene};
+use super::fitted::{FittedBox, LightFit};
+use super::layers::{self, Layout};
+use super::{DepthPass, ShadowKind};
+use crate::scene::{DirectionalLight, Scene};
 use crate::settings::ShadowSettings;
 
 /// Its sampler in the scene shader, per light.
@@ -86,113 +86,52 @@ pub fn group_casters(fit: &LightFit, count: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// A light's caster groups: the depth array (a layer per group, `caster_groups` of them)
-/// and the groups of the last depth pass.
+/// Caster groups as a [`Layout`]: a layer per group of casters, grouped and fitted each
+/// depth pass (layers past the groups hold no caster and read lit).
+#[derive(Default)]
 pub struct Groups {
-    layers: Layers,
     groups: Vec<Vec<usize>>,
 }
 
-impl Groups {
-    pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Groups> {
-        Ok(Groups {
-            layers: Layers::new(gl, s, s.caster_groups, "caster groups")?,
-            groups: Vec::new(),
-        })
+impl Layout for Groups {
+    const KIND: ShadowKind = ShadowKind::Groups;
+    const NAME: &'static str = "caster groups";
+
+    fn count(s: &ShadowSettings) -> u32 {
+        s.caster_groups
     }
 
-    /// The groups (item indices) the last depth pass drew, by layer; layers past them hold
-    /// no caster.
-    pub fn groups(&self) -> &[Vec<usize>] {
-        &self.groups
-    }
-}
-
-impl Technique for Groups {
-    fn kind(&self) -> ShadowKind {
-        ShadowKind::Groups
-    }
-
-    fn fits(&self, s: &ShadowSettings) -> bool {
-        self.layers.fits(s, s.caster_groups)
-    }
-
-    /// The groups fitted to what the camera sees, then one depth pass per layer with its
-    /// group's casters (a layer with no group is cleared and reads lit).
-    fn render_depth(
-        &mut self,
-        pass: &mut DepthPass,
-        scene: &Scene,
-        index: usize,
-    ) -> Result<ShadowView> {
-        let Light::Directional(l) = &scene.lights[index] else {
-            return Err(crate::Error::Invalid(format!(
-                "light {index} has caster groups but is not a directional light"
-            )));
-        };
+    /// The casters whose shadow is in view, grouped; each group's box fitted to it.
+    fn fit(&mut self, pass: &DepthPass, scene: &Scene, l: &DirectionalLight) -> Vec<FittedBox> {
         let s = pass.settings;
         let fit = LightFit::new(scene, l.direction);
         let count = s.caster_groups as usize;
         self.groups = group_casters(&fit, count);
-        let boxes = (0..count)
+        (0..count)
             .map(|k| {
                 let group = self.groups.get(k).map_or(&[][..], Vec::as_slice);
                 fit.fit_box(group, s.map_size, s.snap)
             })
-            .collect::<Vec<_>>();
-        let to_light = l.direction;
-        // Each caster is offered once, to its group's layer.
-        pass.casters.total += casters(scene);
-        let groups = &self.groups;
-        self.layers.draw(pass, scene, boxes, |layer, i| {
-            groups
-                .get(layer)
-                .is_some_and(|g| g.binary_search(&i).is_ok())
-        })?;
-        // The first layer stands for the light's camera (reports, the depth view's near
-        // and far, the reference's rays).
-        match self.layers.boxes().first() {
-            Some(first) => Ok(first.shadow_view(to_light)),
-            None => Err(crate::Error::Internal(format!(
-                "light {index}: caster groups have no layer"
-            ))),
-        }
+            .collect()
     }
 
-    fn texture(&self) -> &Texture {
-        self.layers.texture()
+    /// A caster is drawn into its group's layer only.
+    fn keeps(&self, layer: usize, item: usize, _: &(DVec3, DVec3)) -> bool {
+        self.groups
+            .get(layer)
+            .is_some_and(|g| g.binary_search(&item).is_ok())
     }
 
-    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
-        Layers::sampling(settings)
-    }
-
-    fn slot_transform(
-        &self,
-        _: &Light,
-        _: &ShadowView,
-        _: &ShadowSettings,
-    ) -> Option<SlotTransform> {
-        None
-    }
-
-    fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
-        self.layers
-            .set_uniforms(p, scene.camera.position, s.normal_offset);
-    }
-
-    fn bytes(&self) -> u64 {
-        self.layers.bytes()
-    }
-
-    fn depth_view(&self) -> DepthViewKind {
-        self.layers.depth_view()
+    /// Each caster is offered once, to its group's layer.
+    fn offered(&self, scene: &Scene) -> u64 {
+        casters(scene)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Light;
     use glam::Vec3;
 
     fn learnopengl_fit(scene: &Scene) -> LightFit<'_> {

@@ -12,13 +12,143 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::FittedBox;
-use super::{DepthPass, DepthViewKind, LightGlsl};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
+};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
-use crate::error::Result;
-use crate::scene::Scene;
+use crate::error::{Error, Result};
+use crate::scene::{DirectionalLight, Light, Scene};
 use crate::settings::{ShadowSettings, Wrap};
+
+/// How a layered technique lays out its layers: what tells cascades (a layer per slice of
+/// the view) from caster groups (a layer per group of casters). [`Layered`] runs it over
+/// the shared storage as a [`Technique`].
+pub trait Layout {
+    /// The kind it is, and its name in errors ("cascades").
+    const KIND: ShadowKind;
+    const NAME: &'static str;
+    /// Its layers under `settings`.
+    fn count(settings: &ShadowSettings) -> u32;
+    /// Fits the layers for directional light `light` of `scene` (the depth pass' item
+    /// boxes and settings in `pass`): their boxes, by layer.
+    fn fit(&mut self, pass: &DepthPass, scene: &Scene, light: &DirectionalLight) -> Vec<FittedBox>;
+    /// Whether item `item` (world box `bounds`) is drawn into layer `layer`.
+    fn keeps(&self, layer: usize, item: usize, bounds: &(glam::DVec3, glam::DVec3)) -> bool;
+    /// The casters offered to the depth pass (of which [`Layout::keeps`] draws some).
+    fn offered(&self, scene: &Scene) -> u64;
+    /// Scene-pass uniforms of its own, beside the layers' matrices and offsets.
+    fn set_uniforms(&self, _program: &ShaderProgram) {}
+}
+
+/// A layered technique: the depth array and a [`Layout`] of its layers.
+pub struct Layered<L: Layout> {
+    layers: Layers,
+    layout: L,
+}
+
+impl<L: Layout + Default> Layered<L> {
+    pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Layered<L>> {
+        Ok(Layered {
+            layers: Layers::new(gl, s, L::count(s), L::NAME)?,
+            layout: L::default(),
+        })
+    }
+}
+
+impl<L: Layout> Technique for Layered<L> {
+    fn kind(&self) -> ShadowKind {
+        L::KIND
+    }
+
+    fn fits(&self, s: &ShadowSettings) -> bool {
+        self.layers.fits(s, L::count(s))
+    }
+
+    /// The layers fitted, then one depth pass per layer with the casters it keeps.
+    fn render_depth(
+        &mut self,
+        pass: &mut DepthPass,
+        scene: &Scene,
+        index: usize,
+    ) -> Result<ShadowView> {
+        let Light::Directional(l) = &scene.lights[index] else {
+            return Err(Error::Invalid(format!(
+                "light {index} has {} but is not a directional light",
+                L::NAME
+            )));
+        };
+        let boxes = self.layout.fit(pass, scene, l);
+        pass.casters.total += self.layout.offered(scene);
+        let (layout, bounds) = (&self.layout, pass.boxes);
+        self.layers.draw(pass, scene, boxes, |layer, i| {
+            layout.keeps(layer, i, &bounds[i])
+        })?;
+        // The first layer stands for the light's camera (reports, the depth view's near
+        // and far, the reference's rays).
+        match self.layers.boxes.first() {
+            Some(first) => Ok(first.shadow_view(l.direction)),
+            None => Err(Error::Internal(format!(
+                "light {index}: {} were fitted but there are none",
+                L::NAME
+            ))),
+        }
+    }
+
+    fn texture(&self) -> &Texture {
+        self.layers.array.texture()
+    }
+
+    /// A layer covers exactly its box: outside it is lit (a border of depth 1), whatever
+    /// the settings' wrap.
+    fn sampling(&self, settings: &ShadowSettings) -> Sampling {
+        let hardware = settings.filter.hardware();
+        Sampling {
+            compare: hardware,
+            linear: hardware,
+            wrap: Wrap::ClampToBorder,
+        }
+    }
+
+    /// None: the layers' positions come from their own matrices (`cascadeMatrix`).
+    fn slot_transform(
+        &self,
+        _: &Light,
+        _: &ShadowView,
+        _: &ShadowSettings,
+    ) -> Option<SlotTransform> {
+        None
+    }
+
+    /// Camera-relative world to each layer's clip space (`cascadeMatrix`), each layer's
+    /// normal offset in world units, the settings' texels of its own
+    /// (`cascadeNormalOffset`), and the layout's own.
+    fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
+        let boxes = &self.layers.boxes;
+        let matrices: Vec<Mat4> = boxes
+            .iter()
+            .map(|b| camera_relative_matrix(b, scene.camera.position).as_mat4())
+            .collect();
+        let offsets: Vec<f32> = boxes
+            .iter()
+            .map(|b| s.normal_offset * b.texel as f32)
+            .collect();
+        p.set_mat4_array("cascadeMatrix", &matrices);
+        p.set_f32_array("cascadeNormalOffset", &offsets);
+        self.layout.set_uniforms(p);
+    }
+
+    fn bytes(&self) -> u64 {
+        u64::from(self.layers.array.layers()) * u64::from(self.layers.array.size()).pow(2) * 4
+    }
+
+    fn depth_view(&self) -> DepthViewKind {
+        DepthViewKind::Array {
+            layers: self.layers.array.layers(),
+        }
+    }
+}
 
 /// A layered technique's shader snippet: its file (which includes shadow_layers.glsl), the
 /// functions it defines with the layer test's (renamed per light), its `addLight...`
@@ -50,7 +180,7 @@ impl Snippet {
 }
 
 /// The depth array and the box each layer was last drawn with.
-pub struct Layers {
+struct Layers {
     array: CascadeShadowMap,
     boxes: Vec<FittedBox>,
 }
@@ -58,7 +188,7 @@ pub struct Layers {
 impl Layers {
     /// `count` square layers of `settings`' map size and format; `what` names the technique
     /// in the error a non-square size gets.
-    pub fn new(gl: &Gl, s: &ShadowSettings, count: u32, what: &str) -> Result<Layers> {
+    fn new(gl: &Gl, s: &ShadowSettings, count: u32, what: &str) -> Result<Layers> {
         Ok(Layers {
             array: CascadeShadowMap::new(gl, s.map_size.square_side(what)?, count, s.depth_format)?,
             boxes: Vec::new(),
@@ -66,20 +196,15 @@ impl Layers {
     }
 
     /// Whether the array still has `count` layers of `s`' size and format.
-    pub fn fits(&self, s: &ShadowSettings, count: u32) -> bool {
+    fn fits(&self, s: &ShadowSettings, count: u32) -> bool {
         self.array.size() == s.map_size
             && self.array.format() == s.depth_format
             && self.array.layers() == count
     }
 
-    /// The boxes of the last depth pass, by layer.
-    pub fn boxes(&self) -> &[FittedBox] {
-        &self.boxes
-    }
-
     /// The depth pass: layer `k` cleared and drawn from `boxes[k]` with the casters
     /// `keep(k, item)` lets in (counted as drawn; the technique counts those offered).
-    pub fn draw(
+    fn draw(
         &mut self,
         pass: &mut DepthPass,
         scene: &Scene,
@@ -105,49 +230,6 @@ impl Layers {
             ) as u64;
         }
         Ok(())
-    }
-
-    pub fn texture(&self) -> &Texture {
-        self.array.texture()
-    }
-
-    /// A layer covers exactly its box: outside it is lit (a border of depth 1), whatever the
-    /// settings' wrap.
-    pub fn sampling(settings: &ShadowSettings) -> Sampling {
-        let hardware = settings.filter.hardware();
-        Sampling {
-            compare: hardware,
-            linear: hardware,
-            wrap: Wrap::ClampToBorder,
-        }
-    }
-
-    /// Camera-relative world to each layer's clip space (`cascadeMatrix`) and each layer's
-    /// normal offset in world units, `normal_offset` texels of its own
-    /// (`cascadeNormalOffset`).
-    pub fn set_uniforms(&self, p: &ShaderProgram, camera_position: Vec3, normal_offset: f32) {
-        let matrices: Vec<Mat4> = self
-            .boxes
-            .iter()
-            .map(|b| camera_relative_matrix(b, camera_position).as_mat4())
-            .collect();
-        let offsets: Vec<f32> = self
-            .boxes
-            .iter()
-            .map(|b| normal_offset * b.texel as f32)
-            .collect();
-        p.set_mat4_array("cascadeMatrix", &matrices);
-        p.set_f32_array("cascadeNormalOffset", &offsets);
-    }
-
-    pub fn bytes(&self) -> u64 {
-        u64::from(self.array.layers()) * u64::from(self.array.size()).pow(2) * 4
-    }
-
-    pub fn depth_view(&self) -> DepthViewKind {
-        DepthViewKind::Array {
-            layers: self.array.layers(),
-        }
     }
 }
 

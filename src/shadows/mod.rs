@@ -118,8 +118,12 @@ impl ShadowKind {
             ShadowKind::None | ShadowKind::Volume => None,
             ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
             ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
-            ShadowKind::Cascades => Some(Box::new(cascades::Cascades::new(gl, settings)?)),
-            ShadowKind::Groups => Some(Box::new(groups::Groups::new(gl, settings)?)),
+            ShadowKind::Cascades => Some(Box::new(layers::Layered::<cascades::Cascades>::new(
+                gl, settings,
+            )?)),
+            ShadowKind::Groups => Some(Box::new(layers::Layered::<groups::Groups>::new(
+                gl, settings,
+            )?)),
             ShadowKind::Moments => Some(Box::new(moments::Moments::new(gl, settings)?)),
         })
     }
