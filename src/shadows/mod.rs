@@ -5,7 +5,8 @@
 //! - [`cube`]: a point light's depth cube map (LearnOpenGL "Point Shadows").
 //! - [`cascades`]: cascaded shadow maps for a directional light.
 //! - [`groups`]: a directional light's box fitted per group of casters.
-//! - [`layers`]: the depth array with a box per layer that cascades and groups share.
+//! - [`layers`]: the depth array with a box per layer, one [`Technique`] (`Layered`) for
+//!   cascades and groups, each a `Layout` of its layers.
 //! - [`moments`]: filterable maps (VSM, EVSM, MSM): depth's moments in a float colour
 //!   map, blurred, for directional and spot lights.
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
