@@ -839,8 +839,8 @@ shadow_settings! {
         /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene each
         /// frame.
         fit: Fit = Fit::Manual;
-        /// With `fit = "scene"`: snap the box to whole texels so shadows hold still as the
-        /// camera moves.
+        /// With `fit = "scene"`, cascades or caster groups: snap the boxes to whole texels so
+        /// shadows hold still as the camera moves.
         snap: bool = true, arg(value_name = "BOOL", value_parser = clap::builder::BoolishValueParser::new());
         /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
         /// scheme).

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 use shadowmap::engine::window_context::WindowApi;
 use shadowmap::scene::Light;
-use shadowmap::settings::{Filter, Fit, LightProjection, ShadowPatch};
+use shadowmap::settings::{Filter, Fit, LightProjection, ShadowPatch, ShadowTechnique};
 use shadowmap::shadows::ShadowKind;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
@@ -628,30 +628,35 @@ pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static 
         .map(|l| l.settings(settings))
         .collect();
     let mut idle = Vec::new();
+    // Why a directional light's layers (`what`: cascades, caster groups) are not drawn.
+    let no_layers = |what: &str| -> String {
+        if !settings.shadows {
+            "shadows are off (--shadows off)".to_string()
+        } else if settings.technique == ShadowTechnique::Volumes {
+            "the lights have shadow volumes (--technique volumes), which have no map".to_string()
+        } else if suns.is_empty() {
+            format!(
+                "no directional light casts shadows in this scene, and only one gets {what}; \
+                 each light keeps one map"
+            )
+        } else if settings.light_projection == LightProjection::Perspective {
+            format!(
+                "{what} need an orthographic light projection (--light-projection \
+                 perspective is set); the light keeps one map"
+            )
+        } else if what != "cascades" && settings.cascades > 1 {
+            "cascades are set (--cascades), and a light has cascades or caster groups, not \
+             both"
+                .to_string()
+        } else {
+            format!("the directional light's own shadow table gives it no {what}")
+        }
+    };
     if settings.cascades > 1 && !kinds.contains(&ShadowKind::Cascades) {
-        let why = match suns.is_empty() {
-            true => "no directional light casts shadows in this scene, and only one gets \
-                     cascades; each light keeps one map"
-                .to_string(),
-            false => "cascades need an orthographic light projection (--light-projection \
-                      perspective is set); the light keeps one map"
-                .to_string(),
-        };
-        idle.push(("cascades", why));
+        idle.push(("cascades", no_layers("cascades")));
     }
     if settings.caster_groups > 1 && !kinds.contains(&ShadowKind::Groups) {
-        let why = match suns.is_empty() {
-            true => "no directional light casts shadows in this scene, and only one gets \
-                     caster groups; each light keeps one map"
-                .to_string(),
-            false if settings.cascades > 1 => "cascades are set (--cascades), and a light \
-                                               has cascades or caster groups, not both"
-                .to_string(),
-            false => "caster groups need an orthographic light projection \
-                      (--light-projection perspective is set); the light keeps one map"
-                .to_string(),
-        };
-        idle.push(("caster_groups", why));
+        idle.push(("caster_groups", no_layers("caster groups")));
     }
     if !kinds.contains(&ShadowKind::Cube) {
         idle.push((

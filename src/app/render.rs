@@ -39,7 +39,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
             return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
-                 cascades, a moment map, shadow volumes or casts no shadow): use \
+                 cascades, caster groups, a moment map, shadow volumes or casts no shadow): use \
                  --show-depth-map to see its map",
                 path.display()
             )));

@@ -165,7 +165,7 @@ impl DirectionalLight {
         let uses_angles = settings.light_view == LightView::BookAngles
             && settings.light_projection == LightProjection::Ortho
             && settings.fit == Fit::Manual
-            && settings.cascades <= 1
+            && settings.directional_layers().is_none()
             && self.casts_shadows;
         let d = self.direction.normalize();
         (uses_angles && d.x.abs() > BOOK_ANGLES_MAX_X).then(|| {

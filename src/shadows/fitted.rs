@@ -80,9 +80,12 @@ pub struct LightFit<'a> {
 }
 
 impl<'a> LightFit<'a> {
-    /// Each caster's box in light space (z towards the light), by item index.
-    pub fn light_box(&self, item: usize) -> (DVec3, DVec3) {
-        self.light_boxes[item]
+    /// Item `item`'s rectangle across the light's view (x0, y0, x1, y1 in light space),
+    /// cut to the receivers in view: the part of the map a box around it would spend.
+    pub fn view_rect(&self, item: usize) -> [f64; 4] {
+        let ((lo, hi), (vlo, vhi)) = (self.light_boxes[item], self.visible);
+        let (x0, y0) = (lo.x.max(vlo.x), lo.y.max(vlo.y));
+        [x0, y0, hi.x.min(vhi.x).max(x0), hi.y.min(vhi.y).max(y0)]
     }
 
     pub fn new(scene: &'a Scene, to_light: Vec3) -> LightFit<'a> {

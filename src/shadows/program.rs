@@ -180,8 +180,9 @@ impl ProgramKey {
         let allowed = gl_limits(gl).max_vertex_output_components as usize;
         if needed > allowed {
             return Err(Error::Invalid(format!(
-                "{} lights with {cascades} cascades need {needed} vertex shader outputs and this \
-                 driver allows {allowed}: use fewer lights or fewer cascades",
+                "{} lights with {cascades} cascades or caster groups need {needed} vertex shader \
+                 outputs and this driver allows {allowed}: use fewer lights, cascades or caster \
+                 groups",
                 slots.len()
             )));
         }
