@@ -553,10 +553,12 @@ fn snapping_stops_shimmer_under_sub_texel_camera_moves() {
     }
     // And a beam longer than the view is wide: the box holds only the part in view, so its
     // side moves with the camera (the small cubes alone would keep it whole wherever the
-    // camera is, as a caster out of view is left out of the box altogether).
+    // camera is, as a caster out of view is left out of the box altogether). With caster
+    // groups the beam gets a box of its own, the one that follows the camera: it is thick
+    // enough for its shadow's edges to show that box moving.
     let mut beam = cube.clone();
     beam.position = Vec3::new(0.0, 0.4, -3.0);
-    beam.scale = Vec3::new(30.0, 0.1, 0.1);
+    beam.scale = Vec3::new(30.0, 0.3, 0.3);
     scene.items.push(beam);
     // One box, and a box per group of casters (each fitted the same way).
     for caster_groups in [1, 2] {
