@@ -57,21 +57,28 @@ pub fn group_rects(rects: &[(usize, [f64; 4])], count: usize) -> Vec<Vec<usize>>
     // rectangle and its cheapest partner: (what joining it adds, the partner's slot).
     let mut groups: Vec<Option<(Vec<usize>, [f64; 4])>> =
         rects.iter().map(|&(c, r)| Some((vec![c], r))).collect();
+    // What joining a and b adds (not a number, from coordinates too large to square,
+    // counts as the most).
     let cost = |g: &[Option<(Vec<usize>, [f64; 4])>], a: usize, b: usize| match (&g[a], &g[b]) {
         (Some((ga, ra)), Some((gb, rb))) if a != b => {
             let (na, nb) = (ga.len() as f64, gb.len() as f64);
-            area(&join(ra, rb)) * (na + nb) - area(ra) * na - area(rb) * nb
+            let c = area(&join(ra, rb)) * (na + nb) - area(ra) * na - area(rb) * nb;
+            if c.is_nan() {
+                f64::INFINITY
+            } else {
+                c
+            }
         }
         _ => f64::INFINITY,
     };
-    // Ties go to the lower slot, so the grouping does not depend on rounding order.
+    // The cheapest other group; ties go to the lower slot, so the grouping does not depend
+    // on rounding order. Only a lone group has none.
     let partner = |g: &[Option<(Vec<usize>, [f64; 4])>], a: usize| {
         (0..g.len())
+            .filter(|&b| b != a && g[b].is_some())
             .map(|b| (cost(g, a, b), b))
-            .fold(
-                (f64::INFINITY, usize::MAX),
-                |m, c| if c.0 < m.0 { c } else { m },
-            )
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+            .unwrap_or((f64::INFINITY, usize::MAX))
     };
     let mut best: Vec<(f64, usize)> = (0..groups.len()).map(|a| partner(&groups, a)).collect();
     // Each join recomputes the joined group's partner and those of groups whose partner it
@@ -86,7 +93,7 @@ pub fn group_rects(rects: &[(usize, [f64; 4])], count: usize) -> Vec<Vec<usize>>
         else {
             break;
         };
-        let (Some((items, r)), Some(_)) = (groups[b].take(), groups[a].as_ref()) else {
+        let Some((items, r)) = groups.get_mut(b).and_then(Option::take) else {
             break;
         };
         if let Some((ga, ra)) = groups[a].as_mut() {
@@ -284,6 +291,11 @@ mod tests {
             }
         }
         assert!(group_rects(&[], 2).is_empty());
+        // Coordinates whose areas overflow still give `count` groups.
+        let huge: Vec<(usize, [f64; 4])> = (0..5)
+            .map(|i| (i, [-1e300, f64::from(i as u32), 1e300, 1e300]))
+            .collect();
+        assert_eq!(group_rects(&huge, 2).len(), 2);
     }
 
     #[test]
