@@ -5,7 +5,7 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use shadowmap::compare::{compare, CompareOptions};
+use shadowmap::compare::compare;
 use shadowmap::settings::MAX_CASCADES;
 use shadowmap::settings::{Filter, MapSize, ShadowSettings};
 use shadowmap::shadows::cascades::{fit_cascades, practical_splits, CascadeSpec};
@@ -138,14 +138,7 @@ fn snapped_cascades_do_not_shimmer_under_sub_texel_camera_moves() {
 fn cascades_beat_one_map_of_the_same_memory_on_the_large_scene() {
     let ctx = common::context();
     let scene = large();
-    let opts = CompareOptions {
-        rays: shadowmap::compare::AREA_RAYS,
-        width: 640,
-        height: 360,
-        supersample: 1,
-        band: 1,
-        light: 0,
-    };
+    let opts = common::frame_options(640, 360);
     let measure = |s: &ShadowSettings| compare(ctx.gl(), &scene, s, &opts).unwrap().metrics;
     // 2048^2 = 4 x 1024^2: the same 16 MiB of depth.
     let one = measure(&cascaded(&scene, 1, 2048));
@@ -206,14 +199,7 @@ fn the_debug_view_tints_cascades_from_the_camera_out() {
 fn cascades_on_the_dummy_game_keep_the_shadow() {
     let ctx = common::context();
     let scene = Scene::load("dummy").unwrap();
-    let opts = CompareOptions {
-        rays: shadowmap::compare::AREA_RAYS,
-        width: 640,
-        height: 360,
-        supersample: 1,
-        band: 1,
-        light: 0,
-    };
+    let opts = common::frame_options(640, 360);
     let measure = |cascades: u32| {
         let s = ShadowSettings {
             cascades,

@@ -4,7 +4,7 @@
 
 mod common;
 
-use shadowmap::compare::{compare, CompareOptions};
+use shadowmap::compare::compare;
 use shadowmap::settings::{Filter, Fit, MapSize, ShadowSettings};
 
 fn settings(scene: &shadowmap::Scene, groups: u32, size: u32) -> ShadowSettings {
@@ -24,14 +24,7 @@ fn two_groups_cut_learnopengls_error_where_one_fitted_box_cannot() {
     // edge; a box each keeps cube1's as fine as if it were alone.
     let ctx = common::context();
     let scene = common::frozen("learnopengl");
-    let opts = CompareOptions {
-        rays: shadowmap::compare::AREA_RAYS,
-        width: 800,
-        height: 600,
-        supersample: 1,
-        band: 1,
-        light: 0,
-    };
+    let opts = common::frame_options(800, 600);
     let measure = |s: &ShadowSettings| compare(ctx.gl(), &scene, s, &opts).unwrap().metrics;
     for size in [512, 1024] {
         let one = measure(&settings(&scene, 1, size));
@@ -85,14 +78,7 @@ fn a_caster_spanning_the_view_does_not_swallow_the_groups() {
     // area x casters, the pillars get boxes of their own and the error falls.
     let ctx = common::context();
     let scene = common::frozen("large");
-    let opts = CompareOptions {
-        rays: shadowmap::compare::AREA_RAYS,
-        width: 640,
-        height: 360,
-        supersample: 1,
-        band: 1,
-        light: 0,
-    };
+    let opts = common::frame_options(640, 360);
     let measure = |groups: u32| {
         let s = ShadowSettings {
             caster_groups: groups,

@@ -6,6 +6,19 @@ use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::{render_frames, Frame};
 use shadowmap::{Scene, ShadowSettings};
 
+/// Scoring a `width` x `height` frame of the first light against the exact reference:
+/// one sample a pixel, a one-pixel edge band.
+pub fn frame_options(width: u32, height: u32) -> shadowmap::compare::CompareOptions {
+    shadowmap::compare::CompareOptions {
+        rays: shadowmap::compare::AREA_RAYS,
+        width,
+        height,
+        supersample: 1,
+        band: 1,
+        light: 0,
+    }
+}
+
 /// A headless EGL context; every test that draws makes its own (contexts are per thread).
 pub fn context() -> HeadlessContext {
     HeadlessContext::new().unwrap_or_else(|e| panic!("headless EGL context: {e}"))
