@@ -100,3 +100,31 @@ fn a_caster_spanning_the_view_does_not_swallow_the_groups() {
         one.misclassified
     );
 }
+
+#[test]
+fn a_second_sun_keeps_one_map_and_takes_what_one_map_takes() {
+    // Only the first directional light that asks for layers gets them; a second keeps one
+    // 2D map, so PCSS (refused for layers) is its to use, and the frame draws.
+    let ctx = common::context();
+    let mut scene = common::frozen("learnopengl");
+    let mut second = scene.lights[0];
+    second.shadow_patch_mut().filter = Some(Filter::Pcss);
+    scene.lights.push(second);
+    let s = ShadowSettings {
+        caster_groups: 2,
+        ..scene.shadow
+    };
+    let kinds = shadowmap::shadows::ShadowKind::for_lights(&scene.lights, &s);
+    use shadowmap::shadows::ShadowKind;
+    assert_eq!(kinds, [ShadowKind::Groups, ShadowKind::Map]);
+    assert!(scene.check_light_settings(&s).is_ok());
+    let frame = common::render(&ctx, &mut scene, &s, 160, 120);
+    assert!(frame.visibility.unwrap().iter().flatten().any(|v| *v < 0.5));
+    // Asked of the first light, PCSS is still refused, naming it.
+    scene.lights.swap(0, 1);
+    let e = scene.check_light_settings(&s).unwrap_err().to_string();
+    assert!(
+        e.starts_with("shadow.filter = pcss: light 0 cannot use it: cascades and caster groups"),
+        "{e}"
+    );
+}

@@ -284,10 +284,11 @@ pub fn sweep(
     for c in &mut out {
         c.family = Family::of(light, &c.settings);
     }
-    // Combinations the light refuses (a moment filter on a point light's cube map).
+    // Combinations the light refuses (a moment filter on a point light's cube map). The
+    // measured light is the scene's first, so it gets the layers it asks for.
     out.retain(|c| {
         light
-            .settings_problem("the light", &light.settings(&c.settings))
+            .settings_problem("the light", &light.settings(&c.settings), true)
             .is_none()
     });
     // The tutorials back in the middle of the whole sweep.
@@ -316,7 +317,7 @@ fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConf
                 s.cull = Cull::None;
                 s.depth_format = DepthFormat::D24;
                 bias.apply(&mut s);
-                if light.settings_problem("the light", &s).is_none() {
+                if light.settings_problem("the light", &s, true).is_none() {
                     out.push(BenchConfig {
                         settings: s,
                         bias_preset: bias,

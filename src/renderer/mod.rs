@@ -560,7 +560,9 @@ impl Renderer {
             let settings = light.settings(&self.settings);
             // Combinations no technique draws (a moment filter on a cube map) are refused
             // here too, for scenes built in code.
-            if let Some(problem) = light.settings_problem(&format!("light {i}"), &settings) {
+            if let Some(problem) =
+                light.settings_problem(&format!("light {i}"), &settings, kind.layered())
+            {
                 return Err(Error::Invalid(problem));
             }
             if !light.shadow_patch().given().is_empty() {

@@ -896,13 +896,15 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
     }
     // What a light cannot be drawn with (the book's angle view off the YZ plane, which
     // would say nothing; a non-square map for a cube map or cascades): the setting named.
+    let layered = super::light::layered_light(&lights, &file.shadow);
     for (i, light) in lights.iter().enumerate() {
         let prefix = match lights.len() {
             1 => "light".to_string(),
             _ => format!("lights[{i}]"),
         };
         let own = light.shadow_patch();
-        if let Some(problem) = light.settings_problem(&prefix, &light.settings(&file.shadow)) {
+        let own_settings = light.settings(&file.shadow);
+        if let Some(problem) = light.settings_problem(&prefix, &own_settings, layered == Some(i)) {
             let setting = problem.split(' ').next().unwrap_or_default();
             let given_by_light = match setting {
                 "shadow.light_view" => own.light_view.is_some(),

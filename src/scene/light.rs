@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::settings::{
     DirectionalLayers, Fit, LightProjection, LightView, ShadowPatch, ShadowSettings,
+    ShadowTechnique,
 };
 use crate::transformation::Transformation;
 
@@ -161,11 +162,18 @@ impl DirectionalLight {
     /// Why the book's angle view cannot stand for this light (`name` names it in the
     /// message), if `settings` would build its view that way: its direction has an x
     /// component, and the angles would turn the map away from the light without a word.
-    pub fn book_angles_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+    /// `layered`: the light's map is split into layers (cascades, caster groups), whose
+    /// boxes build their own views.
+    pub fn book_angles_problem(
+        &self,
+        name: &str,
+        settings: &ShadowSettings,
+        layered: bool,
+    ) -> Option<String> {
         let uses_angles = settings.light_view == LightView::BookAngles
             && settings.light_projection == LightProjection::Ortho
             && settings.fit == Fit::Manual
-            && settings.directional_layers().is_none()
+            && !layered
             && self.casts_shadows;
         let d = self.direction.normalize();
         (uses_angles && d.x.abs() > BOOK_ANGLES_MAX_X).then(|| {
@@ -368,23 +376,43 @@ impl Light {
         }
     }
 
+    /// The layers (cascades, caster groups) this light asks for under its own `settings`:
+    /// a casting directional light with shadow maps. Only the scene's first such light
+    /// gets them ([`layered_light`]).
+    pub fn layers_asked(&self, settings: &ShadowSettings) -> Option<DirectionalLayers> {
+        match self {
+            Light::Directional(_)
+                if self.casts_shadows()
+                    && settings.shadows
+                    && settings.technique == ShadowTechnique::Maps =>
+            {
+                settings.directional_layers()
+            }
+            _ => None,
+        }
+    }
+
     /// What is wrong with drawing this light (named `name` in the message) under its own
-    /// `settings`, if anything: see [`crate::Scene::check_light_settings`]. The message
-    /// starts with the setting (`shadow.NAME = VALUE: ...`).
-    pub fn settings_problem(&self, name: &str, settings: &ShadowSettings) -> Option<String> {
+    /// `settings`, if anything: see [`crate::Scene::check_light_settings`]. `layered`: the
+    /// light is the scene's layered one ([`layered_light`]), so it gets the layers it asks
+    /// for; another keeps one map and takes what one map takes. The message starts with
+    /// the setting (`shadow.NAME = VALUE: ...`).
+    pub fn settings_problem(
+        &self,
+        name: &str,
+        settings: &ShadowSettings,
+        layered: bool,
+    ) -> Option<String> {
         if !self.casts_shadows() {
             return None;
         }
+        let layers = self.layers_asked(settings).filter(|_| layered);
         if let Light::Directional(l) = self {
-            if let Some(problem) = l.book_angles_problem(name, settings) {
+            if let Some(problem) = l.book_angles_problem(name, settings, layers.is_some()) {
                 return Some(format!("shadow.light_view = {problem}"));
             }
         }
         let cube = matches!(self, Light::Point(_));
-        let layers = match self {
-            Light::Directional(_) => settings.directional_layers(),
-            _ => None,
-        };
         if let Some(why) = settings.filter.refused_for(cube, layers.is_some()) {
             return Some(format!(
                 "shadow.filter = {}: {name} cannot use it: {why}",
@@ -460,4 +488,13 @@ impl Light {
             },
         }
     }
+}
+
+/// Which of `lights` gets its map split into layers under `settings` (each light's own
+/// table over it): the first that asks for them ([`Light::layers_asked`]); one light's
+/// positions in every layer fit among GL 3.3's vertex outputs, so the others keep one map.
+pub fn layered_light(lights: &[Light], settings: &ShadowSettings) -> Option<usize> {
+    lights
+        .iter()
+        .position(|l| l.layers_asked(&l.settings(settings)).is_some())
 }

@@ -210,9 +210,12 @@ impl Scene {
     /// non-square `map_size` for a light whose map is square (a point light's cube map,
     /// cascades). `settings` are the scene's; each light's own table goes on top.
     pub fn check_light_settings(&self, settings: &ShadowSettings) -> Result<()> {
+        let layered = light::layered_light(&self.lights, settings);
         for (i, light) in self.lights.iter().enumerate() {
             let own = light.settings(settings);
-            if let Some(problem) = light.settings_problem(&format!("light {i}"), &own) {
+            if let Some(problem) =
+                light.settings_problem(&format!("light {i}"), &own, layered == Some(i))
+            {
                 return Err(Error::Invalid(problem));
             }
         }

@@ -76,7 +76,9 @@ impl Map2d {
         // Scene files and flags are checked before any frame; this guards scenes built in
         // code (the book's angles would turn the map away from the light without a word).
         if let Light::Directional(l) = &scene.lights[index] {
-            if let Some(problem) = l.book_angles_problem(&format!("light {index}"), pass.settings) {
+            if let Some(problem) =
+                l.book_angles_problem(&format!("light {index}"), pass.settings, false)
+            {
                 return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
             }
         }

@@ -70,15 +70,15 @@ impl ShadowKind {
     /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
     /// others one map each.
     pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
-        let mut layered = false;
+        let layered = crate::scene::light::layered_light(lights, settings);
         lights
             .iter()
-            .map(|l| match ShadowKind::of(l, &l.settings(settings)) {
-                kind if kind.layered() && layered => ShadowKind::one_map(&l.settings(settings)),
-                kind => {
-                    layered |= kind.layered();
-                    kind
+            .enumerate()
+            .map(|(i, l)| match ShadowKind::of(l, &l.settings(settings)) {
+                kind if kind.layered() && layered != Some(i) => {
+                    ShadowKind::one_map(&l.settings(settings))
                 }
+                kind => kind,
             })
             .collect()
     }
