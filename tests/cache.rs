@@ -165,12 +165,7 @@ fn a_still_frame_takes_its_shadow_tests_from_the_mask_and_equals_a_fresh_one() {
             }
         }
         for (what, variant) in variants {
-            let refused = |s: &ShadowSettings| {
-                still.lights.iter().enumerate().any(|(i, l)| {
-                    l.settings_problem(&format!("light {i}"), &l.settings(s))
-                        .is_some()
-                })
-            };
+            let refused = |s: &ShadowSettings| still.check_light_settings(s).is_err();
             let mut probe = still.shadow;
             variant(&mut probe);
             if refused(&probe) {
