@@ -121,9 +121,6 @@ impl<'a> LightFit<'a> {
             .iter()
             .map(|c| aabb(c.iter().map(|&p| to_light_space(p))))
             .collect();
-        let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
-            a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
-        };
         let visible = (vl_lo, vl_hi);
         // Along parallel rays only a caster with the same light-space x, y can shadow a point,
         // and only one above it (towards the light). A flat caster (a floor) cannot shadow
@@ -243,9 +240,6 @@ impl<'a> LightFit<'a> {
     pub fn fit_box(&self, casters: &[usize], map_size: MapSize, snap: bool) -> FittedBox {
         let (scene, basis, light_boxes) = (self.scene, self.basis, &self.light_boxes);
         let to_light_space = |p: DVec3| basis.transpose() * p;
-        let overlaps_xy = |a: &(DVec3, DVec3), b: &(DVec3, DVec3)| {
-            a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
-        };
         let (texels_x, texels_y) = (f64::from(map_size.width), f64::from(map_size.height));
         let (mut llo, mut lhi) = self.visible;
         let mut z_top = lhi.z;
@@ -318,6 +312,12 @@ impl<'a> LightFit<'a> {
             texel: (size.x / texels_x).max(size.y / texels_y),
         }
     }
+}
+
+/// Whether two light-space boxes overlap across the light's view (in x and y): along
+/// parallel rays only such boxes can shadow one another.
+fn overlaps_xy(a: &(DVec3, DVec3), b: &(DVec3, DVec3)) -> bool {
+    a.0.x <= b.1.x && a.1.x >= b.0.x && a.0.y <= b.1.y && a.1.y >= b.0.y
 }
 
 /// The lowest z of a light-space triangle clipped to the x, y box [lo, hi], if any of it

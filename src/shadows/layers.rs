@@ -42,16 +42,22 @@ pub trait Layout {
     fn set_uniforms(&self, _program: &ShaderProgram) {}
 }
 
-/// A layered technique: the depth array and a [`Layout`] of its layers.
+/// A layered technique: the depth array, the box each layer was last drawn with and a
+/// [`Layout`] of its layers.
 pub struct Layered<L: Layout> {
-    layers: Layers,
+    array: CascadeShadowMap,
+    boxes: Vec<FittedBox>,
     layout: L,
 }
 
 impl<L: Layout + Default> Layered<L> {
+    /// `L::count` square layers of the settings' map size and format (a non-square size
+    /// is an error naming the technique).
     pub fn new(gl: &Gl, s: &ShadowSettings) -> Result<Layered<L>> {
+        let side = s.map_size.square_side(L::NAME)?;
         Ok(Layered {
-            layers: Layers::new(gl, s, L::count(s), L::NAME)?,
+            array: CascadeShadowMap::new(gl, side, L::count(s), s.depth_format)?,
+            boxes: Vec::new(),
             layout: L::default(),
         })
     }
@@ -63,10 +69,13 @@ impl<L: Layout> Technique for Layered<L> {
     }
 
     fn fits(&self, s: &ShadowSettings) -> bool {
-        self.layers.fits(s, L::count(s))
+        self.array.size() == s.map_size
+            && self.array.format() == s.depth_format
+            && self.array.layers() == L::count(s)
     }
 
-    /// The layers fitted, then one depth pass per layer with the casters it keeps.
+    /// The layers fitted, then one depth pass per layer: cleared and drawn from its box
+    /// with the casters the layout keeps in it.
     fn render_depth(
         &mut self,
         pass: &mut DepthPass,
@@ -79,15 +88,29 @@ impl<L: Layout> Technique for Layered<L> {
                 L::NAME
             )));
         };
-        let boxes = self.layout.fit(pass, scene, l);
+        self.boxes = self.layout.fit(pass, scene, l);
         pass.casters.total += self.layout.offered(scene);
-        let (layout, bounds) = (&self.layout, pass.boxes);
-        self.layers.draw(pass, scene, boxes, |layer, i| {
-            layout.keeps(layer, i, &bounds[i])
-        })?;
+        let program = pass.programs.flat(pass.gl)?;
+        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
+        for (layer, b) in self.boxes.iter().enumerate() {
+            self.array.bind_layer(layer as u32);
+            state::clear_depth(pass.gl);
+            let [l, r, bottom, t, n, f] = b.bounds;
+            let projection = DMat4::orthographic_rh_gl(l, r, bottom, t, n, f).as_mat4();
+            program.set_mat4("orthoProjectionMatrix", &projection);
+            let keep = |i: usize| self.layout.keeps(layer, i, &pass.boxes[i]);
+            pass.casters.drawn += draw_casters(
+                pass.meshes,
+                scene,
+                &program,
+                "modelLightViewMatrix",
+                b.view,
+                keep,
+            ) as u64;
+        }
         // The first layer stands for the light's camera (reports, the depth view's near
         // and far, the reference's rays).
-        match self.layers.boxes.first() {
+        match self.boxes.first() {
             Some(first) => Ok(first.shadow_view(l.direction)),
             None => Err(Error::Internal(format!(
                 "light {index}: {} were fitted but there are none",
@@ -97,7 +120,7 @@ impl<L: Layout> Technique for Layered<L> {
     }
 
     fn texture(&self) -> &Texture {
-        self.layers.array.texture()
+        self.array.texture()
     }
 
     /// A layer covers exactly its box: outside it is lit (a border of depth 1), whatever
@@ -125,7 +148,7 @@ impl<L: Layout> Technique for Layered<L> {
     /// normal offset in world units, the settings' texels of its own
     /// (`cascadeNormalOffset`), and the layout's own.
     fn set_scene_uniforms(&self, p: &ShaderProgram, scene: &Scene, s: &ShadowSettings) {
-        let boxes = &self.layers.boxes;
+        let boxes = &self.boxes;
         let matrices: Vec<Mat4> = boxes
             .iter()
             .map(|b| camera_relative_matrix(b, scene.camera.position).as_mat4())
@@ -140,12 +163,12 @@ impl<L: Layout> Technique for Layered<L> {
     }
 
     fn bytes(&self) -> u64 {
-        u64::from(self.layers.array.layers()) * u64::from(self.layers.array.size()).pow(2) * 4
+        u64::from(self.array.layers()) * u64::from(self.array.size()).pow(2) * 4
     }
 
     fn depth_view(&self) -> DepthViewKind {
         DepthViewKind::Array {
-            layers: self.layers.array.layers(),
+            layers: self.array.layers(),
         }
     }
 }
@@ -176,60 +199,6 @@ impl Snippet {
                 self.add, self.samplers[i]
             ),
         }
-    }
-}
-
-/// The depth array and the box each layer was last drawn with.
-struct Layers {
-    array: CascadeShadowMap,
-    boxes: Vec<FittedBox>,
-}
-
-impl Layers {
-    /// `count` square layers of `settings`' map size and format; `what` names the technique
-    /// in the error a non-square size gets.
-    fn new(gl: &Gl, s: &ShadowSettings, count: u32, what: &str) -> Result<Layers> {
-        Ok(Layers {
-            array: CascadeShadowMap::new(gl, s.map_size.square_side(what)?, count, s.depth_format)?,
-            boxes: Vec::new(),
-        })
-    }
-
-    /// Whether the array still has `count` layers of `s`' size and format.
-    fn fits(&self, s: &ShadowSettings, count: u32) -> bool {
-        self.array.size() == s.map_size
-            && self.array.format() == s.depth_format
-            && self.array.layers() == count
-    }
-
-    /// The depth pass: layer `k` cleared and drawn from `boxes[k]` with the casters
-    /// `keep(k, item)` lets in (counted as drawn; the technique counts those offered).
-    fn draw(
-        &mut self,
-        pass: &mut DepthPass,
-        scene: &Scene,
-        boxes: Vec<FittedBox>,
-        keep: impl Fn(usize, usize) -> bool,
-    ) -> Result<()> {
-        self.boxes = boxes;
-        let program = pass.programs.flat(pass.gl)?;
-        let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), &program);
-        for (layer, b) in self.boxes.iter().enumerate() {
-            self.array.bind_layer(layer as u32);
-            state::clear_depth(pass.gl);
-            let [l, r, bottom, t, n, f] = b.bounds;
-            let projection = DMat4::orthographic_rh_gl(l, r, bottom, t, n, f).as_mat4();
-            program.set_mat4("orthoProjectionMatrix", &projection);
-            pass.casters.drawn += draw_casters(
-                pass.meshes,
-                scene,
-                &program,
-                "modelLightViewMatrix",
-                b.view,
-                |i| keep(layer, i),
-            ) as u64;
-        }
-        Ok(())
     }
 }
 
