@@ -33,4 +33,22 @@ x dummy-32 --scene dummy --depth-format 32f --wrap repeat
 x dummy-frames --scene dummy --frames 30 --light-angle 70
 x slides-c3 --scene slides --cascades 3
 x play-no --scene playground --normal-offset 2 --filter hw2x2
+# moment filters, the soft filters, volumes, caster groups, the depth map read back
+x dummy-vsm --scene dummy --filter vsm
+x dummy-evsm2 --scene dummy --filter evsm2
+x dummy-evsm4 --scene dummy --filter evsm4 --show-depth-map
+x dummy-msm --scene dummy --filter msm
+x play-msm --scene playground --filter msm --light-size 1
+x play-pcss --scene playground --filter pcss --light-size 1
+x play-soft --scene playground --filter soft-pcf
+x play-w4 --scene playground --filter pcf4x4-weighted
+x large-pcss --scene large --filter pcss
+x slides-vol --scene slides --technique volumes
+x dummy-vol --scene dummy --technique volumes --show-volumes
+x three-vol --scene three-lights --technique volumes
+x learn-g2 --scene learnopengl --caster-groups 2 --fit scene --filter hw2x2
+x large-g4 --scene large --caster-groups 4
+x large-g4-dm --scene large --caster-groups 4 --show-depth-map
+x dummy-depth-out --scene dummy --depth-out $out/x-dummy-depth.png
+x learn-depth-out --scene learnopengl --depth-out $out/x-learn-depth.png --shadow-out $out/x-learn-vis.png
 echo done
