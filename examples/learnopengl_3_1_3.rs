@@ -33,8 +33,6 @@ pub const SCR_HEIGHT: u32 = 600;
 pub const SHADOW_SIZE: u32 = 1024;
 /// `lightPos`: the light's camera sits here and looks at the origin.
 pub const LIGHT_POS: Vec3 = Vec3::new(-2.0, 4.0, -1.0);
-/// The camera's position; it looks down -Z.
-pub const CAMERA_POS: Vec3 = Vec3::new(0.0, 0.0, 3.0);
 /// `glClearColor(0.1, 0.1, 0.1, 1.0)`.
 const CLEAR: [f32; 4] = [0.1, 0.1, 0.1, 1.0];
 
@@ -197,6 +195,22 @@ pub fn light_space_matrix() -> Mat4 {
     light_projection * light_view
 }
 
+/// LearnOpenGL's `Camera`, as far as a frame needs it: its position (`viewPos`) and its
+/// view matrix. The tutorial's flies with the keys and the mouse; it starts at (0, 0, 3)
+/// looking down -Z.
+pub struct Camera {
+    pub position: Vec3,
+    pub view: Mat4,
+}
+
+impl Default for Camera {
+    fn default() -> Camera {
+        let position = Vec3::new(0.0, 0.0, 3.0);
+        let view = Mat4::look_at_rh(position, position - Vec3::Z, Vec3::Y);
+        Camera { position, view }
+    }
+}
+
 /// The tutorial's program: its two shaders, meshes, wood texture, depth map FBO and an
 /// offscreen 800 x 600 target in place of the window. Every GL object has its engine owner.
 pub struct ShadowMapping {
@@ -211,6 +225,7 @@ pub struct ShadowMapping {
     border: Sampler,
     window: RenderTarget,
     light_space_matrix: Mat4,
+    pub camera: Camera,
 }
 
 impl ShadowMapping {
@@ -243,6 +258,7 @@ impl ShadowMapping {
             border: Sampler::new(gl, border)?,
             window: RenderTarget::new(gl, SCR_WIDTH, SCR_HEIGHT, Outputs::default())?,
             light_space_matrix: light_space_matrix(),
+            camera: Camera::default(),
         })
     }
 
@@ -280,10 +296,9 @@ impl ShadowMapping {
         shader.bind();
         let aspect = SCR_WIDTH as f32 / SCR_HEIGHT as f32;
         let projection = Mat4::perspective_rh_gl(45f32.to_radians(), aspect, 0.1, 100.0);
-        let view = Mat4::look_at_rh(CAMERA_POS, CAMERA_POS - Vec3::Z, Vec3::Y);
         shader.set_mat4("projection", &projection);
-        shader.set_mat4("view", &view);
-        shader.set_vec3("viewPos", CAMERA_POS);
+        shader.set_mat4("view", &self.camera.view);
+        shader.set_vec3("viewPos", self.camera.position);
         shader.set_vec3("lightPos", LIGHT_POS);
         shader.set_mat4("lightSpaceMatrix", &self.light_space_matrix);
         self.wood_texture.bind(0);

@@ -14,22 +14,15 @@ mod learnopengl;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::{render_frames, Frame};
 use shadowmap::settings::{BiasMode, Cull, Filter, MapSize};
+use shadowmap::Scene;
 
-/// The tool's frame of a built-in scene with its own settings, as `shadowmap render
-/// --scene NAME --size WxH` draws it (one frame, nothing animated yet).
-fn tool_frame(ctx: &HeadlessContext, name: &str, width: u32, height: u32) -> Frame {
-    let mut scene = common::frozen(name);
+/// The tool's frame of a scene with its own settings, as `shadowmap render --scene NAME
+/// --size WxH` draws it (one frame, nothing animated yet).
+fn tool_frame(ctx: &HeadlessContext, scene: &mut Scene, width: u32, height: u32) -> Frame {
     let settings = scene.shadow;
-    render_frames(
-        ctx.gl(),
-        &mut scene,
-        &settings,
-        width,
-        height,
-        1,
-        Outputs::default(),
-    )
-    .unwrap_or_else(|e| panic!("{name}: {e}"))
+    let outputs = Outputs::default();
+    render_frames(ctx.gl(), scene, &settings, width, height, 1, outputs)
+        .unwrap_or_else(|e| panic!("{}: {e}", scene.name))
 }
 
 /// The largest channel difference between two RGBA8 images, and how many pixels differ.
@@ -80,7 +73,7 @@ fn dummygame_example_draws_the_tools_dummy_frame() {
     // culling) is the dummy scene's own settings. `--step pcf` is a different frame: it
     // carries the earlier cumulative steps (the slope bias, front faces culled, the border
     // clamp), which the book never takes.
-    let scene = common::frozen("dummy");
+    let mut scene = common::frozen("dummy");
     let s = scene.shadow;
     assert_eq!((s.bias_mode, s.bias), (BiasMode::Constant, 0.05));
     assert_eq!((s.filter, s.cull), (Filter::Pcf3x3, Cull::None));
@@ -88,7 +81,7 @@ fn dummygame_example_draws_the_tools_dummy_frame() {
     let ctx = common::context();
     let game = dummygame::DummyGame::new(ctx.gl()).unwrap();
     game.render_frame();
-    let frame = tool_frame(&ctx, "dummy", dummygame::WIDTH, dummygame::HEIGHT);
+    let frame = tool_frame(&ctx, &mut scene, dummygame::WIDTH, dummygame::HEIGHT);
     // Measured: identical. The same Transformation formulas give the same matrices, and
     // the shaders compute the same values.
     assert_same_frame("DummyGame", &game.read_colour(), &frame, 0.0);
@@ -101,7 +94,8 @@ fn learnopengl_example_draws_the_tools_learnopengl_frame() {
     let ctx = common::context();
     let program = learnopengl::ShadowMapping::new(ctx.gl()).unwrap();
     program.render_frame();
-    let frame = tool_frame(&ctx, "learnopengl", learnopengl::SCR_WIDTH, learnopengl::SCR_HEIGHT);
+    let (width, height) = (learnopengl::SCR_WIDTH, learnopengl::SCR_HEIGHT);
+    let frame = tool_frame(&ctx, &mut common::frozen("learnopengl"), width, height);
     // Measured: 148 pixels (0.031%) one level apart, from rounding (the tutorial lights in
     // world space, the renderer in view space); no PCF tap differs where it would show (one
     // tap flipping moves a lit floor pixel by 2 levels or more).
@@ -114,4 +108,23 @@ fn learnopengl_example_draws_the_tools_learnopengl_frame() {
     // steps of the 24-bit map), 5000 times less than the smallest bias (0.005), so no
     // comparison changes. A map turned, shifted or scaled would differ by far more.
     assert!(max <= 2e-6, "a depth texel differs by {max:e}");
+}
+
+#[test]
+fn learnopengl_example_matches_from_above_where_the_bias_shows() {
+    // From the tutorial's camera no bias between 0.025 and 0.1 changes a pixel (the floor
+    // beside the cubes is hidden). From the steps camera above the cubes the contact
+    // shadows and the cubes' lit faces are in view, where the bias and the filter decide.
+    let mut scene = common::frozen("learnopengl");
+    scene.camera = scene.steps_camera();
+    let ctx = common::context();
+    let mut program = learnopengl::ShadowMapping::new(ctx.gl()).unwrap();
+    program.camera = learnopengl::Camera {
+        position: scene.camera.position,
+        view: scene.camera.view_matrix(),
+    };
+    program.render_frame();
+    let (width, height) = (learnopengl::SCR_WIDTH, learnopengl::SCR_HEIGHT);
+    let frame = tool_frame(&ctx, &mut scene, width, height);
+    assert_same_frame("LearnOpenGL 3.1.3 from above", &program.read_colour(), &frame, 0.001);
 }
