@@ -231,7 +231,8 @@ pub struct ShadowMapping {
 impl ShadowMapping {
     pub fn new(gl: &Gl) -> Result<ShadowMapping> {
         let program = |name: &str, vs: &str, fs: &str| {
-            let source = |stage: &str, text: &str| ShaderSource::new(format!("{name}.{stage}"), text);
+            let source =
+                |stage: &str, text: &str| ShaderSource::new(format!("{name}.{stage}"), text);
             ShaderProgram::new(gl, &source("vs", vs), &source("fs", fs), &[])
         };
         let shader = program("shadow_mapping", SCENE_VS, SCENE_FS)?;

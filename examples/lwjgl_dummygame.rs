@@ -282,7 +282,8 @@ impl DummyGame {
         let p = &self.scene_shader_program;
         p.bind();
         let camera_view = Transformation::view(Vec3::new(0.0, 0.0, 2.0), Vec3::ZERO);
-        let projection = Transformation::projection(60.0, WIDTH as f32, HEIGHT as f32, 0.01, 1000.0);
+        let projection =
+            Transformation::projection(60.0, WIDTH as f32, HEIGHT as f32, 0.01, 1000.0);
         p.set_mat4("projectionMatrix", &projection);
         p.set_mat4("orthoProjectionMatrix", &ortho_projection_matrix());
         p.set_vec3("ambientLight", AMBIENT_LIGHT);
@@ -296,8 +297,14 @@ impl DummyGame {
         self.shadow_map.depth_map_texture().bind(1);
         for item in &self.items {
             let model = item.model_matrix();
-            p.set_mat4("modelViewMatrix", &Transformation::model_view(&model, &camera_view));
-            p.set_mat4("modelLightViewMatrix", &Transformation::model_view(&model, light_view));
+            p.set_mat4(
+                "modelViewMatrix",
+                &Transformation::model_view(&model, &camera_view),
+            );
+            p.set_mat4(
+                "modelLightViewMatrix",
+                &Transformation::model_view(&model, light_view),
+            );
             p.set_vec4("material.ambient", item.colour);
             p.set_vec4("material.diffuse", item.colour);
             p.set_vec4("material.specular", item.colour);
