@@ -1,5 +1,6 @@
 //! Our renderer on the built-in `learnopengl` scene (its own `[shadow]` settings) against
-//! `LearnOpenGlBaseline`, a plain implementation of the tutorial's frame, in the same run:
+//! the baseline, LearnOpenGL's program 3.1.3 as `examples/learnopengl_3_1_3.rs` draws it
+//! (the tutorial's shaders and draw calls, nothing else), in the same run:
 //! both draw 800x600 frames in alternating blocks, each frame timed as wall time around
 //! render + glFinish. Run with `cargo bench --bench learnopengl_baseline`;
 //! `SHADOWMAP_BENCH_BLOCKS=N` changes the number of blocks per side (default 10). Two more
@@ -16,8 +17,11 @@
 
 use std::time::Instant;
 
+#[allow(dead_code)]
+#[path = "../examples/learnopengl_3_1_3.rs"]
+mod learnopengl;
+
 use glam::Vec3;
-use shadowmap::engine::baseline::LearnOpenGlBaseline;
 use shadowmap::engine::{HeadlessContext, Outputs, RenderTarget};
 use shadowmap::settings::ShadowSettings;
 use shadowmap::{Renderer, Scene, Target};
@@ -65,7 +69,7 @@ fn main() -> shadowmap::Result<()> {
         shadow_cache: false,
         ..scene.shadow
     };
-    let baseline = LearnOpenGlBaseline::new(gl)?;
+    let baseline = learnopengl::ShadowMapping::new(gl)?;
     let target = RenderTarget::new(gl, WIDTH, HEIGHT, Outputs::default())?;
     let side = |s: ShadowSettings| Renderer::new(gl, &scene, &s);
     let mut renderer = side(settings)?;

@@ -4,7 +4,6 @@
 //! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
-pub mod baseline;
 pub mod check;
 pub mod headless;
 pub mod mesh;
