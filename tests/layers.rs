@@ -11,8 +11,14 @@ use std::path::{Path, PathBuf};
 fn ranks() -> Vec<(String, u32)> {
     let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/architecture.md");
     let text = std::fs::read_to_string(&doc).unwrap();
-    let mut lines = text.lines().skip_while(|l| !l.starts_with("| rank | layer | modules |"));
-    assert!(lines.next().is_some(), "no layer table in {}", doc.display());
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.starts_with("| rank | layer | modules |"));
+    assert!(
+        lines.next().is_some(),
+        "no layer table in {}",
+        doc.display()
+    );
     let mut out = Vec::new();
     for line in lines.skip(1).take_while(|l| l.starts_with('|')) {
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
@@ -44,7 +50,11 @@ fn the_layer_table_names_every_module_once() {
     let named: Vec<&String> = ranks.iter().map(|(n, _)| n).collect();
     let unique: BTreeSet<String> = named.iter().map(|n| n.to_string()).collect();
     assert_eq!(unique.len(), named.len(), "a module in two rows: {named:?}");
-    assert_eq!(unique, library_modules(), "docs/architecture.md against src/lib.rs");
+    assert_eq!(
+        unique,
+        library_modules(),
+        "docs/architecture.md against src/lib.rs"
+    );
 }
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
