@@ -290,10 +290,16 @@ fn at_edges(m: &Metrics) -> f64 {
     percent(m.misclassified - m.misclassified_outside_band, m.receivers)
 }
 
+/// A row of the area light's table: its label and how its value is shown.
+type AreaLine = (&'static str, fn(&SoftMetrics) -> String);
+
+/// A row of a step's table: its label, its percentage and what it counts.
+type FigureLine = (&'static str, fn(&Metrics) -> f64, &'static str);
+
 /// The figures against the area light's truth (a light with a size), beside the step
 /// before's.
 fn area_figures(a: &SoftMetrics, was: Option<(&str, &SoftMetrics)>) -> String {
-    let lines: [(&str, fn(&SoftMetrics) -> String); 4] = [
+    let lines: [AreaLine; 4] = [
         ("MAE <small>(mean visibility error)</small>", |a| {
             format!("{:.4}", a.mae)
         }),
@@ -417,7 +423,7 @@ fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
 /// A step's figures with what each counts, and the step before's for comparison.
 fn figures(m: &Metrics, before: Option<&Row>, area: Option<&SoftMetrics>) -> String {
     let was = before.and_then(|b| b.metrics.as_ref().map(|p| (b.step.name, p)));
-    let lines: [(&str, fn(&Metrics) -> f64, &str); 5] = [
+    let lines: [FigureLine; 5] = [
         (
             "false shadow",
             |m| m.false_shadow_rate * 100.0,
