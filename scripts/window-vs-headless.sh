@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 16's window figure: the demo's frame time in a window (through GLX and through EGL)
+# The window figure of docs/results.md: the demo's frame time in a window (through GLX and through EGL)
 # against headless `render --frames`, alternated in one run (the machine is noisy; compare
 # the ratios, not the milliseconds). Needs a display (e.g. `Xvfb :99 &` and DISPLAY=:99).
 #

@@ -1,18 +1,11 @@
 //! shadowmap: the classic shadow-mapping chapters (the LWJGL book's "Shadows", LearnOpenGL's
 //! "Shadow Mapping", a course's slides, the shadow-playground blog) ported to Rust and
-//! OpenGL 3.3 core, built to be read beside them and to measure itself.
+//! OpenGL 3.3 core, built to be read beside them and to measure itself against an exact
+//! ray-traced reference.
 //!
-//! Layers, each importing only those above it:
-//! - data: `settings`, `transformation`, `geometry`, `image_data`, `scene` (the book's
-//!   `Camera`, `GameItem`, lights, and the scene files);
-//! - `engine`: every GL call (RAII owners, state as values);
-//! - `shadows`: one module per technique (the chapter's 2D map, cube maps, cascades, the
-//!   fitted box) behind one trait, and the slides' stencil shadow volumes beside them;
-//! - `renderer`: the book's two passes;
-//! - `measure`: frames read back, the exact reference, compare and bench, attached through
-//!   hooks; `steps`: the chapter steps as presets.
-//!
-//! `tests/layers.rs` checks that no module imports a layer below it.
+//! The modules are layers, each using only those below it: `docs/architecture.md` describes
+//! them (and `tests/layers.rs` checks the source against its table); `docs/reading-guide.md`
+//! names the module and function that ports each section of the chapters.
 
 pub mod engine;
 pub mod error;

@@ -476,7 +476,7 @@ pub enum PointPass {
     SixPasses,
     /// One pass: a geometry shader sends each triangle to every face with gl_Layer. The
     /// default: one draw per caster instead of six; on llvmpipe both cost the same within
-    /// 0.3% of instructions (README, "Point lights").
+    /// 0.3% of instructions (docs/techniques/point-lights.md).
     #[default]
     Layered,
 }

@@ -247,7 +247,7 @@ fn only_maps_whose_light_sees_a_change_are_drawn_again() {
 
 #[test]
 fn a_point_light_draws_each_caster_only_into_the_cube_faces_it_can_reach() {
-    // Issue 16, culled casters per cube face: counted per face (six offered per caster), and
+    // Casters culled per cube face: counted per face (six offered per caster), and
     // a cube straight along +X from the light is drawn into the +X face alone. Both depth
     // passes (one layered pass, six passes) cull alike.
     let ctx = common::context();
@@ -344,7 +344,7 @@ fn cached_caster_groups_give_the_uncached_frame() {
 
 #[test]
 fn the_dummy_games_turning_cube_patches_its_map_and_equals_a_full_redraw() {
-    // Issue 16, movers redrawn: only the cube turns under the book's fixed box, so after the
+    // Movers redrawn: only the cube turns under the book's fixed box, so after the
     // first frame its map is patched where the cube was and is; the frame and the map are
     // the uncached ones, bit for bit.
     let (cached, p) = last_frame("dummy", true, |_| {});

@@ -1,139 +1,42 @@
-//! The README's numbers and lists against the code they describe: the bench's counts, the
-//! filters, the scene files' fields, and which commands take which flags. Each statement
-//! is parsed out of the README, so a change on either side fails here.
+//! The documentation against the program: the reference scene file loads, renders and shows
+//! every field the loader knows; every link in the README and `docs/` reaches a file; the
+//! bench's help states its sweep's counts; and which commands take which flags. Nothing here
+//! reads prose: the checks are on files and on the program's own output.
 
 mod common;
+
+use std::path::{Path, PathBuf};
 
 use shadowmap::bench::{configuration_counts, sweep, Family};
 use shadowmap::settings::Filter;
 use shadowmap::Scene;
 
-fn readme() -> String {
-    std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap()
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The README's text collapsed to single spaces (its sentences wrap anywhere).
-fn prose() -> String {
-    readme().split_whitespace().collect::<Vec<_>>().join(" ")
-}
+const REFERENCE: &str = "docs/reference-scene.toml";
 
-/// The number right after `before` in `text`.
-fn number_after(text: &str, before: &str) -> usize {
-    let at = text
-        .find(before)
-        .unwrap_or_else(|| panic!("the README no longer says \"{before}\""));
-    let digits: String = text[at + before.len()..]
-        .chars()
-        .take_while(|c| c.is_ascii_digit())
-        .collect();
-    digits
-        .parse()
-        .unwrap_or_else(|_| panic!("no number after \"{before}\""))
-}
-
-/// The README's `### Fields` block: the commented scene file.
-fn fields_block() -> String {
-    let text = readme();
-    let start = text.find("### Fields").expect("a Fields section");
-    let body = &text[start..];
-    let open = body.find("```toml").expect("a toml block") + "```toml".len();
-    let close = body[open..].find("```").expect("the block's end");
-    body[open..open + close].to_string()
+fn reference_text() -> String {
+    std::fs::read_to_string(root().join(REFERENCE)).unwrap()
 }
 
 #[test]
-fn the_bench_counts_are_the_sweeps() {
-    let text = prose();
-    let dummy = Scene::load("dummy").unwrap();
-    // llvmpipe's largest map, which the README's sweep includes.
-    let full = sweep(&dummy.shadow, false, 16384, dummy.light());
-    let quick = sweep(&dummy.shadow, true, 16384, dummy.light());
-    let cascaded = full.iter().filter(|c| c.family == Family::Cascades).count();
-    let grouped = full.iter().filter(|c| c.family == Family::Groups).count();
-    let volumes = full.iter().filter(|c| c.family == Family::Volumes).count();
-    assert_eq!(volumes, 1, "the sweep has the volumes once");
-    assert_eq!(
-        number_after(&text, "2 or 4 caster groups: "),
-        full.len(),
-        "the full sweep"
-    );
-    assert_eq!(
-        number_after(&text, "configurations on the DummyGame ("),
-        full.len() - cascaded - grouped - volumes,
-        "one-map configurations"
-    );
-    assert_eq!(
-        number_after(&text, " with one map, "),
-        cascaded,
-        "configurations with cascades"
-    );
-    assert_eq!(
-        number_after(&text, " with cascades, "),
-        grouped,
-        "configurations with caster groups"
-    );
-    assert_eq!(number_after(&text, "`--quick` runs "), quick.len());
-    let counts = configuration_counts(16384);
-    let spot_quick = counts.iter().find(|c| c.0 == "spot").unwrap().1;
-    assert_eq!(
-        number_after(&text, "of them on the DummyGame ("),
-        spot_quick,
-        "quick, spot"
-    );
-    // The DummyGame's settings give the same counts as the defaults the help states.
-    let directional = counts.iter().find(|c| c.0 == "directional").unwrap();
-    assert_eq!((directional.1, directional.2), (quick.len(), full.len()));
-    // The plot and the table are of the one-map sweep: its CSV has that many rows.
-    let csv = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/assets/readme/bench-dummy.csv"
-    ))
-    .unwrap();
-    assert_eq!(
-        number_after(&text, "they hold the "),
-        csv.lines().count() - 1
-    );
-}
-
-#[test]
-fn the_bench_help_states_the_sweeps_counts() {
-    let help = common::stdout_of(common::bin().args(["bench", "--help"]));
-    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
-    for (kind, quick, full) in configuration_counts(16384) {
-        for n in [quick, full] {
-            let said = format!("{n} for a {kind} light");
-            assert!(
-                help.contains(&said),
-                "bench --help lacks \"{said}\":\n{help}"
-            );
-        }
-    }
-}
-
-#[test]
-fn the_readme_lists_every_filter() {
-    let block = fields_block();
-    let line = block
-        .lines()
-        .find(|l| l.starts_with("filter ="))
-        .expect("a filter line");
-    let comment = line
-        .split_once('#')
-        .expect("a comment listing the filters")
-        .1;
-    let listed: Vec<&str> = comment.split('"').skip(1).step_by(2).collect();
-    let all: Vec<&str> = Filter::ALL
-        .iter()
-        .chain(&Filter::SOFT)
-        .chain(&Filter::MOMENTS)
-        .map(|f| f.name())
-        .collect();
-    assert_eq!(listed, all, "README: {line}");
-    // And every filter is a value the scene files take.
-    for name in all {
-        let text = format!("[light]\nangle = 45.0\n[shadow]\nfilter = \"{name}\"\n");
-        load_text(&text).unwrap_or_else(|e| panic!("filter {name}: {e}"));
-    }
+fn the_reference_scene_loads_and_renders() {
+    let path = root().join(REFERENCE);
+    let mut scene = Scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.name, "reference");
+    assert_eq!(scene.lights.len(), 3, "a sun, a spot and a point light");
+    // Four items and six scattered pillars.
+    assert_eq!(scene.items.len(), 10);
+    let ctx = common::context();
+    let settings = scene.shadow;
+    let frame = common::render(&ctx, &mut scene, &settings, 320, 180);
+    let vis: Vec<f32> = frame.visibility.unwrap().into_iter().flatten().collect();
+    let shadowed = vis.iter().filter(|v| **v < 0.5).count();
+    let lit = vis.iter().filter(|v| **v > 0.5).count();
+    assert!(shadowed > 100, "only {shadowed} shadowed pixels");
+    assert!(lit > 10 * shadowed, "{lit} lit against {shadowed} shadowed");
 }
 
 /// Loads `text` as a scene file.
@@ -150,56 +53,176 @@ fn load_text(text: &str) -> shadowmap::Result<Scene> {
 }
 
 /// The fields a table of the scene file takes, as the loader lists them when it refuses an
-/// unknown one.
+/// unknown one (`expected one of `a`, `b`` or `... takes a, b`).
 fn loader_fields(text: &str) -> Vec<String> {
     let message = match load_text(text) {
         Ok(_) => panic!("an unknown field was accepted:\n{text}"),
         Err(e) => e.to_string(),
     };
-    let list = message
-        .split_once("expected one of")
-        .unwrap_or_else(|| panic!("{message}"))
-        .1;
-    list.split('`')
-        .skip(1)
-        .step_by(2)
-        .map(String::from)
-        .collect()
+    if let Some((_, list)) = message.split_once("expected one of") {
+        return list
+            .split('`')
+            .skip(1)
+            .step_by(2)
+            .map(String::from)
+            .collect();
+    }
+    let (_, list) = message
+        .split_once(" takes ")
+        .unwrap_or_else(|| panic!("no list of fields in: {message}"));
+    list.split(',').map(|f| f.trim().to_string()).collect()
 }
 
 #[test]
-fn the_readme_shows_every_field_of_the_scene_file() {
-    let block = fields_block();
+fn the_reference_scene_shows_every_field_of_the_scene_file() {
+    let text = reference_text();
     let light = "[light]\nangle = 45.0\n";
+    let item = "[[item]]\nmesh = \"cube\"\n";
     let tables = [
         ("top level", format!("not_a_field = 1\n{light}")),
         ("[camera]", format!("{light}[camera]\nnot_a_field = 1\n")),
+        ("directional [light]", format!("{light}not_a_field = 1\n")),
         (
-            "[[item]]",
-            format!("{light}[[item]]\nmesh = \"cube\"\nnot_a_field = 1\n"),
+            "spot [light]",
+            "[light]\nkind = \"spot\"\nnot_a_field = 1\n".into(),
+        ),
+        (
+            "point [light]",
+            "[light]\nkind = \"point\"\nnot_a_field = 1\n".into(),
+        ),
+        ("ortho", "[light]\northo = { not_a_field = 1 }\n".into()),
+        ("[shadow]", format!("{light}[shadow]\nnot_a_field = 1\n")),
+        ("[steps]", format!("{light}[steps]\nnot_a_field = 1\n")),
+        ("[[item]]", format!("{light}{item}not_a_field = 1\n")),
+        (
+            "scatter",
+            format!("{light}{item}scatter = {{ not_a_field = 1 }}\n"),
         ),
     ];
-    for (table, text) in tables {
-        let fields = loader_fields(&text);
+    for (table, scene) in tables {
+        let fields = loader_fields(&scene);
         assert!(fields.len() > 4, "{table}: {fields:?}");
         for f in fields {
-            let shown = [format!("{f} ="), format!("[{f}]"), format!("[[{f}]]")]
-                .iter()
-                .any(|s| block.contains(s.as_str()));
-            assert!(shown, "{table}: the README's Fields block lacks `{f}`");
+            let shown = [
+                format!("{f} ="),
+                format!("[{f}]"),
+                format!("[[{f}]]"),
+                format!("{f}s]]"),
+            ]
+            .iter()
+            .any(|s| text.contains(s.as_str()));
+            assert!(shown, "{table}: {REFERENCE} lacks `{f}`");
+        }
+    }
+}
+
+#[test]
+fn the_reference_scene_lists_every_filter() {
+    let text = reference_text();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("filter ="))
+        .expect("a filter line");
+    let comment = line
+        .split_once('#')
+        .expect("a comment listing the filters")
+        .1;
+    let listed: Vec<&str> = comment.split('"').skip(1).step_by(2).collect();
+    let all: Vec<&str> = Filter::ALL
+        .iter()
+        .chain(&Filter::SOFT)
+        .chain(&Filter::MOMENTS)
+        .map(|f| f.name())
+        .collect();
+    assert_eq!(listed, all, "{REFERENCE}: {line}");
+    // And every filter is a value the scene files take.
+    for name in all {
+        let text = format!("[light]\nangle = 45.0\n[shadow]\nfilter = \"{name}\"\n");
+        load_text(&text).unwrap_or_else(|e| panic!("filter {name}: {e}"));
+    }
+}
+
+fn markdown_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            markdown_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "md") {
+            out.push(path);
+        }
+    }
+}
+
+/// The relative targets of a Markdown text's links and images: `](target)` and
+/// `src="target"`, anchors and web addresses left out.
+fn link_targets(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for (open, close) in [("](", ')'), ("src=\"", '"')] {
+        for piece in text.split(open).skip(1) {
+            let target = piece.split(close).next().unwrap_or("");
+            let target = target.split('#').next().unwrap_or("");
+            if !target.is_empty() && !target.contains("://") && !target.contains(' ') {
+                out.push(target.to_string());
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_link_in_the_docs_reaches_a_file() {
+    let mut files = vec![root().join("README.md")];
+    markdown_files(&root().join("docs"), &mut files);
+    assert!(files.len() > 10, "{files:?}");
+    let mut missing = Vec::new();
+    let mut checked = 0;
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for target in link_targets(&text) {
+            checked += 1;
+            let path = file.parent().unwrap().join(&target);
+            if !path.exists() {
+                missing.push(format!("{}: {target}", file.display()));
+            }
+        }
+    }
+    assert!(checked > 100, "only {checked} links");
+    assert!(
+        missing.is_empty(),
+        "links to nothing:\n{}",
+        missing.join("\n")
+    );
+}
+
+#[test]
+fn the_bench_help_states_the_sweeps_counts() {
+    let dummy = Scene::load("dummy").unwrap();
+    // llvmpipe's largest map, which the full sweep includes.
+    let full = sweep(&dummy.shadow, false, 16384, dummy.light());
+    let quick = sweep(&dummy.shadow, true, 16384, dummy.light());
+    let volumes = full.iter().filter(|c| c.family == Family::Volumes).count();
+    assert_eq!(volumes, 1, "the sweep has the volumes once");
+    assert!(full.iter().any(|c| c.family == Family::Cascades));
+    assert!(full.iter().any(|c| c.family == Family::Groups));
+    let counts = configuration_counts(16384);
+    // The DummyGame's settings give the same counts as the defaults the help states.
+    let directional = counts.iter().find(|c| c.0 == "directional").unwrap();
+    assert_eq!((directional.1, directional.2), (quick.len(), full.len()));
+    let help = common::stdout_of(common::bin().args(["bench", "--help"]));
+    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    for (kind, quick, full) in counts {
+        for n in [quick, full] {
+            let said = format!("{n} for a {kind} light");
+            assert!(
+                help.contains(&said),
+                "bench --help lacks \"{said}\":\n{help}"
+            );
         }
     }
 }
 
 #[test]
 fn steps_takes_no_step_and_the_other_commands_do() {
-    let text = prose();
-    assert!(
-        text.contains(
-            "every command but `steps` (which renders every step) also takes `--step NAME`"
-        ),
-        "the README's statement changed"
-    );
     for (command, takes) in [
         ("render", true),
         ("compare", true),
@@ -210,8 +233,15 @@ fn steps_takes_no_step_and_the_other_commands_do() {
     ] {
         let help = common::stdout_of(common::bin().args([command, "--help"]));
         assert_eq!(help.contains("--step <STEP>"), takes, "{command} --help");
-        // Every command takes the camera flags the README names.
-        for flag in ["--camera-position", "--camera-rotation", "--camera-target"] {
+        // Every command takes the scene and camera flags.
+        for flag in [
+            "--scene",
+            "--size",
+            "--light-angle",
+            "--camera-position",
+            "--camera-rotation",
+            "--camera-target",
+        ] {
             assert!(help.contains(flag), "{command} --help lacks {flag}");
         }
     }

@@ -1,6 +1,6 @@
 //! Numerical stability at the extremes, and the fitted light box, each against the exact
 //! reference. Tables are printed (`cargo test --release --test extremes -- --nocapture`)
-//! for the README's "At the extremes" section.
+//! for the section "At the extremes" of docs/results.md.
 
 mod common;
 

@@ -1,30 +1,61 @@
-//! The library's layers, checked from the source: a module imports only the layers above
-//! it, and no two modules of one folder import each other (directly or round a circle).
-//!
-//! Ranks (lower first): `error`, `transformation`; `input`, `output`, `settings`,
-//! `geometry`, `image_data`;
-//! `scene`, `engine`; `shaders`; `shadows`; `renderer`, `steps`; `measure`. A module may
-//! name `crate::X` only for an X of a lower rank (or itself).
+//! The library's layers, checked from the source against their one description, the table
+//! in `docs/architecture.md`: a module uses only the layers below it, every module of the
+//! library has its row, and no two modules of one folder use each other (directly or round a
+//! circle).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-const RANKS: &[(&str, u32)] = &[
-    ("error", 0),
-    ("transformation", 0),
-    ("input", 1),
-    ("output", 1),
-    ("settings", 2),
-    ("geometry", 2),
-    ("image_data", 2),
-    ("scene", 3),
-    ("engine", 3),
-    ("shaders", 4),
-    ("shadows", 5),
-    ("renderer", 6),
-    ("steps", 6),
-    ("measure", 7),
-];
+/// The layer table of `docs/architecture.md`: each module named in its `modules` column
+/// (back-quoted names) with the row's rank.
+fn ranks() -> Vec<(String, u32)> {
+    let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/architecture.md");
+    let text = std::fs::read_to_string(&doc).unwrap();
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.starts_with("| rank | layer | modules |"));
+    assert!(
+        lines.next().is_some(),
+        "no layer table in {}",
+        doc.display()
+    );
+    let mut out = Vec::new();
+    for line in lines.skip(1).take_while(|l| l.starts_with('|')) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let rank: u32 = cells[1]
+            .parse()
+            .unwrap_or_else(|_| panic!("not a rank: {line}"));
+        for name in cells[3].split('`').skip(1).step_by(2) {
+            out.push((name.to_string(), rank));
+        }
+    }
+    assert!(out.len() > 8, "the layer table names only {out:?}");
+    out
+}
+
+/// The library's top-level modules, from `pub mod` lines of `src/lib.rs`.
+fn library_modules() -> BTreeSet<String> {
+    let lib = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/lib.rs");
+    std::fs::read_to_string(lib)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("pub mod "))
+        .map(|l| l.trim_end_matches(';').to_string())
+        .collect()
+}
+
+#[test]
+fn the_layer_table_names_every_module_once() {
+    let ranks = ranks();
+    let named: Vec<&String> = ranks.iter().map(|(n, _)| n).collect();
+    let unique: BTreeSet<String> = named.iter().map(|n| n.to_string()).collect();
+    assert_eq!(unique.len(), named.len(), "a module in two rows: {named:?}");
+    assert_eq!(
+        unique,
+        library_modules(),
+        "docs/architecture.md against src/lib.rs"
+    );
+}
 
 fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -101,11 +132,12 @@ fn grouped_and_nested_imports_are_read() {
 }
 
 #[test]
-fn no_module_imports_a_layer_below_it() {
+fn no_module_uses_a_layer_of_its_rank_or_higher() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut files = Vec::new();
     rust_files(&src, &mut files);
-    let rank = |m: &str| RANKS.iter().find(|(n, _)| *n == m).map(|(_, r)| *r);
+    let ranks = ranks();
+    let rank = |m: &str| ranks.iter().find(|(n, _)| n == m).map(|(_, r)| *r);
     let mut wrong = Vec::new();
     let mut checked = 0;
     for file in &files {

@@ -1,4 +1,4 @@
-//! Issue 16, items 5 and 6: `bench --scale` end to end, the `--quality` presets and
+//! `bench --scale` end to end, the `--quality` presets and
 //! `--target-error` on `render`. No timing is asserted: only that each is measured, written
 //! and acted on.
 

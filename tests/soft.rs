@@ -1,4 +1,4 @@
-//! Soft shadows against the area-light truth (issue 13): PCSS hardens at contact as the
+//! Soft shadows against the area-light truth: PCSS hardens at contact as the
 //! truth does and beats hard PCF on the DummyGame; with a light of no size every soft filter
 //! agrees with the hard reference away from edges; every soft filter draws on every built-in
 //! scene, or is refused with its reason.

@@ -1,4 +1,4 @@
-//! Stencil shadow volumes against the exact CPU reference (issue 14's "must hold"): closed
+//! Stencil shadow volumes against the exact CPU reference: closed
 //! casters at 640 x 360 leave nothing wrong outside a 1-pixel band around the true shadow
 //! edges and at most 0.05% of receivers wrong inside it; the same with the camera inside a
 //! volume, at a grazing light and far from the origin; open meshes cast as documented in
@@ -21,7 +21,7 @@ fn volumes(scene: &Scene) -> ShadowSettings {
 }
 
 /// Scores light `light`'s volumes in `scene` at 640 x 360 against the reference and checks
-/// the issue's bounds; returns (receivers, misclassified) for further checks.
+/// the bounds above; returns (receivers, misclassified) for further checks.
 fn holds(ctx: &HeadlessContext, scene: &Scene, light: usize, what: &str) -> (usize, usize) {
     let opts = CompareOptions {
         width: 640,

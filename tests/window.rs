@@ -249,7 +249,7 @@ fn window_draws_the_shadow_map_inset_in_its_corner_as_headless_does() {
 #[test]
 #[ignore = "needs an X display: .ci/run runs it under Xvfb"]
 fn window_draws_the_same_frame_through_glx_and_through_egl() {
-    // Issue 16: GLX is the default on X11 (its swap reaches the X server through shared
+    // GLX is the default on X11 (its swap reaches the X server through shared
     // memory); EGL stays selectable. Both must draw the headless frame and say which they are.
     let dir = display_and_dir("gl-api");
     let headless = dir.join("headless.png");

@@ -107,7 +107,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let mut markdown = bench::to_markdown(&rows);
     markdown.push('\n');
     markdown.push_str(&bench::against_tutorials_text(&rows));
-    markdown.push_str("\nthe --quality rule (README, \"Quality presets\") on this sweep:\n");
+    markdown
+        .push_str("\nthe --quality rule (docs/results.md, \"Quality presets\") on this sweep:\n");
     for (level, row) in bench::preset_choices(&rows) {
         markdown.push_str(&match row {
             Some(r) => format!(

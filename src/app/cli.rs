@@ -21,7 +21,7 @@ use super::quality::Quality;
         With no command, opens the DummyGame demo in a window (or, with no display, renders it \
         headless to shadowmap-demo.png). `render` draws frames headless through EGL and writes \
         PNGs.\n\nScenes: a built-in name (dummy, learnopengl, slides, playground, point-shadows, \
-        large, three-lights, overlap) or a path to a .toml scene file (see the README, \"Scene files\").",
+        large, three-lights, overlap) or a path to a .toml scene file (see docs/scene-format.md).",
     after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
         shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
         shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope\n  \
@@ -97,7 +97,7 @@ pub struct SettingsArgs {
     /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
     pub step: Option<String>,
-    /// A preset chosen from the bench's measurements (README, "Quality presets"): map
+    /// A preset chosen from the bench's measurements (docs/results.md, "Quality presets"): map
     /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags
     /// given here win over it.
     #[arg(long, value_name = "LEVEL", value_enum)]

@@ -1,4 +1,6 @@
-//! `shadowmap steps`: every chapter step rendered and measured, as PNGs and an HTML page.
+//! `shadowmap steps`: every chapter step rendered and measured, as PNGs and an HTML page a
+//! student reads beside the chapters: each step's frame and its errors side by side, the
+//! lesson beside them, and every figure explained where it stands.
 
 use std::collections::hash_map::Entry;
 use std::collections::HashMap;
@@ -9,12 +11,34 @@ use shadowmap::compare::{compute_reference, CompareOptions, Reference};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, write_into};
-use shadowmap::reference::{error_image, Metrics};
+use shadowmap::reference::{error_image, Metrics, SoftMetrics};
 use shadowmap::settings::LightProjection;
-use shadowmap::{steps, Error, Result, ShadowSettings};
+use shadowmap::steps::Step;
+use shadowmap::{steps, Error, Result, Scene, ShadowSettings};
 
 use super::cli::StepsArgs;
 use super::plot::with_error_legend;
+
+/// One step as measured: what the page shows of it.
+struct Row {
+    step: &'static Step,
+    settings: ShadowSettings,
+    image: String,
+    error_file: Option<String>,
+    metrics: Option<Metrics>,
+    area: Option<SoftMetrics>,
+    changed: String,
+}
+
+/// What every step is rendered and scored with.
+struct Bench<'a> {
+    gl: &'a shadowmap::engine::Gl,
+    scene: &'a Scene,
+    opts: CompareOptions,
+    /// One reference per kind of light projection (orthographic: parallel rays;
+    /// perspective: rays to a point).
+    references: HashMap<LightProjection, Reference>,
+}
 
 pub fn run(args: &StepsArgs) -> Result<()> {
     let mut scene = args.scene.load()?;
@@ -45,40 +69,75 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         )));
     }
     let context = HeadlessContext::new()?;
-    let gl = context.gl();
-    let opts = CompareOptions {
-        rays: shadowmap::compare::AREA_RAYS,
-        width,
-        height,
-        supersample: args.supersample,
-        band: 1,
-        light: 0,
+    let mut bench = Bench {
+        gl: context.gl(),
+        scene: &scene,
+        opts: CompareOptions {
+            rays: shadowmap::compare::AREA_RAYS,
+            width,
+            height,
+            supersample: args.supersample,
+            band: 1,
+            light: 0,
+        },
+        references: HashMap::new(),
     };
-    // One reference per kind of light projection (orthographic: parallel rays; perspective:
-    // rays to a point).
-    let mut references: HashMap<LightProjection, Reference> = HashMap::new();
     let mut rows = Vec::new();
     // Every picture and the page, written together at the end.
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
-    // The first step is told against the chapter's start, each other against the one before.
-    let mut previous = steps::start(&scene);
+    // Each step is told against the last step that carries over (variants do not), the
+    // first against the chapter's start.
+    let mut base = (steps::start(&scene), "the chapter's start".to_string());
     for (i, step) in steps::of(&scene).iter().enumerate() {
-        let settings = steps::settings_for(&scene, step.name)?;
-        let changed = match changed_fields(&previous, &settings) {
-            c if c.is_empty() => "nothing on this scene (the settings of the step before)".into(),
-            c => c.join(", "),
+        let row = bench.measure(i + 1, step, &base, &mut files)?;
+        if step.cumulative {
+            base = (row.settings, format!("step {}, {}", i + 1, step.name));
+        }
+        rows.push(row);
+    }
+    let html = page(&scene, args.supersample, &rows);
+    let path = dir.join("index.html");
+    files.push(("index.html".into(), html.into_bytes()));
+    let batch: Vec<(&str, &str, &[u8])> = files
+        .iter()
+        .map(|(name, bytes)| {
+            let what = match name.ends_with(".png") {
+                true => "the image",
+                false => "the page",
+            };
+            (name.as_str(), what, bytes.as_slice())
+        })
+        .collect();
+    write_into(dir, &batch)?;
+    println!("wrote {} and {} images", path.display(), rows.len());
+    Ok(())
+}
+
+impl Bench<'_> {
+    /// Renders step number `n`, scores it (unless it shows a depth map), adds its pictures
+    /// to `files` and prints its line; `base` is the settings it builds on, and their name.
+    fn measure(
+        &mut self,
+        n: usize,
+        step: &'static Step,
+        base: &(ShadowSettings, String),
+        files: &mut Vec<(String, Vec<u8>)>,
+    ) -> Result<Row> {
+        let (gl, scene, opts) = (self.gl, self.scene, &self.opts);
+        let (width, height) = (opts.width, opts.height);
+        let settings = steps::settings_for(scene, step.name)?;
+        let changed = match changed_fields(&base.0, &settings) {
+            c if c.is_empty() => format!("nothing on this scene against {}", base.1),
+            c => format!("{} (against {})", c.join(", "), base.1),
         };
-        previous = settings;
-        let frame = render_visibility(gl, &scene, &settings, width, height, 0)?;
-        let image = format!("{:02}-{}.png", i + 1, step.name);
+        let frame = render_visibility(gl, scene, &settings, width, height, 0)?;
+        let image = format!("{n:02}-{}.png", step.name);
         files.push((image.clone(), frame.colour.encode_png()?));
-        let mut metrics: Option<Metrics> = None;
-        let mut error_file = None;
-        let mut area = None;
+        let (mut metrics, mut error_file, mut area) = (None, None, None);
         if !settings.show_depth_map {
-            let reference = match references.entry(settings.light_projection) {
+            let reference = match self.references.entry(settings.light_projection) {
                 Entry::Occupied(e) => e.into_mut(),
-                Entry::Vacant(e) => e.insert(compute_reference(gl, &scene, &settings, &opts)?),
+                Entry::Vacant(e) => e.insert(compute_reference(gl, scene, &settings, opts)?),
             };
             let vis = frame.visibility.as_deref().unwrap_or_default();
             metrics = Some(reference.score(vis, 1));
@@ -95,7 +154,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
                 .map_or(&reference.hard, |a| &a.pixels);
             area = reference.score_area(vis);
             let err = error_image(width as usize, height as usize, vis, truth, &grey);
-            let name = format!("{:02}-{}-error.png", i + 1, step.name);
+            let name = format!("{n:02}-{}-error.png", step.name);
             let err = with_error_legend(ImageData {
                 width,
                 height,
@@ -104,118 +163,321 @@ pub fn run(args: &StepsArgs) -> Result<()> {
             files.push((name.clone(), err.encode_png()?));
             error_file = Some(name);
         }
-        println!(
-            "{:>2} {:<22} {}; changed: {changed}",
-            i + 1,
-            step.name,
-            metrics
-                .as_ref()
-                .map(|m| format!(
-                    "false shadow {:.3}%, false light {:.3}%, MAE {}",
-                    m.false_shadow_rate * 100.0,
-                    m.false_light_rate * 100.0,
-                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
-                ))
-                .unwrap_or_else(|| "(depth map)".into())
-        );
+        let figures = metrics.as_ref().map_or("(depth map)".into(), line_figures);
+        println!("{n:>2} {:<22} {figures}; changed: {changed}", step.name);
         if let Some(a) = &area {
             println!("   {}", super::compare::area_summary(a));
         }
-        rows.push((step, settings, image, error_file, metrics, changed));
+        Ok(Row {
+            step,
+            settings,
+            image,
+            error_file,
+            metrics,
+            area,
+            changed,
+        })
     }
+}
+
+/// The terminal's figures of a step.
+fn line_figures(m: &Metrics) -> String {
+    format!(
+        "false shadow {:.3}%, false light {:.3}%, MAE {}",
+        m.false_shadow_rate * 100.0,
+        m.false_light_rate * 100.0,
+        mae(m)
+    )
+}
+
+fn mae(m: &Metrics) -> String {
+    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
+}
+
+/// `count` as a percentage of `of` (0 when `of` is).
+fn percent(count: usize, of: usize) -> f64 {
+    match of {
+        0 => 0.0,
+        _ => count as f64 * 100.0 / of as f64,
+    }
+}
+
+/// Text for HTML: `&`, `<`, `>` and `"` escaped.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+const STYLE: &str = "body{font-family:sans-serif;margin:1.5em auto;max-width:1700px;padding:0 1em;\
+line-height:1.4;color:#222} h2{margin:0 0 .4em;border-bottom:1px solid #ccc} code{background:#f3f3f3;\
+padding:0 .2em} .step{margin:0 0 2.5em} .row{display:grid;grid-template-columns:minmax(0,1fr) \
+minmax(0,1fr) minmax(18em,.8fr);gap:1em;align-items:start} figure{margin:0} figure img{width:100%;\
+border:1px solid #bbb;display:block} figcaption{font-size:13px;color:#555} .lesson p{margin:0 0 .6em}\
+ table{border-collapse:collapse;font-size:14px} td,th{padding:2px 8px;text-align:right;\
+border-bottom:1px solid #eee} .n{text-align:left} .none{color:#777;font-style:italic;padding:1em;\
+border:1px dashed #bbb} dl.key dt{font-weight:bold;margin-top:.4em} dl.key dd{margin-left:1.5em}";
+
+/// The whole page: how to read it, the overview table, then one section per step.
+fn page(scene: &Scene, supersample: u32, rows: &[Row]) -> String {
     let mut html = String::new();
     let _ = write!(
         html,
-        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>shadowmap: the steps on {0}</title>\n\
-         <style>body{{font-family:sans-serif;margin:2em;max-width:1400px}} figure{{display:inline-block;\
-         vertical-align:top;width:620px;margin:0 1em 2em 0}} img{{width:300px;border:1px solid #ccc}}\
-         figcaption{{font-size:14px}} td,th{{padding:2px 8px;text-align:right}} .n{{text-align:left}}</style>\n\
-         </head><body>\n<h1>The chapter steps on the <code>{0}</code> scene</h1>\n\
-         <p>Each step adds one change to the one before (variants, marked, do not carry over). Left: the \
-         frame; right: its errors against the exact ray-traced reference (red = false shadow, blue = \
-         false light). Figures are fractions of the receiver pixels (geometry facing the light); MAE \
-         is against a {1}x{1} supersampled reference.{2}</p>\n",
-        scene.name,
-        args.supersample,
-        match scene.light().size() {
-            0.0 => String::new(),
-            size => format!(
-                " The light has a size ({size}): the error images are against its area truth \
-                 ({} rays per pixel to its disc), and the terminal prints its figures.",
-                shadowmap::compare::AREA_RAYS
-            ),
-        }
+        "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>shadowmap: the steps on {name}</title>\n<style>{STYLE}</style></head><body>\n\
+         <h1>The steps on the <code>{name}</code> scene</h1>\n",
+        name = escape(&scene.name)
     );
-    html.push_str("<table><tr><th class=n>step</th><th>false shadow</th><th>false light</th><th>outside 1-px edge band</th><th>MAE</th></tr>\n");
-    for (step, _, _, _, m, _) in &rows {
-        match m {
-            Some(m) => {
-                let _ = writeln!(
-                    html,
-                    "<tr><td class=n>{}</td><td>{:.3}%</td><td>{:.3}%</td><td>{:.3}%</td><td>{}</td></tr>",
-                    step.name,
-                    m.false_shadow_rate * 100.0,
-                    m.false_light_rate * 100.0,
-                    m.misclassified_outside_band_rate * 100.0,
-                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    html,
-                    "<tr><td class=n>{}</td><td colspan=4>depth map</td></tr>",
-                    step.name
-                );
-            }
+    html.push_str(&how_to_read(scene, supersample));
+    html.push_str(&overview(rows));
+    let mut before: Option<&Row> = None;
+    for (i, row) in rows.iter().enumerate() {
+        html.push_str(&section(i + 1, row, before));
+        // The next steps build on this one only if it carries over.
+        if row.step.cumulative {
+            before = row.metrics.as_ref().map(|_| row);
         }
-    }
-    html.push_str("</table>\n");
-    for (i, (step, settings, image, error_file, m, changed)) in rows.iter().enumerate() {
-        let figures = m
-            .as_ref()
-            .map(|m| {
-                format!(
-                    "false shadow {:.3}%, false light {:.3}%, MAE {}",
-                    m.false_shadow_rate * 100.0,
-                    m.false_light_rate * 100.0,
-                    m.mae.map_or("n/a".into(), |v| format!("{v:.4}"))
-                )
-            })
-            .unwrap_or_else(|| "no shadow test in this view".into());
-        let err = error_file
-            .as_ref()
-            .map(|f| format!("<img src=\"{f}\" alt=\"errors of {}\">", step.name))
-            .unwrap_or_default();
-        let _ = writeln!(
-            html,
-            "<figure><img src=\"{image}\" alt=\"{name}\">{err}<figcaption><b>{n}. {name}</b>{variant}<br>\
-             <i>Changed:</i> {change}<br><i>Settings changed:</i> {changed}<br>\
-             <i>Look for:</i> {look}<br><i>Measured:</i> {figures}<br>\
-             <small>{summary}</small></figcaption></figure>",
-            n = i + 1,
-            name = step.name,
-            variant = if step.cumulative { "" } else { " (variant)" },
-            change = step.change,
-            look = step.look_for,
-            summary = settings.summary(),
-        );
     }
     html.push_str("</body></html>\n");
-    let path = dir.join("index.html");
-    files.push(("index.html".into(), html.into_bytes()));
-    let batch: Vec<(&str, &str, &[u8])> = files
-        .iter()
-        .map(|(name, bytes)| {
-            let what = match name.ends_with(".png") {
-                true => "the image",
-                false => "the page",
-            };
-            (name.as_str(), what, bytes.as_slice())
-        })
-        .collect();
-    write_into(dir, &batch)?;
-    println!("wrote {} and {} images", path.display(), rows.len());
-    Ok(())
+    html
+}
+
+/// What the pictures and every figure on the page count.
+fn how_to_read(scene: &Scene, supersample: u32) -> String {
+    let area = match scene.light().size() {
+        0.0 => String::new(),
+        size => format!(
+            "<p>The light has a size ({size}): the error images are against its area truth \
+             ({} rays per pixel to its disc), and each step also lists the figures against it.</p>\n",
+            shadowmap::compare::AREA_RAYS
+        ),
+    };
+    format!(
+        "<p>Each step adds one change to the one before it (a <i>variant</i> shows a choice \
+         and does not carry over). Left: the frame as the step draws it. Middle: the same frame \
+         with its errors marked against an exact ray-traced reference: <b style=\"color:#d00\">red</b> \
+         is false shadow (drawn dark where the light reaches), <b style=\"color:#00d\">blue</b> \
+         false light (drawn lit where the light is blocked), grey agrees. Right: what changed, \
+         what to look for, and what was measured.</p>\n{area}\
+         <dl class=\"key\"><dt>receivers</dt><dd>the pixels that are scored: geometry that \
+         faces the light, as the reference sees it. Every percentage below is a share of them, \
+         so the figures add up.</dd>\
+         <dt>false shadow, false light</dt><dd>receivers the shadow test got wrong, each way \
+         (a pixel is wrong when its visibility is more than 0.5 off the reference's).</dd>\
+         <dt>misclassified</dt><dd>false shadow + false light.</dd>\
+         <dt>at edges / away from edges</dt><dd>the misclassified receivers split by where \
+         they lie: within 1 pixel of a true shadow edge, where a map of any finite resolution \
+         differs, or away from every edge, where the error is the technique's (acne, peter \
+         panning, the far plane). Both are shares of all receivers: at edges + away = \
+         misclassified.</dd>\
+         <dt>MAE</dt><dd>the mean absolute difference between the drawn visibility and a \
+         {supersample}&times;{supersample} supersampled reference, over the receivers: it \
+         also counts how soft an edge is, which the pixel counts do not.</dd></dl>\n"
+    )
+}
+
+/// The misclassified receivers away from every edge, as a share of all receivers (the
+/// metrics' own rate is a share of the receivers away from edges, which can exceed the
+/// total's rate when the edges are mostly right).
+fn away_from_edges(m: &Metrics) -> f64 {
+    percent(m.misclassified_outside_band, m.receivers)
+}
+
+/// The misclassified receivers within a pixel of a true shadow edge, as a share of all
+/// receivers.
+fn at_edges(m: &Metrics) -> f64 {
+    percent(m.misclassified - m.misclassified_outside_band, m.receivers)
+}
+
+/// A row of the area light's table: its label and how its value is shown.
+type AreaLine = (&'static str, fn(&SoftMetrics) -> String);
+
+/// A row of a step's table: its label, its percentage and what it counts.
+type FigureLine = (&'static str, fn(&Metrics) -> f64, &'static str);
+
+/// The figures against the area light's truth (a light with a size), beside the step
+/// before's.
+fn area_figures(a: &SoftMetrics, was: Option<(&str, &SoftMetrics)>) -> String {
+    let lines: [AreaLine; 4] = [
+        ("MAE <small>(mean visibility error)</small>", |a| {
+            format!("{:.4}", a.mae)
+        }),
+        (
+            "light bleeding <small>(lit above 0.5 where the truth is in full shadow)</small>",
+            |a| format!("{:.3}%", a.light_bleed_rate * 100.0),
+        ),
+        (
+            "penumbra width, px <small>(10% to 90%, across the truth's edges)</small>",
+            |a| format!("{:.2}", a.penumbra_width_px),
+        ),
+        (
+            "its error, px <small>(mean |drawn - truth| per edge)</small>",
+            |a| format!("{:.2}", a.penumbra_width_error_px),
+        ),
+    ];
+    let mut html = format!(
+        "<table><tr><th class=n>against the area light ({} rays a pixel; the truth's \
+         penumbra: {:.2} px over {} edges)</th><th>here</th>{}</tr>\n",
+        a.rays,
+        a.penumbra_width_truth_px,
+        a.penumbra_edges,
+        was.map_or(String::new(), |(name, _)| format!("<th>{name}</th>"))
+    );
+    for (label, value) in lines {
+        let _ = writeln!(
+            html,
+            "<tr><td class=n>{label}</td><td>{}</td>{}</tr>",
+            value(a),
+            was.map_or(String::new(), |(_, p)| format!("<td>{}</td>", value(p)))
+        );
+    }
+    html.push_str("</table>\n");
+    html
+}
+
+/// One table with every step's figures, to follow them down the chapter.
+fn overview(rows: &[Row]) -> String {
+    let mut html = format!(
+        "<h2>All steps</h2>\n<table><tr><th class=n>step</th><th>false shadow</th>\
+         <th>false light</th><th>misclassified</th><th>of which away from edges</th>\
+         <th>MAE</th>{}</tr>\n",
+        match rows.iter().any(|r| r.area.is_some()) {
+            true => "<th>MAE against the area light</th><th>penumbra width px (truth)</th>",
+            false => "",
+        }
+    );
+    for (i, row) in rows.iter().enumerate() {
+        let name = format!(
+            "<a href=\"#{0}\">{1}. {0}</a>{2}",
+            row.step.name,
+            i + 1,
+            if row.step.cumulative {
+                ""
+            } else {
+                " (variant)"
+            }
+        );
+        let _ = match &row.metrics {
+            Some(m) => writeln!(
+                html,
+                "<tr><td class=n>{name}</td><td>{:.3}%</td><td>{:.3}%</td><td>{:.3}%</td>\
+                 <td>{:.3}%</td><td>{}</td>{}</tr>",
+                m.false_shadow_rate * 100.0,
+                m.false_light_rate * 100.0,
+                m.misclassified_rate * 100.0,
+                away_from_edges(m),
+                mae(m),
+                row.area.as_ref().map_or(String::new(), |a| format!(
+                    "<td>{:.4}</td><td>{:.2} ({:.2})</td>",
+                    a.mae, a.penumbra_width_px, a.penumbra_width_truth_px
+                ))
+            ),
+            None => writeln!(
+                html,
+                "<tr><td class=n>{name}</td><td colspan=7 class=n>a depth map: no shadow test \
+                 to score</td></tr>"
+            ),
+        };
+    }
+    html.push_str("</table>\n");
+    html
+}
+
+/// One step: its frame and its errors side by side, the lesson beside them.
+fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
+    let name = row.step.name;
+    let errors = match &row.error_file {
+        Some(f) => format!(
+            "<figure><a href=\"{f}\"><img src=\"{f}\" alt=\"errors of {name}\"></a>\
+             <figcaption>Its errors: red false shadow, blue false light.</figcaption></figure>"
+        ),
+        None => "<p class=\"none\">No errors image: this step shows the shadow map itself, \
+                 not a frame with a shadow test.</p>"
+            .into(),
+    };
+    let figures = match &row.metrics {
+        Some(m) => figures(m, before, row.area.as_ref()),
+        None => String::new(),
+    };
+    format!(
+        "<section class=\"step\" id=\"{name}\"><h2>{n}. {name}{variant}</h2>\n<div class=\"row\">\
+         <figure><a href=\"{image}\"><img src=\"{image}\" alt=\"{name}\"></a>\
+         <figcaption>The frame.</figcaption></figure>\n{errors}\n<div class=\"lesson\">\
+         <p><b>What changed:</b> {change}</p><p><b>Look for:</b> {look}</p>\
+         <p><b>Settings changed:</b> {changed}</p>{figures}\
+         <p><small>All settings: {summary}</small></p></div></div></section>\n",
+        variant = if row.step.cumulative {
+            ""
+        } else {
+            " (a variant)"
+        },
+        image = row.image,
+        change = escape(row.step.change),
+        look = escape(row.step.look_for),
+        changed = escape(&row.changed),
+        summary = escape(&row.settings.summary()),
+    )
+}
+
+/// A step's figures with what each counts, and the step before's for comparison.
+fn figures(m: &Metrics, before: Option<&Row>, area: Option<&SoftMetrics>) -> String {
+    let was = before.and_then(|b| b.metrics.as_ref().map(|p| (b.step.name, p)));
+    let lines: [FigureLine; 5] = [
+        (
+            "false shadow",
+            |m| m.false_shadow_rate * 100.0,
+            "dark where the light reaches",
+        ),
+        (
+            "false light",
+            |m| m.false_light_rate * 100.0,
+            "lit where the light is blocked",
+        ),
+        (
+            "misclassified",
+            |m| m.misclassified_rate * 100.0,
+            "the two together",
+        ),
+        ("at edges", at_edges, "within 1 px of a true shadow edge"),
+        (
+            "away from edges",
+            away_from_edges,
+            "the technique's own error",
+        ),
+    ];
+    let mut html = format!(
+        "<table><tr><th class=n>against the exact hard reference{}, of {} receivers</th>\
+         <th>here</th>{}</tr>\n",
+        if area.is_some() {
+            " (rays to the light's centre)"
+        } else {
+            ""
+        },
+        m.receivers,
+        was.map_or(String::new(), |(name, _)| format!("<th>{name}</th>"))
+    );
+    for (label, value, says) in lines {
+        let _ = writeln!(
+            html,
+            "<tr><td class=n>{label} <small>({says})</small></td><td>{:.3}%</td>{}</tr>",
+            value(m),
+            was.map_or(String::new(), |(_, p)| format!("<td>{:.3}%</td>", value(p)))
+        );
+    }
+    let _ = writeln!(
+        html,
+        "<tr><td class=n>MAE <small>(mean visibility error)</small></td><td>{}</td>{}</tr></table>",
+        mae(m),
+        was.map_or(String::new(), |(_, p)| format!("<td>{}</td>", mae(p)))
+    );
+    if let Some(a) = area {
+        html.push_str(&area_figures(
+            a,
+            before.and_then(|b| Some((b.step.name, b.area.as_ref()?))),
+        ));
+    }
+    html
 }
 
 /// The settings that differ between two steps, as "name old -> new": both serialised

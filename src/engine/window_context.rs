@@ -23,7 +23,7 @@ use crate::error::{Error, Result};
 /// Which platform API the window's context comes from. On X11 with a software driver the
 /// two swap differently: GLX hands the frame to the X server through shared memory
 /// (MIT-SHM), while Mesa's EGL (22.x) sends it down the socket, which made the window 1.2 to
-/// 1.35 times slower than headless (issue 16). Headless rendering always uses EGL.
+/// 1.35 times slower than headless. Headless rendering always uses EGL.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum WindowApi {
     /// GLX where the X server has it, else EGL.

@@ -332,7 +332,7 @@ fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConf
 }
 
 /// How many configurations [`sweep`] tries for each kind of light, with the default
-/// settings: (the kind, quick, full). The help and the README state these; `max_texture_size`
+/// settings: (the kind, quick, full). `bench --help` states these; `max_texture_size`
 /// decides whether the driver's largest map joins the full sweep.
 pub fn configuration_counts(max_texture_size: u32) -> [(&'static str, usize, usize); 3] {
     let base = ShadowSettings::default();
@@ -1026,7 +1026,8 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
     out
 }
 
-/// How a configuration compares with a tutorial's on the issue's two terms, from one run.
+/// How a configuration compares with a tutorial's on two terms, from one run:
+/// the overhead at equal error and the error at equal overhead.
 #[derive(Debug, Clone)]
 pub struct AgainstTutorial<'a> {
     pub tutorial: &'a BenchRow,
@@ -1058,8 +1059,8 @@ pub fn against_tutorials(rows: &[BenchRow]) -> Vec<AgainstTutorial<'_>> {
         .collect()
 }
 
-/// The comparison as lines of text: overhead ratio at equal error (the issue asks for at
-/// most 0.5) and error ratio at equal overhead (at least 10).
+/// The comparison as lines of text: overhead ratio at equal error and error ratio at
+/// equal overhead.
 pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
     let mut out = String::new();
     for a in against_tutorials(rows) {
@@ -1098,7 +1099,7 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
 
 /// The `--quality` presets' rule, on the shadow overhead against LearnOpenGL's final
 /// configuration's: `low` the configuration with the least overhead; `medium` the most
-/// accurate with at most half the tutorial's overhead (the issue's goal); `high` the most
+/// accurate with at most half the tutorial's overhead; `high` the most
 /// accurate with no more than the tutorial's. A preset serves every kind of light, so only
 /// one-map rows count. Absent where the sweep has no such row (or no tutorial row).
 pub fn preset_choices(rows: &[BenchRow]) -> [(&'static str, Option<&BenchRow>); 3] {

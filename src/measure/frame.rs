@@ -1,5 +1,5 @@
-//! Headless frames: render a scene into an offscreen target and read back what was asked
-//! for (colour, shadow-test visibility, world positions and normals, the depth map).
+//! Headless frames: render a scene into an offscreen target and read back what the caller
+//! wants (colour, shadow-test visibility, world positions and normals, the depth map).
 
 use glam::DVec3;
 

@@ -1,5 +1,5 @@
 //! Scene files: TOML with a camera, lights, shadow settings and items. The format is
-//! documented in the README ("Scene files"); this module is its one implementation.
+//! documented in docs/scene-format.md (every field: docs/reference-scene.toml); this module is its one implementation.
 //!
 //! Reading goes in three steps. The text is first parsed into a [`Raw`] tree that remembers
 //! where every value sits, so any later error can name its line and its field as the file

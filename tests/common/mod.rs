@@ -1,4 +1,4 @@
-//! Helpers shared by the integration tests: a headless context and scene shortcuts.
+//! Shared by the integration tests: a headless context and scene shortcuts.
 #![allow(dead_code)]
 
 use glam::Vec3;
