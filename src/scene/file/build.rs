@@ -10,8 +10,7 @@ use toml::Spanned;
 use super::items::Items;
 use super::read::Context;
 use super::{
-    Fixed,
-    CameraFile, DirectionalFile, PointFile, SceneFile, SpotFile, StepsFile, LIGHT_KINDS,
+    CameraFile, DirectionalFile, Fixed, PointFile, SceneFile, SpotFile, StepsFile, LIGHT_KINDS,
 };
 use crate::error::{Error, Result};
 use crate::scene::{
@@ -121,7 +120,13 @@ fn check_globals(file: &SceneFile, cx: &Context) -> Result<()> {
 
 /// A camera table (`table`: `camera`, or `steps.camera`), checked: angles or a target.
 fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
-    let position = Vec3::from(c.position.0);
+    let d = Camera::default();
+    let position = c.position.map_or(d.position, |p| Vec3::from(p.0));
+    let (fov, near, far) = (
+        c.fov.unwrap_or(d.fov),
+        c.near.unwrap_or(d.near),
+        c.far.unwrap_or(d.far),
+    );
     let rotation = match (&c.rotation, &c.target) {
         (Some(_), Some(_)) => {
             return Err(cx.bad(
@@ -144,27 +149,24 @@ fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
         }
         (None, None) => Vec3::ZERO,
     };
-    if !(c.near > 0.0 && c.near < c.far) {
+    if !(near > 0.0 && near < far) {
         return Err(cx.bad(
             table,
-            format!(
-                "near = {}, far = {}: expected 0 < near < far",
-                c.near, c.far
-            ),
+            format!("near = {near}, far = {far}: expected 0 < near < far"),
         ));
     }
-    if !(c.fov > 0.0 && c.fov < 180.0) {
+    if !(fov > 0.0 && fov < 180.0) {
         return Err(cx.bad(
             format!("{table}.fov"),
-            format!("{}: expected degrees between 0 and 180", c.fov),
+            format!("{fov}: expected degrees between 0 and 180"),
         ));
     }
     Ok(Camera {
         position,
         rotation,
-        fov: c.fov,
-        near: c.near,
-        far: c.far,
+        fov,
+        near,
+        far,
     })
 }
 
@@ -187,7 +189,6 @@ fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result
         light_size: s.light_size,
     })
 }
-
 
 // ---------------------------------------------------------------------------------------
 // Lights
@@ -255,11 +256,18 @@ fn read_light(value: Option<&Spanned<DeValue>>, prefix: &str, cx: &Context) -> R
 /// kind, with what it takes; anything else as serde says it.
 fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) -> Error {
     use super::read::backticked;
-    let own = |problem| backticked(&r.message, problem).filter(|k| r.field == format!("{prefix}.{k}"));
-    let at = r.span.as_ref().map_or(String::new(), |s| format!("{}: ", cx.at(s.start)));
+    let own =
+        |problem| backticked(&r.message, problem).filter(|k| r.field == format!("{prefix}.{k}"));
+    let at = r
+        .span
+        .as_ref()
+        .map_or(String::new(), |s| format!("{}: ", cx.at(s.start)));
     if let Some(key) = own("unknown field `") {
         let takes = light_fields(kind).join(", ");
-        let message = match LIGHT_KINDS.iter().any(|k| light_fields(k).iter().any(|f| f == key)) {
+        let message = match LIGHT_KINDS
+            .iter()
+            .any(|k| light_fields(k).iter().any(|f| f == key))
+        {
             true => format!("{at}not used by a {kind} light; it takes {takes}"),
             false => format!("{at}unknown field; a {kind} light takes {takes}"),
         };
@@ -267,7 +275,10 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
     }
     if own("missing field `").is_some() {
         let line = r.span.as_ref().map_or(String::new(), |s| {
-            format!(" (the table at line {})", super::read::line_col(cx.text, s.start).0)
+            format!(
+                " (the table at line {})",
+                super::read::line_col(cx.text, s.start).0
+            )
         });
         return cx.bad(r.field.clone(), format!("a {kind} light needs it{line}"));
     }
@@ -276,7 +287,7 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
 
 /// The fields a light kind takes (`kind` first), as serde lists them when it refuses a key
 /// none of them has: the list cannot go stale.
-fn light_fields(kind: &str) -> Vec<String> {
+pub(super) fn light_fields(kind: &str) -> Vec<String> {
     let probe = || MapDeserializer::<_, de::value::Error>::new(std::iter::once(("", ())));
     let refused = match kind {
         "spot" => SpotFile::deserialize(probe()).err(),
@@ -285,7 +296,11 @@ fn light_fields(kind: &str) -> Vec<String> {
     };
     let message = refused.map(|e| e.to_string()).unwrap_or_default();
     let list = message.split_once("expected one of").map_or("", |(_, l)| l);
-    list.split('`').skip(1).step_by(2).map(String::from).collect()
+    list.split('`')
+        .skip(1)
+        .step_by(2)
+        .map(String::from)
+        .collect()
 }
 
 /// Colour and intensity, checked alike for every kind.
@@ -470,4 +485,3 @@ fn spot(l: SpotFile, prefix: &str, cx: &Context) -> Result<Light> {
     }))
     .and_then(|light| sized(light, l.size, prefix, cx))
 }
-

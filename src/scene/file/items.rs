@@ -300,4 +300,3 @@ fn scatter(
         })
         .collect())
 }
-

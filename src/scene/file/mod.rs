@@ -86,31 +86,37 @@ struct SceneFile {
     items: Vec<ItemFile>,
 }
 
-/// The `[camera]` table. Not `Camera` itself: glam's `Vec3` takes the first three numbers
-/// of a longer array without a word.
-#[derive(Debug, Deserialize)]
+/// A camera table: `[camera]`, and `[steps] camera` over it. Not `Camera` itself: glam's
+/// `Vec3` takes the first three numbers of a longer array without a word. Fields left out
+/// are `Camera::default()`'s.
+#[derive(Debug, Default, Clone, Copy, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 struct CameraFile {
-    position: Fixed<f32, 3>,
+    position: Option<Fixed<f32, 3>>,
     /// The book's angles; default 0, 0, 0. Not with `target`.
     rotation: Option<Fixed<f32, 3>>,
     /// A look-at camera: the point it looks at, turned into the book's pitch and yaw.
     target: Option<Fixed<f32, 3>>,
-    fov: f32,
-    near: f32,
-    far: f32,
+    fov: Option<f32>,
+    near: Option<f32>,
+    far: Option<f32>,
 }
 
-impl Default for CameraFile {
-    fn default() -> Self {
-        let c = Camera::default();
+impl CameraFile {
+    /// These fields over `under`'s (`[steps] camera` over the scene's).
+    fn over(&self, under: &CameraFile) -> CameraFile {
+        // Angles or a target given here replace the other's way of aiming.
+        let (rotation, target) = match (self.rotation, self.target) {
+            (None, None) => (under.rotation, under.target),
+            aim => aim,
+        };
         CameraFile {
-            position: Fixed(c.position.to_array()),
-            rotation: None,
-            target: None,
-            fov: c.fov,
-            near: c.near,
-            far: c.far,
+            position: self.position.or(under.position),
+            rotation,
+            target,
+            fov: self.fov.or(under.fov),
+            near: self.near.or(under.near),
+            far: self.far.or(under.far),
         }
     }
 }
@@ -125,7 +131,7 @@ struct StepsFile {
     start_wrap: Wrap,
     /// The camera the steps are shown from, where the tutorial's own does not show what
     /// they change; fields it leaves out are the scene's `[camera]`'s.
-    camera: Option<StepsCameraFile>,
+    camera: Option<CameraFile>,
     /// Which tutorial's steps: "chapters" (the default) or "playground".
     list: StepList,
     /// The lights' size while the steps are shown (a step like PCSS needs one).
@@ -140,37 +146,6 @@ impl Default for StepsFile {
             camera: None,
             list: StepList::Chapters,
             light_size: None,
-        }
-    }
-}
-
-/// `[steps] camera`: a `[camera]` table whose every field is optional.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct StepsCameraFile {
-    position: Option<Fixed<f32, 3>>,
-    rotation: Option<Fixed<f32, 3>>,
-    target: Option<Fixed<f32, 3>>,
-    fov: Option<f32>,
-    near: Option<f32>,
-    far: Option<f32>,
-}
-
-impl StepsCameraFile {
-    /// The whole camera: these fields over `scene`'s.
-    fn over(&self, scene: &CameraFile) -> CameraFile {
-        // Angles or a target given here replace the scene's way of aiming.
-        let (rotation, target) = match (self.rotation, self.target) {
-            (None, None) => (scene.rotation, scene.target),
-            aim => aim,
-        };
-        CameraFile {
-            position: self.position.unwrap_or(scene.position),
-            rotation,
-            target,
-            fov: self.fov.unwrap_or(scene.fov),
-            near: self.near.unwrap_or(scene.near),
-            far: self.far.unwrap_or(scene.far),
         }
     }
 }
@@ -236,11 +211,11 @@ struct DirectionalFile {
     shadow: ShadowPatch,
 }
 
-/// A positional light with a perspective shadow map.
+/// A positional light with a perspective shadow map (the shared fields as in
+/// [`DirectionalFile`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SpotFile {
-    /// Read before the table (it picks this struct); here so serde lists it.
     #[serde(default, rename = "kind")]
     _kind: IgnoredAny,
     #[serde(default = "one3")]
@@ -262,20 +237,17 @@ struct SpotFile {
     far: f32,
     #[serde(default = "yes")]
     casts_shadows: bool,
-    /// Its size: a directional light's angular diameter in degrees, a spot or point
-    /// light's radius (0 = a point).
     #[serde(default)]
     size: f32,
-    /// Its own shadow settings over the scene's `[shadow]`.
     #[serde(default)]
     shadow: ShadowPatch,
 }
 
-/// A light shining every way from a point (a depth cube map).
+/// A light shining every way from a point (a depth cube map; the shared fields as in
+/// [`DirectionalFile`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct PointFile {
-    /// Read before the table (it picks this struct); here so serde lists it.
     #[serde(default, rename = "kind")]
     _kind: IgnoredAny,
     #[serde(default = "one3")]
@@ -292,11 +264,8 @@ struct PointFile {
     oscillate: Fixed<f32, 3>,
     #[serde(default = "yes")]
     casts_shadows: bool,
-    /// Its size: a directional light's angular diameter in degrees, a spot or point
-    /// light's radius (0 = a point).
     #[serde(default)]
     size: f32,
-    /// Its own shadow settings over the scene's `[shadow]`.
     #[serde(default)]
     shadow: ShadowPatch,
 }
@@ -468,12 +437,10 @@ impl<T: Default + Copy, const N: usize> Default for Fixed<T, N> {
     }
 }
 
-impl<'de, T: Deserialize<'de> + Default + Copy, const N: usize> Deserialize<'de> for Fixed<T, N> {
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Fixed<T, N> {
     fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
         struct FixedVisitor<T, const N: usize>(PhantomData<T>);
-        impl<'de, T: Deserialize<'de> + Default + Copy, const N: usize> Visitor<'de>
-            for FixedVisitor<T, N>
-        {
+        impl<'de, T: Deserialize<'de>, const N: usize> Visitor<'de> for FixedVisitor<T, N> {
             type Value = Fixed<T, N>;
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
                 write!(f, "an array of {N} numbers")
@@ -489,32 +456,18 @@ impl<'de, T: Deserialize<'de> + Default + Copy, const N: usize> Deserialize<'de>
     }
 }
 
-/// Reads a sequence that must hold exactly N values, counting any beyond N to say how many
-/// there were.
+/// Reads a sequence that must hold exactly N values.
 fn read_exactly<'de, T, const N: usize, A>(mut seq: A) -> std::result::Result<[T; N], A::Error>
 where
-    T: Deserialize<'de> + Default + Copy,
+    T: Deserialize<'de>,
     A: SeqAccess<'de>,
 {
-    let mut out = [T::default(); N];
-    let mut n = 0;
-    while n < N {
-        match seq.next_element::<T>()? {
-            Some(v) => out[n] = v,
-            None => break,
-        }
-        n += 1;
+    let mut values = Vec::with_capacity(N);
+    while let Some(v) = seq.next_element()? {
+        values.push(v);
     }
-    if n == N {
-        while seq.next_element::<IgnoredAny>()?.is_some() {
-            n += 1;
-        }
-    }
-    if n != N {
-        return Err(de::Error::custom(format!(
-            "{}: expected exactly {N} numbers",
-            read::given(n)
-        )));
-    }
-    Ok(out)
+    let n = values.len();
+    values
+        .try_into()
+        .map_err(|_| de::Error::custom(format!("{}: expected exactly {N} numbers", read::given(n))))
 }

@@ -103,7 +103,10 @@ pub(super) fn syntax_error(e: &toml::de::Error, text: &str, source: &Path) -> Er
         .get(span)
         .filter(|t| !t.trim().is_empty() && t.len() <= 40 && !t.contains('\n'))
         .map_or(String::new(), |t| format!(", at `{t}`"));
-    Error::file(source, format!("line {line}, column {col}{quoted}: {message}"))
+    Error::file(
+        source,
+        format!("line {line}, column {col}{quoted}: {message}"),
+    )
 }
 
 /// The field at `path` inside `node`, named as messages name it: keys joined by dots after
@@ -198,7 +201,9 @@ fn friendly(message: &str) -> String {
     // Any other struct is one of this module's tables.
     if let Some(i) = m.find("expected struct ") {
         let rest = &m[i + "expected struct ".len()..];
-        let end = rest.find(|c: char| !c.is_alphanumeric()).unwrap_or(rest.len());
+        let end = rest
+            .find(|c: char| !c.is_alphanumeric())
+            .unwrap_or(rest.len());
         m = format!("{}expected a table{}", &m[..i], &rest[end..]);
     }
     m
@@ -231,6 +236,13 @@ impl<'de> DeserializeSeed<'de> for Place {
     }
 }
 
+/// Visitor methods that take any value of their type.
+macro_rules! accept {
+    ($($visit:ident: $t:ty),*) => {
+        $(fn $visit<E>(self, _: $t) -> Result<(), E> { Ok(()) })*
+    };
+}
+
 impl<'de> Visitor<'de> for Place {
     type Value = ();
     fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
@@ -248,24 +260,9 @@ impl<'de> Visitor<'de> for Place {
         }
         Ok(())
     }
-    fn visit_i64<E>(self, _: i64) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_u64<E>(self, _: u64) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_i128<E>(self, _: i128) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_u128<E>(self, _: u128) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_bool<E>(self, _: bool) -> Result<(), E> {
-        Ok(())
-    }
-    fn visit_str<E>(self, _: &str) -> Result<(), E> {
-        Ok(())
-    }
+    // Whatever else a value is, it is no number to refuse.
+    accept!(visit_i64: i64, visit_u64: u64, visit_i128: i128, visit_u128: u128);
+    accept!(visit_bool: bool, visit_str: &str);
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
         let mut n = 0;
         while seq.next_element_seed(Place::Any)?.is_some() {

@@ -1,6 +1,7 @@
 //! The loader's messages: each names its field and says what the field takes.
 
 use super::*;
+use crate::scene::Light;
 
 const LIGHT: &str = "[light]\nangle = 45.0\n";
 
@@ -83,8 +84,7 @@ fn every_built_in_scene_loads() {
 
 #[test]
 fn a_camera_target_becomes_the_books_angles() {
-    let text =
-        format!("{LIGHT}[camera]\nposition = [0.0, 4.0, 9.0]\ntarget = [0.0, 0.0, 0.0]\n");
+    let text = format!("{LIGHT}[camera]\nposition = [0.0, 4.0, 9.0]\ntarget = [0.0, 0.0, 0.0]\n");
     let s = parse(&text, Path::new("s.toml"), None).unwrap();
     let want = Camera::look_at(Vec3::new(0.0, 4.0, 9.0), Vec3::ZERO).unwrap();
     assert_eq!(s.camera.rotation, want.rotation);
@@ -110,8 +110,7 @@ fn a_camera_target_becomes_the_books_angles() {
 
 #[test]
 fn arrays_of_the_wrong_length_are_refused() {
-    let exactly =
-        |n: usize, k: usize| format!("{n} values given: expected exactly {k} numbers");
+    let exactly = |n: usize, k: usize| format!("{n} values given: expected exactly {k} numbers");
     refuses(
         &format!("size = [64, 48, 7]\n{LIGHT}"),
         "size",
@@ -135,7 +134,7 @@ fn arrays_of_the_wrong_length_are_refused() {
     refuses(
         &format!("{LIGHT}[shadow]\npolygon_offset = [1.0, 2.0, 3.0]\n"),
         "shadow.polygon_offset",
-        &format!("{} [factor, units] (line 4)", exactly(3, 2)),
+        &format!("line 4, column 18: {} [factor, units]", exactly(3, 2)),
     );
     refuses(
         &format!("{LIGHT}[[item]]\nname = \"ball\"\nmesh = \"sphere\"\ndetail = [8, 8, 8]\n"),
@@ -172,22 +171,23 @@ fn numbers_no_field_takes_are_refused_anywhere() {
     refuses(
         &format!("{LIGHT}[steps]\nbias = nan\n"),
         "steps.bias",
-        "NaN is not a finite number (line 4)",
+        "line 4, column 8: NaN is not a finite number",
     );
     refuses(
         &format!("{LIGHT}[shadow]\nperspective_fov = -nan\n"),
         "shadow.perspective_fov",
-        "NaN is not a finite number",
+        "line 4, column 19: NaN is not a finite number",
     );
     refuses(
         &format!("{LIGHT}[[item]]\nmesh = \"cube\"\nspin = [0.0, inf, 0.0]\n"),
         "item[0].spin",
-        "inf is not a finite number",
+        "line 5, column 14: inf is not a finite number",
     );
     refuses(
         &format!("{LIGHT}[camera]\nfar = 1e39\n"),
         "camera.far",
-        "1e39 is too large: expected a number within +-3.4028235e38",
+        "line 4, column 7: 1e39 is too large: expected a number within +-3.4028235e38 (32-bit \
+         floats)",
     );
     refuses(
         &format!("{LIGHT}[steps]\nbias = -0.5\n"),
@@ -237,9 +237,8 @@ fn negative_light_and_overflowing_boxes_are_refused() {
 
 #[test]
 fn messages_say_what_a_field_takes() {
-    let cube = format!(
-        "{LIGHT}[[item]]\nmesh = \"cube\"\n[[item]]\nname = \"cube\"\nmesh = \"cube\"\n"
-    );
+    let cube =
+        format!("{LIGHT}[[item]]\nmesh = \"cube\"\n[[item]]\nname = \"cube\"\nmesh = \"cube\"\n");
     refuses(
         &format!("{cube}scale = \"big\"\n"),
         "item[1] (\"cube\").scale",
@@ -280,13 +279,13 @@ fn each_light_kind_takes_its_own_fields() {
         "[[lights]]\nangle = 45.0\n[[lights]]\nkind = \"point\"\nposition = [0.0, 1.0, 0.0]\n\
          fov = 30.0\n",
         "lights[1].fov",
-        "not used by a point light (line 6, column 7); it takes kind, colour, intensity, \
+        "line 6, column 1: not used by a point light; it takes kind, colour, intensity, \
          position, near, far, oscillate, casts_shadows, size, shadow",
     );
     refuses(
         "[light]\nangle = 45.0\nshadow_pos_multi = 5.0\n",
         "light.shadow_pos_multi",
-        "unknown field (line 3, column 20); a directional light takes kind, colour",
+        "line 3, column 1: unknown field; a directional light takes kind, colour",
     );
     refuses(
         "[light]\nkind = \"spot\"\nposition = [0.0, 1.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n\
@@ -297,7 +296,7 @@ fn each_light_kind_takes_its_own_fields() {
     refuses(
         "[light]\nkind = \"spott\"\n",
         "light.kind",
-        "\"spott\": expected \"directional\" (the default), \"spot\" or \"point\"",
+        "line 2, column 8: \"spott\": expected \"directional\" (the default), \"spot\" or \"point\"",
     );
     refuses(
         "[light]\nangle = \"high\"\n",
@@ -318,10 +317,11 @@ fn each_light_kind_takes_its_own_fields() {
 }
 
 #[test]
-fn fields_of_reads_what_serde_derives() {
+fn light_fields_are_what_serde_derives() {
     assert_eq!(
-        fields_of::<PointFile>(),
+        build::light_fields("point"),
         [
+            "kind",
             "colour",
             "intensity",
             "position",
@@ -333,17 +333,49 @@ fn fields_of_reads_what_serde_derives() {
             "shadow"
         ]
     );
-    assert!(fields_of::<Fixed<f32, 3>>().is_empty());
+    assert!(build::light_fields("spot").iter().any(|f| f == "target"));
+    assert!(!build::light_fields("directional")
+        .iter()
+        .any(|f| f == "target"));
 }
 
 #[test]
-fn field_at_names_items_by_index_and_name() {
-    let text = "a = 1.0\n[[item]]\nmesh = \"x\"\n[[item]]\nname = \"b\"\ncolour = [1.0]\n";
-    let Ok(Raw::Table(raw)) = toml::from_str::<Raw>(text) else {
-        panic!("parses")
-    };
-    let at = |needle: &str| field_at(&raw, text.find(needle).unwrap());
-    assert_eq!(at("1.0]").as_deref(), Some("item[1] (\"b\").colour"));
-    assert_eq!(at("\"x\"").as_deref(), Some("item[0].mesh"));
-    assert_eq!(at("1.0\n").as_deref(), Some("a"));
+fn fields_are_named_down_to_the_element_and_its_name() {
+    refuses(
+        "[[lights]]\nangle = 45.0\n[[lights]]\nangle = 30.0\n\
+         shadow = { filter = \"pcf5x5\", polygon_offset = [1.0] }\n",
+        "lights[1].shadow.polygon_offset",
+        "line 5, column 48: 1 value given: expected exactly 2 numbers [factor, units]",
+    );
+    refuses(
+        &format!(
+            "{LIGHT}[[item]]\nmesh = \"x\"\n[[item]]\nname = \"b\"\nmesh = \"cube\"\nshiny = 1\n"
+        ),
+        "item[1] (\"b\").shiny",
+        "line 8, column 1: unknown field `shiny`, expected one of `name`, `mesh`",
+    );
+    refuses(
+        &format!(
+            "{LIGHT}ortho = {{ left = -1.0, right = 1.0, bottom = -1.0, top = 1.0, near = 0.0, \
+             far = 1.0, depth = 3.0 }}\n"
+        ),
+        "light.ortho.depth",
+        "line 3, column 86: unknown field `depth`",
+    );
+    refuses(
+        "camera.fov = \"wide\"\n[light]\nangle = 45.0\n",
+        "camera.fov",
+        "line 1, column 14: invalid type: string \"wide\", expected a number",
+    );
+    refuses(
+        "light = 5\n",
+        "light",
+        "line 1, column 9: invalid type: integer `5`, expected a table",
+    );
+    let (field, message) = fails(&format!("{LIGHT}angle = 3.0\n"));
+    assert_eq!(field, None);
+    assert_eq!(
+        message,
+        "s.toml: line 3, column 1, at `angle`: duplicate key"
+    );
 }
