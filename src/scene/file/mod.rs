@@ -24,7 +24,7 @@ use serde::Deserialize;
 use toml::de::{DeTable, DeValue};
 use toml::Spanned;
 
-use super::{Camera, OrthoCoords, Scene, ShadingModel, StepList};
+use super::{OrthoCoords, Scene, ShadingModel, StepList};
 use crate::error::Result;
 use crate::input::{read_text_file, SCENE_LIMIT};
 use crate::settings::{ShadowPatch, ShadowSettings, Wrap};

@@ -1,7 +1,7 @@
 //! The loader's messages: each names its field and says what the field takes.
 
 use super::*;
-use crate::scene::Light;
+use crate::scene::{Camera, Light};
 
 const LIGHT: &str = "[light]\nangle = 45.0\n";
 
