@@ -423,7 +423,7 @@ fn bad_scene_files_give_one_clear_error() {
         bad_scene(
             "toml syntax error",
             "toml_syntax.toml",
-            &["line 6, column 22: invalid array", "expected `]`"],
+            &["line 6, column 18, at `1.0 0.0`: string values must be quoted"],
         ),
         bad_scene(
             "toml unknown key",
@@ -438,13 +438,13 @@ fn bad_scene_files_give_one_clear_error() {
         bad_scene(
             "toml NaN",
             "toml_nan.toml",
-            &["light.intensity: NaN is not a finite number"],
+            &["light.intensity: line 3, column 13: NaN is not a finite number"],
         ),
         // The message must name the field, camera.far, not just the table.
         bad_scene(
             "toml inf",
             "toml_inf.toml",
-            &["camera.far: inf is not a finite number"],
+            &["camera.far: line 3, column 7: inf is not a finite number"],
         ),
         bad_scene(
             "toml negative scale",
@@ -848,7 +848,7 @@ fn scene_values_that_were_silently_accepted_give_one_clear_error() {
         bad_scene(
             "toml polygon_offset of three",
             "toml_polygon_offset_three.toml",
-            &["shadow.polygon_offset: 3 values given: expected exactly 2 numbers [factor, units] (line 5)"],
+            &["shadow.polygon_offset: line 5, column 18: 3 values given: expected exactly 2 numbers [factor, units]"],
         ),
         bad_generated(
             "toml sphere detail of three",
@@ -870,7 +870,7 @@ fn scene_values_that_were_silently_accepted_give_one_clear_error() {
         bad_scene(
             "toml NaN in [steps]",
             "toml_steps_nan.toml",
-            &["steps.bias: NaN is not a finite number (line 5)"],
+            &["steps.bias: line 5, column 8: NaN is not a finite number"],
         ),
         bad_generated(
             "toml NaN in [shadow]",
@@ -878,7 +878,7 @@ fn scene_values_that_were_silently_accepted_give_one_clear_error() {
                 "scene.toml",
                 b"[light]\nangle = 45.0\n\n[shadow]\ncascade_lambda = nan\n",
             )],
-            &["shadow.cascade_lambda: NaN is not a finite number (line 5)"],
+            &["shadow.cascade_lambda: line 5, column 18: NaN is not a finite number"],
         ),
         bad_scene(
             "toml negative ambient",
@@ -932,7 +932,7 @@ fn scene_values_that_were_silently_accepted_give_one_clear_error() {
         bad_scene(
             "toml field of another light kind",
             "toml_light_field_of_another_kind.toml",
-            &["lights[1].fov: not used by a point light (line 7, column 7); it takes kind, \
+            &["lights[1].fov: line 7, column 1: not used by a point light; it takes kind, \
                colour, intensity, position, near, far, oscillate, casts_shadows"],
         ),
         bad_generated(

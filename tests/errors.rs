@@ -77,7 +77,10 @@ fn load_err(name: &str) -> String {
 #[test]
 fn scene_file_errors_name_the_line_or_field() {
     let e = load_err("syntax.toml");
-    assert!(e.contains("line 4, column 1: invalid array"), "{e}");
+    assert!(
+        e.contains("line 3, column 26: unclosed array, expected `]`"),
+        "{e}"
+    );
     let e = load_err("unknown_key.toml");
     assert!(
         e.contains("line 4") && e.contains("shadow_pos_multi"),
@@ -90,7 +93,7 @@ fn scene_file_errors_name_the_line_or_field() {
     );
     let e = load_err("nan_position.toml");
     assert!(
-        e.contains("item[0].position: NaN is not a finite number"),
+        e.contains("item[0].position: line 6, column 18: NaN is not a finite number"),
         "{e}"
     );
     let e = load_err("near_far.toml");
