@@ -1,0 +1,148 @@
+//! Which depth passes a frame draws (past the chapters, which draw every map every frame).
+//! With `shadow_cache` on, a map whose [`cache::content_key`] is the one it was drawn with
+//! is kept, one whose fixed camera saw only casters move is patched ([`super::patch`]), and
+//! any other is drawn whole. The renderer asks per light ([`DepthSchedule::step`]) and says
+//! what it drew ([`DepthSchedule::drawn`]); the keys and records stay here, as Filament keeps
+//! its `ShadowMapManager` apart from each `ShadowMap`.
+
+use glam::DVec3;
+
+use super::patch::{MapRecord, Patch};
+use super::{cache, fitted, Technique};
+use crate::scene::Scene;
+use crate::settings::ShadowSettings;
+
+/// How many lights' depth passes were drawn whole, how many were skipped because the map
+/// still held what the light sees, and how many drew only the part moved casters changed
+/// (`shadow_cache`; [`super::patch`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DepthPasses {
+    pub drawn: u64,
+    pub skipped: u64,
+    pub patched: u64,
+    /// The texels the patches cleared and drew again, summed.
+    pub patched_texels: u64,
+}
+
+impl DepthPasses {
+    /// Counts a pass drawn whole, or `patch`.
+    fn count(&mut self, patch: Option<&Patch>) {
+        match patch {
+            Some(p) => {
+                self.patched += 1;
+                self.patched_texels += p.region.texels();
+            }
+            None => self.drawn += 1,
+        }
+    }
+}
+
+/// A light's depth pass this frame: the whole map, or with `patch` that part alone; and what
+/// the map holds once it is drawn.
+pub struct Step {
+    pub patch: Option<Patch>,
+    key: Option<u64>,
+    record: Option<MapRecord>,
+}
+
+/// What each light's map holds, and the items' boxes and placements of this frame.
+#[derive(Default)]
+pub struct DepthSchedule {
+    /// What each light's map holds ([`cache::content_key`]); `None`: draw it again.
+    keys: Vec<Option<u64>>,
+    /// What each patchable map was drawn with, to patch it when only casters move.
+    records: Vec<Option<MapRecord>>,
+    /// Depth passes drawn, skipped and patched so far.
+    passes: DepthPasses,
+    /// Every item's world box this frame ([`fitted::item_world_boxes`]).
+    boxes: Vec<(DVec3, DVec3)>,
+    /// Every item's placement this frame ([`cache::placements`]).
+    placements: Vec<u64>,
+}
+
+impl DepthSchedule {
+    /// One entry per scene light.
+    pub fn resize(&mut self, lights: usize) {
+        self.keys.resize(lights, None);
+        self.records.resize(lights, None);
+    }
+
+    /// Light `index`'s storage is new: its map holds nothing yet.
+    pub fn forget(&mut self, index: usize) {
+        self.keys[index] = None;
+        self.records[index] = None;
+    }
+
+    /// Starts a frame: the items' world boxes when a light has a map (`maps`), and with
+    /// `cache` their placements, once for every light's key and record.
+    pub fn begin(&mut self, scene: &Scene, maps: bool, cache: bool) {
+        self.boxes = match maps {
+            true => fitted::item_world_boxes(scene),
+            false => Vec::new(),
+        };
+        self.placements = match cache && !self.boxes.is_empty() {
+            true => cache::placements(scene),
+            false => Vec::new(),
+        };
+    }
+
+    /// Every item's world box this frame, in the scene's item order.
+    pub fn boxes(&self) -> &[(DVec3, DVec3)] {
+        &self.boxes
+    }
+
+    /// What light `index`'s `technique` draws this frame under its `settings`: `None` when
+    /// the map still holds what the light sees (`has_view`: it was drawn), else the whole
+    /// map or a patch of it. The map's old key is forgotten first, so a pass that fails
+    /// leaves it to be drawn again.
+    pub fn step(
+        &mut self,
+        scene: &Scene,
+        index: usize,
+        technique: &dyn Technique,
+        settings: &ShadowSettings,
+        has_view: bool,
+    ) -> Option<Step> {
+        let light = &scene.lights[index];
+        let follows = cache::follows_camera(light, technique.kind(), settings);
+        let facts = settings
+            .shadow_cache
+            .then(|| cache::LightFacts::of(scene, index, settings, follows));
+        let (boxes, placements) = (&self.boxes, &self.placements);
+        let key = facts
+            .as_ref()
+            .map(|f| cache::content_key(scene, boxes, placements, index, f));
+        if key.is_some() && key == self.keys[index] && has_view {
+            self.passes.skipped += 1;
+            return None;
+        }
+        // A kept map of a fixed camera can be patched where only casters moved.
+        let record = facts
+            .filter(|_| technique.patches())
+            .and_then(|f| MapRecord::of(scene, boxes, placements, &f, settings.map_size));
+        let kept = self.keys[index].is_some() && has_view;
+        let patch = match (&self.records[index], &record) {
+            (Some(old), Some(now)) if kept => old.patch_to(now),
+            _ => None,
+        };
+        self.forget(index);
+        Some(Step { patch, key, record })
+    }
+
+    /// Light `index`'s map was drawn as `step` says: it holds the step's key now.
+    pub fn drawn(&mut self, index: usize, step: Step) {
+        self.passes.count(step.patch.as_ref());
+        self.keys[index] = step.key;
+        self.records[index] = step.record;
+    }
+
+    /// What each light's map holds ([`cache::content_key`]), `None` where it is drawn again.
+    pub fn keys(&self) -> &[Option<u64>] {
+        &self.keys
+    }
+
+    /// Depth passes drawn, skipped and patched so far.
+    pub fn passes(&self) -> DepthPasses {
+        self.passes
+    }
+}
