@@ -3,10 +3,10 @@
 
 use glow::HasContext;
 
+use super::fbo::DepthFbo;
 use crate::engine::check::check_framebuffer;
 use crate::engine::texture::Texture;
 use crate::engine::Gl;
-use super::fbo::DepthFbo;
 use crate::error::Result;
 use crate::settings::DepthFormat;
 
