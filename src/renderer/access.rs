@@ -6,7 +6,8 @@ use std::rc::Rc;
 use super::shadow_mask::MaskUses;
 use super::Renderer;
 use crate::engine::{state, ShadowMap};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use crate::shadows::schedule::DepthPasses;
 use crate::shadows::{CasterCounts, ShadowView};
@@ -110,5 +111,16 @@ impl Renderer {
     /// Blocks until the GPU has finished (for wall-time measurements).
     pub fn finish(&self) {
         state::finish(&self.gl);
+    }
+
+    /// An error unless the depth pass has made a technique slot for each of the scene's
+    /// lights (`what` must come after [`Renderer::render_depth_map`]).
+    pub(super) fn after_depth_map(&self, scene: &Scene, what: &str) -> Result<()> {
+        match self.shadows.len() == scene.lights.len() {
+            true => Ok(()),
+            false => Err(Error::Invalid(format!(
+                "{what} before render_depth_map: there are no shadow maps yet"
+            ))),
+        }
     }
 }

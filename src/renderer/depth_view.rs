@@ -122,11 +122,7 @@ impl Renderer {
         target: Target,
         rect: state::PixelRect,
     ) -> Result<()> {
-        if self.shadows.len() != scene.lights.len() {
-            return Err(Error::Invalid(
-                "render_depth_inset before render_depth_map: there are no shadow maps yet".into(),
-            ));
-        }
+        self.after_depth_map(scene, "render_depth_inset")?;
         let (width, height) = target.size();
         let inside = rect.width > 0
             && rect.height > 0

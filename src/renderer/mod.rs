@@ -12,9 +12,9 @@
 
 mod access;
 mod depth_view;
-mod light_uniforms;
 mod prepare;
 mod programs;
+mod scene_inputs;
 mod scene_pass;
 mod shadow_mask;
 mod target;
@@ -27,10 +27,9 @@ pub use target::Target;
 
 use std::rc::Rc;
 
-use crate::engine::{check_gl, gl_limits, state, Gl, Mesh, Outputs, Samplers, SamplesQuery};
-use crate::engine::{ShaderProgram, Texture};
-use crate::error::{Error, Result};
-use crate::image_data::ImageData;
+use crate::engine::ShaderProgram;
+use crate::engine::{check_gl, gl_limits, state, Gl, Outputs, Samplers, SamplesQuery};
+use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
@@ -39,16 +38,15 @@ use crate::shadows::schedule::DepthSchedule;
 use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::{CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
+use scene_inputs::SceneGpu;
 
 /// Owns the GL side of one scene: its meshes and textures, the programs, and one shadow
 /// technique per casting light. Create it after the context and drop it before.
 pub struct Renderer {
     gl: Gl,
     settings: ShadowSettings,
-    meshes: Vec<Mesh>,
-    textures: Vec<Texture>,
-    /// 1 x 1 white, for items without a texture.
-    white: Texture,
+    /// The scene's meshes and textures.
+    gpu: SceneGpu,
     /// One per scene light, in the scene's order; `None` for a light that does not cast
     /// or has shadow volumes.
     shadows: Vec<Option<Box<dyn Technique>>>,
@@ -86,20 +84,12 @@ impl Renderer {
     pub fn new(gl: &Gl, scene: &Scene, settings: &ShadowSettings) -> Result<Renderer> {
         let max_texture_size = gl_limits(gl).max_texture_size;
         settings.validate(max_texture_size)?;
-        let meshes = scene.meshes.iter().map(|m| Mesh::new(gl, m));
-        let textures = scene.textures.iter().map(|t| Texture::from_image(gl, t));
-        let white = ImageData {
-            width: 1,
-            height: 1,
-            rgba: vec![255; 4],
-        };
+        let gpu = SceneGpu::upload(gl, scene)?;
         state::enable_depth_test(gl);
         let mut renderer = Renderer {
             gl: gl.clone(),
             settings: *settings,
-            meshes: meshes.collect::<Result<Vec<_>>>()?,
-            textures: textures.collect::<Result<Vec<_>>>()?,
-            white: Texture::from_image(gl, &white)?,
+            gpu,
             shadows: Vec::new(),
             kinds: Vec::new(),
             views: Vec::new(),
@@ -159,7 +149,7 @@ impl Renderer {
             };
             let mut pass = DepthPass {
                 gl: &self.gl,
-                meshes: &self.meshes,
+                meshes: &self.gpu.meshes,
                 programs: &mut self.depth_programs,
                 settings: &settings,
                 boxes: schedule.boxes(),
@@ -178,11 +168,7 @@ impl Renderer {
     /// The main pass (the book's `renderScene`): the scene from the camera, each light's map
     /// on its texture unit. Call after [`Renderer::render_depth_map`].
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
-        if self.shadows.len() != scene.lights.len() {
-            return Err(Error::Invalid(
-                "render_scene before render_depth_map: there are no shadow maps yet".into(),
-            ));
-        }
+        self.after_depth_map(scene, "render_scene")?;
         let plan = self.mask_plan(scene, target.size())?;
         self.hook(Pass::Scene, true);
         // The samplers leave the renderer for the pass, so the inputs can borrow the rest.
@@ -192,25 +178,5 @@ impl Renderer {
         self.hook(Pass::Scene, false);
         result?;
         check_gl(&self.gl, "the scene pass")
-    }
-
-    /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
-    fn draw_scene(
-        &mut self,
-        scene: &Scene,
-        target: Target,
-        plan: shadow_mask::Plan,
-        samplers: &mut Samplers,
-    ) -> Result<()> {
-        let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
-        self.use_program(scene, target.outputs(), mode)?;
-        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
-        if self.uses_volumes() {
-            return self.draw_volumes(scene, target.size(), mode, samplers);
-        }
-        let inputs = self.scene_inputs(mode);
-        scene_pass::draw(&inputs, samplers, &self.gl, scene, target.size())?;
-        self.volume_counted.clear();
-        Ok(())
     }
 }

@@ -1,8 +1,11 @@
-//! The scene programs, compiled per what a frame needs (its lights' kinds, the target's
-//! outputs, the shadow mask) and kept for the next frames, and what the scene pass reads.
+//! The scene pass' setup: its program, compiled per what a frame needs (its lights' kinds,
+//! the target's outputs, the shadow mask) and kept for the next frames; its inputs; and the
+//! choice between the one pass, the shadow mask and the volumes' pass per light.
 
-use super::{scene_pass, Renderer};
-use crate::engine::Outputs;
+use super::scene_inputs::Inputs;
+use super::shadow_mask::Plan;
+use super::{scene_pass, Renderer, Target};
+use crate::engine::{Outputs, Samplers};
 use crate::error::Result;
 use crate::scene::{Scene, MAX_LIGHTS};
 use crate::shadows::program::ProgramKey;
@@ -56,20 +59,40 @@ impl Renderer {
 
     /// The scene pass' inputs: the program in front of the cache, the lights' techniques
     /// and views, the mask when the program reads it.
-    pub(super) fn scene_inputs(&self, mode: MaskMode) -> scene_pass::Inputs<'_> {
-        scene_pass::Inputs {
+    pub(super) fn scene_inputs(&self, mode: MaskMode) -> Inputs<'_> {
+        Inputs {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
             views: &self.views,
             settings: &self.settings,
-            meshes: &self.meshes,
-            textures: &self.textures,
-            white: &self.white,
+            meshes: &self.gpu.meshes,
+            textures: &self.gpu.textures,
+            white: &self.gpu.white,
             pass_light: -1,
             mask: match mode {
                 MaskMode::Read => self.mask.texture(),
                 _ => None,
             },
         }
+    }
+
+    /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
+    pub(super) fn draw_scene(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        plan: Plan,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
+        let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
+        self.use_program(scene, target.outputs(), mode)?;
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        if self.uses_volumes() {
+            return self.draw_volumes(scene, target.size(), mode, samplers);
+        }
+        let inputs = self.scene_inputs(mode);
+        scene_pass::draw(&inputs, samplers, &self.gl, scene, target.size())?;
+        self.volume_counted.clear();
+        Ok(())
     }
 }

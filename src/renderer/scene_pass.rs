@@ -1,33 +1,15 @@
 //! The scene pass (the book's `renderScene`): every item from the camera, with the lights'
-//! uniforms ([`super::light_uniforms`]) and each light's map on its texture unit; per item
+//! uniforms ([`super::scene_inputs`]) and each light's map on its texture unit; per item
 //! its matrices and colours ("Shadows": the scene shader gets `modelLightViewMatrix` and
 //! `orthoProjectionMatrix` besides the camera's, for `calcShadow`).
 
 use glam::{DMat4, Mat4, Vec3};
 
-use super::light_uniforms::{bind_maps, normal_matrix, LightUniforms};
-use crate::engine::{Gl, Mesh, Samplers, ShaderProgram, Texture};
+use super::scene_inputs::{bind_maps, normal_matrix, Inputs, LightUniforms};
+use crate::engine::{Gl, Samplers};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::ShadowSettings;
 use crate::shadows::slots::{MASK_UNIT, MATERIAL_UNIT};
-use crate::shadows::{ShadowView, Technique};
-
-/// What the pass reads.
-pub struct Inputs<'a> {
-    pub program: &'a ShaderProgram,
-    pub shadows: &'a [Option<Box<dyn Technique>>],
-    pub views: &'a [Option<ShadowView>],
-    pub settings: &'a ShadowSettings,
-    pub meshes: &'a [Mesh],
-    pub textures: &'a [Texture],
-    pub white: &'a Texture,
-    /// With shadow volumes, the light this pass adds (-1: the ambient pass); unused
-    /// otherwise.
-    pub pass_light: i32,
-    /// The cached shadow mask, for a program that reads it.
-    pub mask: Option<&'a Texture>,
-}
 
 /// Draws every item with `inputs.program` (bound here) into the bound target.
 pub fn draw(

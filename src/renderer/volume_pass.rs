@@ -7,7 +7,8 @@
 
 use glam::Vec4;
 
-use super::scene_pass::{self, Inputs};
+use super::scene_inputs::Inputs;
+use super::scene_pass;
 use super::Renderer;
 use crate::engine::volume::clear_stencil;
 use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};

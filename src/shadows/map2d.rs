@@ -1,9 +1,9 @@
 //! The chapters' technique: one 2D depth map per light ("Shadows", sections "Shadow
 //! Mapping" and "Improving"; LearnOpenGL "Shadow Mapping").
 //!
-//! 1. The depth pass ([`Map2d::draw`], the book's `renderDepthMap`): bind the map's
+//! 1. The depth pass (`Map2d::draw`, the book's `renderDepthMap`): bind the map's
 //!    framebuffer, viewport to its size, clear depth, draw every caster with the light's
-//!    view and its orthographic (or perspective) projection.
+//!    view and its orthographic (or perspective) projection ([`draw_map_casters`]).
 //! 2. The test: `calcShadow` in `shaders/lib/shadow_2d.glsl`, called once per fragment with
 //!    the fragment's light-space position (`mlightviewVertexPos`, from scene.vert).
 //!
@@ -13,9 +13,10 @@
 mod camera;
 mod technique;
 
+pub use super::casters::draw_map_casters;
 pub use camera::{camera, camera_and_casters};
 
-use super::casters::{casters, depth_state, draw_casters, may_land};
+use super::casters::depth_state;
 use super::patch::{self, Patch};
 use super::{DepthPass, LightGlsl, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
@@ -96,36 +97,6 @@ impl Map2d {
         draw_map_casters(pass, scene, index, &view, &program, only.as_deref());
         Ok(view)
     }
-}
-
-/// Draws light `index`'s casters into the bound 2D map with `program` (depth.vert's
-/// uniforms), seen through `view`, and counts them: only casters that can land in the map,
-/// the rest would be clipped anyway, and of those only the ones in `only` when given (the
-/// casters a fitted box was fitted to).
-pub fn draw_map_casters(
-    pass: &mut DepthPass,
-    scene: &Scene,
-    index: usize,
-    view: &ShadowView,
-    program: &crate::engine::ShaderProgram,
-    only: Option<&[usize]>,
-) {
-    program.set_mat4("orthoProjectionMatrix", &view.projection);
-    let light = &scene.lights[index];
-    let boxes = pass.boxes;
-    let keep = |k: usize| {
-        only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
-    };
-    let drawn = draw_casters(
-        pass.meshes,
-        scene,
-        program,
-        "modelLightViewMatrix",
-        view.view64,
-        keep,
-    );
-    pass.casters.drawn += drawn as u64;
-    pass.casters.total += casters(scene);
 }
 
 /// The light-space transform of a 2D map drawn through `view` (the chapter's map and a

@@ -1,13 +1,63 @@
-//! The scene pass' per-light uniforms (view space), and each light's map bound on its
-//! texture unit with its sampler, for [`super::scene_pass`].
+//! What the scene pass ([`super::scene_pass`]) reads: its inputs, the per-light uniforms
+//! (view space), and each light's map bound on its texture unit with its sampler.
 
 use glam::{DMat4, Mat3, Mat4, Vec3, Vec4};
 
-use super::scene_pass::Inputs;
-use crate::engine::{BoundSampler, Gl, Samplers, ShaderProgram};
+use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
+use crate::image_data::ImageData;
 use crate::scene::{Light, Scene, Shading};
-use crate::shadows::{slots, ShadowView};
+use crate::settings::ShadowSettings;
+use crate::shadows::{slots, ShadowView, Technique};
+
+/// The scene's meshes and textures on the GPU (the book's `Mesh` and `Texture`).
+pub(super) struct SceneGpu {
+    pub meshes: Vec<Mesh>,
+    pub textures: Vec<Texture>,
+    /// 1 x 1 white, for items without a texture.
+    pub white: Texture,
+}
+
+impl SceneGpu {
+    pub(super) fn upload(gl: &Gl, scene: &Scene) -> Result<SceneGpu> {
+        let meshes = scene
+            .meshes
+            .iter()
+            .map(|m| Mesh::new(gl, m))
+            .collect::<Result<Vec<_>>>()?;
+        let textures = scene
+            .textures
+            .iter()
+            .map(|t| Texture::from_image(gl, t))
+            .collect::<Result<Vec<_>>>()?;
+        let white = ImageData {
+            width: 1,
+            height: 1,
+            rgba: vec![255; 4],
+        };
+        Ok(SceneGpu {
+            meshes,
+            textures,
+            white: Texture::from_image(gl, &white)?,
+        })
+    }
+}
+
+/// What the pass reads.
+pub struct Inputs<'a> {
+    pub program: &'a ShaderProgram,
+    pub shadows: &'a [Option<Box<dyn Technique>>],
+    pub views: &'a [Option<ShadowView>],
+    pub settings: &'a ShadowSettings,
+    pub meshes: &'a [Mesh],
+    pub textures: &'a [Texture],
+    pub white: &'a Texture,
+    /// With shadow volumes, the light this pass adds (-1: the ambient pass); unused
+    /// otherwise.
+    pub pass_light: i32,
+    /// The cached shadow mask, for a program that reads it.
+    pub mask: Option<&'a Texture>,
+}
 
 /// The per-light uniform arrays of the scene pass (view space), and the per-slot ones of
 /// the lights with a 2D or cube map ([`slots::map_slots`]).
