@@ -59,14 +59,8 @@ impl ShadowMap {
     /// Binds the FBO and sets the viewport to the map's size (the start of `renderDepthMap`).
     pub fn bind_for_writing(&self) {
         self.fbo.bind();
-        unsafe {
-            self.gl.viewport(
-                0,
-                0,
-                self.depth_map.width() as i32,
-                self.depth_map.height() as i32,
-            );
-        }
+        let (width, height) = (self.depth_map.width(), self.depth_map.height());
+        unsafe { self.gl.viewport(0, 0, width as i32, height as i32) };
     }
 
     pub fn depth_map_texture(&self) -> &Texture {

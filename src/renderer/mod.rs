@@ -5,10 +5,8 @@
 //! 2. [`Renderer::render_scene`]: the scene from the camera ([`scene_pass`]); each fragment
 //!    asks each light's test whether it is lit (`calcShadow` in `shaders/lib/shadow_2d.glsl`).
 //!
-//! Beside them: which maps a frame draws again ([`DepthSchedule`]), the techniques made to
-//! fit the settings (`prepare`), the scene programs (`programs`), the cached shadow mask
-//! (`shadow_mask`), stencil shadow volumes ([`volume_pass`]), the depth view and the
-//! counters and hooks measurement reads (`access`).
+//! What is not the chapter's (the cache's [`DepthSchedule`], the shadow mask, the volumes,
+//! the depth view, the counters) lives in the files beside this one.
 
 mod access;
 mod depth_view;
@@ -133,8 +131,8 @@ impl Renderer {
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
         self.hook(Pass::Depth, true);
-        let maps = self.shadows.iter().any(Option::is_some);
-        self.schedule.begin(scene, maps, self.settings.shadow_cache);
+        self.schedule
+            .begin(scene, &self.shadows, self.settings.shadow_cache);
         for (index, shadow) in self.shadows.iter_mut().enumerate() {
             let view = &mut self.views[index];
             let Some(technique) = shadow else {
@@ -143,10 +141,8 @@ impl Renderer {
             };
             let settings = scene.lights[index].settings(&self.settings);
             let schedule = &mut self.schedule;
-            let Some(step) = schedule.step(scene, index, &**technique, &settings, view.is_some())
-            else {
-                continue;
-            };
+            let step = schedule.step(scene, index, &**technique, &settings, view.is_some());
+            let Some(step) = step else { continue };
             let mut pass = DepthPass {
                 gl: &self.gl,
                 meshes: &self.gpu.meshes,

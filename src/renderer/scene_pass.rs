@@ -27,10 +27,8 @@ pub fn draw(
     // World outputs are written relative to the camera for the same reason.
     let origin = DMat4::from_translation(-scene.camera.position.as_dvec3());
     p.bind();
-    p.set_mat4(
-        "projectionMatrix",
-        &scene.camera.projection_matrix(width, height),
-    );
+    let projection = scene.camera.projection_matrix(width, height);
+    p.set_mat4("projectionMatrix", &projection);
     let u = LightUniforms::of(scene, inputs, view64);
     u.set(p, view);
     p.set_i32("textureSampler", MATERIAL_UNIT as i32);
@@ -58,10 +56,8 @@ pub fn draw(
             p.set_mat4_array("modelLightViewMatrix", &light_matrices);
             let m = &item.material;
             let colour = m.colour.truncate();
-            p.set_vec4(
-                "material.ambient",
-                (scene.ambient * colour).extend(m.reflectance),
-            );
+            let ambient = (scene.ambient * colour).extend(m.reflectance);
+            p.set_vec4("material.ambient", ambient);
             for (d, light) in diffuse.iter_mut().zip(&u.colour) {
                 *d = *light * colour;
             }

@@ -20,8 +20,8 @@ use super::casters::depth_state;
 use super::patch::{self, Patch};
 use super::{DepthPass, LightGlsl, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
-use crate::error::{Error, Result};
-use crate::scene::{Light, Scene};
+use crate::error::Result;
+use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 
 /// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
@@ -75,15 +75,7 @@ impl Map2d {
         index: usize,
         patch: Option<&Patch>,
     ) -> Result<ShadowView> {
-        // Scene files and flags are checked before any frame; this guards scenes built in
-        // code (the book's angles would turn the map away from the light without a word).
-        if let Light::Directional(l) = &scene.lights[index] {
-            if let Some(problem) =
-                l.book_angles_problem(&format!("light {index}"), pass.settings, false)
-            {
-                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
-            }
-        }
+        camera::check_book_angles(scene, index, pass.settings)?;
         let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         let only = patch::casters_within(fitted_casters, patch);
         let program = pass.programs.flat(pass.gl)?;

@@ -73,10 +73,10 @@ impl DepthSchedule {
         self.records[index] = None;
     }
 
-    /// Starts a frame: the items' world boxes when a light has a map (`maps`), and with
-    /// `cache` their placements, once for every light's key and record.
-    pub fn begin(&mut self, scene: &Scene, maps: bool, cache: bool) {
-        self.boxes = match maps {
+    /// Starts a frame: the items' world boxes when a light has a map (`techniques`: one
+    /// per light), and with `cache` their placements, once for every light's key and record.
+    pub fn begin(&mut self, scene: &Scene, techniques: &[Option<Box<dyn Technique>>], cache: bool) {
+        self.boxes = match techniques.iter().any(Option::is_some) {
             true => fitted::item_world_boxes(scene),
             false => Vec::new(),
         };
