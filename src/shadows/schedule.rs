@@ -146,3 +146,118 @@ impl DepthSchedule {
         self.passes
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::{Sampling, Texture};
+    use crate::error::Result;
+    use crate::scene::Light;
+    use crate::shadows::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform};
+
+    /// The chapter's kind of map without its storage: the schedule only asks its kind and
+    /// whether it patches.
+    struct Map;
+
+    impl Technique for Map {
+        fn kind(&self) -> ShadowKind {
+            ShadowKind::Map
+        }
+        fn fits(&self, _: &ShadowSettings) -> bool {
+            true
+        }
+        fn render_depth(&mut self, _: &mut DepthPass, _: &Scene, _: usize) -> Result<ShadowView> {
+            unreachable!("the schedule draws nothing")
+        }
+        fn patches(&self) -> bool {
+            true
+        }
+        fn texture(&self) -> &Texture {
+            unreachable!("the schedule samples nothing")
+        }
+        fn sampling(&self, _: &ShadowSettings) -> Sampling {
+            Sampling::PLAIN
+        }
+        fn slot_transform(
+            &self,
+            _: &Light,
+            _: &ShadowView,
+            _: &ShadowSettings,
+        ) -> Option<SlotTransform> {
+            None
+        }
+        fn bytes(&self) -> u64 {
+            0
+        }
+        fn depth_view(&self) -> DepthViewKind {
+            DepthViewKind::Flat
+        }
+    }
+
+    /// The step for light 0 of `scene` this frame, and whether it patches.
+    fn step(s: &mut DepthSchedule, scene: &Scene, has_view: bool) -> Option<Step> {
+        let settings = scene.lights[0].settings(&scene.shadow);
+        let techniques: [Option<Box<dyn Technique>>; 1] = [Some(Box::new(Map))];
+        s.begin(scene, &techniques, settings.shadow_cache);
+        s.step(scene, 0, &Map, &settings, has_view)
+    }
+
+    #[test]
+    fn a_map_is_kept_while_its_light_sees_the_same_and_patched_when_a_caster_moves() {
+        let mut scene = Scene::load("dummy").unwrap();
+        scene.shadow.shadow_cache = true;
+        let mut s = DepthSchedule::default();
+        s.resize(scene.lights.len());
+        let first = step(&mut s, &scene, false).expect("a new map is drawn");
+        assert!(first.patch.is_none());
+        s.drawn(0, first);
+        assert!(
+            step(&mut s, &scene, true).is_none(),
+            "an unchanged map is kept"
+        );
+        // A map never drawn into (no view yet) is drawn whole even with the key it had.
+        assert!(step(&mut s, &scene, false).is_some_and(|st| st.patch.is_none()));
+        let again = step(&mut s, &scene, false).unwrap();
+        s.drawn(0, again);
+        scene.items[0].position.x += 0.5;
+        let moved = step(&mut s, &scene, true).expect("a moved caster redraws");
+        let region = moved
+            .patch
+            .as_ref()
+            .expect("a fixed camera is patched")
+            .region;
+        assert!(region.texels() > 0);
+        s.drawn(0, moved);
+        // A pass that fails (no `drawn`) leaves the map to be drawn whole.
+        scene.items[0].position.x += 0.5;
+        assert!(step(&mut s, &scene, true).is_some());
+        assert!(step(&mut s, &scene, true).is_some_and(|st| st.patch.is_none()));
+        // New storage holds nothing.
+        let whole = step(&mut s, &scene, true).unwrap();
+        s.drawn(0, whole);
+        s.forget(0);
+        assert!(step(&mut s, &scene, true).is_some_and(|st| st.patch.is_none()));
+        let counted = DepthPasses {
+            drawn: 3,
+            skipped: 1,
+            patched: 1,
+            patched_texels: region.texels(),
+        };
+        assert_eq!(s.passes(), counted);
+    }
+
+    #[test]
+    fn without_the_cache_every_map_is_drawn_whole() {
+        let mut scene = Scene::load("dummy").unwrap();
+        scene.shadow.shadow_cache = false;
+        let mut s = DepthSchedule::default();
+        s.resize(1);
+        for _ in 0..3 {
+            let st = step(&mut s, &scene, true).expect("drawn every frame");
+            assert!(st.patch.is_none() && st.key.is_none());
+            s.drawn(0, st);
+        }
+        assert_eq!(s.passes().drawn, 3);
+        assert_eq!(s.keys(), &[None]);
+    }
+}
