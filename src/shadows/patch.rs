@@ -1,4 +1,4 @@
-//! Patching a cached 2D depth map (issue 16, "the movers' light-space rectangles redrawn"):
+//! Patching a cached 2D depth map (the movers' light-space rectangles redrawn):
 //! when the light's camera, the light, its settings, the map and the set of casters are the
 //! ones the map was drawn with and only some casters moved, only the texels those movers
 //! covered before and cover now are cleared and drawn again, by the casters that can reach
