@@ -3,10 +3,12 @@
 //! (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one; a cube map as a panorama,
 //! cascades side by side.
 
+use super::{Renderer, Target};
 use crate::engine::mesh::FullScreenTriangle;
-use crate::engine::state::NoDepthTest;
-use crate::engine::{Gl, Samplers, Sampling, ShaderProgram};
-use crate::error::Result;
+use crate::engine::state::{self, NoDepthTest};
+use crate::engine::{check_gl, Gl, Samplers, Sampling, ShaderProgram};
+use crate::error::{Error, Result};
+use crate::scene::Scene;
 use crate::shaders;
 use crate::shadows::{DepthViewKind, ShadowView, Technique};
 
@@ -80,5 +82,75 @@ impl DepthView {
         self.full_screen.draw();
         p.unbind();
         Ok(())
+    }
+}
+
+impl Renderer {
+    /// The chapters' debug quad: a light's shadow map on the whole target (see
+    /// [`DepthView`]).
+    pub fn render_depth_view(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        let index = self
+            .depth_view_light
+            .min(self.shadows.len().saturating_sub(1));
+        if self.shadows.is_empty() {
+            return Err(Error::Invalid(
+                "render_depth_view before render_depth_map: there is no shadow map yet".into(),
+            ));
+        }
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        // A light without a map: the cleared target says so.
+        if let Some(technique) = self.shadows[index].as_deref() {
+            self.depth_view.draw(
+                &self.gl,
+                &mut self.samplers,
+                technique,
+                self.views[index].as_ref(),
+            )?;
+        }
+        check_gl(&self.gl, "the depth-map view")
+    }
+
+    /// The shadow-map inset: the depth view (LearnOpenGL's debug quad, [`DepthView`]) drawn
+    /// into `rect` of `target` over the frame already there, so the map and the shadows it
+    /// makes are seen together. Shows the light the depth view is set to
+    /// ([`Renderer::set_depth_view_light`]) or, if that one has no map, the first light
+    /// with one; with no map at all it draws nothing. Writes colour only; call after
+    /// [`Renderer::render`] (it needs this frame's maps).
+    pub fn render_depth_inset(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        rect: state::PixelRect,
+    ) -> Result<()> {
+        self.after_depth_map(scene, "render_depth_inset")?;
+        let (width, height) = target.size();
+        let inside = rect.width > 0
+            && rect.height > 0
+            && u64::from(rect.x) + u64::from(rect.width) <= u64::from(width)
+            && u64::from(rect.y) + u64::from(rect.height) <= u64::from(height);
+        if !inside {
+            return Err(Error::Invalid(format!(
+                "shadow-map inset {rect:?}: expected a non-empty rectangle inside the \
+                 {width}x{height} frame"
+            )));
+        }
+        let has_map = |i: &usize| self.shadows.get(*i).is_some_and(Option::is_some);
+        let Some(index) = std::iter::once(self.depth_view_light)
+            .chain(0..self.shadows.len())
+            .find(has_map)
+        else {
+            return Ok(());
+        };
+        target.bind(&self.gl);
+        if let Some(technique) = self.shadows[index].as_deref() {
+            let _overlay = state::OverlayViewport::begin(&self.gl, rect);
+            self.depth_view.draw(
+                &self.gl,
+                &mut self.samplers,
+                technique,
+                self.views[index].as_ref(),
+            )?;
+        }
+        check_gl(&self.gl, "the shadow-map inset")
     }
 }

@@ -10,10 +10,12 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
-use crate::engine::{Gl, RenderTarget, Texture};
+use super::{scene_pass, Renderer};
+use crate::engine::{Gl, Outputs, RenderTarget, Samplers, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::shadows::program::ProgramKey;
+use crate::shadows::slots::MaskMode;
 
 /// What a frame does with the mask.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -125,4 +127,73 @@ pub fn frame_key(
         crate::shadows::cache::hash_placement(item, &mut h);
     }
     Some(h.finish())
+}
+
+impl Renderer {
+    /// What this frame does with the mask: with shadow volumes every light is tested (a
+    /// pass per light), else as [`ShadowMask::plan`] says for this frame's key.
+    pub(super) fn mask_plan(&mut self, scene: &Scene, size: (u32, u32)) -> Result<Plan> {
+        if self.uses_volumes() {
+            return Ok(Plan::Test);
+        }
+        let key = self.mask_key(scene, size)?;
+        Ok(self.mask.plan(key))
+    }
+
+    /// What this frame's shadow tests depend on ([`frame_key`]); `None` when the mask
+    /// cannot stand for them: no light with a map, a map drawn every frame (`shadow_cache`
+    /// off), or a program the mask cannot serve.
+    fn mask_key(&self, scene: &Scene, size: (u32, u32)) -> Result<Option<u64>> {
+        let program = self.program_key(scene, Outputs::default())?;
+        let maps: Vec<Option<u64>> = self
+            .shadows
+            .iter()
+            .zip(self.schedule.keys())
+            .filter(|(t, _)| t.is_some())
+            .map(|(_, key)| *key)
+            .collect();
+        if maps.is_empty() || !program.maskable() {
+            return Ok(None);
+        }
+        Ok(frame_key(scene, size, &program, &maps))
+    }
+
+    /// Writes the mask first if `plan` says so; returns how the scene program then takes
+    /// the shadow tests (its own, or read from the mask).
+    pub(super) fn apply_mask_plan(
+        &mut self,
+        scene: &Scene,
+        size: (u32, u32),
+        plan: Plan,
+        samplers: &mut Samplers,
+    ) -> Result<MaskMode> {
+        if let Plan::Write(key) = plan {
+            self.write_mask(scene, size, key, samplers)?;
+        }
+        Ok(match plan {
+            Plan::Test => MaskMode::Off,
+            _ => MaskMode::Read,
+        })
+    }
+
+    /// Draws every pixel's shadow tests into the mask (the scene pass with
+    /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size), as the
+    /// tests of the frame `key`.
+    fn write_mask(
+        &mut self,
+        scene: &Scene,
+        (width, height): (u32, u32),
+        key: u64,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
+        self.use_program(scene, Outputs::default(), MaskMode::Write)?;
+        let channels = 1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0);
+        self.mask
+            .begin_write(&self.gl, (width, height), channels)?
+            .bind_and_clear([1.0; 4]);
+        let inputs = self.scene_inputs(MaskMode::Write);
+        scene_pass::draw(&inputs, samplers, &self.gl, scene, (width, height))?;
+        self.mask.written(key);
+        Ok(())
+    }
 }

@@ -7,13 +7,16 @@
 
 use glam::Vec4;
 
-use super::scene_pass::{self, Inputs};
+use super::scene_inputs::Inputs;
+use super::scene_pass;
+use super::Renderer;
 use crate::engine::volume::clear_stencil;
 use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};
 use crate::engine::{VolumeDraw, VolumePassGuard};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
+use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
@@ -24,6 +27,39 @@ const COLOURS: [Vec4; 4] = [
     Vec4::new(1.0, 0.3, 0.3, 0.18),
     Vec4::new(0.3, 1.0, 0.4, 0.18),
 ];
+
+impl Renderer {
+    /// Whether a light has shadow volumes (and their meshes are made): the scene pass is
+    /// then one pass per light.
+    pub(super) fn uses_volumes(&self) -> bool {
+        self.volumes.is_some() && self.kinds.contains(&ShadowKind::Volume)
+    }
+
+    /// The frame with volumes into the bound, cleared target of `size`, with the volumes'
+    /// debug view over it when asked; keeps which queries counted volume pixels.
+    pub(super) fn draw_volumes(
+        &mut self,
+        scene: &Scene,
+        size: (u32, u32),
+        mode: MaskMode,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
+        let Some(volumes) = &self.volumes else {
+            return Err(Error::Invalid("the shadow volumes are missing".into()));
+        };
+        let (inputs, gl, kinds) = (self.scene_inputs(mode), &self.gl, &self.kinds);
+        let queries = &self.volume_queries;
+        let light = self.visibility_light;
+        let counted = draw(
+            &inputs, volumes, kinds, light, queries, samplers, gl, scene, size,
+        )?;
+        if self.settings.show_volumes {
+            draw_debug(volumes, kinds, &self.settings, gl, scene, size);
+        }
+        self.volume_counted = counted;
+        Ok(())
+    }
+}
 
 /// Draws the frame into the bound, cleared target. `queries` (one per light) count the
 /// volume pixels that passed the depth test; returns their sum.

@@ -12,7 +12,7 @@ use crate::scene::{Light, Scene};
 use crate::settings::{PointPass, ShadowSettings};
 use crate::shaders;
 
-use super::ShadowView;
+use super::{DepthPass, ShadowView};
 
 /// The depth programs, each compiled when a technique first needs it.
 #[derive(Default)]
@@ -107,6 +107,36 @@ pub fn beyond_a_plane(clip: DMat4, lo: DVec3, hi: DVec3) -> bool {
         || beyond(&|c| c.y > c.w)
         || beyond(&|c| c.z < -c.w)
         || beyond(&|c| c.z > c.w)
+}
+
+/// Draws light `index`'s casters into the bound 2D map with `program` (depth.vert's
+/// uniforms), seen through `view`, and counts them: only casters that can land in the map,
+/// the rest would be clipped anyway, and of those only the ones in `only` when given (the
+/// casters a fitted box was fitted to).
+pub fn draw_map_casters(
+    pass: &mut DepthPass,
+    scene: &Scene,
+    index: usize,
+    view: &ShadowView,
+    program: &ShaderProgram,
+    only: Option<&[usize]>,
+) {
+    program.set_mat4("orthoProjectionMatrix", &view.projection);
+    let light = &scene.lights[index];
+    let boxes = pass.boxes;
+    let keep = |k: usize| {
+        only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
+    };
+    let drawn = draw_casters(
+        pass.meshes,
+        scene,
+        program,
+        "modelLightViewMatrix",
+        view.view64,
+        keep,
+    );
+    pass.casters.drawn += drawn as u64;
+    pass.casters.total += casters(scene);
 }
 
 /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a

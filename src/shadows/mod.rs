@@ -33,6 +33,7 @@ pub mod map2d;
 pub mod moments;
 pub mod patch;
 pub mod program;
+pub mod schedule;
 pub mod slots;
 pub mod volumes;
 

@@ -148,6 +148,16 @@ pub struct Patch {
     pub casters: Vec<usize>,
 }
 
+/// The casters a depth pass draws: those a fitted box was fitted to (`fitted`; `None`:
+/// every caster), and with `patch` only those of them that reach its region.
+pub fn casters_within(fitted: Option<Vec<usize>>, patch: Option<&Patch>) -> Option<Vec<usize>> {
+    match (fitted, patch) {
+        (only, None) => only,
+        (None, Some(p)) => Some(p.casters.clone()),
+        (Some(f), Some(p)) => Some(f.into_iter().filter(|k| p.casters.contains(k)).collect()),
+    }
+}
+
 /// A casting item as its map was drawn: where it was ([`super::cache::hash_placement`]) and
 /// the texels it could cover.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

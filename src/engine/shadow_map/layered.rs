@@ -1,0 +1,141 @@
+//! The shadow maps past the chapter's one 2D map: a point light's depth cube map and a
+//! directional light's depth array (cascades, caster groups), each with its framebuffer.
+
+use glow::HasContext;
+
+use super::fbo::DepthFbo;
+use crate::engine::check::check_framebuffer;
+use crate::engine::texture::Texture;
+use crate::engine::Gl;
+use crate::error::Result;
+use crate::settings::DepthFormat;
+
+/// The omnidirectional shadow map of a point light: a depth cube map and the framebuffer its
+/// faces are drawn into, one pass per face (LearnOpenGL's "Point Shadows" on GL 3.3 without a
+/// geometry shader).
+pub struct CubeShadowMap {
+    gl: Gl,
+    fbo: DepthFbo,
+    cube: Texture,
+    format: DepthFormat,
+}
+
+impl CubeShadowMap {
+    pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<CubeShadowMap> {
+        let map = CubeShadowMap {
+            gl: gl.clone(),
+            fbo: DepthFbo::new(gl, "cube shadow-map framebuffer")?,
+            cube: Texture::depth_cube(gl, size, format)?,
+            format,
+        };
+        map.bind_face(0);
+        map.fbo.finish(&format!("cube shadow map {size}x{size}"))?;
+        Ok(map)
+    }
+
+    /// Binds the framebuffer with face `face` (0..6: +X, -X, +Y, -Y, +Z, -Z) as its depth
+    /// attachment, and the viewport to the face's size.
+    pub fn bind_face(&self, face: u32) {
+        self.fbo.bind();
+        unsafe {
+            self.gl.framebuffer_texture_2d(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                glow::TEXTURE_CUBE_MAP_POSITIVE_X + face,
+                Some(self.cube.id()),
+                0,
+            );
+            let size = self.cube.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+    }
+
+    /// Binds the framebuffer with the whole cube map attached (layered: a geometry shader
+    /// picks each face with gl_Layer), and the viewport to a face's size.
+    pub fn bind_layered(&self) -> Result<()> {
+        self.fbo.bind();
+        unsafe {
+            self.gl.framebuffer_texture(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                Some(self.cube.id()),
+                0,
+            );
+            let size = self.cube.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+        check_framebuffer(&self.gl, "layered cube shadow map")
+    }
+
+    pub fn texture(&self) -> &Texture {
+        &self.cube
+    }
+
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    pub fn size(&self) -> u32 {
+        self.cube.width()
+    }
+}
+
+/// The cascades of a cascaded shadow map: one depth texture array (a layer per cascade) and
+/// the framebuffer each layer is drawn into in turn. GL 3.3 has texture arrays and
+/// `glFramebufferTextureLayer`, so no extension is needed.
+pub struct CascadeShadowMap {
+    gl: Gl,
+    fbo: DepthFbo,
+    array: Texture,
+    format: DepthFormat,
+    layers: u32,
+}
+
+impl CascadeShadowMap {
+    pub fn new(gl: &Gl, size: u32, layers: u32, format: DepthFormat) -> Result<CascadeShadowMap> {
+        let map = CascadeShadowMap {
+            gl: gl.clone(),
+            fbo: DepthFbo::new(gl, "cascade shadow-map framebuffer")?,
+            array: Texture::depth_array(gl, size, layers, format)?,
+            format,
+            layers,
+        };
+        map.bind_layer(0);
+        map.fbo
+            .finish(&format!("cascaded shadow map {size}x{size}x{layers}"))?;
+        Ok(map)
+    }
+
+    /// Binds the framebuffer with cascade `layer` as its depth attachment, and the viewport
+    /// to the layer's size.
+    pub fn bind_layer(&self, layer: u32) {
+        self.fbo.bind();
+        unsafe {
+            self.gl.framebuffer_texture_layer(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_ATTACHMENT,
+                Some(self.array.id()),
+                0,
+                layer as i32,
+            );
+            let size = self.array.width() as i32;
+            self.gl.viewport(0, 0, size, size);
+        }
+    }
+
+    pub fn texture(&self) -> &Texture {
+        &self.array
+    }
+
+    pub fn format(&self) -> DepthFormat {
+        self.format
+    }
+
+    pub fn size(&self) -> u32 {
+        self.array.width()
+    }
+
+    pub fn layers(&self) -> u32 {
+        self.layers
+    }
+}

@@ -1,0 +1,98 @@
+//! The scene pass' setup: its program, compiled per what a frame needs (its lights' kinds,
+//! the target's outputs, the shadow mask) and kept for the next frames; its inputs; and the
+//! choice between the one pass, the shadow mask and the volumes' pass per light.
+
+use super::scene_inputs::Inputs;
+use super::shadow_mask::Plan;
+use super::{scene_pass, Renderer, Target};
+use crate::engine::{Outputs, Samplers};
+use crate::error::Result;
+use crate::scene::{Scene, MAX_LIGHTS};
+use crate::shadows::program::ProgramKey;
+use crate::shadows::slots::MaskMode;
+use crate::shadows::ShadowKind;
+
+impl Renderer {
+    /// Moves the program for this frame's key to the front of the cache, compiling it if it
+    /// is not there (the cache keeps the last few).
+    pub(super) fn use_program(
+        &mut self,
+        scene: &Scene,
+        outputs: Outputs,
+        mask: MaskMode,
+    ) -> Result<()> {
+        // A bench alternates a timed target and a scored one, each maybe with the mask
+        // written and read.
+        const KEEP: usize = 6;
+        let key = self.program_key(scene, outputs)?.with_mask(mask);
+        match self.scene_programs.iter().position(|(k, _)| *k == key) {
+            Some(0) => {}
+            Some(i) => {
+                let entry = self.scene_programs.remove(i);
+                self.scene_programs.insert(0, entry);
+            }
+            None => {
+                let program = key.compile(&self.gl)?;
+                self.scene_programs.insert(0, (key, program));
+                self.scene_programs.truncate(KEEP);
+            }
+        }
+        Ok(())
+    }
+
+    /// The scene program's key for this frame's lights and `outputs`, before the mask.
+    pub(super) fn program_key(&self, scene: &Scene, outputs: Outputs) -> Result<ProgramKey> {
+        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
+        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
+        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
+            *k = *kind;
+        }
+        let n = self.kinds.len().min(MAX_LIGHTS);
+        ProgramKey::of(
+            scene,
+            &self.settings,
+            &kinds[..n],
+            self.visibility_light,
+            outputs,
+        )
+    }
+
+    /// The scene pass' inputs: the program in front of the cache, the lights' techniques
+    /// and views, the mask when the program reads it.
+    pub(super) fn scene_inputs(&self, mode: MaskMode) -> Inputs<'_> {
+        Inputs {
+            program: &self.scene_programs[0].1,
+            shadows: &self.shadows,
+            views: &self.views,
+            settings: &self.settings,
+            meshes: &self.gpu.meshes,
+            textures: &self.gpu.textures,
+            white: &self.gpu.white,
+            pass_light: -1,
+            mask: match mode {
+                MaskMode::Read => self.mask.texture(),
+                _ => None,
+            },
+        }
+    }
+
+    /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
+    pub(super) fn draw_scene(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        plan: Plan,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
+        let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
+        self.use_program(scene, target.outputs(), mode)?;
+        target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
+        if self.uses_volumes() {
+            return self.draw_volumes(scene, target.size(), mode, samplers);
+        }
+        let inputs = self.scene_inputs(mode);
+        scene_pass::draw(&inputs, samplers, &self.gl, scene, target.size())?;
+        self.volume_counted.clear();
+        Ok(())
+    }
+}
