@@ -105,3 +105,38 @@ macro_rules! named_by_clap {
     )+};
 }
 pub(crate) use named_by_clap;
+
+#[cfg(test)]
+mod tests {
+    use super::super::{DepthFormat, Filter, PointPass, ShadowSettings};
+
+    #[test]
+    fn scene_files_and_reports_use_the_flags_names() {
+        use clap::ValueEnum;
+        for f in Filter::value_variants() {
+            let flag = f.to_possible_value().unwrap();
+            assert_eq!(f.name(), flag.get_name());
+            assert_eq!(f.to_string(), f.name());
+            let json = serde_json::to_string(f).unwrap();
+            assert_eq!(json, format!("\"{}\"", f.name()));
+            assert_eq!(serde_json::from_str::<Filter>(&json).unwrap(), *f);
+        }
+        assert_eq!(
+            (DepthFormat::D32F.name(), PointPass::SixPasses.name()),
+            ("32f", "six-passes")
+        );
+        let read = |t: &str| toml::from_str::<ShadowSettings>(t).map_err(|e| e.to_string());
+        let s = read("depth_format = \"16\"\nfilter = \"pcf4x4-weighted\"").unwrap();
+        assert_eq!(
+            (s.depth_format, s.filter),
+            (DepthFormat::D16, Filter::Pcf4x4Weighted)
+        );
+        let e = read("depth_format = \"8\"").unwrap_err();
+        assert!(
+            e.contains("unknown variant `8`, expected one of `16`, `24`, `32f`"),
+            "{e}"
+        );
+        let e = read("depth_format = 24").unwrap_err();
+        assert!(e.contains("expected one of `16`, `24`, `32f`"), "{e}");
+    }
+}
