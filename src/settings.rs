@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use range::Range;
 
 mod names;
-pub mod range;
+mod range;
 
 names::named_by_clap!(
     ShadowTechnique,
@@ -35,8 +35,6 @@ pub enum ShadowTechnique {
     Volumes,
 }
 
-impl ShadowTechnique {}
-
 /// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
 /// stores as 24 bits; we name the size so the choice is explicit and measurable.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
@@ -63,8 +61,6 @@ pub enum Wrap {
     ClampToBorder,
     Repeat,
 }
-
-impl Wrap {}
 
 /// How the shadow map is sampled ("Shadow Mapping improvements": 3x3 PCF).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
@@ -314,8 +310,6 @@ pub enum BiasMode {
     Slope,
 }
 
-impl BiasMode {}
-
 /// Which faces the depth pass culls.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Cull {
@@ -326,8 +320,6 @@ pub enum Cull {
     /// LearnOpenGL's peter-panning fix.
     Front,
 }
-
-impl Cull {}
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
