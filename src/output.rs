@@ -21,51 +21,42 @@ pub fn write_file(path: &Path, what: &str, bytes: &[u8]) -> Result<()> {
     write_files(&[(path, what, bytes)])
 }
 
-/// Writes several files as one: every regular file is first written in full to its
-/// temporary name, then devices are written, and only when all of that worked are the
-/// temporary files renamed into place. A failure (a full disk, `/dev/full`) leaves none of
-/// the regular files behind; the error names the path that failed.
+/// Writes several files as one: every regular file is first written in full to a
+/// temporary file beside it, then devices are written, and only when all of that worked are
+/// the temporary files renamed into place. A failure (a full disk, `/dev/full`) leaves none
+/// of the regular files behind (a temporary file not yet renamed is removed when dropped);
+/// the error names the path that failed.
 pub fn write_files(files: &[(&Path, &str, &[u8])]) -> Result<()> {
-    let mut staged: Vec<(PathBuf, PathBuf, &Path, &str)> = Vec::new();
+    let mut staged = Vec::new();
     let mut devices = Vec::new();
-    let result = (|| {
-        for &(path, what, bytes) in files {
-            let fail = |e: std::io::Error| Error::file(path, format!("cannot write {what}: {e}"));
-            match std::fs::metadata(path) {
-                Ok(m) if m.is_dir() => {
-                    return Err(Error::file(
-                        path,
-                        format!("cannot write {what}: it is a folder; expected a file name"),
-                    ))
-                }
-                // A device or a pipe (also behind a link, as /dev/stdout is): in place.
-                Ok(m) if !m.is_file() => devices.push((path.to_path_buf(), path, what, bytes)),
-                _ => {
-                    // Through a symbolic link, replace the file it names, not the link.
-                    let target = link_target(path);
-                    let temp = temp_path(&target);
-                    // Recorded first, so a half-written temporary file is removed too.
-                    staged.push((temp.clone(), target, path, what));
-                    write_new(&temp, bytes).map_err(fail)?;
-                }
+    for &(path, what, bytes) in files {
+        let fail = |e: std::io::Error| Error::file(path, format!("cannot write {what}: {e}"));
+        match std::fs::metadata(path) {
+            Ok(m) if m.is_dir() => {
+                return Err(Error::file(
+                    path,
+                    format!("cannot write {what}: it is a folder; expected a file name"),
+                ))
+            }
+            // A device or a pipe (also behind a link, as /dev/stdout is): in place.
+            Ok(m) if !m.is_file() => devices.push((path, what, bytes)),
+            _ => {
+                // Through a symbolic link, replace the file it names, not the link.
+                let target = link_target(path);
+                let temp = write_new(&target, bytes).map_err(fail)?;
+                staged.push((temp, target, path, what));
             }
         }
-        for (target, path, what, bytes) in &devices {
-            write_in_place(target, bytes)
-                .map_err(|e| Error::file(path, format!("cannot write {what}: {e}")))?;
-        }
-        for (temp, target, path, what) in &staged {
-            std::fs::rename(temp, target)
-                .map_err(|e| Error::file(path, format!("cannot write {what}: {e}")))?;
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        for (temp, ..) in &staged {
-            let _ = std::fs::remove_file(temp);
-        }
     }
-    result
+    for (path, what, bytes) in devices {
+        write_in_place(path, bytes)
+            .map_err(|e| Error::file(path, format!("cannot write {what}: {e}")))?;
+    }
+    for (temp, target, path, what) in staged {
+        temp.persist(&target)
+            .map_err(|e| Error::file(path, format!("cannot write {what}: {}", e.error)))?;
+    }
+    Ok(())
 }
 
 /// Where the chain of symbolic links at `path` ends (existing or not): the file to replace.
@@ -93,22 +84,25 @@ fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     file.flush()
 }
 
-/// Writes a new file and makes sure its bytes reached the disk: some file systems report a
-/// full disk only when the data is synced.
-fn write_new(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut file = std::fs::File::create(path)?;
-    file.write_all(bytes)?;
-    file.flush()?;
-    file.sync_all()
-}
-
-/// A hidden name next to `path` that no other run uses at the same time.
-fn temp_path(path: &Path) -> PathBuf {
-    let name = path
+/// Writes `bytes` to a new hidden file beside `target` (removed when dropped, unless
+/// persisted) and makes sure they reached the disk: some file systems report a full disk
+/// only when the data is synced.
+fn write_new(target: &Path, bytes: &[u8]) -> std::io::Result<tempfile::NamedTempFile> {
+    use std::os::unix::fs::PermissionsExt;
+    let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    let mut file = tempfile::Builder::new()
+        .prefix(&format!(".{name}."))
+        .suffix(".tmp")
+        // As a file made by `File::create`: the umask decides (not tempfile's owner-only).
+        .permissions(std::fs::Permissions::from_mode(0o666))
+        .tempfile_in(parent_of(target))?;
+    file.write_all(bytes)?;
+    file.flush()?;
+    file.as_file().sync_all()?;
+    Ok(file)
 }
 
 /// The image formats an output file name may ask for (by its extension).
@@ -374,6 +368,18 @@ mod tests {
         assert_eq!(std::fs::read(&path).unwrap(), b"second");
         let names: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().collect();
         assert_eq!(names.len(), 1, "{names:?}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_written_file_gets_the_permissions_of_any_new_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = scratch("mode");
+        let (plain, written) = (dir.join("plain.txt"), dir.join("written.txt"));
+        std::fs::write(&plain, b"x").unwrap();
+        write_file(&written, "the text", b"x").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode();
+        assert_eq!(mode(&written), mode(&plain));
         std::fs::remove_dir_all(&dir).ok();
     }
 

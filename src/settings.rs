@@ -3,12 +3,30 @@
 
 use serde::{Deserialize, Serialize};
 
+use range::Range;
+
+mod names;
+mod range;
+
+names::named_by_clap!(
+    ShadowTechnique,
+    DepthFormat,
+    Wrap,
+    Filter,
+    Blur,
+    MsmToward,
+    BiasMode,
+    Cull,
+    BeyondFar,
+    LightView,
+    LightProjection,
+    Fit,
+    PointPass,
+);
+
 /// Which technique draws a light's shadow: the chapters' depth maps, or the slides' closing
 /// stencil shadow volumes (exact hard shadows; `crate::shadows::volumes`).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum ShadowTechnique {
     /// A depth map per light (2D, cube or cascades), tested per fragment.
     #[default]
@@ -17,52 +35,26 @@ pub enum ShadowTechnique {
     Volumes,
 }
 
-impl ShadowTechnique {
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadowTechnique::Maps => "maps",
-            ShadowTechnique::Volumes => "volumes",
-        }
-    }
-}
-
 /// Depth precision of a shadow map. The book asks for plain `GL_DEPTH_COMPONENT`, which Mesa
 /// stores as 24 bits; we name the size so the choice is explicit and measurable.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum DepthFormat {
-    #[serde(rename = "16")]
     #[value(name = "16")]
     D16,
     #[default]
-    #[serde(rename = "24")]
     #[value(name = "24")]
     D24,
-    #[serde(rename = "32f")]
     #[value(name = "32f")]
     D32F,
 }
 
 impl DepthFormat {
     pub const ALL: [DepthFormat; 3] = [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F];
-
-    /// The name used on the command line and in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            DepthFormat::D16 => "16",
-            DepthFormat::D24 => "24",
-            DepthFormat::D32F => "32f",
-        }
-    }
 }
 
 /// How lookups outside [0, 1] behave. The book clamps to the edge; LearnOpenGL's first steps
 /// REPEAT (showing over-sampling) and its final step clamps to a border of depth 1.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Wrap {
     #[default]
     ClampToEdge,
@@ -70,21 +62,8 @@ pub enum Wrap {
     Repeat,
 }
 
-impl Wrap {
-    pub fn name(self) -> &'static str {
-        match self {
-            Wrap::ClampToEdge => "clamp-to-edge",
-            Wrap::ClampToBorder => "clamp-to-border",
-            Wrap::Repeat => "repeat",
-        }
-    }
-}
-
 /// How the shadow map is sampled ("Shadow Mapping improvements": 3x3 PCF).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Filter {
     /// One depth comparison per fragment: hard, blocky edges.
     Single,
@@ -96,28 +75,23 @@ pub enum Filter {
     /// One `sampler2DShadow` lookup with LINEAR filtering: the GPU compares the 4 nearest
     /// texels and blends the results bilinearly (2 x 2 hardware PCF).
     #[value(name = "hw2x2")]
-    #[serde(rename = "hw2x2")]
     Hardware2x2,
     /// A 3 x 3 grid of hardware 2 x 2 lookups, one texel apart.
     #[value(name = "hw3x3")]
-    #[serde(rename = "hw3x3")]
     Hardware3x3,
     // The soft filters (past the chapters: the shadow-playground's demos, and PCSS).
     /// The shadow-playground's PCF: 16 taps at +-0.5 and +-1.5 texels, the inner 2 x 2
     /// weighing 0.6 / 4 each and the outer 12 0.4 / 12 each (its epsilon is the bias).
     #[value(name = "pcf4x4-weighted")]
-    #[serde(rename = "pcf4x4-weighted")]
     Pcf4x4Weighted,
     /// The same 16 weighted taps, each comparison through the playground's sigmoid
     /// 1 / (1 + exp(-1000 diff)) instead of a step.
     #[value(name = "soft-pcf")]
-    #[serde(rename = "soft-pcf")]
     SoftPcf,
     /// Percentage-closer soft shadows: a blocker search on a rotated Poisson disk, then a
     /// filter as wide as the penumbra a light of the light's `size` casts from that
     /// blocker depth (contact hardening). A zero-size light gives a hard test.
     #[value(name = "pcss")]
-    #[serde(rename = "pcss")]
     Pcss,
     // Filterable maps (src/shadows/moments.rs): the map stores moments of depth, blurred,
     // and the test reconstructs a visibility from them.
@@ -237,23 +211,6 @@ impl Filter {
     pub fn hardware(self) -> bool {
         matches!(self, Filter::Hardware2x2 | Filter::Hardware3x3)
     }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Filter::Single => "single",
-            Filter::Pcf3x3 => "pcf3x3",
-            Filter::Pcf5x5 => "pcf5x5",
-            Filter::Hardware2x2 => "hw2x2",
-            Filter::Hardware3x3 => "hw3x3",
-            Filter::Pcf4x4Weighted => "pcf4x4-weighted",
-            Filter::SoftPcf => "soft-pcf",
-            Filter::Pcss => "pcss",
-            Filter::Vsm => "vsm",
-            Filter::Evsm2 => "evsm2",
-            Filter::Evsm4 => "evsm4",
-            Filter::Msm => "msm",
-        }
-    }
 }
 
 /// The Gaussian blur a moment map gets before it is read: separable, one horizontal and
@@ -261,26 +218,19 @@ impl Filter {
 /// edge / centre 0.045 / 0.122 / 0.332 = the outer product of (0.2118, 0.5762, 0.2118));
 /// the others are Gaussians with sigma = taps / 6 (the kernel spans +-3 sigma),
 /// normalised.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Blur {
     /// No blur: only the lookup's bilinear filtering.
     None,
     /// The shadow-playground's 3 x 3.
     #[default]
     #[value(name = "playground3x3")]
-    #[serde(rename = "playground3x3")]
     Playground3x3,
     #[value(name = "gauss5")]
-    #[serde(rename = "gauss5")]
     Gauss5,
     #[value(name = "gauss7")]
-    #[serde(rename = "gauss7")]
     Gauss7,
     #[value(name = "gauss9")]
-    #[serde(rename = "gauss9")]
     Gauss9,
 }
 
@@ -292,16 +242,6 @@ impl Blur {
         Blur::Gauss7,
         Blur::Gauss9,
     ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Blur::None => "none",
-            Blur::Playground3x3 => "playground3x3",
-            Blur::Gauss5 => "gauss5",
-            Blur::Gauss7 => "gauss7",
-            Blur::Gauss9 => "gauss9",
-        }
-    }
 
     /// Taps of the 1D kernel (0: no blur).
     pub fn taps(self) -> u32 {
@@ -340,10 +280,7 @@ impl Blur {
 
 /// The moment vector a moment shadow map's moments are pulled toward by `msm_bias`
 /// (against the numerical failures of a nearly singular Hankel matrix).
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum MsmToward {
     /// (0.5, 0.5, 0.5, 0.5): half the weight at depth 0 and half at 1 (for [0, 1] depth).
     #[default]
@@ -362,10 +299,7 @@ impl MsmToward {
 }
 
 /// How the depth comparison is offset against acne.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum BiasMode {
     /// The plain comparison: acne everywhere a surface faces the light.
     None,
@@ -376,21 +310,8 @@ pub enum BiasMode {
     Slope,
 }
 
-impl BiasMode {
-    pub fn name(self) -> &'static str {
-        match self {
-            BiasMode::None => "none",
-            BiasMode::Constant => "constant",
-            BiasMode::Slope => "slope",
-        }
-    }
-}
-
 /// Which faces the depth pass culls.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Cull {
     /// The book's depth pass draws every face.
     #[default]
@@ -400,21 +321,8 @@ pub enum Cull {
     Front,
 }
 
-impl Cull {
-    pub fn name(self) -> &'static str {
-        match self {
-            Cull::None => "none",
-            Cull::Back => "back",
-            Cull::Front => "front",
-        }
-    }
-}
-
 /// What a fragment beyond the light's far plane (z > 1) gets.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum BeyondFar {
     /// The book: the comparison runs anyway and says "shadowed".
     #[default]
@@ -424,10 +332,7 @@ pub enum BeyondFar {
 }
 
 /// How the directional light's view matrix is built.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum LightView {
     /// The book: Euler angles from the direction (acos z, asin x). Right only while the
     /// direction has no x component (refused otherwise); the DummyGame's file asks for it.
@@ -440,10 +345,7 @@ pub enum LightView {
 }
 
 /// The projection of a directional light's shadow camera.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum LightProjection {
     /// The book's: parallel rays, the `OrthoCoords` box.
     #[default]
@@ -454,10 +356,7 @@ pub enum LightProjection {
 }
 
 /// Where a directional light's orthographic box comes from.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Fit {
     /// The light's `OrthoCoords`, as the book sets them by hand.
     #[default]
@@ -467,10 +366,7 @@ pub enum Fit {
 }
 
 /// How a point light's six cube faces are drawn.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default, clap::ValueEnum,
-)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum PointPass {
     /// One pass per face, the face attached in turn.
     SixPasses,
@@ -648,12 +544,17 @@ pub const PCSS_MAX_TAPS: u32 = 32;
 /// the warped depth's square cannot overflow.
 pub const EVSM_MAX_EXPONENT: f32 = 42.0;
 
+/// PCSS's taps per stage: 1 to [`PCSS_MAX_TAPS`].
+fn poisson_taps() -> Range<u32> {
+    Range::from_to(1, PCSS_MAX_TAPS).note("the Poisson disk's points")
+}
+
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
 
-/// Declares every setting once: its group, its type, its default, its documentation and
-/// any flag options. From that one list come [`ShadowSettings`] (the scene file's
+/// Declares every setting once: its group, its type, its default, its documentation, the
+/// numbers it takes ([`range::Range`]) and any flag options. From that one list come [`ShadowSettings`] (the scene file's
 /// `[shadow]` table), [`ShadowPatch`] (the same fields, each optional: a light's own
 /// `shadow` table and the command line's flags, with the groups as `--help` headings) and
 /// [`SETTING_GROUPS`].
@@ -663,7 +564,8 @@ macro_rules! shadow_settings {
         $group:literal {
             $(
                 $(#[doc = $doc:literal])*
-                $field:ident : $ty:ty = $default:expr $(, arg($($arg:tt)*))? ;
+                $field:ident : $ty:ty = $default:expr
+                    $(, range($range:expr))? $(, arg($($arg:tt)*))? ;
             )*
         }
     )*) => {
@@ -724,6 +626,14 @@ macro_rules! shadow_settings {
             }
         }
 
+        impl ShadowSettings {
+            /// Checks every setting against the range declared beside it.
+            fn check_ranges(&self) -> crate::Result<()> {
+                $($($( range::check(stringify!($field), self.$field, &$range)?; )?)*)*
+                Ok(())
+            }
+        }
+
         /// The settings by what they govern, in `--help`'s order.
         pub const SETTING_GROUPS: &[(&str, &[&str])] = &[
             $( ($group, &[ $( stringify!($field), )* ]), )*
@@ -753,13 +663,15 @@ shadow_settings! {
         depth_format: DepthFormat = DepthFormat::D24;
         /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4
         /// = that many `map_size` layers of a depth texture array, one per slice of the view.
-        cascades: u32 = 1, arg(value_name = "N", allow_negative_numbers = true);
+        cascades: u32 = 1, range(Range::from_to(1, MAX_CASCADES).low_means("one map")),
+            arg(value_name = "N", allow_negative_numbers = true);
         /// Caster groups for a directional light with one cascade: 1 = one box (the
         /// chapters, or with `fit = "scene"` one box fitted to the view), 2 to 4 = the
         /// casters whose shadow is in view split into up to that many groups, each with its
         /// own box fitted to it in a `map_size` layer of a depth array (casters far apart
         /// keep fine texels). Always fitted to the view.
-        caster_groups: u32 = 1, arg(value_name = "N", allow_negative_numbers = true);
+        caster_groups: u32 = 1, range(Range::from_to(1, MAX_CASCADES).low_means("one box")),
+            arg(value_name = "N", allow_negative_numbers = true);
     }
     /// How a fragment is tested against the map.
     "Shadow test" {
@@ -769,19 +681,21 @@ shadow_settings! {
         bias_mode: BiasMode = BiasMode::Constant;
         /// Constant bias, or the slope bias' maximum, in [0, 1] depth units (a cube map:
         /// world units).
-        bias: f32 = 0.05,
+        bias: f32 = 0.05, range(Range::at_least(0.0)),
             arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
         /// The slope bias' floor (LearnOpenGL: 0.005).
-        bias_min: f32 = 0.005,
+        bias_min: f32 = 0.005, range(Range::at_least(0.0)),
             arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
         /// Normal-offset bias: the lookup moves this many shadow-map texels along the
         /// surface normal (0 = off); the same meaning for 2D, cube and cascade maps.
-        normal_offset: f32 = 0.0,
+        normal_offset: f32 = 0.0, range(Range::at_least(0.0)),
             arg(value_name = "TEXELS", value_parser = parse_finite, allow_negative_numbers = true);
         /// PCSS: lookups of the blocker search (on a rotated Poisson disk, 1 to 32).
-        pcss_blocker_taps: u32 = 16, arg(value_name = "N", allow_negative_numbers = true);
+        pcss_blocker_taps: u32 = 16, range(poisson_taps()),
+            arg(value_name = "N", allow_negative_numbers = true);
         /// PCSS: lookups of the filter that follows the penumbra (1 to 32).
-        pcss_filter_taps: u32 = 16, arg(value_name = "N", allow_negative_numbers = true);
+        pcss_filter_taps: u32 = 16, range(poisson_taps()),
+            arg(value_name = "N", allow_negative_numbers = true);
         /// Shadow-map wrap mode for lookups outside [0, 1].
         wrap: Wrap = Wrap::ClampToEdge;
         /// What fragments beyond the light's far plane get.
@@ -794,19 +708,22 @@ shadow_settings! {
         blur: Blur = Blur::Playground3x3;
         /// The least variance Chebyshev's bound assumes (VSM; EVSM scales it by each
         /// exponent's slope), against acne where the map is flat.
-        min_variance: f32 = 1e-6,
+        min_variance: f32 = 1e-6, range(Range::at_least(0.0)),
             arg(value_name = "V", value_parser = parse_finite, allow_negative_numbers = true);
         /// Light-bleeding reduction (VSM, EVSM): bounds below this read as shadow, the rest
         /// stretch to [0, 1] (0 = off; Filament's default 0.15, MJP's comparisons 0.25).
-        bleed_reduction: f32 = 0.15,
+        bleed_reduction: f32 = 0.15, range(Range::from_below(0.0, 1.0).low_means("off")),
             arg(value_name = "AMOUNT", value_parser = parse_finite, allow_negative_numbers = true);
         /// EVSM's exponents [positive, negative] (40 and 5 by default); each is clamped to
         /// 42 so exp(2c) stays inside 32-bit floats.
         evsm_exponents: [f32; 2] = [40.0, 5.0],
+            range(Range::above(0.0)
+                .note(format!("each is clamped to {EVSM_MAX_EXPONENT}"))
+                .pair("[positive, negative], like [40, 5]")),
             arg(value_name = "POS,NEG", value_parser = parse_pair, allow_hyphen_values = true);
         /// MSM's moment bias alpha: the moments move this far toward `msm_toward` (3e-5
         /// for [0, 1] depth; the playground's preset: 9e-4 toward "playground").
-        msm_bias: f32 = 3e-5,
+        msm_bias: f32 = 3e-5, range(Range::from_to(0.0, 1.0).note("3e-5 for [0, 1] depth")),
             arg(value_name = "ALPHA", value_parser = parse_finite, allow_negative_numbers = true);
         /// What MSM's moment bias pulls toward.
         msm_toward: MsmToward = MsmToward::Half;
@@ -816,7 +733,7 @@ shadow_settings! {
         /// Faces culled in the depth pass.
         cull: Cull = Cull::None;
         /// `glPolygonOffset(factor, units)` in the depth pass, e.g. 1.1,4 ([0, 0] = off).
-        polygon_offset: [f32; 2] = [0.0, 0.0],
+        polygon_offset: [f32; 2] = [0.0, 0.0], range(Range::any().pair("[factor, units]")),
             arg(value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_hyphen_values = true);
         /// How a point light's six cube faces are drawn.
         point_pass: PointPass = PointPass::Layered;
@@ -834,7 +751,7 @@ shadow_settings! {
         /// A directional light's shadow projection.
         light_projection: LightProjection = LightProjection::Ortho;
         /// Field of view of a perspective shadow camera for a directional light, degrees.
-        perspective_fov: f32 = 45.0,
+        perspective_fov: f32 = 45.0, range(Range::between(0.0, 180.0).unit("degrees")),
             arg(value_name = "DEG", value_parser = parse_finite, allow_negative_numbers = true);
         /// A directional light's box: by hand (`OrthoCoords`) or fitted to the scene each
         /// frame.
@@ -844,14 +761,15 @@ shadow_settings! {
         snap: bool = true, arg(value_name = "BOOL", value_parser = clap::builder::BoolishValueParser::new());
         /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
         /// scheme).
-        cascade_lambda: f32 = 0.75,
+        cascade_lambda: f32 = 0.75, range(Range::from_to(0.0, 1.0)),
             arg(value_name = "LAMBDA", value_parser = parse_finite, allow_negative_numbers = true);
         /// The last fraction of each cascade's depth range that fades into the next
         /// (0 = a hard seam at the split, at most 0.5).
-        cascade_blend: f32 = 0.1,
+        cascade_blend: f32 = 0.1, range(Range::from_to(0.0, 0.5)),
             arg(value_name = "FRACTION", value_parser = parse_finite, allow_negative_numbers = true);
         /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
         shadow_distance: f32 = 0.0,
+            range(Range::at_least(0.0).note("0 = the camera's far plane")),
             arg(value_name = "DEPTH", value_parser = parse_finite, allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.
@@ -1045,99 +963,9 @@ impl ShadowSettings {
         self.validate_values()
     }
 
-    /// Checks everything that needs no driver: finite biases, a sane field of view.
+    /// Checks everything that needs no driver: each setting against its declared range.
     pub fn validate_values(&self) -> crate::Result<()> {
-        let bad = |m: String| Err(crate::Error::Invalid(m));
-        for (name, v) in [
-            ("bias", self.bias),
-            ("bias_min", self.bias_min),
-            ("normal_offset", self.normal_offset),
-        ] {
-            if !v.is_finite() || v < 0.0 {
-                return bad(format!(
-                    "shadow.{name} = {v}: expected a finite number >= 0"
-                ));
-            }
-        }
-        if !(self.perspective_fov > 0.0 && self.perspective_fov < 180.0) {
-            return bad(format!(
-                "shadow.perspective_fov = {}: expected degrees between 0 and 180",
-                self.perspective_fov
-            ));
-        }
-        for (name, v) in [
-            ("pcss_blocker_taps", self.pcss_blocker_taps),
-            ("pcss_filter_taps", self.pcss_filter_taps),
-        ] {
-            if !(1..=PCSS_MAX_TAPS).contains(&v) {
-                return bad(format!(
-                    "shadow.{name} = {v}: expected 1 to {PCSS_MAX_TAPS} (the Poisson disk's points)"
-                ));
-            }
-        }
-        let max = MAX_CASCADES;
-        if !(1..=max).contains(&self.cascades) {
-            return bad(format!(
-                "shadow.cascades = {}: expected 1 (one map) to {max}",
-                self.cascades
-            ));
-        }
-        if !(1..=max).contains(&self.caster_groups) {
-            return bad(format!(
-                "shadow.caster_groups = {}: expected 1 (one box) to {max}",
-                self.caster_groups
-            ));
-        }
-        for (name, v, hi) in [
-            ("cascade_lambda", self.cascade_lambda, 1.0),
-            ("cascade_blend", self.cascade_blend, 0.5),
-        ] {
-            if !(0.0..=hi).contains(&v) {
-                return bad(format!("shadow.{name} = {v}: expected 0 to {hi}"));
-            }
-        }
-        if !(self.shadow_distance.is_finite() && self.shadow_distance >= 0.0) {
-            return bad(format!(
-                "shadow.shadow_distance = {}: expected a finite number >= 0 (0 = the camera's far plane)",
-                self.shadow_distance
-            ));
-        }
-        if !(self.min_variance.is_finite() && self.min_variance >= 0.0) {
-            return bad(format!(
-                "shadow.min_variance = {}: expected a finite number >= 0",
-                self.min_variance
-            ));
-        }
-        if !(0.0..1.0).contains(&self.bleed_reduction) {
-            return bad(format!(
-                "shadow.bleed_reduction = {}: expected 0 (off) to below 1",
-                self.bleed_reduction
-            ));
-        }
-        if self
-            .evsm_exponents
-            .iter()
-            .any(|c| !(c.is_finite() && *c > 0.0))
-        {
-            return bad(format!(
-                "shadow.evsm_exponents = {:?}: expected two numbers > 0 [positive, negative], \
-                 like [40, 5] (each is clamped to {EVSM_MAX_EXPONENT})",
-                self.evsm_exponents
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.msm_bias) {
-            return bad(format!(
-                "shadow.msm_bias = {}: expected 0 to 1 (3e-5 for [0, 1] depth)",
-                self.msm_bias
-            ));
-        }
-        if self.polygon_offset.iter().any(|v| !v.is_finite()) {
-            return bad(format!(
-                "shadow.polygon_offset = {:?}: expected two finite numbers [factor, units]",
-                self.polygon_offset
-            ));
-        }
-        Ok(())
+        self.check_ranges()
     }
 
     /// The settings as the renderer applies them: a fitted box covers exactly what can be

@@ -8,6 +8,9 @@ use std::time::Instant;
 use glam::Vec3;
 use serde::Serialize;
 
+mod csv_rows;
+pub use csv_rows::{csv_text, to_csv, Fixed, Shown};
+
 use super::compare::{compute_reference, CompareOptions, Reference};
 use super::reference::{Metrics, SoftMetrics};
 use super::timing::GpuPassTimes;
@@ -877,85 +880,6 @@ pub fn cheapest_under(rows: &[BenchRow], target: f64) -> Option<&BenchRow> {
     rows.iter()
         .filter(|r| r.error() <= target)
         .min_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median))
-}
-
-/// The CSV columns, in order (the `area_*`, `light_bleed_rate` and `penumbra_*` ones are
-/// against the area truth, or with `area_rays` 0 against the hard reference of a point
-/// light; `lookups`: shadow-map reads per fragment, [`Filter::lookups`]).
-pub const CSV_HEADER: &str = "tutorial,family,cascades,caster_groups,point_pass,map_size,filter,bias_preset,bias_mode,bias,bias_min,\
-normal_offset,polygon_offset_factor,polygon_offset_units,cull,depth_format,wrap,beyond_far,\
-wall_ms_median,wall_ms_p95,overhead_ms,depth_wall_ms_median,scene_wall_ms_median,depth_gpu_ms_median,depth_gpu_ms_p95,scene_gpu_ms_median,\
-scene_gpu_ms_p95,receivers,misclassified_rate,false_shadow_rate,false_light_rate,\
-misclassified_outside_band_rate,false_shadow_outside_band,false_light_outside_band,mae,pareto,\
-volume_pixels,area_rays,area_mae,light_bleed_rate,area_false_shadow_rate,penumbra_width_px,penumbra_width_truth_px,\
-penumbra_width_error_px,taps,passes,blur_taps,map_bytes";
-
-/// The rows as CSV (one header line).
-pub fn to_csv(rows: &[BenchRow]) -> String {
-    let mut out = String::from(CSV_HEADER);
-    out.push('\n');
-    for r in rows {
-        let s = &r.config.settings;
-        let m = &r.metrics;
-        let cost = r.cost();
-        let fields = [
-            r.config.tutorial.unwrap_or("-").to_string(),
-            format!("{:?}", r.config.family).to_lowercase(),
-            s.cascades.to_string(),
-            s.caster_groups.to_string(),
-            format!("{:?}", s.point_pass).to_lowercase(),
-            s.map_size.to_string(),
-            s.filter.name().to_string(),
-            r.config.bias_preset.name().to_string(),
-            s.bias_mode.name().to_string(),
-            s.bias.to_string(),
-            s.bias_min.to_string(),
-            s.normal_offset.to_string(),
-            s.polygon_offset[0].to_string(),
-            s.polygon_offset[1].to_string(),
-            s.cull.name().to_string(),
-            s.depth_format.name().to_string(),
-            s.wrap.name().to_string(),
-            format!("{:?}", s.beyond_far).to_lowercase(),
-            format!("{:.4}", r.wall_ms.median),
-            format!("{:.4}", r.wall_ms.p95),
-            format!("{:.4}", r.overhead_ms),
-            format!("{:.4}", r.depth_wall_ms.median),
-            format!("{:.4}", r.scene_wall_ms.median),
-            format!("{:.4}", r.depth_gpu_ms.median),
-            format!("{:.4}", r.depth_gpu_ms.p95),
-            format!("{:.4}", r.scene_gpu_ms.median),
-            format!("{:.4}", r.scene_gpu_ms.p95),
-            m.receivers.to_string(),
-            format!("{:.6}", m.misclassified_rate),
-            format!("{:.6}", m.false_shadow_rate),
-            format!("{:.6}", m.false_light_rate),
-            format!("{:.6}", m.misclassified_outside_band_rate),
-            m.false_shadow_outside_band.to_string(),
-            m.false_light_outside_band.to_string(),
-            m.mae.map_or("nan".to_string(), |v| format!("{v:.6}")),
-            r.pareto.to_string(),
-            r.volume_pixels.to_string(),
-        ];
-        let a = &r.soft;
-        let area = [
-            a.rays.to_string(),
-            format!("{:.6}", a.mae),
-            format!("{:.6}", a.light_bleed_rate),
-            format!("{:.6}", a.false_shadow_rate),
-            format!("{:.3}", a.penumbra_width_px),
-            format!("{:.3}", a.penumbra_width_truth_px),
-            format!("{:.3}", a.penumbra_width_error_px),
-            cost.taps.to_string(),
-            cost.passes.to_string(),
-            cost.blur_taps.to_string(),
-            r.map_bytes().to_string(),
-        ];
-        let fields: Vec<String> = fields.into_iter().chain(area).collect();
-        out.push_str(&fields.join(","));
-        out.push('\n');
-    }
-    out
 }
 
 /// A Markdown table: the tutorials' configurations, then the Pareto front, fastest first,

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::bench::{ms, time_passes, Stat, Timings};
+use super::bench::{csv_text, ms, time_passes, Fixed, Shown, Stat, Timings};
 use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
@@ -445,62 +445,82 @@ pub fn fits(rows: &[ScaleRow]) -> Vec<PowerFit> {
     out
 }
 
-/// The `scale.csv` columns, in order.
-pub const CSV_HEADER: &str = "axis,work,triangles,width,height,pixels,map_size,lights,cascades,\
-frames,map_bytes,frame_wall_ms_median,frame_wall_ms_p95,depth_wall_ms_median,depth_wall_ms_p95,\
-scene_wall_ms_median,scene_wall_ms_p95,depth_gpu_ms_median,scene_gpu_ms_median";
-
-pub fn to_csv(rows: &[ScaleRow]) -> String {
-    let mut out = String::from(CSV_HEADER);
-    out.push('\n');
-    for r in rows {
-        let p = &r.point;
-        let fields = [
-            p.axis.name().to_string(),
-            format!("{}", r.work),
-            r.triangles.to_string(),
-            p.width.to_string(),
-            p.height.to_string(),
-            (p.width as u64 * p.height as u64).to_string(),
-            p.map_size.to_string(),
-            p.lights.to_string(),
-            p.cascades.to_string(),
-            r.frames.to_string(),
-            r.map_bytes.to_string(),
-            format!("{:.4}", r.frame_wall_ms.median),
-            format!("{:.4}", r.frame_wall_ms.p95),
-            format!("{:.4}", r.depth_wall_ms.median),
-            format!("{:.4}", r.depth_wall_ms.p95),
-            format!("{:.4}", r.scene_wall_ms.median),
-            format!("{:.4}", r.scene_wall_ms.p95),
-            format!("{:.4}", r.depth_gpu_ms.median),
-            format!("{:.4}", r.scene_gpu_ms.median),
-        ];
-        out.push_str(&fields.join(","));
-        out.push('\n');
-    }
-    out
+/// One line of `scale.csv`.
+#[derive(Serialize)]
+struct ScaleLine {
+    axis: Axis,
+    work: Shown<f64>,
+    triangles: u64,
+    width: u32,
+    height: u32,
+    pixels: u64,
+    map_size: u32,
+    lights: u32,
+    cascades: u32,
+    frames: u32,
+    map_bytes: u64,
+    frame_wall_ms_median: Fixed<4>,
+    frame_wall_ms_p95: Fixed<4>,
+    depth_wall_ms_median: Fixed<4>,
+    depth_wall_ms_p95: Fixed<4>,
+    scene_wall_ms_median: Fixed<4>,
+    scene_wall_ms_p95: Fixed<4>,
+    depth_gpu_ms_median: Fixed<4>,
+    scene_gpu_ms_median: Fixed<4>,
 }
 
-/// The `scale-fit.csv` columns, in order.
-pub const FIT_CSV_HEADER: &str = "axis,pass,range,exponent,coefficient_ms,r2,points";
+/// `scale.csv`: one line per point.
+pub fn to_csv(rows: &[ScaleRow]) -> String {
+    csv_text(rows.iter().map(|r| {
+        let p = &r.point;
+        ScaleLine {
+            axis: p.axis,
+            work: Shown(r.work),
+            triangles: r.triangles,
+            width: p.width,
+            height: p.height,
+            pixels: u64::from(p.width) * u64::from(p.height),
+            map_size: p.map_size,
+            lights: p.lights,
+            cascades: p.cascades,
+            frames: r.frames,
+            map_bytes: r.map_bytes,
+            frame_wall_ms_median: Fixed(r.frame_wall_ms.median),
+            frame_wall_ms_p95: Fixed(r.frame_wall_ms.p95),
+            depth_wall_ms_median: Fixed(r.depth_wall_ms.median),
+            depth_wall_ms_p95: Fixed(r.depth_wall_ms.p95),
+            scene_wall_ms_median: Fixed(r.scene_wall_ms.median),
+            scene_wall_ms_p95: Fixed(r.scene_wall_ms.p95),
+            depth_gpu_ms_median: Fixed(r.depth_gpu_ms.median),
+            scene_gpu_ms_median: Fixed(r.scene_gpu_ms.median),
+        }
+    }))
+}
 
+/// One line of `scale-fit.csv`.
+#[derive(Serialize)]
+struct FitLine {
+    axis: Axis,
+    pass: &'static str,
+    /// `all` the points, or the `upper-half`.
+    range: &'static str,
+    exponent: Fixed<4>,
+    coefficient_ms: Shown<String>,
+    r2: Fixed<4>,
+    points: usize,
+}
+
+/// `scale-fit.csv`: one line per fit.
 pub fn fits_to_csv(fits: &[PowerFit]) -> String {
-    let mut out = String::from(FIT_CSV_HEADER);
-    out.push('\n');
-    for f in fits {
-        out.push_str(&format!(
-            "{},{},{},{:.4},{:.6e},{:.4},{}\n",
-            f.axis.name(),
-            f.pass.name(),
-            if f.upper { "upper-half" } else { "all" },
-            f.exponent,
-            f.coefficient,
-            f.r2,
-            f.points
-        ));
-    }
-    out
+    csv_text(fits.iter().map(|f| FitLine {
+        axis: f.axis,
+        pass: f.pass.name(),
+        range: if f.upper { "upper-half" } else { "all" },
+        exponent: Fixed(f.exponent),
+        coefficient_ms: Shown(format!("{:.6e}", f.coefficient)),
+        r2: Fixed(f.r2),
+        points: f.points,
+    }))
 }
 
 /// A Markdown table of the exponents: one row per axis, one column per pass; each cell
