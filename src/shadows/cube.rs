@@ -9,6 +9,7 @@ use super::camera::point_camera;
 use super::casters::{
     beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land,
 };
+use super::slots::ShadowTest;
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
 };
@@ -21,17 +22,24 @@ use crate::settings::{PointPass, ShadowSettings};
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowCube0", "shadowCube1", "shadowCube2", "shadowCube3"];
 
-/// Light `i`'s part of the generated snippets: `calcShadowCube`
-/// (shaders/lib/shadow_cube.glsl), its sampler and its `addLightCube` call.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
+/// Light `i`'s part of the generated snippets, its position relative to the fragment in
+/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
+/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let function = match test.pcf_radius {
+        0 => "calcShadowCube",
+        _ => "calcShadowCubeSoft",
+    };
     LightGlsl {
-        snippet: "lib/shadow_cube.glsl",
-        functions: &["calcShadowCube", "addLightCube"],
+        snippets: &["lib/shadow_cube.glsl"],
         sampler_type: "samplerCube",
-        call: format!(
-            "addLightCube_{i}({i}, {p}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
+        test: format!(
+            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
+            SAMPLERS[i],
+            test.bias_glsl(i),
+            test.beyond_far_lit
         ),
+        defines: Vec::new(),
     }
 }
 

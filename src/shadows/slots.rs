@@ -91,42 +91,28 @@ impl ShadowTest {
 }
 
 impl ShadowTest {
-    /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
-    /// How many constants [`ShadowTest::defines`] makes for every light (a moment map's
-    /// add their own after them).
-    pub const DEFINES: usize = 11;
-
-    fn defines(&self) -> Vec<(&'static str, String)> {
-        let bit = |b: bool| u32::from(b).to_string();
-        let mode = match self.bias_mode {
-            BiasMode::None => 0,
-            BiasMode::Constant => 1,
-            BiasMode::Slope => 2,
-        };
-        let mut d = vec![
-            ("PCF_RADIUS", self.pcf_radius.to_string()),
-            ("HW_PCF", bit(self.hardware)),
-            ("BIAS_MODE", mode.to_string()),
-            ("BIAS", glsl_float(f32::from_bits(self.bias_bits))),
-            ("BIAS_MIN", glsl_float(f32::from_bits(self.bias_min_bits))),
-            ("BEYOND_FAR_LIT", bit(self.beyond_far_lit)),
-            (
-                "SHADOW_TEXEL",
-                format!(
-                    "vec2({}, {})",
-                    glsl_float(1.0 / self.map_size.width as f32),
-                    glsl_float(1.0 / self.map_size.height as f32)
-                ),
+    /// The bias argument of light `i`'s test (shaders/lib/bias.glsl): a number, or the
+    /// slope bias of the fragment's normal and `toLight{i}`, the direction to the light.
+    pub fn bias_glsl(&self, i: usize) -> String {
+        let bias = glsl_float(f32::from_bits(self.bias_bits));
+        match self.bias_mode {
+            BiasMode::None => "0.0".into(),
+            BiasMode::Constant => bias,
+            BiasMode::Slope => format!(
+                "slopeBias(f.normal, toLight{i}, {bias}, {})",
+                glsl_float(f32::from_bits(self.bias_min_bits))
             ),
-            ("FILTER_KERNEL", self.kernel.to_string()),
-            ("PCSS_BLOCKER_TAPS", self.pcss_blocker_taps.to_string()),
-            ("PCSS_FILTER_TAPS", self.pcss_filter_taps.to_string()),
-            ("PCSS_PERSPECTIVE", bit(self.pcss_perspective)),
-        ];
-        if let Some(m) = &self.moments {
-            d.extend(m.defines());
         }
-        d
+    }
+
+    /// One texel of the map, `vec2(1 / width, 1 / height)`: a constant the compiler folds,
+    /// not a `textureSize` query per pixel.
+    pub fn texel_glsl(&self) -> String {
+        format!(
+            "vec2({}, {})",
+            glsl_float(1.0 / self.map_size.width as f32),
+            glsl_float(1.0 / self.map_size.height as f32)
+        )
     }
 }
 
@@ -198,78 +184,106 @@ pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
     8 + 4 * mapped + if cascaded { 4 * cascades as usize } else { 0 } + 4 + 6 * slots.len()
 }
 
+/// One light's part of the generated snippets (`shadowmap shaders --light I` prints it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LightPart {
+    /// Its sampler's declaration, when its test reads a map.
+    pub sampler: Option<String>,
+    /// The defines its test needs (a layered light's filter).
+    pub defines: Vec<(&'static str, String)>,
+    /// The library files its test calls into.
+    pub snippets: Vec<&'static str>,
+    /// Its lines in `addLights`.
+    pub lines: Vec<String>,
+}
+
+/// Light `i`'s part, its light-space position (if any) in map slot `p`: its test's
+/// function, chosen by its technique and filter, called with its own settings, and the
+/// light added to the fragment times that test.
+pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> LightPart {
+    let (positional, cone) = (slot.positional, slot.cone);
+    let glsl = slot.test.and_then(|test| match slot.shadow {
+        ShadowKind::None | ShadowKind::Volume => None,
+        ShadowKind::Map => Some(map2d::glsl(i, p, &test)),
+        ShadowKind::Cube => Some(cube::glsl(i, p, &test)),
+        ShadowKind::Cascades => Some(cascades::SNIPPET.glsl(i, &test)),
+        ShadowKind::Groups => Some(groups::SNIPPET.glsl(i, &test)),
+        ShadowKind::Moments => Some(moments::glsl(i, p, &test, &test.moments?)),
+    });
+    let mut part = LightPart::default();
+    if slot.shadow == ShadowKind::Volume {
+        part.lines.push(volumes::call(i, positional, cone));
+        return part;
+    }
+    let (Some(glsl), Some(name)) = (glsl, sampler_name(i, slot.shadow)) else {
+        part.lines
+            .push(format!("addLightUnshadowed({i}, {positional}, {cone}, f);"));
+        return part;
+    };
+    if mask == MaskMode::Read {
+        part.lines.push(format!(
+            "addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);"
+        ));
+        return part;
+    }
+    part.sampler = Some(format!("uniform {} {name};", glsl.sampler_type));
+    part.defines = glsl.defines;
+    if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
+        part.snippets.push("lib/bias.glsl");
+    }
+    part.snippets.extend(glsl.snippets);
+    part.lines = vec![
+        format!("vec3 toLight{i} = toLightOf({i}, {positional});"),
+        format!("float lit{i} = {};", glsl.test),
+        format!("addLight({i}, toLight{i}, {cone}, lit{i}, f);"),
+    ];
+    part
+}
+
+/// Every light's part, in the scene's order.
+pub fn light_parts(slots: &[LightSlot], mask: MaskMode) -> Vec<LightPart> {
+    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
+    slots
+        .iter()
+        .enumerate()
+        .map(|(i, slot)| light_part(i, map_slot[i].unwrap_or(0), slot, mask))
+        .collect()
+}
+
 /// The two generated snippets for these lights: `generated/samplers.glsl` (one sampler
-/// declaration per casting light) and `generated/lights.glsl`: for each casting light its
-/// test's constants as `#define`s and its technique's library snippet, with the snippet's
-/// functions renamed after the light (`calcShadow` becomes `calcShadow_0`); then
-/// `addLights`, one add... call per light in order.
+/// declaration per casting light) and `generated/lights.glsl`: the library files the
+/// lights' tests call, each included once, then `addLights`, each light's lines in order.
 ///
 /// With `mask` = [`MaskMode::Read`] no test is compiled in: each casting light takes its
 /// test from the cached shadow mask (`maskedLit`, read once per fragment in scene.frag).
 pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String); 2] {
+    let parts = light_parts(slots, mask);
     let mut samplers =
         String::from("// Made by src/shadows/slots.rs: one sampler per casting light.\n");
     let mut lights = String::from(
-        "// Made by src/shadows/slots.rs: each casting light's shadow test with its own\n\
-         // constants, then each light's call in the scene's order.\n",
+        "// Made by src/shadows/slots.rs: the library's tests these lights use, then each\n\
+         // light's test, called with its own settings, and its light.\n",
     );
-    let mut calls = String::from("void addLights(inout Fragment f)\n{\n");
-    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
-    for (i, slot) in slots.iter().enumerate() {
-        let p = map_slot[i].unwrap_or(0);
-        let (positional, cone) = (slot.positional, slot.cone);
-        let hardware = slot.test.is_some_and(|t| t.hardware);
-        let glsl = match slot.shadow {
-            ShadowKind::Volume => {
-                calls.push_str(&format!("    {}\n", volumes::call(i, positional, cone)));
-                continue;
-            }
-            ShadowKind::None => None,
-            ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
-            ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
-            ShadowKind::Cascades => Some(cascades::SNIPPET.glsl(i, positional, cone, hardware)),
-            ShadowKind::Groups => Some(groups::SNIPPET.glsl(i, positional, cone, hardware)),
-            ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
-        };
-        let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
-        else {
-            calls.push_str(&format!(
-                "    addLightUnshadowed({i}, {positional}, {cone}, f);\n"
-            ));
-            continue;
-        };
-        if mask == MaskMode::Read {
-            calls.push_str(&format!(
-                "    addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);\n"
-            ));
-            continue;
-        }
-        samplers.push_str(&format!("uniform {} {name};\n", glsl.sampler_type));
-        let defines: Vec<(String, String)> = test
-            .defines()
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .chain(std::iter::once(("LIGHT_INDEX".to_string(), i.to_string())))
-            .chain(
-                std::iter::once("depthBias")
-                    .chain(glsl.functions.iter().copied())
-                    .map(|f| (f.to_string(), format!("{f}_{i}"))),
-            )
-            .collect();
-        lights.push_str(&format!("\n// Light {i}\n"));
-        for (k, v) in &defines {
+    let mut included: Vec<&str> = Vec::new();
+    for part in &parts {
+        for (k, v) in &part.defines {
             lights.push_str(&format!("#define {k} {v}\n"));
         }
-        lights.push_str("#include \"lib/bias.glsl\"\n");
-        lights.push_str(&format!("#include \"{}\"\n", glsl.snippet));
-        for (k, _) in &defines {
-            lights.push_str(&format!("#undef {k}\n"));
+        for &file in &part.snippets {
+            if !included.contains(&file) {
+                lights.push_str(&format!("#include \"{file}\"\n"));
+                included.push(file);
+            }
         }
-        calls.push_str(&format!("    {}\n", glsl.call));
+        samplers.extend(part.sampler.iter().map(|s| format!("{s}\n")));
     }
-    calls.push_str("}\n");
-    lights.push('\n');
-    lights.push_str(&calls);
+    lights.push_str("\nvoid addLights(inout Fragment f)\n{\n");
+    for part in &parts {
+        for line in &part.lines {
+            lights.push_str(&format!("    {line}\n"));
+        }
+    }
+    lights.push_str("}\n");
     [
         ("generated/samplers.glsl", samplers),
         ("generated/lights.glsl", lights),
