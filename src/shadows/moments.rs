@@ -400,7 +400,9 @@ mod tests {
             ..pcf
         };
         assert_eq!(
-            MomentTest::of(&playground).unwrap().call("m", "true, false"),
+            MomentTest::of(&playground)
+                .unwrap()
+                .call("m", "true, false"),
             "calcShadowMsm(m, 0.0009, vec4(0.0, 0.63, 0.0, 0.63), true, false)"
         );
         let evsm4 = ShadowSettings {

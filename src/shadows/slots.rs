@@ -363,52 +363,40 @@ mod tests {
                 "uniform sampler2DArrayShadow cascadeMap3;"
             ]
         );
-        let lights = lines(&lights);
-        let calls = lights
-            .iter()
-            .position(|l| l == "void addLights(inout Fragment f)")
-            .unwrap();
+        // Each library file once, the layered light's filter as defines; then each light's
+        // test, chosen by its technique and filter, called with its own settings.
         assert_eq!(
-            lights[calls..],
+            lines(&lights),
             [
+                "#include \"lib/shadow_2d.glsl\"",
+                "#include \"lib/shadow_cube.glsl\"",
+                "#define LAYER_SAMPLER sampler2DArrayShadow",
+                "#define LAYER_TEXEL vec2(0.0009765625, 0.0009765625)",
+                "#define LAYER_RADIUS 0",
+                "#define LAYER_TAPS 0",
+                "#include \"lib/shadow_cascades.glsl\"",
                 "void addLights(inout Fragment f)",
                 "{",
-                "addLight2D_0(0, 0, shadowMap0, false, false, f);",
+                "vec3 toLight0 = toLightOf(0, false);",
+                "float lit0 = calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
+                 vec2(0.0009765625, 0.0009765625), 1, false);",
+                "addLight(0, toLight0, false, lit0, f);",
                 "addLightUnshadowed(1, true, false, f);",
-                "addLightCube_2(2, 1, shadowCube2, true, false, f);",
-                "addLightCascades_3(3, cascadeMap3, false, false, f);",
+                "vec3 toLight2 = toLightOf(2, true);",
+                "float lit2 = calcShadowCubeSoft(shadowCube2, mlightviewVertexPos[1].xyz, \
+                 lightFar[2], 0.05, false);",
+                "addLight(2, toLight2, false, lit2, f);",
+                "vec3 toLight3 = toLightOf(3, false);",
+                "float lit3 = calcShadowCascades(cascadeMap3, 0.25, f);",
+                "addLight(3, toLight3, false, lit3, f);",
                 "}"
             ]
         );
-        // Light 0's test is the book's, light 3's its own; each snippet's functions are
-        // renamed after its light, and every constant is undone after it.
-        let block = |i: usize| -> Vec<String> {
-            let from = lights
-                .iter()
-                .position(|l| l.starts_with(&format!("#define depthBias depthBias_{i}")))
-                .unwrap();
-            lights[from - ShadowTest::DEFINES - 1..from + 1].to_vec()
-        };
-        assert!(
-            block(0).contains(&"#define BIAS 0.05".to_string()),
-            "{:?}",
-            block(0)
-        );
-        assert!(
-            block(3).contains(&"#define BIAS 0.25".to_string()),
-            "{:?}",
-            block(3)
-        );
-        assert!(
-            block(3).contains(&"#define HW_PCF 1".to_string()),
-            "{:?}",
-            block(3)
-        );
-        assert!(lights.contains(&"#define calcShadow calcShadow_0".to_string()));
-        assert!(lights.contains(&"#define calcShadowCube calcShadowCube_2".to_string()));
-        let defined = lights.iter().filter(|l| l.starts_with("#define")).count();
-        let undone = lights.iter().filter(|l| l.starts_with("#undef")).count();
-        assert_eq!(defined, undone);
+        // Read from the cached mask, no test is compiled in.
+        let [(_, none), (_, masked)] = snippets(&slots, MaskMode::Read);
+        assert!(lines(&none).is_empty(), "{none}");
+        assert!(!masked.contains("#include"), "{masked}");
+        assert!(masked.contains("addLight(0, toLightOf(0, false), false, maskedLit[0], f);"));
         let units: Vec<u32> = (0..MAX_LIGHTS).map(texture_unit).collect();
         assert_eq!(units, [1, 2, 3, 4]);
         assert!(!units.contains(&MATERIAL_UNIT));
@@ -436,35 +424,94 @@ mod tests {
 
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        // Four lights of four kinds, one with cascades, one with a moment map: every
-        // snippet is included but caster groups' (only one light is layered), which a
-        // second set of lights includes.
-        let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
-        let slot = |shadow| LightSlot {
+        // Four lights of four kinds, one with cascades, one with a moment map, the others
+        // with a filter of their own: every snippet is included but caster groups' (only
+        // one light is layered), which a second set of lights includes.
+        use crate::settings::{BiasMode, Filter};
+        let with = |filter| ShadowSettings {
+            filter,
+            ..ShadowSettings::default()
+        };
+        let slot = |shadow, s: ShadowSettings| LightSlot {
             shadow,
             positional: false,
             cone: false,
-            test: Some(test),
+            test: Some(ShadowTest::of(&s)),
+        };
+        let slope = ShadowSettings {
+            bias_mode: BiasMode::Slope,
+            ..with(Filter::Hardware2x2)
         };
         let generated = snippets(
             &[
-                slot(ShadowKind::Map),
-                slot(ShadowKind::Cube),
-                slot(ShadowKind::Cascades),
-                slot(ShadowKind::Moments),
+                slot(ShadowKind::Map, slope),
+                slot(ShadowKind::Cube, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Cascades, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Moments, with(Filter::Vsm)),
             ],
             MaskMode::Off,
         );
-        // Included directly or by another snippet (the soft filters by the 2D test's).
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
-        let groups = snippets(&[slot(ShadowKind::Groups)], MaskMode::Off);
-        let resolved_groups = crate::shaders::scene_frag(&groups).unwrap();
+        let others = snippets(
+            &[
+                slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Map, with(Filter::Pcss)),
+                slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+            ],
+            MaskMode::Off,
+        );
+        let resolved_others = crate::shaders::scene_frag(&others).unwrap();
         for name in crate::shaders::library() {
             let file = format!("shaders/{name}");
             assert!(
-                resolved.files.contains(&file) || resolved_groups.files.contains(&file),
+                resolved.files.contains(&file) || resolved_others.files.contains(&file),
                 "{name} is never included"
             );
         }
+    }
+
+    #[test]
+    fn each_filter_calls_its_own_function() {
+        use crate::settings::Filter;
+        let call = |shadow, filter| {
+            let s = ShadowSettings {
+                filter,
+                ..ShadowSettings::default()
+            };
+            let slot = LightSlot {
+                shadow,
+                positional: false,
+                cone: false,
+                test: Some(ShadowTest::of(&s)),
+            };
+            light_part(0, 0, &slot, MaskMode::Off).lines[1].clone()
+        };
+        use ShadowKind::{Cube, Map, Moments};
+        for (shadow, filter, function) in [
+            (
+                Map,
+                Filter::Single,
+                "calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, ",
+            ),
+            (Map, Filter::Pcf5x5, "calcShadow("),
+            (Map, Filter::Hardware3x3, "calcShadowHardware("),
+            (Map, Filter::Pcf4x4Weighted, "pcf4x4Weighted("),
+            (Map, Filter::SoftPcf, "softPcf("),
+            (Map, Filter::Pcss, "pcss("),
+            (Moments, Filter::Vsm, "calcShadowVsm("),
+            (Moments, Filter::Evsm2, "calcShadowEvsm("),
+            (Moments, Filter::Msm, "calcShadowMsm("),
+            (Cube, Filter::Single, "calcShadowCube("),
+            (Cube, Filter::Pcf3x3, "calcShadowCubeSoft("),
+        ] {
+            let line = call(shadow, filter);
+            assert!(
+                line.starts_with(&format!("float lit0 = {function}")),
+                "{filter:?}: {line}"
+            );
+        }
+        // The grid's radius is the filter's.
+        assert!(call(Map, Filter::Single).ends_with(", 0, false);"));
+        assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false);"));
     }
 }
