@@ -5,7 +5,7 @@
 
 uniform float lightFar[LIGHT_COUNT];  // each point light's far plane
 
-// One lookup (the filters single, hw2x2).
+// One lookup (a filter of radius 0: single, hw2x2).
 float calcShadowCube(samplerCube map, vec3 fragToLight, float farPlane, float bias,
                      bool beyondFarLit)
 {
@@ -17,7 +17,7 @@ float calcShadowCube(samplerCube map, vec3 fragToLight, float farPlane, float bi
     return current - bias > closest ? 0.0 : 1.0;
 }
 
-// LearnOpenGL's soft variant (the PCF filters): 20 lookups on a disk whose radius grows
+// LearnOpenGL's soft variant (pcf3x3, pcf5x5, hw3x3): 20 lookups on a disk whose radius grows
 // with the distance from the viewer.
 float calcShadowCubeSoft(samplerCube map, vec3 fragToLight, float farPlane, float bias,
                          bool beyondFarLit)

@@ -8,8 +8,11 @@
 //! call. Those two lists are the only GLSL made in Rust: two small snippets,
 //! `generated/samplers.glsl` and `generated/lights.glsl`, included by `shaders/scene.frag`
 //! like the library's (so a compile error in them names the generated file and its line).
-//! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
-//! [`super::layers::Snippet::glsl`]).
+//! Each technique chooses the library function its light's filter calls and writes the
+//! call, the light's settings as literal arguments ([`super::map2d::glsl`],
+//! [`super::cube::glsl`], [`super::moments::glsl`], [`super::layers::Snippet::glsl`]); the
+//! compiler inlines it and folds them, so a light's test costs what a hand-written one
+//! would.
 
 use super::moments::MomentTest;
 use super::{cascades, cube, groups, map2d, moments, volumes, ShadowKind};
@@ -30,7 +33,7 @@ pub fn texture_unit(index: usize) -> u32 {
     1 + index as u32
 }
 
-/// The shadow test's constants (shaders/lib/bias.glsl and the technique snippets).
+/// The shadow test's settings, which the generated call passes as arguments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ShadowTest {
     pub pcf_radius: u32,
