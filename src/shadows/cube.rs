@@ -9,10 +9,7 @@ use super::camera::point_camera;
 use super::casters::{
     beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land,
 };
-use super::slots::ShadowTest;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
 use crate::error::Result;
 use crate::scene::{Light, PointLight, Scene};
@@ -21,27 +18,6 @@ use crate::settings::{PointPass, ShadowSettings};
 /// Its sampler in the scene shader, per light.
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowCube0", "shadowCube1", "shadowCube2", "shadowCube3"];
-
-/// Light `i`'s part of the generated snippets, its position relative to the fragment in
-/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
-/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
-pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
-    let function = match test.pcf_radius {
-        0 => "calcShadowCube",
-        _ => "calcShadowCubeSoft",
-    };
-    LightGlsl {
-        snippets: &["lib/shadow_cube.glsl"],
-        sampler_type: "samplerCube",
-        test: format!(
-            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
-            SAMPLERS[i],
-            test.bias_glsl(i),
-            test.beyond_far_lit
-        ),
-        defines: Vec::new(),
-    }
-}
 
 /// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,
 /// with GL's cube-map orientation.

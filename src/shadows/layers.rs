@@ -12,10 +12,7 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::FittedBox;
-use super::slots::ShadowTest;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
@@ -182,34 +179,6 @@ pub struct Snippet {
     pub function: &'static str,
     pub takes_fragment: bool,
     pub samplers: [&'static str; crate::scene::MAX_LIGHTS],
-}
-
-impl Snippet {
-    /// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
-    /// and its filter as the defines of shadow_layers.glsl (one light is layered).
-    pub fn glsl(&self, i: usize, test: &ShadowTest) -> LightGlsl {
-        let sampler_type = match test.hardware {
-            true => "sampler2DArrayShadow",
-            false => "sampler2DArray",
-        };
-        let fragment = if self.takes_fragment { ", f" } else { "" };
-        LightGlsl {
-            snippets: self.files,
-            sampler_type,
-            test: format!(
-                "{}({}, {}{fragment})",
-                self.function,
-                self.samplers[i],
-                test.bias_glsl(i)
-            ),
-            defines: vec![
-                ("LAYER_SAMPLER", sampler_type.to_string()),
-                ("LAYER_TEXEL", test.texel_glsl()),
-                ("LAYER_RADIUS", test.pcf_radius.to_string()),
-                ("LAYER_TAPS", test.kernel.to_string()),
-            ],
-        }
-    }
 }
 
 /// Camera-relative world position to a layer's light clip space (the scene shader's

@@ -14,10 +14,8 @@
 use super::camera::{perspective_view, point_camera, Perspective};
 use super::casters::{casters, depth_state, draw_casters, may_land};
 use super::patch::Patch;
-use super::slots::ShadowTest;
 use super::{
-    fitted, DepthPass, DepthViewKind, LightGlsl, Rays, ShadowKind, ShadowView, SlotTransform,
-    Technique,
+    fitted, DepthPass, DepthViewKind, Rays, ShadowKind, ShadowView, SlotTransform, Technique,
 };
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, Sampling, ShadowMap, Texture};
 use crate::error::{Error, Result};
@@ -27,49 +25,6 @@ use crate::settings::{Fit, LightProjection, ShadowSettings};
 /// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowMap0", "shadowMap1", "shadowMap2", "shadowMap3"];
-
-/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
-/// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
-/// (hardware comparisons, the playground's soft filters, PCSS).
-pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
-    let map = SAMPLERS[i];
-    let head = format!(
-        "{map}, mlightviewVertexPos[{p}], {}, {}",
-        test.bias_glsl(i),
-        test.texel_glsl()
-    );
-    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
-    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
-        _ if test.hardware => (
-            &["lib/hardware_pcf.glsl"],
-            "sampler2DShadow",
-            format!("calcShadowHardware({head}, {r}, {far})"),
-        ),
-        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
-        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
-        3 => (
-            SOFT,
-            "sampler2D",
-            format!(
-                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
-                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
-            ),
-        ),
-        _ => (
-            &["lib/shadow_2d.glsl"],
-            "sampler2D",
-            format!("calcShadow({head}, {r}, {far})"),
-        ),
-    };
-    LightGlsl {
-        snippets,
-        sampler_type,
-        test,
-        defines: Vec::new(),
-    }
-}
-
-const SOFT: &[&str] = &["lib/soft_filters.glsl"];
 
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
 pub struct Map2d {

@@ -17,11 +17,8 @@ use glam::{DVec2, DVec3};
 
 use super::casters::{depth_state, may_land};
 use super::fitted;
-use super::map2d::{camera, draw_map_casters, SAMPLERS};
-use super::slots::ShadowTest;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::map2d::{camera, draw_map_casters};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
 };
@@ -29,24 +26,6 @@ use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
 use crate::shaders;
-
-/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
-/// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
-/// `sampler2D` (the moments are filtered, not compared).
-pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
-    let head = format!(
-        "{}, mlightviewVertexPos[{p}], {}",
-        SAMPLERS[i],
-        test.bias_glsl(i)
-    );
-    let tail = format!("{}, {}", moments.border_lit, test.beyond_far_lit);
-    LightGlsl {
-        snippets: &["lib/shadow_moments.glsl"],
-        sampler_type: "sampler2D",
-        test: moments.call(&head, &tail),
-        defines: Vec::new(),
-    }
-}
 
 /// The shader's number for a moment filter (`MOMENT_MODE`); 0 for a depth filter.
 pub fn mode(filter: Filter) -> u32 {

@@ -9,13 +9,13 @@
 //! `generated/samplers.glsl` and `generated/lights.glsl`, included by `shaders/scene.frag`
 //! like the library's (so a compile error in them names the generated file and its line).
 //! Each technique chooses the library function its light's filter calls and writes the
-//! call, the light's settings as literal arguments ([`super::map2d::glsl`],
-//! [`super::cube::glsl`], [`super::moments::glsl`], [`super::layers::Snippet::glsl`]); the
+//! call, the light's settings as literal arguments ([`map2d_glsl`],
+//! [`cube_glsl`], [`moments_glsl`], [`layered_glsl`]); the
 //! compiler inlines it and folds them, so a light's test costs what a hand-written one
 //! would.
 
 use super::moments::MomentTest;
-use super::{cascades, cube, groups, map2d, moments, volumes, ShadowKind};
+use super::{cascades, cube, groups, layers, map2d, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
@@ -207,11 +207,11 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     let (positional, cone) = (slot.positional, slot.cone);
     let glsl = slot.test.and_then(|test| match slot.shadow {
         ShadowKind::None | ShadowKind::Volume => None,
-        ShadowKind::Map => Some(map2d::glsl(i, p, &test)),
-        ShadowKind::Cube => Some(cube::glsl(i, p, &test)),
-        ShadowKind::Cascades => Some(cascades::SNIPPET.glsl(i, &test)),
-        ShadowKind::Groups => Some(groups::SNIPPET.glsl(i, &test)),
-        ShadowKind::Moments => Some(moments::glsl(i, p, &test, &test.moments?)),
+        ShadowKind::Map => Some(map2d_glsl(i, p, &test)),
+        ShadowKind::Cube => Some(cube_glsl(i, p, &test)),
+        ShadowKind::Cascades => Some(layered_glsl(&cascades::SNIPPET, i, &test)),
+        ShadowKind::Groups => Some(layered_glsl(&groups::SNIPPET, i, &test)),
+        ShadowKind::Moments => Some(moments_glsl(i, p, &test, &test.moments?)),
     });
     let mut part = LightPart::default();
     if slot.shadow == ShadowKind::Volume {
@@ -291,6 +291,114 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
         ("generated/samplers.glsl", samplers),
         ("generated/lights.glsl", lights),
     ]
+}
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
+/// (hardware comparisons, the playground's soft filters, PCSS).
+pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let map = map2d::SAMPLERS[i];
+    let head = format!(
+        "{map}, mlightviewVertexPos[{p}], {}, {}",
+        test.bias_glsl(i),
+        test.texel_glsl()
+    );
+    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
+    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
+        _ if test.hardware => (
+            &["lib/hardware_pcf.glsl"],
+            "sampler2DShadow",
+            format!("calcShadowHardware({head}, {r}, {far})"),
+        ),
+        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
+        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
+        3 => (
+            SOFT,
+            "sampler2D",
+            format!(
+                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
+                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
+            ),
+        ),
+        _ => (
+            &["lib/shadow_2d.glsl"],
+            "sampler2D",
+            format!("calcShadow({head}, {r}, {far})"),
+        ),
+    };
+    LightGlsl {
+        snippets,
+        sampler_type,
+        test,
+        defines: Vec::new(),
+    }
+}
+
+const SOFT: &[&str] = &["lib/soft_filters.glsl"];
+
+/// Light `i`'s part of the generated snippets, its position relative to the fragment in
+/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
+/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
+pub fn cube_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let function = match test.pcf_radius {
+        0 => "calcShadowCube",
+        _ => "calcShadowCubeSoft",
+    };
+    LightGlsl {
+        snippets: &["lib/shadow_cube.glsl"],
+        sampler_type: "samplerCube",
+        test: format!(
+            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
+            cube::SAMPLERS[i],
+            test.bias_glsl(i),
+            test.beyond_far_lit
+        ),
+        defines: Vec::new(),
+    }
+}
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
+/// `sampler2D` (the moments are filtered, not compared).
+pub fn moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
+    let head = format!(
+        "{}, mlightviewVertexPos[{p}], {}",
+        map2d::SAMPLERS[i],
+        test.bias_glsl(i)
+    );
+    let tail = format!("{}, {}", moments.border_lit, test.beyond_far_lit);
+    LightGlsl {
+        snippets: &["lib/shadow_moments.glsl"],
+        sampler_type: "sampler2D",
+        test: moments.call(&head, &tail),
+        defines: Vec::new(),
+    }
+}
+
+/// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
+/// and its filter as the defines of shadow_layers.glsl (one light is layered).
+pub fn layered_glsl(snippet: &layers::Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
+    let sampler_type = match test.hardware {
+        true => "sampler2DArrayShadow",
+        false => "sampler2DArray",
+    };
+    let fragment = if snippet.takes_fragment { ", f" } else { "" };
+    LightGlsl {
+        snippets: snippet.files,
+        sampler_type,
+        test: format!(
+            "{}({}, {}{fragment})",
+            snippet.function,
+            snippet.samplers[i],
+            test.bias_glsl(i)
+        ),
+        defines: vec![
+            ("LAYER_SAMPLER", sampler_type.to_string()),
+            ("LAYER_TEXEL", test.texel_glsl()),
+            ("LAYER_RADIUS", test.pcf_radius.to_string()),
+            ("LAYER_TAPS", test.kernel.to_string()),
+        ],
+    }
 }
 
 #[cfg(test)]
