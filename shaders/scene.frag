@@ -1,25 +1,17 @@
 #version 330 core
-// Scene pass fragment shader ("Shadows": scene_fragment.fs), for one to four lights.
-// Each light adds its diffuse and specular light times its own shadow test; the tests live
-// in shaders/lib/, one snippet per technique:
-//   lib/shadow_2d.glsl        calcShadow: the chapter's test with one 2D map
-//   lib/shadow_cube.glsl      a point light's cube map
-//   lib/shadow_cascades.glsl  a cascaded directional light
-//   lib/bias.glsl             the bias and the comparison they share
-// `#include` is resolved by src/shaders.rs, which keeps each file's own line numbers in
-// compile errors. Two snippets are generated for the scene's lights (src/shadows/slots.rs,
-// because GLSL 3.30 cannot index an array of samplers with a loop index, and each light
-// may have settings of its own): the samplers' declarations, and for each casting light its
-// test's constants and its technique's snippet (functions renamed after the light:
-// calcShadow_0), then `addLights`, one add... call per light.
+// Scene pass fragment shader ("Shadows": scene_fragment.fs), for one to four lights: each
+// adds its diffuse and specular light times its own shadow test, 1 = lit. The tests are in
+// shaders/lib/ (shadow_2d.glsl: the chapter's calcShadow). `#include` is resolved by
+// src/shaders.rs. src/shadows/slots.rs writes the two generated snippets (GLSL 3.30
+// cannot index an array of samplers with a loop index): the lights' samplers, and
+// `addLights`, which calls each light's test with that light's settings as arguments.
+// `shadowmap shaders --scene S` prints the whole program as it is compiled.
 //
-// Defines (made in one place, src/shadows/program.rs, from a typed key; each exists only
-// when a light uses it): the lighting's (BLINN, SPECULAR_POWER), the lights' layout
-// (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; USES_CASCADES, CASCADES, CASCADE_BLEND,
-// SHOW_CASCADES for a cascaded light; MULTIPASS when a light has shadow volumes), the
-// cached shadow mask's (SHADOW_MASK_WRITE, SHADOW_MASK_READ) and the target's outputs
-// (OUTPUT_VISIBILITY, OUTPUT_GBUFFER). The shadow tests' constants are each light's, in the
-// generated snippet.
+// Defines (src/shadows/program.rs, each only when a light uses it): the lighting's (BLINN,
+// SPECULAR_POWER), the lights' layout (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; CASCADES
+// and more for a layered light; MULTIPASS with shadow volumes), the cached shadow mask's
+// (SHADOW_MASK_WRITE, SHADOW_MASK_READ) and the target's outputs (OUTPUT_VISIBILITY,
+// OUTPUT_GBUFFER).
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -37,10 +29,6 @@ flat in vec3 lightVector[LIGHT_COUNT];   // view space: light i's position, or i
 // the material's, its position or direction as lightVector. View space.
 uniform float lightConeCos[LIGHT_COUNT];   // cos of a spot's half angle
 uniform vec3 lightConeAxis[LIGHT_COUNT];   // the way the spot points
-uniform float lightFar[LIGHT_COUNT];       // a point light's far plane (its cube stores d / far)
-// PCSS (lib/soft_filters.glsl): a light's size in its map's units per distance, and its
-// near and far planes: (S.x, S.y, near, far).
-uniform vec4 lightPenumbra[LIGHT_COUNT];
 
 uniform sampler2D textureSampler;  // unit 0; shadow maps on units 1, 2, ... (one per light)
 #ifdef MULTIPASS
@@ -60,8 +48,6 @@ vec4 maskedLit;
 #include "lib/lighting.glsl"
 #include "lib/outputs.glsl"
 #include "generated/samplers.glsl"
-// Each casting light's test (lib/bias.glsl and its technique's snippet, with the light's
-// own constants), then addLights.
 #include "generated/lights.glsl"
 
 void main()

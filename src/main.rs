@@ -16,6 +16,7 @@ fn main() -> ExitCode {
         Some(app::cli::Command::Bench(args)) => app::bench::run(&args),
         Some(app::cli::Command::Steps(args)) => app::gallery::run(&args),
         Some(app::cli::Command::Soak(args)) => app::soak::run(&args),
+        Some(app::cli::Command::Shaders(args)) => app::shaders::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -136,7 +136,8 @@ impl Filter {
         }
     }
 
-    /// The shader's `FILTER_KERNEL`: 0 = the grid of [`Filter::radius`], 1 = the
+    /// The shader's kernel (which function a 2D map's test calls, `LAYER_TAPS` for a layered
+    /// light): 0 = the grid of [`Filter::radius`], 1 = the
     /// playground's weighted 4 x 4, 2 = its soft PCF, 3 = PCSS.
     pub fn kernel(self) -> u32 {
         match self {

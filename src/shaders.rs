@@ -56,6 +56,10 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/shadow_2d.glsl"),
     ),
     (
+        "lib/hardware_pcf.glsl",
+        include_str!("../shaders/lib/hardware_pcf.glsl"),
+    ),
+    (
         "lib/soft_filters.glsl",
         include_str!("../shaders/lib/soft_filters.glsl"),
     ),
@@ -88,6 +92,15 @@ const LIBRARY: &[(&str, &str)] = &[
 /// The names of the library's snippets.
 pub fn library() -> impl Iterator<Item = &'static str> {
     LIBRARY.iter().map(|(name, _)| *name)
+}
+
+/// A library snippet's text, with the snippets it includes resolved.
+pub fn snippet(name: &str) -> Result<ShaderSource> {
+    let (_, text) = LIBRARY
+        .iter()
+        .find(|(f, _)| *f == name)
+        .ok_or_else(|| Error::Invalid(format!("no library snippet {name}")))?;
+    resolve(&format!("shaders/{name}"), text, &[])
 }
 
 /// The scene pass' fragment shader with its snippets included; `generated` are the

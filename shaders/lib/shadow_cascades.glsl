@@ -1,9 +1,8 @@
 // Cascaded shadow maps (past the chapters; LearnOpenGL's "Shadow Mapping" ends pointing at
 // them): one directional light's map split into CASCADES layers of a depth array, each
-// covering a slice of the view. Compiled with the defines of bias.glsl and:
-//   CASCADES       layers (2 to 4)
-//   CASCADE_BLEND  the last fraction of each cascade that fades into the next
-// and those of shadow_layers.glsl (a layer's test, which it includes).
+// covering a slice of the view. Compiled with CASCADE_BLEND (the last fraction of each
+// cascade that fades into the next) and the defines of shadow_layers.glsl (a layer's test,
+// which it includes).
 
 #include "lib/shadow_layers.glsl"
 
@@ -13,8 +12,7 @@ uniform float cascadeSplit[CASCADES + 1];  // view depths: cascade c serves [c, 
 // into the next one, so the seam does not show. Past the last split (the shadow distance)
 // everything is lit. Indices that vary per pixel go into local arrays and inputs
 // (selects), never into uniform arrays (a gather per pixel on llvmpipe).
-float calcShadowCascades(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir,
-                         inout Fragment f)
+float calcShadowCascades(LAYER_SAMPLER map, float bias, inout Fragment f)
 {
     float depth = -mvVertexPos.z;
     float splits[CASCADES + 1];
@@ -29,24 +27,16 @@ float calcShadowCascades(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir,
         c += depth >= splits[k] ? 1 : 0;
     }
     f.cascade = c;
-    float lit = layerLookup(map, c, normal, toLightDir);
+    float lit = layerLookup(map, c, bias);
     if (CASCADE_BLEND > 0.0 && c + 1 < CASCADES) {
         float end = splits[c + 1];
         float start = end - CASCADE_BLEND * (end - splits[c]);
         if (depth > start) {
-            float next = layerLookup(map, c + 1, normal, toLightDir);
+            float next = layerLookup(map, c + 1, bias);
             lit = mix(lit, next, (depth - start) / (end - start));
         }
     }
     return lit;
-}
-
-// The cascaded light i.
-void addLightCascades(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool cone,
-                      inout Fragment f)
-{
-    vec3 toLight = toLightOf(i, positional);
-    addLight(i, toLight, cone, calcShadowCascades(map, f.normal, toLight, f), f);
 }
 
 // SHOW_CASCADES: tint each cascade's part of the frame.

@@ -1,24 +1,31 @@
 // A point light's omnidirectional test (LearnOpenGL's "Point Shadows": ShadowCalculation
 // with a cube map). The cube stores each direction's nearest distance over the far plane,
-// so distances (and the bias) are world units. Compiled with the defines of bias.glsl and
-// PCF_RADIUS (0 = one lookup; more = the soft variant: 20 samples on a disk whose radius
-// grows with the distance from the viewer) and BEYOND_FAR_LIT.
+// so distances (and the bias) are world units. `fragToLight` is the fragment relative to
+// the light; `farPlane` the light's (lightFar[i]); 1 = lit.
 
-// 1 = lit; `fragToLight` is the fragment relative to the light.
-float calcShadowCube(samplerCube map, vec3 fragToLight, float farPlane, vec3 normal,
-                     vec3 toLightDir)
+uniform float lightFar[LIGHT_COUNT];  // each point light's far plane
+
+// One lookup (a filter of radius 0: single, hw2x2).
+float calcShadowCube(samplerCube map, vec3 fragToLight, float farPlane, float bias,
+                     bool beyondFarLit)
 {
     float current = length(fragToLight);
-#if BEYOND_FAR_LIT
-    if (current > farPlane) {
+    if (beyondFarLit && current > farPlane) {
         return 1.0;
     }
-#endif
-    float b = depthBias(normal, toLightDir);
-#if PCF_RADIUS == 0
     float closest = texture(map, fragToLight).r * farPlane;
-    return current - b > closest ? 0.0 : 1.0;
-#else
+    return current - bias > closest ? 0.0 : 1.0;
+}
+
+// LearnOpenGL's soft variant (pcf3x3, pcf5x5, hw3x3): 20 lookups on a disk whose radius grows
+// with the distance from the viewer.
+float calcShadowCubeSoft(samplerCube map, vec3 fragToLight, float farPlane, float bias,
+                         bool beyondFarLit)
+{
+    float current = length(fragToLight);
+    if (beyondFarLit && current > farPlane) {
+        return 1.0;
+    }
     const vec3 offsets[20] = vec3[](
         vec3(1, 1, 1), vec3(1, -1, 1), vec3(-1, -1, 1), vec3(-1, 1, 1),
         vec3(1, 1, -1), vec3(1, -1, -1), vec3(-1, -1, -1), vec3(-1, 1, -1),
@@ -29,16 +36,7 @@ float calcShadowCube(samplerCube map, vec3 fragToLight, float farPlane, vec3 nor
     float shadowed = 0.0;
     for (int i = 0; i < 20; ++i) {
         float closest = texture(map, fragToLight + offsets[i] * radius).r * farPlane;
-        shadowed += current - b > closest ? 1.0 : 0.0;
+        shadowed += current - bias > closest ? 1.0 : 0.0;
     }
     return 1.0 - shadowed / 20.0;
-#endif
-}
-
-// A point light: light i, its position relative to the fragment in slot p.
-void addLightCube(int i, int p, samplerCube map, bool positional, bool cone, inout Fragment f)
-{
-    vec3 toLight = toLightOf(i, positional);
-    float lit = calcShadowCube(map, mlightviewVertexPos[p].xyz, lightFar[i], f.normal, toLight);
-    addLight(i, toLight, cone, lit, f);
 }

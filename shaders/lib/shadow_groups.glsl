@@ -7,19 +7,11 @@
 // Every layer is read and the darkest wins: a caster is drawn only in its group's layer,
 // whose box covers every receiver it can shadow, and reads lit in the others (outside
 // their boxes, or where they hold none of its depths).
-float calcShadowGroups(SHADOW_SAMPLER_ARRAY map, vec3 normal, vec3 toLightDir)
+float calcShadowGroups(LAYER_SAMPLER map, float bias)
 {
     float lit = 1.0;
     for (int c = 0; c < CASCADES; ++c) {
-        lit = min(lit, layerLookup(map, c, normal, toLightDir));
+        lit = min(lit, layerLookup(map, c, bias));
     }
     return lit;
-}
-
-// The light i with caster groups.
-void addLightGroups(int i, SHADOW_SAMPLER_ARRAY map, bool positional, bool cone,
-                    inout Fragment f)
-{
-    vec3 toLight = toLightOf(i, positional);
-    addLight(i, toLight, cone, calcShadowGroups(map, f.normal, toLight), f);
 }

@@ -1,45 +1,58 @@
 // One layer of a layered directional light's depth array (src/shadows/layers.rs): the
 // test shared by cascades (shadow_cascades.glsl: a layer per slice of the view) and caster
-// groups (shadow_groups.glsl: a layer per group of casters), which include it. Compiled
-// with the defines of bias.glsl and:
+// groups (shadow_groups.glsl: a layer per group of casters), which include it. A scene has
+// one layered light, so its filter is the program's (src/shadows/slots.rs defines it):
 //   CASCADES       layers (2 to 4)
-//   SHADOW_TEXEL, PCF_RADIUS, FILTER_KERNEL as for the 2D test (PCSS is refused for
-//                  layers: src/settings.rs, Filter::refused_for)
+//   LAYER_SAMPLER  sampler2DArrayShadow for the hardware filters, else sampler2DArray
+//   LAYER_TEXEL    one texel of a layer, vec2(1 / width, 1 / height)
+//   LAYER_RADIUS   the PCF grid's half size, as calcShadow's radius
+//   LAYER_TAPS     0 = that grid, 1 = the playground's weighted 4 x 4, 2 = its soft PCF
+// (PCSS is refused for layers: src/settings.rs, Filter::refused_for.)
 
 // The layered light's position in each layer's clip space (scene.vert: one light is
 // layered, so they fit among the vertex outputs).
 in vec4 cascadePos[CASCADES];
 
-#define KERNEL_MAP SHADOW_SAMPLER_ARRAY map, float layer
-#define KERNEL_DEPTH(uv) texture(map, vec3(uv, layer)).r
-#include "lib/soft_filters.glsl"
-#undef KERNEL_MAP
-#undef KERNEL_DEPTH
-
-// The PCF grid of calcShadow (or the playground's soft taps), in one layer of the array.
-float pcfArray(SHADOW_SAMPLER_ARRAY map, vec2 uv, float layer, float current)
+// One comparison in a layer: 1 = lit. Through a shadow sampler the hardware compares the
+// 4 nearest texels and blends the results.
+float compareLayer(sampler2DArray map, vec2 uv, float layer, float current)
 {
-#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
-    return softTaps(map, layer, uv, current);
-#else
-    vec2 inc = SHADOW_TEXEL;
-    float lit = 0.0;
-    for (int row = -PCF_RADIUS; row <= PCF_RADIUS; ++row) {
-        for (int col = -PCF_RADIUS; col <= PCF_RADIUS; ++col) {
-            lit += LIT_ARRAY(map, uv + vec2(row, col) * inc, layer, current);
-        }
-    }
-    return lit / PCF_TAPS;
-#endif
+    return step(current, texture(map, vec3(uv, layer)).r);
+}
+
+float compareLayer(sampler2DArrayShadow map, vec2 uv, float layer, float current)
+{
+    return texture(map, vec4(uv, layer, current));
 }
 
 // The test in layer `c` (the position already pushed along the normal by the layer's own
 // texel size, in scene.vert). A layer's box covers exactly what it must: beyond its far
 // plane is lit, as outside it (the border).
-float layerLookup(SHADOW_SAMPLER_ARRAY map, int c, vec3 normal, vec3 toLightDir)
+float layerLookup(LAYER_SAMPLER map, int c, float bias)
 {
     vec3 projCoords = cascadePos[c].xyz * 0.5 + 0.5;
-    float lit = pcfArray(map, projCoords.xy, float(c),
-                         projCoords.z - depthBias(normal, toLightDir));
+    vec2 uv = projCoords.xy;
+    float layer = float(c);
+    float current = projCoords.z - bias;
+    float lit = 0.0;
+#if LAYER_TAPS == 0
+    for (int row = -LAYER_RADIUS; row <= LAYER_RADIUS; ++row) {
+        for (int col = -LAYER_RADIUS; col <= LAYER_RADIUS; ++col) {
+            lit += compareLayer(map, uv + vec2(row, col) * LAYER_TEXEL, layer, current);
+        }
+    }
+    lit /= float((2 * LAYER_RADIUS + 1) * (2 * LAYER_RADIUS + 1));
+#else
+    // The playground's taps (soft_filters.glsl), in the layer.
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 4; ++col) {
+            vec2 offset = vec2(col, row) - 1.5;
+            float weight = abs(offset.x) < 1.0 && abs(offset.y) < 1.0 ? 0.6 / 4.0 : 0.4 / 12.0;
+            float diff = texture(map, vec3(uv + offset * LAYER_TEXEL, layer)).r - current;
+            lit += LAYER_TAPS == 2 ? weight / (1.0 + exp(-1000.0 * diff))
+                                   : weight * step(0.0, diff);
+        }
+    }
+#endif
     return projCoords.z > 1.0 ? 1.0 : lit;
 }

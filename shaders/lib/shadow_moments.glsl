@@ -1,13 +1,10 @@
 // The test of a light with a filterable map (src/shadows/moments.rs): one filtered lookup
-// of the blurred moments, then a visibility reconstructed from them. Compiled with the
-// defines of bias.glsl and:
-//   MOMENT_MODE      1 = VSM, 2 = EVSM (2 components), 3 = EVSM (4), 4 = MSM
-//   MIN_VARIANCE     the least variance Chebyshev's bound assumes (VSM; EVSM scales it)
-//   BLEED_REDUCTION  bounds below it read as shadow, the rest stretch to [0, 1] (VSM, EVSM)
-//   EVSM_POS, EVSM_NEG  EVSM's exponents (clamped)
-//   MSM_BIAS, MSM_TOWARD  MSM's moment bias: alpha and the vec4 it pulls toward
-//   BORDER_LIT       1 = lookups outside the map are lit (a fitted box's border)
-//   BEYOND_FAR_LIT   as in shadow_2d.glsl
+// of the blurred moments, then a visibility reconstructed from them: one function per
+// filter (VSM, EVSM, MSM), each with the light's own constants as arguments:
+//   minVariance     the least variance Chebyshev's bound assumes (VSM; EVSM scales it)
+//   bleedReduction  bounds below it read as shadow, the rest stretch to [0, 1] (VSM, EVSM)
+//   borderLit       lookups outside the map are lit (a fitted box's border)
+//   position, bias, beyondFarLit  as calcShadow's (shadow_2d.glsl)
 
 // Chebyshev's one-sided inequality: an upper bound on the lit fraction of a texel whose
 // depths have mean m.x and second moment m.y, for a receiver at t (VSM, Donnelly and
@@ -22,18 +19,19 @@ float chebyshevUpperBound(vec2 m, float t, float minVariance)
 
 // Light-bleeding reduction: the tail of the bound (where a second occluder's variance
 // lights what the first one shadows) is cut off and the rest rescaled.
-float reduceLightBleeding(float p)
+float reduceLightBleeding(float p, float amount)
 {
-    return clamp((p - BLEED_REDUCTION) / (1.0 - BLEED_REDUCTION), 0.0, 1.0);
+    return clamp((p - amount) / (1.0 - amount), 0.0, 1.0);
 }
 
 // Hamburger 4MSM (Peters and Klein 2015): of all depth distributions with these four
 // moments, the one that shadows the receiver at zf most has its weight on three depths,
 // zf and the two roots of a quadratic whose coefficients c solve B c = (1, zf, zf^2) for
 // the moments' Hankel matrix B. The lit fraction follows from where zf lies among them.
-float momentVisibility(vec4 moments, float zf)
+// The moments are first pulled by `alpha` toward `toward` (the moment bias).
+float momentVisibility(vec4 moments, float zf, float alpha, vec4 toward)
 {
-    vec4 b = mix(moments, MSM_TOWARD, MSM_BIAS);
+    vec4 b = mix(moments, toward, alpha);
     // B = L D L^T with L unit lower triangular; D = (1, d22, d33).
     float d22 = b.y - b.x * b.x;
     float l32 = (b.z - b.x * b.y) / d22;
@@ -57,48 +55,58 @@ float momentVisibility(vec4 moments, float zf)
     return clamp(lit, 0.0, 1.0);
 }
 
-// 1 = lit, 0 = in shadow, like calcShadow; `position` is the fragment in the light's clip
-// space.
-float calcShadowMoments(sampler2D momentMap, vec4 position, vec3 normal, vec3 toLightDir)
+// Lookups outside the map (with borderLit) and past its far plane (with beyondFarLit) are
+// lit; the others keep `lit`.
+float outsideLit(vec3 projCoords, float lit, bool borderLit, bool beyondFarLit)
 {
-    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
-    float z = projCoords.z - depthBias(normal, toLightDir);
-    vec4 m = texture(momentMap, projCoords.xy);
-#if MOMENT_MODE == 1
-    float lit = reduceLightBleeding(chebyshevUpperBound(m.xy, z, MIN_VARIANCE));
-#elif MOMENT_MODE == 4
-    float lit = momentVisibility(m, z);
-#else
-    // The receiver warped as the map's depths were; the least variance scales with the
-    // warp's slope there.
-    float w = 2.0 * clamp(z, 0.0, 1.0) - 1.0;
-    float pos = exp(EVSM_POS * w);
-    float slopePos = EVSM_POS * pos;
-    float lit = chebyshevUpperBound(m.xy, pos, MIN_VARIANCE * slopePos * slopePos);
-#if MOMENT_MODE == 3
-    float neg = -exp(-EVSM_NEG * w);
-    float slopeNeg = EVSM_NEG * neg;
-    lit = min(lit, chebyshevUpperBound(m.zw, neg, MIN_VARIANCE * slopeNeg * slopeNeg));
-#endif
-    lit = reduceLightBleeding(lit);
-#endif
-#if BORDER_LIT
     bool outside = any(lessThan(projCoords.xy, vec2(0.0))) ||
                    any(greaterThan(projCoords.xy, vec2(1.0)));
-    lit = outside ? 1.0 : lit;
-#endif
-#if BEYOND_FAR_LIT
-    lit = projCoords.z > 1.0 ? 1.0 : lit;
-#endif
-    return lit;
+    lit = borderLit && outside ? 1.0 : lit;
+    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit;
 }
 
-// A light with a filterable 2D map (directional or spot): light i, its light-space
-// position in slot p.
-void addLightMoments(int i, int p, sampler2D momentMap, bool positional, bool cone,
-                     inout Fragment f)
+// Variance shadow maps: Chebyshev's bound on the mean and second moment of the depths.
+float calcShadowVsm(sampler2D momentMap, vec4 position, float bias, float minVariance,
+                    float bleedReduction, bool borderLit, bool beyondFarLit)
 {
-    vec3 toLight = toLightOf(i, positional);
-    addLight(i, toLight, cone,
-             calcShadowMoments(momentMap, mlightviewVertexPos[p], f.normal, toLight), f);
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float z = projCoords.z - bias;
+    vec4 m = texture(momentMap, projCoords.xy);
+    float lit = reduceLightBleeding(chebyshevUpperBound(m.xy, z, minVariance), bleedReduction);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
+}
+
+// Exponential variance shadow maps: the bound on depths warped by exp(exponents.x w), and
+// with `negative` (the 4-component map) also by -exp(-exponents.y w), the lesser of the two.
+// The receiver is warped as the map's depths were; the least variance scales with the
+// warp's slope there.
+float calcShadowEvsm(sampler2D momentMap, vec4 position, float bias, float minVariance,
+                     float bleedReduction, vec2 exponents, bool negative, bool borderLit,
+                     bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float z = projCoords.z - bias;
+    vec4 m = texture(momentMap, projCoords.xy);
+    float w = 2.0 * clamp(z, 0.0, 1.0) - 1.0;
+    float pos = exp(exponents.x * w);
+    float slopePos = exponents.x * pos;
+    float lit = chebyshevUpperBound(m.xy, pos, minVariance * slopePos * slopePos);
+    if (negative) {
+        float neg = -exp(-exponents.y * w);
+        float slopeNeg = exponents.y * neg;
+        lit = min(lit, chebyshevUpperBound(m.zw, neg, minVariance * slopeNeg * slopeNeg));
+    }
+    lit = reduceLightBleeding(lit, bleedReduction);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
+}
+
+// Moment shadow maps: momentVisibility, its moment bias `alpha` toward `toward`.
+float calcShadowMsm(sampler2D momentMap, vec4 position, float bias, float alpha, vec4 toward,
+                    bool borderLit, bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float z = projCoords.z - bias;
+    vec4 m = texture(momentMap, projCoords.xy);
+    float lit = momentVisibility(m, z, alpha, toward);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }

@@ -1,38 +1,49 @@
-// The soft filters of a 2D texel grid (past the chapters: the shadow-playground's PCF demos,
-// and percentage-closer soft shadows). Compiled with the defines of bias.glsl and:
-//   FILTER_KERNEL      1 = the playground's weighted 4 x 4 PCF, 2 = its soft PCF, 3 = PCSS
-//   SHADOW_TEXEL       one texel of the map
-//   PCSS_BLOCKER_TAPS, PCSS_FILTER_TAPS, PCSS_PERSPECTIVE, LIGHT_INDEX   (PCSS)
-// The includer says how its map is read: KERNEL_MAP (the parameters naming the map, e.g. a
-// 2D map, or an array and a layer), KERNEL_DEPTH(uv) (the depth stored at uv).
+// The soft filters of a 2D map (past the chapters: the shadow-playground's PCF demos, and
+// percentage-closer soft shadows). Each is a whole test like calcShadow (shadow_2d.glsl),
+// with its arguments (position, bias, texel, beyondFarLit), and returns 1 = lit.
 
-#if FILTER_KERNEL == 1 || FILTER_KERNEL == 2
-// The playground's 16 taps, +-0.5 and +-1.5 texels from the lookup: the inner 2 x 2 weigh
-// 0.6 in all, the outer 12 weigh 0.4. The weighted 4 x 4 counts a tap lit when the stored
-// depth is at least the fragment's (the bias is the playground's epsilon); the soft PCF
-// passes the difference through a steep sigmoid instead, 1 / (1 + exp(-1000 diff)).
-float softTaps(KERNEL_MAP, vec2 uv, float current)
+// The playground's 16 taps sit +-0.5 and +-1.5 texels from the lookup: the inner 2 x 2
+// weigh 0.6 in all, the outer 12 weigh 0.4.
+float playgroundWeight(vec2 offset)
 {
+    return abs(offset.x) < 1.0 && abs(offset.y) < 1.0 ? 0.6 / 4.0 : 0.4 / 12.0;
+}
+
+// The playground's weighted 4 x 4 PCF: a tap is lit when the stored depth is at least the
+// fragment's (the bias is the playground's epsilon).
+float pcf4x4Weighted(sampler2D shadowMap, vec4 position, float bias, vec2 texel,
+                     bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float currentDepth = projCoords.z - bias;
     float lit = 0.0;
     for (int row = 0; row < 4; ++row) {
         for (int col = 0; col < 4; ++col) {
             vec2 offset = vec2(col, row) - 1.5;
-            float weight = abs(offset.x) < 1.0 && abs(offset.y) < 1.0 ? 0.6 / 4.0 : 0.4 / 12.0;
-            float diff = KERNEL_DEPTH(uv + offset * SHADOW_TEXEL) - current;
-#if FILTER_KERNEL == 2
-            lit += weight / (1.0 + exp(-1000.0 * diff));
-#else
-            lit += weight * step(0.0, diff);
-#endif
+            float diff = texture(shadowMap, projCoords.xy + offset * texel).r - currentDepth;
+            lit += playgroundWeight(offset) * step(0.0, diff);
         }
     }
-    return lit;
+    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit;
 }
-#endif
 
-#if FILTER_KERNEL == 3
-#ifndef PCSS_DISK_DEFINED
-#define PCSS_DISK_DEFINED
+// The playground's soft PCF: the same taps, each depth difference passed through a steep
+// sigmoid, 1 / (1 + exp(-1000 diff)), rather than a step.
+float softPcf(sampler2D shadowMap, vec4 position, float bias, vec2 texel, bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float currentDepth = projCoords.z - bias;
+    float lit = 0.0;
+    for (int row = 0; row < 4; ++row) {
+        for (int col = 0; col < 4; ++col) {
+            vec2 offset = vec2(col, row) - 1.5;
+            float diff = texture(shadowMap, projCoords.xy + offset * texel).r - currentDepth;
+            lit += playgroundWeight(offset) / (1.0 + exp(-1000.0 * diff));
+        }
+    }
+    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit;
+}
+
 // 32 points in the unit disk, each added where it was farthest from those before it, so
 // that every prefix (the first 16, the first 8) is itself spread over the disk; then scaled
 // (by 0.916) so that the first 16's mean squared radius is a uniform disc's, 1/2 (that way
@@ -52,19 +63,19 @@ const float PCSS_MAX_SEARCH_TEXELS = 64.0;
 // The steepest receiver plane followed, in depth per map width: steeper (grazing) planes
 // keep this slope, so a receiver seen edge-on to the light cannot cancel its shadow.
 const float PCSS_MAX_SLOPE = 8.0;
-#endif
 
-// A map depth in [0, 1] as a distance from the light. lightPenumbra[i] (scene.frag) is
-// (S.x, S.y, near, far): a perspective map's depth is LearnOpenGL's LinearizeDepth, an
-// orthographic map's is linear from near to far.
-float pcssDistance(float z, vec4 light)
+// PCSS: a light's size in its map's units per distance, and its map's near and far planes:
+// (S.x, S.y, near, far), set per light by the renderer.
+uniform vec4 lightPenumbra[LIGHT_COUNT];
+
+// A map depth in [0, 1] as a distance from the light (`light` is lightPenumbra[i]): a
+// perspective map's depth is LearnOpenGL's LinearizeDepth, an orthographic map's is linear
+// from near to far.
+float pcssDistance(float z, vec4 light, bool perspective)
 {
-#if PCSS_PERSPECTIVE
     float ndc = z * 2.0 - 1.0;
-    return 2.0 * light.z * light.w / (light.w + light.z - ndc * (light.w - light.z));
-#else
-    return light.z + z * (light.w - light.z);
-#endif
+    return perspective ? 2.0 * light.z * light.w / (light.w + light.z - ndc * (light.w - light.z))
+                       : light.z + z * (light.w - light.z);
 }
 
 // Half the penumbra's width in the map (uv) for a receiver at distance dr behind a blocker
@@ -72,13 +83,10 @@ float pcssDistance(float z, vec4 light)
 // R (dr - db) / db in the world at the receiver, R (dr - db) / (db dr) in the map's
 // tangent units (S = R x the projection's scale / 2); parallel rays within a cone of
 // angular radius a give tan(a) (dr - db) (S = tan(a) x the projection's scale / 2).
-vec2 pcssPenumbra(float dr, float db, vec4 light)
+vec2 pcssPenumbra(float dr, float db, vec4 light, bool perspective)
 {
-#if PCSS_PERSPECTIVE
-    return light.xy * max(dr - db, 0.0) / max(dr * db, 1e-12);
-#else
-    return light.xy * max(dr - db, 0.0);
-#endif
+    return perspective ? light.xy * max(dr - db, 0.0) / max(dr * db, 1e-12)
+                       : light.xy * max(dr - db, 0.0);
 }
 
 // Percentage-closer soft shadows: (1) the blocker search: the mean depth of the texels
@@ -86,9 +94,16 @@ vec2 pcssPenumbra(float dr, float db, vec4 light)
 // can be hidden (blockers at the near plane at most); (2) the penumbra those blockers
 // cast; (3) PCF over a disc that wide. Both stages use the Poisson disk turned by a
 // per-pixel angle (interleaved gradient noise), which trades banding for fine noise. At
-// least one texel wide, so a light of size 0 filters like a small PCF.
-float pcss(KERNEL_MAP, vec2 uv, float z, float current)
+// least one texel wide, so a light of size 0 filters like a small PCF. `blockerTaps` and
+// `filterTaps` are the first points of the disk each stage takes; `perspective`: the map
+// is a perspective one (its depth is not linear).
+float pcss(sampler2D shadowMap, vec4 position, float bias, vec2 texel, vec4 light,
+           int blockerTaps, int filterTaps, bool perspective, bool beyondFarLit)
 {
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    vec2 uv = projCoords.xy;
+    float z = projCoords.z;
+    float current = z - bias;
     // Receiver-plane depth bias: over a wide kernel a surface tilted to the light differs
     // from its own depth at the centre by more than any constant bias, and would shadow
     // itself. The fragment's depth is taken as a plane in the map, z + dot(slope, offset),
@@ -101,30 +116,29 @@ float pcss(KERNEL_MAP, vec2 uv, float z, float current)
         ? vec2(ddx.z * ddy.y - ddx.y * ddy.z, ddx.x * ddy.z - ddy.x * ddx.z) / det
         : vec2(0.0);
     slope = clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
-    vec4 light = lightPenumbra[LIGHT_INDEX];
     float turn = 6.2831853 * fract(52.9829189 * fract(dot(gl_FragCoord.xy,
                                                              vec2(0.06711056, 0.00583715))));
     mat2 rotation = mat2(cos(turn), sin(turn), -sin(turn), cos(turn));
-    float dr = pcssDistance(z, light);
-    vec2 search = clamp(pcssPenumbra(dr, light.z, light), SHADOW_TEXEL,
-                        PCSS_MAX_SEARCH_TEXELS * SHADOW_TEXEL);
+    float dr = pcssDistance(z, light, perspective);
+    vec2 search = clamp(pcssPenumbra(dr, light.z, light, perspective), texel,
+                        PCSS_MAX_SEARCH_TEXELS * texel);
     float blockers = 0.0;
     float blockerDepth = 0.0;
-    for (int k = 0; k < PCSS_BLOCKER_TAPS; ++k) {
+    for (int k = 0; k < blockerTaps; ++k) {
         vec2 offset = rotation * PCSS_DISK[k] * search;
-        float d = KERNEL_DEPTH(uv + offset);
+        float d = texture(shadowMap, uv + offset).r;
         float nearer = d < current + dot(slope, offset) ? 1.0 : 0.0;
         blockers += nearer;
         blockerDepth += nearer * d;
     }
-    float db = pcssDistance(blockerDepth / max(blockers, 1.0), light);
-    vec2 radius = max(pcssPenumbra(dr, db, light), SHADOW_TEXEL);
+    float db = pcssDistance(blockerDepth / max(blockers, 1.0), light, perspective);
+    vec2 radius = max(pcssPenumbra(dr, db, light, perspective), texel);
     float lit = 0.0;
-    for (int k = 0; k < PCSS_FILTER_TAPS; ++k) {
+    for (int k = 0; k < filterTaps; ++k) {
         vec2 offset = rotation * PCSS_DISK[k] * radius;
-        lit += step(current + dot(slope, offset), KERNEL_DEPTH(uv + offset));
+        lit += step(current + dot(slope, offset), texture(shadowMap, uv + offset).r);
     }
     // No blocker found: lit (a select, not a branch per pixel).
-    return blockers > 0.0 ? lit / float(PCSS_FILTER_TAPS) : 1.0;
+    lit = blockers > 0.0 ? lit / float(filterTaps) : 1.0;
+    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit;
 }
-#endif

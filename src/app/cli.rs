@@ -48,6 +48,8 @@ pub enum Command {
     Steps(StepsArgs),
     /// Render many frames headless while the light, map size and step change; report memory.
     Soak(SoakArgs),
+    /// Print the scene program's GLSL exactly as it is compiled for these settings.
+    Shaders(ShadersArgs),
 }
 
 /// Scene choice and the light angle, shared by every command.
@@ -226,6 +228,26 @@ pub struct RenderArgs {
     /// without.
     #[arg(long)]
     pub inset: bool,
+}
+
+/// `shaders`: the scene shader's vertex and fragment source as the renderer hands them to
+/// the driver: every `#include` resolved (with the `#line` directives that keep each
+/// file's own line numbers in errors), the `#define`s after `#version`, and the generated
+/// `addLights` that calls each light's test with its own settings as arguments. It is the
+/// program of a plain frame (no --shadow-out outputs, no cached shadow mask).
+#[derive(Args, Debug, Clone)]
+#[command(after_help = "Examples:\n  shadowmap shaders --scene dummy\n  \
+    shadowmap shaders --scene playground --filter pcss --light 0")]
+pub struct ShadersArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub settings: SettingsArgs,
+    /// Print only light I's part instead (numbered from 0): its sampler, the defines and
+    /// library files its test needs (each file whole), and its lines in `addLights`: the
+    /// call of its test with its settings, and its light times that test.
+    #[arg(long, value_name = "I")]
+    pub light: Option<usize>,
 }
 
 #[derive(Args, Debug, Clone)]

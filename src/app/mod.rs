@@ -10,4 +10,5 @@ pub mod keys;
 pub mod plot;
 pub mod quality;
 pub mod render;
+pub mod shaders;
 pub mod soak;

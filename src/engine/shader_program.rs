@@ -36,7 +36,7 @@ impl ShaderSource {
 
     /// The text with `#define`s inserted after the `#version` line, and a `#line` directive so
     /// the driver's line numbers still match the file.
-    fn with_defines(&self, defines: &[(String, String)]) -> String {
+    pub fn with_defines(&self, defines: &[(String, String)]) -> String {
         if defines.is_empty() {
             return self.text.clone();
         }

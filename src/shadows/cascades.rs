@@ -299,17 +299,11 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["cascadeMap0", "cascadeMap1", "cascadeMap2", "cascadeMap3"];
 
 /// Its part of the generated snippets (one light has cascades): shaders/lib/shadow_cascades.glsl
-/// and its `addLightCascades` call.
+/// and its `calcShadowCascades` call.
 pub const SNIPPET: layers::Snippet = layers::Snippet {
-    file: "lib/shadow_cascades.glsl",
-    functions: &[
-        "softTaps",
-        "pcfArray",
-        "layerLookup",
-        "calcShadowCascades",
-        "addLightCascades",
-    ],
-    add: "addLightCascades",
+    files: &["lib/shadow_cascades.glsl"],
+    function: "calcShadowCascades",
+    takes_fragment: true,
     samplers: SAMPLERS,
 };
 

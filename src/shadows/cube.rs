@@ -9,9 +9,7 @@ use super::camera::point_camera;
 use super::casters::{
     beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land,
 };
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
 use crate::error::Result;
 use crate::scene::{Light, PointLight, Scene};
@@ -20,20 +18,6 @@ use crate::settings::{PointPass, ShadowSettings};
 /// Its sampler in the scene shader, per light.
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowCube0", "shadowCube1", "shadowCube2", "shadowCube3"];
-
-/// Light `i`'s part of the generated snippets: `calcShadowCube`
-/// (shaders/lib/shadow_cube.glsl), its sampler and its `addLightCube` call.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
-    LightGlsl {
-        snippet: "lib/shadow_cube.glsl",
-        functions: &["calcShadowCube", "addLightCube"],
-        sampler_type: "samplerCube",
-        call: format!(
-            "addLightCube_{i}({i}, {p}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
-        ),
-    }
-}
 
 /// The six views of the cube map's faces (+X, -X, +Y, -Y, +Z, -Z), relative to the light,
 /// with GL's cube-map orientation.

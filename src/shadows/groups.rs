@@ -24,17 +24,11 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["groupMap0", "groupMap1", "groupMap2", "groupMap3"];
 
 /// Its part of the generated snippets (one light is layered): shaders/lib/shadow_groups.glsl
-/// and its `addLightGroups` call.
+/// and its `calcShadowGroups` call.
 pub const SNIPPET: layers::Snippet = layers::Snippet {
-    file: "lib/shadow_groups.glsl",
-    functions: &[
-        "softTaps",
-        "pcfArray",
-        "layerLookup",
-        "calcShadowGroups",
-        "addLightGroups",
-    ],
-    add: "addLightGroups",
+    files: &["lib/shadow_groups.glsl"],
+    function: "calcShadowGroups",
+    takes_fragment: false,
     samplers: SAMPLERS,
 };
 

@@ -12,9 +12,7 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
 use super::fitted::FittedBox;
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
@@ -173,33 +171,14 @@ impl<L: Layout> Technique for Layered<L> {
     }
 }
 
-/// A layered technique's shader snippet: its file (which includes shadow_layers.glsl), the
-/// functions it defines with the layer test's (renamed per light), its `addLight...`
-/// function and its sampler's name per light.
+/// A layered technique's shader snippet: its file (which includes shadow_layers.glsl), its
+/// test function, whether that takes the fragment (to note the cascade it chose), and its
+/// sampler's name per light.
 pub struct Snippet {
-    pub file: &'static str,
-    pub functions: &'static [&'static str],
-    pub add: &'static str,
+    pub files: &'static [&'static str],
+    pub function: &'static str,
+    pub takes_fragment: bool,
     pub samplers: [&'static str; crate::scene::MAX_LIGHTS],
-}
-
-impl Snippet {
-    /// Light `i`'s part of the generated snippets: the file, its array sampler and its call.
-    pub fn glsl(&self, i: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
-        LightGlsl {
-            snippet: self.file,
-            functions: self.functions,
-            sampler_type: if hardware {
-                "sampler2DArrayShadow"
-            } else {
-                "sampler2DArray"
-            },
-            call: format!(
-                "{}_{i}({i}, {}, {positional}, {cone}, f);",
-                self.add, self.samplers[i]
-            ),
-        }
-    }
 }
 
 /// Camera-relative world position to a layer's light clip space (the scene shader's

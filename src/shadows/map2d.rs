@@ -18,7 +18,7 @@ pub use camera::{camera, camera_and_casters};
 
 use super::casters::depth_state;
 use super::patch::{self, Patch};
-use super::{DepthPass, LightGlsl, ShadowView, SlotTransform};
+use super::{DepthPass, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
 use crate::error::Result;
 use crate::scene::Scene;
@@ -27,31 +27,6 @@ use crate::settings::ShadowSettings;
 /// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowMap0", "shadowMap1", "shadowMap2", "shadowMap3"];
-
-/// Light `i`'s part of the generated snippets: `calcShadow` (shaders/lib/shadow_2d.glsl),
-/// its sampler and its call of `addLight2D` with its map slot `p`.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool, hardware: bool) -> LightGlsl {
-    LightGlsl {
-        snippet: "lib/shadow_2d.glsl",
-        functions: &[
-            "softTaps",
-            "pcssDistance",
-            "pcssPenumbra",
-            "pcss",
-            "calcShadow",
-            "addLight2D",
-        ],
-        sampler_type: if hardware {
-            "sampler2DShadow"
-        } else {
-            "sampler2D"
-        },
-        call: format!(
-            "addLight2D_{i}({i}, {p}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
-        ),
-    }
-}
 
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
 pub struct Map2d {

@@ -218,14 +218,15 @@ pub struct SlotTransform {
     pub normal_offset: f32,
 }
 
-/// A technique's part of the generated snippet for light `i`: the library snippet it
-/// includes, the functions that snippet defines (renamed per light, so each light's test
-/// keeps its own constants), its sampler's GLSL type and its call.
+/// A technique's part of the generated snippet for light `i`: the library files its test
+/// needs, its sampler's GLSL type, and its test: a call of the library function its filter
+/// chose, with the light's settings as arguments (1 = lit). A layered light's filter is
+/// the program's, so it comes as `defines`.
 pub struct LightGlsl {
-    pub snippet: &'static str,
-    pub functions: &'static [&'static str],
+    pub snippets: &'static [&'static str],
     pub sampler_type: &'static str,
-    pub call: String,
+    pub test: String,
+    pub defines: Vec<(&'static str, String)>,
 }
 
 /// What a depth pass draws with: the scene's meshes, the depth programs and the settings.

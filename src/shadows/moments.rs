@@ -17,10 +17,8 @@ use glam::{DVec2, DVec3};
 
 use super::casters::{depth_state, may_land};
 use super::fitted;
-use super::map2d::{camera, draw_map_casters, SAMPLERS};
-use super::{
-    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowView, SlotTransform, Technique,
-};
+use super::map2d::{camera, draw_map_casters};
+use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
 };
@@ -28,27 +26,6 @@ use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
 use crate::shaders;
-
-/// Light `i`'s part of the generated snippets: `calcShadowMoments`
-/// (shaders/lib/shadow_moments.glsl), a plain `sampler2D` (the moments are filtered, not
-/// compared) and its call with its map slot `p`.
-pub fn glsl(i: usize, p: usize, positional: bool, cone: bool) -> LightGlsl {
-    LightGlsl {
-        snippet: "lib/shadow_moments.glsl",
-        functions: &[
-            "chebyshevUpperBound",
-            "reduceLightBleeding",
-            "momentVisibility",
-            "calcShadowMoments",
-            "addLightMoments",
-        ],
-        sampler_type: "sampler2D",
-        call: format!(
-            "addLightMoments_{i}({i}, {p}, {}, {positional}, {cone}, f);",
-            SAMPLERS[i]
-        ),
-    }
-}
 
 /// The shader's number for a moment filter (`MOMENT_MODE`); 0 for a depth filter.
 pub fn mode(filter: Filter) -> u32 {
@@ -108,22 +85,31 @@ impl MomentTest {
         })
     }
 
-    pub fn defines(&self) -> Vec<(&'static str, String)> {
+    /// The call of its filter's function (shaders/lib/shadow_moments.glsl), its own
+    /// constants between `head` (map, position, bias) and `tail` (borderLit, beyondFarLit).
+    pub fn call(&self, head: &str, tail: &str) -> String {
         let f = |bits: u32| glsl_float(f32::from_bits(bits));
-        let t = self.msm_toward_bits.map(f);
-        vec![
-            ("MOMENT_MODE", self.mode.to_string()),
-            ("MIN_VARIANCE", f(self.min_variance_bits)),
-            ("BLEED_REDUCTION", f(self.bleed_reduction_bits)),
-            ("EVSM_POS", f(self.evsm_bits[0])),
-            ("EVSM_NEG", f(self.evsm_bits[1])),
-            ("MSM_BIAS", f(self.msm_bias_bits)),
-            (
-                "MSM_TOWARD",
-                format!("vec4({}, {}, {}, {})", t[0], t[1], t[2], t[3]),
+        let (variance, bleed) = (f(self.min_variance_bits), f(self.bleed_reduction_bits));
+        match self.mode {
+            1 => format!("calcShadowVsm({head}, {variance}, {bleed}, {tail})"),
+            4 => {
+                let t = self.msm_toward_bits.map(f);
+                format!(
+                    "calcShadowMsm({head}, {}, vec4({}, {}, {}, {}), {tail})",
+                    f(self.msm_bias_bits),
+                    t[0],
+                    t[1],
+                    t[2],
+                    t[3]
+                )
+            }
+            _ => format!(
+                "calcShadowEvsm({head}, {variance}, {bleed}, vec2({}, {}), {}, {tail})",
+                f(self.evsm_bits[0]),
+                f(self.evsm_bits[1]),
+                self.mode == 3
             ),
-            ("BORDER_LIT", u32::from(self.border_lit).to_string()),
-        ]
+        }
     }
 }
 
@@ -379,21 +365,32 @@ mod tests {
             ..pcf
         };
         let test = MomentTest::of(&vsm).unwrap();
-        let defines = test.defines();
-        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
-        assert_eq!(get("MOMENT_MODE"), "1");
-        assert_eq!(get("BLEED_REDUCTION"), "0.15");
-        assert_eq!(get("MSM_TOWARD"), "vec4(0.5, 0.5, 0.5, 0.5)");
+        assert_eq!(
+            test.call("m", "false, false"),
+            format!(
+                "calcShadowVsm(m, {}, 0.15, false, false)",
+                glsl_float(vsm.min_variance)
+            )
+        );
         let playground = ShadowSettings {
             filter: Filter::Msm,
             msm_bias: 9e-4,
             msm_toward: MsmToward::Playground,
             ..pcf
         };
-        let defines = MomentTest::of(&playground).unwrap().defines();
-        let get = |k: &str| defines.iter().find(|(n, _)| *n == k).unwrap().1.clone();
-        assert_eq!(get("MSM_TOWARD"), "vec4(0.0, 0.63, 0.0, 0.63)");
-        assert_eq!(get("MSM_BIAS"), "0.0009");
+        assert_eq!(
+            MomentTest::of(&playground)
+                .unwrap()
+                .call("m", "true, false"),
+            "calcShadowMsm(m, 0.0009, vec4(0.0, 0.63, 0.0, 0.63), true, false)"
+        );
+        let evsm4 = ShadowSettings {
+            filter: Filter::Evsm4,
+            evsm_exponents: [40.0, 5.0],
+            ..pcf
+        };
+        let call = MomentTest::of(&evsm4).unwrap().call("m", "t");
+        assert!(call.ends_with(", vec2(40.0, 5.0), true, t)"), "{call}");
         // A border of depth 1 is lit through the shader, not the sampler.
         let fitted = ShadowSettings {
             fit: crate::settings::Fit::Scene,

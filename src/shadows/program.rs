@@ -5,7 +5,7 @@
 
 use super::slots::{self, LightSlot, MaskMode, ShadowTest};
 use super::ShadowKind;
-use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram};
+use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
 use crate::settings::{glsl_float, ShadowSettings};
@@ -122,7 +122,7 @@ impl ProgramKey {
     }
 
     /// The `#define`s for shaders/scene.{vert,frag}; each exists only when a light uses it.
-    /// (The shadow test's constants are defined per light in the generated snippet.)
+    /// (Each light's test takes its settings as arguments, in the generated snippet.)
     pub fn defines(&self) -> Vec<(String, String)> {
         let mut d: Vec<(String, String)> = Vec::new();
         let mut set = |k: &str, v: String| d.push((k.to_string(), v));
@@ -143,7 +143,7 @@ impl ProgramKey {
         );
         set("OUTPUT_VISIBILITY", bit(self.outputs.visibility));
         set("OUTPUT_GBUFFER", bit(self.outputs.gbuffer));
-        // The shadow tests' constants are each light's own: see `slots::snippets`. The
+        // The shadow tests' settings are each light's own: see `slots::snippets`. The
         // vertex shader offsets along the normal for every mapped light when one asks
         // (the others get an offset of 0).
         if slots
@@ -186,8 +186,19 @@ impl ProgramKey {
                 slots.len()
             )));
         }
-        let fragment = shaders::scene_frag(&slots::snippets(&slots, self.mask))?;
-        ShaderProgram::new(gl, &shaders::scene_vert(), &fragment, &self.defines())
+        let [vertex, fragment] = self.sources()?;
+        ShaderProgram::new(gl, &vertex, &fragment, &[])
+    }
+
+    /// The scene program's vertex and fragment shaders exactly as [`ProgramKey::compile`]
+    /// hands them to the driver: includes resolved, the defines after `#version`.
+    pub fn sources(&self) -> Result<[ShaderSource; 2]> {
+        let fragment = shaders::scene_frag(&slots::snippets(&self.slots(), self.mask))?;
+        let defines = self.defines();
+        Ok([shaders::scene_vert(), fragment].map(|s| ShaderSource {
+            text: s.with_defines(&defines),
+            ..s
+        }))
     }
 }
 

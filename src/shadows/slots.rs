@@ -8,11 +8,14 @@
 //! call. Those two lists are the only GLSL made in Rust: two small snippets,
 //! `generated/samplers.glsl` and `generated/lights.glsl`, included by `shaders/scene.frag`
 //! like the library's (so a compile error in them names the generated file and its line).
-//! Each technique writes its own two lines ([`super::map2d::glsl`], [`super::cube::glsl`],
-//! [`super::layers::Snippet::glsl`]).
+//! Each technique chooses the library function its light's filter calls and writes the
+//! call, the light's settings as literal arguments ([`map2d_glsl`],
+//! [`cube_glsl`], [`moments_glsl`], [`layered_glsl`]); the
+//! compiler inlines it and folds them, so a light's test costs what a hand-written one
+//! would.
 
 use super::moments::MomentTest;
-use super::{cascades, cube, groups, map2d, moments, volumes, ShadowKind};
+use super::{cascades, cube, groups, layers, map2d, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
@@ -30,7 +33,7 @@ pub fn texture_unit(index: usize) -> u32 {
     1 + index as u32
 }
 
-/// The shadow test's constants (shaders/lib/bias.glsl and the technique snippets).
+/// The shadow test's settings, which the generated call passes as arguments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ShadowTest {
     pub pcf_radius: u32,
@@ -91,42 +94,28 @@ impl ShadowTest {
 }
 
 impl ShadowTest {
-    /// The constants of shaders/lib/bias.glsl and the technique snippets, for one light.
-    /// How many constants [`ShadowTest::defines`] makes for every light (a moment map's
-    /// add their own after them).
-    pub const DEFINES: usize = 11;
-
-    fn defines(&self) -> Vec<(&'static str, String)> {
-        let bit = |b: bool| u32::from(b).to_string();
-        let mode = match self.bias_mode {
-            BiasMode::None => 0,
-            BiasMode::Constant => 1,
-            BiasMode::Slope => 2,
-        };
-        let mut d = vec![
-            ("PCF_RADIUS", self.pcf_radius.to_string()),
-            ("HW_PCF", bit(self.hardware)),
-            ("BIAS_MODE", mode.to_string()),
-            ("BIAS", glsl_float(f32::from_bits(self.bias_bits))),
-            ("BIAS_MIN", glsl_float(f32::from_bits(self.bias_min_bits))),
-            ("BEYOND_FAR_LIT", bit(self.beyond_far_lit)),
-            (
-                "SHADOW_TEXEL",
-                format!(
-                    "vec2({}, {})",
-                    glsl_float(1.0 / self.map_size.width as f32),
-                    glsl_float(1.0 / self.map_size.height as f32)
-                ),
+    /// The bias argument of light `i`'s test (shaders/lib/bias.glsl): a number, or the
+    /// slope bias of the fragment's normal and `toLight{i}`, the direction to the light.
+    pub fn bias_glsl(&self, i: usize) -> String {
+        let bias = glsl_float(f32::from_bits(self.bias_bits));
+        match self.bias_mode {
+            BiasMode::None => "0.0".into(),
+            BiasMode::Constant => bias,
+            BiasMode::Slope => format!(
+                "slopeBias(f.normal, toLight{i}, {bias}, {})",
+                glsl_float(f32::from_bits(self.bias_min_bits))
             ),
-            ("FILTER_KERNEL", self.kernel.to_string()),
-            ("PCSS_BLOCKER_TAPS", self.pcss_blocker_taps.to_string()),
-            ("PCSS_FILTER_TAPS", self.pcss_filter_taps.to_string()),
-            ("PCSS_PERSPECTIVE", bit(self.pcss_perspective)),
-        ];
-        if let Some(m) = &self.moments {
-            d.extend(m.defines());
         }
-        d
+    }
+
+    /// One texel of the map, `vec2(1 / width, 1 / height)`: a constant the compiler folds,
+    /// not a `textureSize` query per pixel.
+    pub fn texel_glsl(&self) -> String {
+        format!(
+            "vec2({}, {})",
+            glsl_float(1.0 / self.map_size.width as f32),
+            glsl_float(1.0 / self.map_size.height as f32)
+        )
     }
 }
 
@@ -198,82 +187,218 @@ pub fn vertex_outputs(slots: &[LightSlot], cascades: u32) -> usize {
     8 + 4 * mapped + if cascaded { 4 * cascades as usize } else { 0 } + 4 + 6 * slots.len()
 }
 
+/// One light's part of the generated snippets (`shadowmap shaders --light I` prints it).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LightPart {
+    /// Its sampler's declaration, when its test reads a map.
+    pub sampler: Option<String>,
+    /// The defines its test needs (a layered light's filter).
+    pub defines: Vec<(&'static str, String)>,
+    /// The library files its test calls into.
+    pub snippets: Vec<&'static str>,
+    /// Its lines in `addLights`.
+    pub lines: Vec<String>,
+}
+
+/// Light `i`'s part, its light-space position (if any) in map slot `p`: its test's
+/// function, chosen by its technique and filter, called with its own settings, and the
+/// light added to the fragment times that test.
+pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> LightPart {
+    let (positional, cone) = (slot.positional, slot.cone);
+    let glsl = slot.test.and_then(|test| match slot.shadow {
+        ShadowKind::None | ShadowKind::Volume => None,
+        ShadowKind::Map => Some(map2d_glsl(i, p, &test)),
+        ShadowKind::Cube => Some(cube_glsl(i, p, &test)),
+        ShadowKind::Cascades => Some(layered_glsl(&cascades::SNIPPET, i, &test)),
+        ShadowKind::Groups => Some(layered_glsl(&groups::SNIPPET, i, &test)),
+        ShadowKind::Moments => Some(moments_glsl(i, p, &test, &test.moments?)),
+    });
+    let mut part = LightPart::default();
+    if slot.shadow == ShadowKind::Volume {
+        part.lines.push(volumes::call(i, positional, cone));
+        return part;
+    }
+    let (Some(glsl), Some(name)) = (glsl, sampler_name(i, slot.shadow)) else {
+        part.lines
+            .push(format!("addLightUnshadowed({i}, {positional}, {cone}, f);"));
+        return part;
+    };
+    if mask == MaskMode::Read {
+        part.lines.push(format!(
+            "addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);"
+        ));
+        return part;
+    }
+    part.sampler = Some(format!("uniform {} {name};", glsl.sampler_type));
+    part.defines = glsl.defines;
+    if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
+        part.snippets.push("lib/bias.glsl");
+    }
+    part.snippets.extend(glsl.snippets);
+    part.lines = vec![
+        format!("vec3 toLight{i} = toLightOf({i}, {positional});"),
+        format!("float lit{i} = {};", glsl.test),
+        format!("addLight({i}, toLight{i}, {cone}, lit{i}, f);"),
+    ];
+    part
+}
+
+/// Every light's part, in the scene's order.
+pub fn light_parts(slots: &[LightSlot], mask: MaskMode) -> Vec<LightPart> {
+    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
+    slots
+        .iter()
+        .enumerate()
+        .map(|(i, slot)| light_part(i, map_slot[i].unwrap_or(0), slot, mask))
+        .collect()
+}
+
 /// The two generated snippets for these lights: `generated/samplers.glsl` (one sampler
-/// declaration per casting light) and `generated/lights.glsl`: for each casting light its
-/// test's constants as `#define`s and its technique's library snippet, with the snippet's
-/// functions renamed after the light (`calcShadow` becomes `calcShadow_0`); then
-/// `addLights`, one add... call per light in order.
+/// declaration per casting light) and `generated/lights.glsl`: the library files the
+/// lights' tests call, each included once, then `addLights`, each light's lines in order.
 ///
 /// With `mask` = [`MaskMode::Read`] no test is compiled in: each casting light takes its
 /// test from the cached shadow mask (`maskedLit`, read once per fragment in scene.frag).
 pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String); 2] {
+    let parts = light_parts(slots, mask);
     let mut samplers =
         String::from("// Made by src/shadows/slots.rs: one sampler per casting light.\n");
     let mut lights = String::from(
-        "// Made by src/shadows/slots.rs: each casting light's shadow test with its own\n\
-         // constants, then each light's call in the scene's order.\n",
+        "// Made by src/shadows/slots.rs: the library's tests these lights use, then each\n\
+         // light's test, called with its own settings, and its light.\n",
     );
-    let mut calls = String::from("void addLights(inout Fragment f)\n{\n");
-    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
-    for (i, slot) in slots.iter().enumerate() {
-        let p = map_slot[i].unwrap_or(0);
-        let (positional, cone) = (slot.positional, slot.cone);
-        let hardware = slot.test.is_some_and(|t| t.hardware);
-        let glsl = match slot.shadow {
-            ShadowKind::Volume => {
-                calls.push_str(&format!("    {}\n", volumes::call(i, positional, cone)));
-                continue;
-            }
-            ShadowKind::None => None,
-            ShadowKind::Map => Some(map2d::glsl(i, p, positional, cone, hardware)),
-            ShadowKind::Cube => Some(cube::glsl(i, p, positional, cone)),
-            ShadowKind::Cascades => Some(cascades::SNIPPET.glsl(i, positional, cone, hardware)),
-            ShadowKind::Groups => Some(groups::SNIPPET.glsl(i, positional, cone, hardware)),
-            ShadowKind::Moments => Some(moments::glsl(i, p, positional, cone)),
-        };
-        let (Some(glsl), Some(test), Some(name)) = (glsl, slot.test, sampler_name(i, slot.shadow))
-        else {
-            calls.push_str(&format!(
-                "    addLightUnshadowed({i}, {positional}, {cone}, f);\n"
-            ));
-            continue;
-        };
-        if mask == MaskMode::Read {
-            calls.push_str(&format!(
-                "    addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);\n"
-            ));
-            continue;
-        }
-        samplers.push_str(&format!("uniform {} {name};\n", glsl.sampler_type));
-        let defines: Vec<(String, String)> = test
-            .defines()
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v))
-            .chain(std::iter::once(("LIGHT_INDEX".to_string(), i.to_string())))
-            .chain(
-                std::iter::once("depthBias")
-                    .chain(glsl.functions.iter().copied())
-                    .map(|f| (f.to_string(), format!("{f}_{i}"))),
-            )
-            .collect();
-        lights.push_str(&format!("\n// Light {i}\n"));
-        for (k, v) in &defines {
+    let mut included: Vec<&str> = Vec::new();
+    for part in &parts {
+        for (k, v) in &part.defines {
             lights.push_str(&format!("#define {k} {v}\n"));
         }
-        lights.push_str("#include \"lib/bias.glsl\"\n");
-        lights.push_str(&format!("#include \"{}\"\n", glsl.snippet));
-        for (k, _) in &defines {
-            lights.push_str(&format!("#undef {k}\n"));
+        for &file in &part.snippets {
+            if !included.contains(&file) {
+                lights.push_str(&format!("#include \"{file}\"\n"));
+                included.push(file);
+            }
         }
-        calls.push_str(&format!("    {}\n", glsl.call));
+        samplers.extend(part.sampler.iter().map(|s| format!("{s}\n")));
     }
-    calls.push_str("}\n");
-    lights.push('\n');
-    lights.push_str(&calls);
+    lights.push_str("\nvoid addLights(inout Fragment f)\n{\n");
+    for part in &parts {
+        for line in &part.lines {
+            lights.push_str(&format!("    {line}\n"));
+        }
+    }
+    lights.push_str("}\n");
     [
         ("generated/samplers.glsl", samplers),
         ("generated/lights.glsl", lights),
     ]
+}
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
+/// (hardware comparisons, the playground's soft filters, PCSS).
+pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let map = map2d::SAMPLERS[i];
+    let head = format!(
+        "{map}, mlightviewVertexPos[{p}], {}, {}",
+        test.bias_glsl(i),
+        test.texel_glsl()
+    );
+    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
+    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
+        _ if test.hardware => (
+            &["lib/hardware_pcf.glsl"],
+            "sampler2DShadow",
+            format!("calcShadowHardware({head}, {r}, {far})"),
+        ),
+        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
+        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
+        3 => (
+            SOFT,
+            "sampler2D",
+            format!(
+                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
+                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
+            ),
+        ),
+        _ => (
+            &["lib/shadow_2d.glsl"],
+            "sampler2D",
+            format!("calcShadow({head}, {r}, {far})"),
+        ),
+    };
+    LightGlsl {
+        snippets,
+        sampler_type,
+        test,
+        defines: Vec::new(),
+    }
+}
+
+const SOFT: &[&str] = &["lib/soft_filters.glsl"];
+
+/// Light `i`'s part of the generated snippets, its position relative to the fragment in
+/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
+/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
+pub fn cube_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let function = match test.pcf_radius {
+        0 => "calcShadowCube",
+        _ => "calcShadowCubeSoft",
+    };
+    LightGlsl {
+        snippets: &["lib/shadow_cube.glsl"],
+        sampler_type: "samplerCube",
+        test: format!(
+            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
+            cube::SAMPLERS[i],
+            test.bias_glsl(i),
+            test.beyond_far_lit
+        ),
+        defines: Vec::new(),
+    }
+}
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
+/// `sampler2D` (the moments are filtered, not compared).
+pub fn moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
+    let head = format!(
+        "{}, mlightviewVertexPos[{p}], {}",
+        map2d::SAMPLERS[i],
+        test.bias_glsl(i)
+    );
+    let tail = format!("{}, {}", moments.border_lit, test.beyond_far_lit);
+    LightGlsl {
+        snippets: &["lib/shadow_moments.glsl"],
+        sampler_type: "sampler2D",
+        test: moments.call(&head, &tail),
+        defines: Vec::new(),
+    }
+}
+
+/// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
+/// and its filter as the defines of shadow_layers.glsl (one light is layered).
+pub fn layered_glsl(snippet: &layers::Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
+    let sampler_type = match test.hardware {
+        true => "sampler2DArrayShadow",
+        false => "sampler2DArray",
+    };
+    let fragment = if snippet.takes_fragment { ", f" } else { "" };
+    LightGlsl {
+        snippets: snippet.files,
+        sampler_type,
+        test: format!(
+            "{}({}, {}{fragment})",
+            snippet.function,
+            snippet.samplers[i],
+            test.bias_glsl(i)
+        ),
+        defines: vec![
+            ("LAYER_SAMPLER", sampler_type.to_string()),
+            ("LAYER_TEXEL", test.texel_glsl()),
+            ("LAYER_RADIUS", test.pcf_radius.to_string()),
+            ("LAYER_TAPS", test.kernel.to_string()),
+        ],
+    }
 }
 
 #[cfg(test)]
@@ -349,52 +474,40 @@ mod tests {
                 "uniform sampler2DArrayShadow cascadeMap3;"
             ]
         );
-        let lights = lines(&lights);
-        let calls = lights
-            .iter()
-            .position(|l| l == "void addLights(inout Fragment f)")
-            .unwrap();
+        // Each library file once, the layered light's filter as defines; then each light's
+        // test, chosen by its technique and filter, called with its own settings.
         assert_eq!(
-            lights[calls..],
+            lines(&lights),
             [
+                "#include \"lib/shadow_2d.glsl\"",
+                "#include \"lib/shadow_cube.glsl\"",
+                "#define LAYER_SAMPLER sampler2DArrayShadow",
+                "#define LAYER_TEXEL vec2(0.0009765625, 0.0009765625)",
+                "#define LAYER_RADIUS 0",
+                "#define LAYER_TAPS 0",
+                "#include \"lib/shadow_cascades.glsl\"",
                 "void addLights(inout Fragment f)",
                 "{",
-                "addLight2D_0(0, 0, shadowMap0, false, false, f);",
+                "vec3 toLight0 = toLightOf(0, false);",
+                "float lit0 = calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
+                 vec2(0.0009765625, 0.0009765625), 1, false);",
+                "addLight(0, toLight0, false, lit0, f);",
                 "addLightUnshadowed(1, true, false, f);",
-                "addLightCube_2(2, 1, shadowCube2, true, false, f);",
-                "addLightCascades_3(3, cascadeMap3, false, false, f);",
+                "vec3 toLight2 = toLightOf(2, true);",
+                "float lit2 = calcShadowCubeSoft(shadowCube2, mlightviewVertexPos[1].xyz, \
+                 lightFar[2], 0.05, false);",
+                "addLight(2, toLight2, false, lit2, f);",
+                "vec3 toLight3 = toLightOf(3, false);",
+                "float lit3 = calcShadowCascades(cascadeMap3, 0.25, f);",
+                "addLight(3, toLight3, false, lit3, f);",
                 "}"
             ]
         );
-        // Light 0's test is the book's, light 3's its own; each snippet's functions are
-        // renamed after its light, and every constant is undone after it.
-        let block = |i: usize| -> Vec<String> {
-            let from = lights
-                .iter()
-                .position(|l| l.starts_with(&format!("#define depthBias depthBias_{i}")))
-                .unwrap();
-            lights[from - ShadowTest::DEFINES - 1..from + 1].to_vec()
-        };
-        assert!(
-            block(0).contains(&"#define BIAS 0.05".to_string()),
-            "{:?}",
-            block(0)
-        );
-        assert!(
-            block(3).contains(&"#define BIAS 0.25".to_string()),
-            "{:?}",
-            block(3)
-        );
-        assert!(
-            block(3).contains(&"#define HW_PCF 1".to_string()),
-            "{:?}",
-            block(3)
-        );
-        assert!(lights.contains(&"#define calcShadow calcShadow_0".to_string()));
-        assert!(lights.contains(&"#define calcShadowCube calcShadowCube_2".to_string()));
-        let defined = lights.iter().filter(|l| l.starts_with("#define")).count();
-        let undone = lights.iter().filter(|l| l.starts_with("#undef")).count();
-        assert_eq!(defined, undone);
+        // Read from the cached mask, no test is compiled in.
+        let [(_, none), (_, masked)] = snippets(&slots, MaskMode::Read);
+        assert!(lines(&none).is_empty(), "{none}");
+        assert!(!masked.contains("#include"), "{masked}");
+        assert!(masked.contains("addLight(0, toLightOf(0, false), false, maskedLit[0], f);"));
         let units: Vec<u32> = (0..MAX_LIGHTS).map(texture_unit).collect();
         assert_eq!(units, [1, 2, 3, 4]);
         assert!(!units.contains(&MATERIAL_UNIT));
@@ -422,35 +535,94 @@ mod tests {
 
     #[test]
     fn every_library_snippet_is_reachable_from_the_scene_shader() {
-        // Four lights of four kinds, one with cascades, one with a moment map: every
-        // snippet is included but caster groups' (only one light is layered), which a
-        // second set of lights includes.
-        let test = ShadowTest::of(&crate::settings::ShadowSettings::default());
-        let slot = |shadow| LightSlot {
+        // Four lights of four kinds, one with cascades, one with a moment map, the others
+        // with a filter of their own: every snippet is included but caster groups' (only
+        // one light is layered), which a second set of lights includes.
+        use crate::settings::{BiasMode, Filter};
+        let with = |filter| ShadowSettings {
+            filter,
+            ..ShadowSettings::default()
+        };
+        let slot = |shadow, s: ShadowSettings| LightSlot {
             shadow,
             positional: false,
             cone: false,
-            test: Some(test),
+            test: Some(ShadowTest::of(&s)),
+        };
+        let slope = ShadowSettings {
+            bias_mode: BiasMode::Slope,
+            ..with(Filter::Hardware2x2)
         };
         let generated = snippets(
             &[
-                slot(ShadowKind::Map),
-                slot(ShadowKind::Cube),
-                slot(ShadowKind::Cascades),
-                slot(ShadowKind::Moments),
+                slot(ShadowKind::Map, slope),
+                slot(ShadowKind::Cube, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Cascades, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Moments, with(Filter::Vsm)),
             ],
             MaskMode::Off,
         );
-        // Included directly or by another snippet (the soft filters by the 2D test's).
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
-        let groups = snippets(&[slot(ShadowKind::Groups)], MaskMode::Off);
-        let resolved_groups = crate::shaders::scene_frag(&groups).unwrap();
+        let others = snippets(
+            &[
+                slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Map, with(Filter::Pcss)),
+                slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+            ],
+            MaskMode::Off,
+        );
+        let resolved_others = crate::shaders::scene_frag(&others).unwrap();
         for name in crate::shaders::library() {
             let file = format!("shaders/{name}");
             assert!(
-                resolved.files.contains(&file) || resolved_groups.files.contains(&file),
+                resolved.files.contains(&file) || resolved_others.files.contains(&file),
                 "{name} is never included"
             );
         }
+    }
+
+    #[test]
+    fn each_filter_calls_its_own_function() {
+        use crate::settings::Filter;
+        let call = |shadow, filter| {
+            let s = ShadowSettings {
+                filter,
+                ..ShadowSettings::default()
+            };
+            let slot = LightSlot {
+                shadow,
+                positional: false,
+                cone: false,
+                test: Some(ShadowTest::of(&s)),
+            };
+            light_part(0, 0, &slot, MaskMode::Off).lines[1].clone()
+        };
+        use ShadowKind::{Cube, Map, Moments};
+        for (shadow, filter, function) in [
+            (
+                Map,
+                Filter::Single,
+                "calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, ",
+            ),
+            (Map, Filter::Pcf5x5, "calcShadow("),
+            (Map, Filter::Hardware3x3, "calcShadowHardware("),
+            (Map, Filter::Pcf4x4Weighted, "pcf4x4Weighted("),
+            (Map, Filter::SoftPcf, "softPcf("),
+            (Map, Filter::Pcss, "pcss("),
+            (Moments, Filter::Vsm, "calcShadowVsm("),
+            (Moments, Filter::Evsm2, "calcShadowEvsm("),
+            (Moments, Filter::Msm, "calcShadowMsm("),
+            (Cube, Filter::Single, "calcShadowCube("),
+            (Cube, Filter::Pcf3x3, "calcShadowCubeSoft("),
+        ] {
+            let line = call(shadow, filter);
+            assert!(
+                line.starts_with(&format!("float lit0 = {function}")),
+                "{filter:?}: {line}"
+            );
+        }
+        // The grid's radius is the filter's.
+        assert!(call(Map, Filter::Single).ends_with(", 0, false);"));
+        assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false);"));
     }
 }

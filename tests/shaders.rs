@@ -1,0 +1,100 @@
+//! `shadowmap shaders` prints the scene program the renderer compiles, and it compiles.
+
+mod common;
+
+use shadowmap::engine::{Outputs, ShaderProgram, ShaderSource};
+use shadowmap::shadows::program::ProgramKey;
+use shadowmap::shadows::ShadowKind;
+use shadowmap::{Scene, ShadowSettings};
+
+const VERTEX: &str = "// ==== vertex shader: shaders/scene.vert ====\n";
+const FRAGMENT: &str = "// ==== fragment shader: shaders/scene.frag ====\n";
+
+/// The printed vertex and fragment shaders of `shadowmap shaders ARGS`.
+fn printed(args: &[&str]) -> (String, String) {
+    let out = common::stdout_of(common::bin().arg("shaders").args(args));
+    let rest = out.strip_prefix(VERTEX).expect("the vertex shader first");
+    let (vertex, fragment) = rest.split_once(FRAGMENT).expect("then the fragment shader");
+    (vertex.to_string(), fragment.to_string())
+}
+
+/// The texts the renderer's program key hands the driver for `scene` under `settings`.
+fn compiled(scene: &Scene, settings: &ShadowSettings) -> [String; 2] {
+    let kinds = ShadowKind::for_lights(&scene.lights, settings);
+    let key = ProgramKey::of(scene, settings, &kinds, 0, Outputs::default()).unwrap();
+    key.sources().unwrap().map(|s| s.text)
+}
+
+#[test]
+fn the_printed_program_is_the_compiled_one_and_compiles() {
+    let ctx = common::context();
+    let dummy = Scene::load("dummy").unwrap();
+    let (vertex, fragment) = printed(&["--scene", "dummy"]);
+    assert_eq!(
+        [vertex.clone(), fragment.clone()],
+        compiled(&dummy, &dummy.shadow)
+    );
+    // The book's test, called with the DummyGame's settings; the defines shown.
+    assert!(fragment.starts_with("#version 330 core\n#define LIGHT_COUNT 1\n"));
+    assert!(fragment.contains("\nfloat calcShadow(sampler2D shadowMap, vec4 position,"));
+    assert!(fragment.contains(
+        "    float lit0 = calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
+         vec2(0.0009765625, 0.0009765625), 1, false);\n"
+    ));
+    assert!(
+        !fragment.contains("pcss("),
+        "only the tests the lights call"
+    );
+    let program = |v: &str, f: &str| {
+        ShaderProgram::new(
+            ctx.gl(),
+            &ShaderSource::new("printed.vert", v),
+            &ShaderSource::new("printed.frag", f),
+            &[],
+        )
+    };
+    program(&vertex, &fragment).unwrap_or_else(|e| panic!("{e}"));
+    // Three kinds of light, each with its own test, and the flags applied.
+    let (vertex, fragment) = printed(&["--scene", "three-lights", "--filter", "hw3x3"]);
+    assert!(
+        fragment.contains("calcShadowHardware(shadowMap0,"),
+        "{fragment}"
+    );
+    assert!(
+        fragment.contains("calcShadowCubeSoft(shadowCube2,"),
+        "{fragment}"
+    );
+    program(&vertex, &fragment).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn one_lights_part_is_its_sampler_its_library_and_its_call() {
+    let out = common::stdout_of(common::bin().args([
+        "shaders",
+        "--scene",
+        "playground",
+        "--filter",
+        "pcss",
+        "--light",
+        "0",
+    ]));
+    assert!(out.contains("\nuniform sampler2D shadowMap0;\n"), "{out}");
+    assert!(out.contains("// ==== shaders/lib/soft_filters.glsl ====\n"));
+    assert!(out.contains("\nfloat pcss(sampler2D shadowMap, vec4 position,"));
+    assert!(out.contains("    float lit0 = pcss(shadowMap0, mlightviewVertexPos[0], "));
+    assert!(!out.contains("void main()"), "its part, not the program");
+}
+
+#[test]
+fn a_light_the_scene_lacks_is_refused() {
+    let out = common::bin()
+        .args(["shaders", "--scene", "dummy", "--light", "1"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(out.stdout.is_empty());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --light 1: the scene <built-in dummy> has 1 light(s), numbered from 0\n"
+    );
+}
