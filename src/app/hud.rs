@@ -1,5 +1,6 @@
 //! The HUD: the text the book's demo shows over the frame (the light angle), with the chapter
-//! step, the settings and the frame time, and on request the demo's keys. A window title is
+//! step, the first light's shadow in words (its technique and settings, from the plan) and
+//! the frame time, and on request the demo's keys and the shadow cache's counters. A window title is
 //! invisible full-screen and in screenshots; this is drawn into the frame itself.
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
@@ -13,7 +14,10 @@ use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
 use shadowmap::engine::{Gl, HeadlessContext, Outputs, PixelRect, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
 use shadowmap::renderer::{DepthPasses, MaskUses};
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
+
+mod words;
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -34,7 +38,8 @@ const PANEL_COLOUR: [f32; 4] = [0.0, 0.0, 0.0, 0.6];
 /// What the HUD reports about one frame.
 pub struct HudInfo<'a> {
     pub scene: &'a Scene,
-    pub settings: &'a ShadowSettings,
+    /// Each light's shadow as the frame drew it (the renderer's plan).
+    pub plan: &'a ShadowPlan,
     /// The chapter step shown, `None` for the scene's own settings.
     pub step: Option<&'a str>,
     /// The time of the frame before, if there was one.
@@ -51,14 +56,17 @@ pub struct HudInfo<'a> {
     pub azimuth: Option<Vec3>,
     /// The angle keys were pressed but the first light is a spot or point light.
     pub angle_keys_idle: bool,
-    /// Shadow-map passes drawn, patched and reused and frames that read the shadow mask, so far
-    /// (`shadow_cache`); `None`: not shown.
+    /// The shadow cache's counters (the stats key, P): shadow-map passes drawn, patched
+    /// and reused, and frames that read the shadow mask, so far; `None`: not shown.
     pub reuse: Option<(DepthPasses, MaskUses)>,
 }
 
 /// Said once when the angle keys are pressed on a scene whose first light has no angle.
 pub const ANGLE_KEYS_IDLE: &str =
     "Arrow keys: the first light is not directional; they turn nothing here";
+
+/// The last line while the key panel is closed.
+pub const KEYS_HINT: &str = "H: keys, P: shadow cache counters";
 
 /// The status lines, top to bottom.
 pub fn status_lines(info: &HudInfo) -> Vec<String> {
@@ -78,10 +86,6 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         }
         None => upper_first(&scene.light().describe()),
     };
-    let more = match scene.lights.len() {
-        0 | 1 => String::new(),
-        n => format!(" (+{} more)", n - 1),
-    };
     let step = match info.step {
         Some(name) => match steps::of(scene).iter().position(|s| s.name == name) {
             Some(i) => format!("Step {} of {}: {name}", i + 1, steps::of(scene).len()),
@@ -89,16 +93,23 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         },
         None => format!("Settings: the {} scene's own", scene.name),
     };
-    let mut lines = vec![format!("{light}{more}"), step];
-    // The settings summary can be long: wrapped at its commas to stay in the corner.
-    lines.extend(wrap_at_commas(
-        &super::cli::in_use(info.scene, info.settings).summary(),
-        SUMMARY_WIDTH,
-    ));
+    let mut lines = vec![light];
+    match scene.lights.len() {
+        0 | 1 => {}
+        2 => lines.push("and 1 more light".to_string()),
+        n => lines.push(format!("and {} more lights", n - 1)),
+    }
+    lines.push(step);
+    // The first light's shadow in words, each line wrapped to stay in the corner.
+    if let Some(first) = info.plan.lights.first() {
+        for line in words::shadow(first) {
+            lines.extend(wrap_words(&line, LINE_WIDTH));
+        }
+    }
     if info.angle_keys_idle {
         lines.push(ANGLE_KEYS_IDLE.to_string());
     }
-    if info.settings.show_depth_map {
+    if info.plan.scene_settings().show_depth_map {
         lines.push(format!("Showing light {}'s shadow map", info.depth_light));
     }
     lines.push(match info.frame_ms {
@@ -106,14 +117,12 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         None => "Frame time: -".to_string(),
     });
     if let Some((passes, mask)) = info.reuse {
-        lines.push(format!(
-            "Shadow maps: {} drawn, {} patched, {} reused",
-            passes.drawn, passes.patched, passes.skipped
-        ));
-        lines.push(format!("Tests from the mask: {} frames", mask.read));
+        for line in words::cache(passes, mask) {
+            lines.extend(wrap_words(&line, LINE_WIDTH));
+        }
     }
     if info.keys.is_some() && !info.show_keys {
-        lines.push("H: keys".to_string());
+        lines.push(KEYS_HINT.to_string());
     }
     lines
 }
@@ -205,24 +214,21 @@ impl Hud {
     }
 }
 
-/// Characters per line of the settings summary (about 400 pixels at `FONT_PX`).
-const SUMMARY_WIDTH: usize = 48;
+/// Characters per line of a wrapped line (about 400 pixels at `FONT_PX`).
+const LINE_WIDTH: usize = 48;
 
-/// `text` split into lines of at most `width` characters at ", " (a longer piece keeps its
-/// own line).
-fn wrap_at_commas(text: &str, width: usize) -> Vec<String> {
+/// `text` split into lines of at most `width` characters at spaces, the lines after the
+/// first indented (a longer word keeps its own line).
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
-    for piece in text.split(", ") {
+    for word in text.split(' ') {
         match lines.last_mut() {
-            Some(line) if line.len() + 2 + piece.len() <= width => {
-                line.push_str(", ");
-                line.push_str(piece);
+            Some(line) if line.len() + 1 + word.len() <= width => {
+                line.push(' ');
+                line.push_str(word);
             }
-            Some(line) => {
-                line.push(',');
-                lines.push(format!("  {piece}"));
-            }
-            None => lines.push(piece.to_string()),
+            Some(_) => lines.push(format!("  {word}")),
+            None => lines.push(word.to_string()),
         }
     }
     lines
@@ -279,9 +285,10 @@ pub fn render_frames_with_overlays(
                 return Ok(());
             };
             target.bind();
+            // No keys here: the cache's counters go to stdout, not over the frame.
             let info = HudInfo {
                 scene,
-                settings,
+                plan: renderer.plan(),
                 step,
                 frame_ms,
                 depth_light: 0,
@@ -289,7 +296,7 @@ pub fn render_frames_with_overlays(
                 show_keys: false,
                 azimuth: None,
                 angle_keys_idle: false,
-                reuse: Some((renderer.depth_passes(), renderer.mask_uses())),
+                reuse: None,
             };
             hud.draw(&info, target.width(), target.height())
         };

@@ -23,10 +23,11 @@ use crate::engine::{check_gl, gl_limits, state, Gl, Mesh, Outputs, RenderTarget,
 use crate::engine::{SamplesQuery, ShaderProgram, ShadowMap, Texture};
 use crate::error::{Error, Result};
 use crate::image_data::ImageData;
-use crate::scene::{Scene, MAX_LIGHTS};
+use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::patch::{MapRecord, Patch};
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::program::ProgramKey;
 use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
@@ -121,6 +122,8 @@ pub trait PassHooks {
 pub struct Renderer {
     gl: Gl,
     settings: ShadowSettings,
+    /// Each light's kind and settings, decided when the settings or the lights change.
+    plan: ShadowPlan,
     meshes: Vec<Mesh>,
     textures: Vec<Texture>,
     /// 1 x 1 white, for items without a texture.
@@ -189,6 +192,7 @@ impl Renderer {
         let mut renderer = Renderer {
             gl: gl.clone(),
             settings: *settings,
+            plan: ShadowPlan::default(),
             meshes,
             textures,
             white: Texture::from_image(gl, &white)?,
@@ -221,6 +225,11 @@ impl Renderer {
 
     pub fn settings(&self) -> &ShadowSettings {
         &self.settings
+    }
+
+    /// Each light's shadow as the last frame drew it.
+    pub fn plan(&self) -> &ShadowPlan {
+        &self.plan
     }
 
     /// Switches settings; what they change (programs, maps) is rebuilt on the next frame.
@@ -318,7 +327,7 @@ impl Renderer {
         };
         for (index, (shadow, view)) in self.shadows.iter_mut().zip(&mut self.views).enumerate() {
             let light = &scene.lights[index];
-            let settings = light.settings(&self.settings);
+            let settings = self.plan.lights[index].settings;
             let Some(technique) = shadow else {
                 *view = None;
                 continue;
@@ -425,7 +434,7 @@ impl Renderer {
                     size,
                 )?;
                 if self.settings.show_volumes {
-                    volume_pass::draw_debug(volumes, &self.kinds, &self.settings, gl, scene, size);
+                    volume_pass::draw_debug(volumes, &self.plan, gl, scene, size);
                 }
                 self.volume_counted = counted;
                 Ok(())
@@ -445,7 +454,7 @@ impl Renderer {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
             views: &self.views,
-            settings: &self.settings,
+            plan: &self.plan,
             meshes: &self.meshes,
             textures: &self.textures,
             white: &self.white,
@@ -534,57 +543,38 @@ impl Renderer {
         state::finish(&self.gl);
     }
 
-    /// Makes each light's technique match the scene's lights and the settings: only lights
-    /// that cast get one, remade when the settings change its kind or storage.
+    /// Makes each light's technique match the plan (resolved again when the settings or the
+    /// lights changed): only lights that cast get one, remade when its kind or storage
+    /// changes.
     fn prepare_shadows(&mut self, scene: &Scene) -> Result<()> {
-        let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
-        if kinds.contains(&ShadowKind::Volume) {
+        if !self.plan.fits(&scene.lights, &self.settings) {
+            let max = Some(self.max_texture_size);
+            self.plan = ShadowPlan::resolve(&scene.lights, &self.settings, max)?;
+        }
+        let plan = &self.plan;
+        if plan.has(ShadowKind::Volume) {
             if !self.volumes.as_ref().is_some_and(|v| v.fits(scene)) {
                 self.volumes = Some(Volumes::new(&self.gl, scene)?);
             }
-            while self.volume_queries.len() < kinds.len() {
+            while self.volume_queries.len() < plan.lights.len() {
                 self.volume_queries.push(SamplesQuery::new(&self.gl)?);
             }
         }
-        self.kinds.clone_from(&kinds);
-        self.shadows.resize_with(kinds.len(), || None);
-        self.views.resize(kinds.len(), None);
-        self.drawn.resize(kinds.len(), None);
-        self.records.resize(kinds.len(), None);
-        for (i, ((kind, shadow), light)) in kinds
-            .into_iter()
-            .zip(&mut self.shadows)
-            .zip(&scene.lights)
-            .enumerate()
-        {
-            let settings = light.settings(&self.settings);
-            // Combinations no technique draws (a moment filter on a cube map) are refused
-            // here too, for scenes built in code.
-            if let Some(problem) =
-                light.settings_problem(&format!("light {i}"), &settings, kind.layered())
-            {
-                return Err(Error::Invalid(problem));
-            }
-            if !light.shadow_patch().given().is_empty() {
-                settings
-                    .validate(self.max_texture_size)
-                    .map_err(|e| Error::Invalid(format!("light {i}'s own shadow table: {e}")))?;
-            }
-            // Checked before any frame by the commands; this guards scenes built in code (a
-            // cube map would otherwise take a soft filter as one lookup without a word).
-            let (cube, cascaded) = (kind == ShadowKind::Cube, kind.layered());
-            if let Some(why) = settings.filter.refused_for(cube, cascaded) {
-                return Err(Error::Invalid(format!(
-                    "shadow.filter = {}: light {i} cannot use it: {why}",
-                    settings.filter.name()
-                )));
-            }
+        let n = plan.lights.len();
+        self.kinds.clear();
+        self.kinds.extend(plan.lights.iter().map(|l| l.kind));
+        self.shadows.resize_with(n, || None);
+        self.views.resize(n, None);
+        self.drawn.resize(n, None);
+        self.records.resize(n, None);
+        for (i, (own, shadow)) in plan.lights.iter().zip(&mut self.shadows).enumerate() {
+            let (kind, settings) = (own.kind, &own.settings);
             let fits = match shadow {
-                Some(t) => t.kind() == kind && t.fits(&settings),
+                Some(t) => t.kind() == kind && t.fits(settings),
                 None => matches!(kind, ShadowKind::None | ShadowKind::Volume),
             };
             if !fits {
-                *shadow = kind.create(&self.gl, &settings)?;
+                *shadow = kind.create(&self.gl, settings)?;
                 self.drawn[i] = None;
                 self.records[i] = None;
             }
@@ -616,19 +606,7 @@ impl Renderer {
 
     /// The scene program's key for this frame's lights and `outputs`, before the mask.
     fn program_key(&self, scene: &Scene, outputs: Outputs) -> Result<ProgramKey> {
-        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
-        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
-        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
-            *k = *kind;
-        }
-        let n = self.kinds.len().min(MAX_LIGHTS);
-        ProgramKey::of(
-            scene,
-            &self.settings,
-            &kinds[..n],
-            self.visibility_light,
-            outputs,
-        )
+        ProgramKey::of(scene, &self.plan, self.visibility_light, outputs)
     }
 
     /// What this frame's shadow tests depend on ([`shadow_mask::frame_key`]); `None` when

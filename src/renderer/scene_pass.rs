@@ -7,7 +7,7 @@ use glam::{DMat4, Mat3, Mat4, Vec3, Vec4};
 use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene, Shading};
-use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::slots::{self, MASK_UNIT, MATERIAL_UNIT};
 use crate::shadows::{ShadowView, Technique};
 
@@ -16,7 +16,8 @@ pub struct Inputs<'a> {
     pub program: &'a ShaderProgram,
     pub shadows: &'a [Option<Box<dyn Technique>>],
     pub views: &'a [Option<ShadowView>],
-    pub settings: &'a ShadowSettings,
+    /// Each light's kind and settings.
+    pub plan: &'a ShadowPlan,
     pub meshes: &'a [Mesh],
     pub textures: &'a [Texture],
     pub white: &'a Texture,
@@ -72,15 +73,15 @@ pub fn draw(
         Some(_) => &[][..],
         None => inputs.shadows,
     };
-    for (i, (shadow, light)) in tested.iter().zip(&scene.lights).enumerate() {
+    for (i, (shadow, own)) in tested.iter().zip(&inputs.plan.lights).enumerate() {
         let Some(t) = shadow else { continue };
-        let settings = light.settings(inputs.settings);
-        t.set_scene_uniforms(p, scene, &settings);
+        let settings = &own.settings;
+        t.set_scene_uniforms(p, scene, settings);
         if let Some(name) = slots::sampler_name(i, t.kind()) {
             let unit = slots::texture_unit(i);
             p.set_i32(name, unit as i32);
             t.texture().bind(unit);
-            bound.push(samplers.get(gl, t.sampling(&settings))?.bind(unit));
+            bound.push(samplers.get(gl, t.sampling(settings))?.bind(unit));
         }
     }
     let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
@@ -183,7 +184,7 @@ impl LightUniforms {
                 continue;
             };
             u.penumbra[i] = penumbra(light, v);
-            if let Some(s) = t.slot_transform(light, v, &light.settings(inputs.settings)) {
+            if let Some(s) = t.slot_transform(light, v, &inputs.plan.lights[i].settings) {
                 u.normal_offset[p] = s.normal_offset;
                 u.projection[p] = s.projection;
                 u.light_from[p] = s.from;

@@ -13,7 +13,7 @@ use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};
 use crate::engine::{VolumeDraw, VolumePassGuard};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
@@ -58,7 +58,7 @@ pub fn draw(
             let _pass = VolumePassGuard::begin(gl, VolumeDraw::Stencil);
             let query = queries.get(i);
             query.inspect(|q| q.begin());
-            volumes.draw(scene, inputs.settings, i, size, Vec4::ZERO);
+            volumes.draw(scene, &inputs.plan.lights[i].settings, i, size, Vec4::ZERO);
             if let Some(q) = query {
                 q.end();
                 counted.push(i);
@@ -88,16 +88,15 @@ pub fn draw(
 /// The debug view: every volume light's faces, translucent, over the finished frame.
 pub fn draw_debug(
     volumes: &Volumes,
-    kinds: &[ShadowKind],
-    settings: &ShadowSettings,
+    plan: &ShadowPlan,
     gl: &Gl,
     scene: &Scene,
     size: (u32, u32),
 ) {
     let _pass = VolumePassGuard::begin(gl, VolumeDraw::Debug);
-    for (i, kind) in kinds.iter().enumerate() {
-        if *kind == ShadowKind::Volume {
-            volumes.draw(scene, settings, i, size, COLOURS[i % COLOURS.len()]);
+    for (i, own) in plan.lights.iter().enumerate() {
+        if own.kind == ShadowKind::Volume {
+            volumes.draw(scene, &own.settings, i, size, COLOURS[i % COLOURS.len()]);
         }
     }
 }

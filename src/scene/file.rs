@@ -27,6 +27,7 @@ use crate::geometry::MeshData;
 use crate::image_data::ImageData;
 use crate::input::{read_text_file, SCENE_LIMIT};
 use crate::settings::{ShadowPatch, ShadowSettings, Wrap};
+use crate::shadows::plan::{own_settings, ShadowPlan};
 use crate::transformation::Transformation;
 
 // ---------------------------------------------------------------------------------------
@@ -888,35 +889,30 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
                 1 => "light.shadow".to_string(),
                 _ => format!("lights[{i}].shadow"),
             };
-            light
-                .settings(&file.shadow)
+            own_settings(light, &file.shadow)
                 .validate_values()
                 .map_err(|e| cx.bad(field, e.to_string()))?;
         }
     }
     // What a light cannot be drawn with (the book's angle view off the YZ plane, which
     // would say nothing; a non-square map for a cube map or cascades): the setting named.
-    let layered = super::light::layered_light(&lights, &file.shadow);
-    for (i, light) in lights.iter().enumerate() {
-        let prefix = match lights.len() {
-            1 => "light".to_string(),
-            _ => format!("lights[{i}]"),
+    let prefix = |i: usize| match lights.len() {
+        1 => "light".to_string(),
+        _ => format!("lights[{i}]"),
+    };
+    if let Err(refused) = ShadowPlan::resolve_named(&lights, &file.shadow, prefix) {
+        let own = lights[refused.light].shadow_patch();
+        let given_by_light = match refused.setting {
+            "light_view" => own.light_view.is_some(),
+            "map_size" => own.map_size.is_some(),
+            "filter" => own.filter.is_some(),
+            _ => false,
         };
-        let own = light.shadow_patch();
-        let own_settings = light.settings(&file.shadow);
-        if let Some(problem) = light.settings_problem(&prefix, &own_settings, layered == Some(i)) {
-            let setting = problem.split(' ').next().unwrap_or_default();
-            let given_by_light = match setting {
-                "shadow.light_view" => own.light_view.is_some(),
-                "shadow.map_size" => own.map_size.is_some(),
-                "shadow.filter" => own.filter.is_some(),
-                _ => false,
-            };
-            return Err(match given_by_light {
-                true => cx.bad(format!("{prefix}.{setting}"), problem),
-                false => Error::file(cx.source, problem),
-            });
-        }
+        let field = format!("{}.shadow.{}", prefix(refused.light), refused.setting);
+        return Err(match given_by_light {
+            true => cx.bad(field, refused.message),
+            false => Error::file(cx.source, refused.message),
+        });
     }
     let steps = build_steps(&file.steps, &file.camera, cx)?;
     if let Some(size) = steps.light_size {

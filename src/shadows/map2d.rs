@@ -19,7 +19,7 @@ use super::{
     Technique,
 };
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, Sampling, ShadowMap, Texture};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
 
@@ -73,15 +73,6 @@ impl Map2d {
         index: usize,
         patch: Option<&Patch>,
     ) -> Result<ShadowView> {
-        // Scene files and flags are checked before any frame; this guards scenes built in
-        // code (the book's angles would turn the map away from the light without a word).
-        if let Light::Directional(l) = &scene.lights[index] {
-            if let Some(problem) =
-                l.book_angles_problem(&format!("light {index}"), pass.settings, false)
-            {
-                return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
-            }
-        }
         let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         // A fitted box's casters, of those the patch draws.
         let only = match (fitted_casters, patch) {
