@@ -313,16 +313,20 @@ mod tests {
         scene
     }
 
-    const KEYS: &[(&str, &str)] = &[("H", "these keys"), ("ESC", "quit")];
+    const KEYS: &[(&str, &str)] = &[
+        ("H", "these keys"),
+        ("P", "the shadow cache's counters"),
+        ("ESC", "quit"),
+    ];
 
-    fn info<'a>(
-        scene: &'a Scene,
-        settings: &'a ShadowSettings,
-        step: Option<&'a str>,
-    ) -> HudInfo<'a> {
+    fn plan(scene: &Scene, settings: &ShadowSettings) -> ShadowPlan {
+        ShadowPlan::resolve(&scene.lights, settings, None).unwrap()
+    }
+
+    fn info<'a>(scene: &'a Scene, plan: &'a ShadowPlan, step: Option<&'a str>) -> HudInfo<'a> {
         HudInfo {
             scene,
-            settings,
+            plan,
             step,
             frame_ms: Some(3.25),
             depth_light: 0,
@@ -334,14 +338,18 @@ mod tests {
         }
     }
 
+    /// The lines as one text, the wrapping undone.
+    fn joined(lines: &[String]) -> String {
+        let words: Vec<&str> = lines.iter().map(|l| l.trim()).collect();
+        words.join(" ")
+    }
+
     #[test]
-    fn the_hud_counts_maps_drawn_patched_and_reused_and_frames_read_from_the_mask() {
+    fn the_stats_key_shows_the_caches_counters_and_says_what_they_count() {
         let scene = Scene::load("learnopengl").unwrap();
-        let settings = scene.shadow;
-        let mut i = info(&scene, &settings, None);
-        assert!(!status_lines(&i)
-            .iter()
-            .any(|l| l.starts_with("Shadow maps")));
+        let plan = plan(&scene, &scene.shadow);
+        let mut i = info(&scene, &plan, None);
+        assert!(!joined(&status_lines(&i)).contains("Shadow maps"));
         i.reuse = Some((
             DepthPasses {
                 drawn: 1,
@@ -355,80 +363,97 @@ mod tests {
             },
         ));
         let lines = status_lines(&i);
-        let at = lines
-            .iter()
-            .position(|l| l == "Shadow maps: 1 drawn, 39 patched, 20 reused");
-        assert!(at.is_some(), "{lines:?}");
-        assert_eq!(
-            lines.get(at.unwrap_or(0) + 1).map(String::as_str),
-            Some("Tests from the mask: 58 frames")
+        let text = joined(&lines);
+        assert!(
+            text.contains(
+                "Shadow maps: 1 drawn whole, 39 patched (redrawn only where casters moved), 20 \
+                 reused (nothing changed) Frames whose shadow tests were read from the saved \
+                 mask (camera and lights still): 58"
+            ),
+            "{lines:?}"
+        );
+        // Wrapped to stay in the corner (the light's line is the light's).
+        assert!(
+            lines.iter().skip(1).all(|l| l.len() <= LINE_WIDTH + 2),
+            "{lines:?}"
         );
     }
 
     #[test]
-    fn the_dummy_game_at_45_degrees_shows_angle_step_summary_and_time() {
+    fn the_dummy_game_at_45_degrees_shows_angle_step_shadow_in_words_and_time() {
         let scene = dummy_at(45.0);
         let settings = steps::settings_for(&scene, "pcf").unwrap();
-        let lines = status_lines(&info(&scene, &settings, Some("pcf")));
+        let plan = plan(&scene, &settings);
+        let lines = status_lines(&info(&scene, &plan, Some("pcf")));
         assert_eq!(lines[0], "Light angle: 45.0");
         assert!(
             lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
             "{lines:?}"
         );
-        // The summary, wrapped at its commas into lines that keep to the corner.
-        let summary = settings.summary();
-        let wrapped: Vec<&String> = lines
-            .iter()
-            .skip(2)
-            .take_while(|l| !l.starts_with("Frame time"))
-            .collect();
-        assert!(wrapped.len() > 1, "{lines:?}");
-        assert!(wrapped
-            .iter()
-            .all(|l| l.chars().count() <= SUMMARY_WIDTH + 1));
-        let joined: String = wrapped
-            .iter()
-            .map(|l| l.trim())
-            .collect::<Vec<_>>()
-            .join(" ");
-        assert_eq!(joined, summary);
+        let m = settings.map_size;
+        assert_eq!(
+            lines[2],
+            format!("Shadow: one {} x {} depth map, 24-bit depth", m.width, m.height)
+        );
+        assert_eq!(lines[3], "Filter: PCF, 3 x 3 depth tests averaged");
+        assert!(lines[4].starts_with("Bias: "), "{lines:?}");
         assert!(
             lines.contains(&"Frame time: 3.25 ms".to_string()),
             "{lines:?}"
         );
-        assert_eq!(lines.last().map(String::as_str), Some("H: keys"));
+        assert_eq!(lines.last().map(String::as_str), Some(KEYS_HINT));
+        assert!(lines.iter().all(|l| l.len() <= LINE_WIDTH + 2), "{lines:?}");
 
-        let own = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let own = status_lines(&info(&scene, &own, None));
         assert_eq!(own[1], "Settings: the dummy scene's own");
-        assert!(scene
-            .shadow
-            .summary()
-            .starts_with(own[2].trim_end_matches(',')));
+        assert!(own[2].starts_with("Shadow: one "), "{own:?}");
+    }
+
+    fn plan_own(scene: &Scene) -> ShadowPlan {
+        plan(scene, &scene.shadow)
     }
 
     #[test]
-    fn other_lights_are_described_and_counted() {
+    fn other_lights_are_counted_in_words_and_a_cube_map_is_described() {
         let scene = Scene::load("three-lights").unwrap();
-        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let lines = status_lines(&info(&scene, &own, None));
         // The sun has an azimuth of its own: the angle is measured from it, and shown.
         let sun = scene.light().as_directional().unwrap();
         let angle = sun.angle_deg();
         assert_eq!(
             lines[0],
-            format!(
-                "Light angle: {angle:.1} over azimuth {:.2} (+3 more)",
-                sun.azimuth()
-            )
+            format!("Light angle: {angle:.1} over azimuth {:.2}", sun.azimuth())
         );
+        assert_eq!(lines[1], "and 3 more lights");
         let mut scene = Scene::load("point-shadows").unwrap();
-        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let lines = status_lines(&info(&scene, &own, None));
         assert!(lines[0].starts_with("Point light at"), "{lines:?}");
+        let m = scene.shadow.map_size;
+        assert!(
+            joined(&lines).contains(&format!(
+                "Shadow: a cube map, 6 faces of {} x {}, 24-bit depth, drawn in one pass",
+                m.width, m.height
+            )),
+            "{lines:?}"
+        );
         assert!(!lines.iter().any(|l| l == ANGLE_KEYS_IDLE), "{lines:?}");
         // The angle keys pressed on it: said in the HUD.
-        let mut hud = info(&scene, &scene.shadow, None);
+        let mut hud = info(&scene, &own, None);
         hud.angle_keys_idle = true;
         assert!(status_lines(&hud).iter().any(|l| l == ANGLE_KEYS_IDLE));
         assert!(!scene.set_light_angle(30.0));
+        // Shadows off, and a light that casts none: said so.
+        let off = plan(
+            &scene,
+            &ShadowSettings {
+                shadows: false,
+                ..scene.shadow
+            },
+        );
+        assert!(status_lines(&info(&scene, &off, None)).contains(&"Shadows: off".to_string()));
     }
 
     #[test]
@@ -436,7 +461,8 @@ mod tests {
         let mut scene = Scene::load("learnopengl").unwrap();
         let azimuth = scene.light_azimuth().unwrap();
         assert!(scene.set_light_angle_about(azimuth, 120.0));
-        let mut hud = info(&scene, &scene.shadow, None);
+        let own = plan_own(&scene);
+        let mut hud = info(&scene, &own, None);
         hud.azimuth = Some(azimuth);
         assert_eq!(
             status_lines(&hud)[0],
@@ -464,7 +490,8 @@ mod tests {
     fn panels_stay_in_the_top_left_and_the_key_panel_lists_every_key() {
         let atlas = FontAtlas::new(FONT, FONT_PX).unwrap();
         let scene = dummy_at(45.0);
-        let mut hud = info(&scene, &scene.shadow, None);
+        let own = plan_own(&scene);
+        let mut hud = info(&scene, &own, None);
         let closed = layout(&atlas, &hud);
         hud.show_keys = true;
         let open = layout(&atlas, &hud);
@@ -472,7 +499,7 @@ mod tests {
         // The key panel replaces the hint with the keys and their descriptions.
         let glyphs = |s: &str| s.chars().filter(|c| !c.is_whitespace()).count();
         let keys: usize = KEYS.iter().map(|(k, d)| glyphs(k) + glyphs(d)).sum();
-        assert_eq!(open.len(), closed.len() - glyphs("H: keys") + keys + 1);
+        assert_eq!(open.len(), closed.len() - glyphs(KEYS_HINT) + keys + 1);
         for q in &open {
             let [x0, y0, x1, y1] = q.rect;
             assert!(

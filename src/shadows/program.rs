@@ -195,6 +195,7 @@ impl ProgramKey {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::settings::ShadowSettings;
 
     #[test]
     fn defines_exist_only_for_what_the_lights_use() {
