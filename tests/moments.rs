@@ -8,8 +8,8 @@ use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::settings::{Filter, ShadowSettings};
-use shadowmap::shadows::{filter_cost as cost, ShadowKind};
 use shadowmap::shadows::plan::ShadowPlan;
+use shadowmap::shadows::{filter_cost as cost, ShadowKind};
 use shadowmap::Scene;
 
 const MOMENT_FILTERS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];

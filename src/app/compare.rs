@@ -168,12 +168,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     write_into(dir, &batch)?;
     println!(
         "{}",
-        summary(
-            &scene.name,
-            &plan.in_use().summary(),
-            &metrics,
-            args.band
-        )
+        summary(&scene.name, &plan.in_use().summary(), &metrics, args.band)
     );
     if let Some(a) = &agreement {
         println!(

@@ -393,7 +393,10 @@ mod tests {
         let m = settings.map_size;
         assert_eq!(
             lines[2],
-            format!("Shadow: one {} x {} depth map, 24-bit depth", m.width, m.height)
+            format!(
+                "Shadow: one {} x {} depth map, 24-bit depth",
+                m.width, m.height
+            )
         );
         assert_eq!(lines[3], "Filter: PCF, 3 x 3 depth tests averaged");
         assert!(lines[4].starts_with("Bias: "), "{lines:?}");

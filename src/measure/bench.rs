@@ -300,7 +300,10 @@ pub fn sweep(
 
 /// Why the measured light (alone, so first) cannot be drawn under `settings`, if it cannot.
 fn refused(light: &Light, settings: &ShadowSettings) -> Option<Refusal> {
-    ShadowPlan::resolve_named(std::slice::from_ref(light), settings, |_| "the light".into()).err()
+    ShadowPlan::resolve_named(std::slice::from_ref(light), settings, |_| {
+        "the light".into()
+    })
+    .err()
 }
 
 /// The soft filters' configurations, for a light with a size (a point light has none: its

@@ -86,13 +86,7 @@ pub fn draw(
 }
 
 /// The debug view: every volume light's faces, translucent, over the finished frame.
-pub fn draw_debug(
-    volumes: &Volumes,
-    plan: &ShadowPlan,
-    gl: &Gl,
-    scene: &Scene,
-    size: (u32, u32),
-) {
+pub fn draw_debug(volumes: &Volumes, plan: &ShadowPlan, gl: &Gl, scene: &Scene, size: (u32, u32)) {
     let _pass = VolumePassGuard::begin(gl, VolumeDraw::Debug);
     for (i, own) in plan.lights.iter().enumerate() {
         if own.kind == ShadowKind::Volume {

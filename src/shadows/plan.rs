@@ -96,9 +96,9 @@ impl ShadowPlan {
         if let Some(max) = max_texture_size {
             for (i, (light, own)) in lights.iter().zip(&plan.lights).enumerate() {
                 if !light.shadow_patch().given().is_empty() {
-                    own.settings
-                        .validate(max)
-                        .map_err(|e| Error::Invalid(format!("light {i}'s own shadow table: {e}")))?;
+                    own.settings.validate(max).map_err(|e| {
+                        Error::Invalid(format!("light {i}'s own shadow table: {e}"))
+                    })?;
                 }
             }
         }
@@ -135,12 +135,14 @@ impl ShadowPlan {
             .iter()
             .zip(&own)
             .position(|(l, s)| layers_asked(l, s).is_some());
-        let kinds = lights.iter().zip(&own).enumerate().map(|(i, (l, s))| {
-            match kind_alone(l, s) {
+        let kinds = lights
+            .iter()
+            .zip(&own)
+            .enumerate()
+            .map(|(i, (l, s))| match kind_alone(l, s) {
                 kind if kind.layered() && layered != Some(i) => one_map(s),
                 kind => kind,
-            }
-        });
+            });
         let lights_plan: Vec<LightPlan> = kinds
             .zip(&own)
             .zip(lights)

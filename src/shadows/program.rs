@@ -3,8 +3,8 @@
 //! so they are compile-time constants; the key is a small `Copy` value compared every frame
 //! without allocating, and its text is made only when a program is compiled.
 
-use super::slots::{self, LightSlot, MaskMode, ShadowTest};
 use super::plan::ShadowPlan;
+use super::slots::{self, LightSlot, MaskMode, ShadowTest};
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram};
 use crate::error::{Error, Result};

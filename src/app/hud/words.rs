@@ -41,7 +41,7 @@ pub fn shadow(light: &LightPlan) -> Vec<String> {
     let bias = match s.bias_mode {
         BiasMode::None => "Bias: none".to_string(),
         BiasMode::Constant => format!("Bias: {}", s.bias),
-        BiasMode::Slope => format!("Bias: {} to {} by slope", s.bias_min, s.bias),
+        BiasMode::Slope => format!("Bias: {} to {}, growing with the slope", s.bias_min, s.bias),
     };
     let mut bias = vec![bias];
     if s.normal_offset != 0.0 {

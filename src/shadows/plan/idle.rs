@@ -88,7 +88,9 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         _ if s.light_projection == LightProjection::Perspective => {
             format!("{what} need an orthographic light projection")
         }
-        _ => format!("only the first casting directional light gets {what}; this one keeps one map"),
+        _ => {
+            format!("only the first casting directional light gets {what}; this one keeps one map")
+        }
     };
     let mut push = |name: &'static str, why: String| {
         if !idle.iter().any(|i: &Idle| i.setting == name) {
@@ -102,7 +104,10 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         push("caster_groups", layers("caster groups"));
     }
     if kind != ShadowKind::Cube {
-        push("point_pass", "only a point light's cube map has faces to draw".into());
+        push(
+            "point_pass",
+            "only a point light's cube map has faces to draw".into(),
+        );
     }
     if !(directional && s.light_projection == LightProjection::Perspective) {
         push(
@@ -150,7 +155,10 @@ pub(super) fn of_scene(
         .collect();
     let mut idle = Vec::new();
     if settings.cascades > 1 && !has(ShadowKind::Cascades) {
-        idle.push(Idle::new("cascades", no_layers(settings, !suns.is_empty(), "cascades")));
+        idle.push(Idle::new(
+            "cascades",
+            no_layers(settings, !suns.is_empty(), "cascades"),
+        ));
     }
     if settings.caster_groups > 1 && !has(ShadowKind::Groups) {
         let why = no_layers(settings, !suns.is_empty(), "caster groups");
