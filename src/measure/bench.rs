@@ -14,13 +14,14 @@ use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
 use crate::renderer::{Renderer, Target};
+use crate::scene::refusals::Refusal;
 use crate::scene::Scene;
 use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, Fit, MapSize, PointPass, ShadowPatch, ShadowSettings,
     ShadowTechnique,
 };
-use crate::shadows::plan::{Refusal, ShadowPlan};
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{filter_cost, FilterCost, ShadowKind};
 
 /// The bias configurations the sweep tries, by name.

@@ -18,6 +18,7 @@ use serde::de::{self, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::refusals;
 use super::{
     Camera, DirectionalLight, GameItem, Light, Material, OrthoCoords, PointLight, Scene,
     ShadingModel, SpotLight, StepContext, StepList, MAX_LIGHTS,
@@ -27,7 +28,6 @@ use crate::geometry::MeshData;
 use crate::image_data::ImageData;
 use crate::input::{read_text_file, SCENE_LIMIT};
 use crate::settings::{ShadowPatch, ShadowSettings, Wrap};
-use crate::shadows::plan::{own_settings, ShadowPlan};
 use crate::transformation::Transformation;
 
 // ---------------------------------------------------------------------------------------
@@ -889,7 +889,7 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
                 1 => "light.shadow".to_string(),
                 _ => format!("lights[{i}].shadow"),
             };
-            own_settings(light, &file.shadow)
+            refusals::own_settings(light, &file.shadow)
                 .validate_values()
                 .map_err(|e| cx.bad(field, e.to_string()))?;
         }
@@ -900,7 +900,7 @@ fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
         1 => "light".to_string(),
         _ => format!("lights[{i}]"),
     };
-    if let Err(refused) = ShadowPlan::resolve_named(&lights, &file.shadow, prefix) {
+    if let Err(refused) = refusals::check(&lights, &file.shadow, prefix) {
         let own = lights[refused.light].shadow_patch();
         let given_by_light = match refused.setting {
             "light_view" => own.light_view.is_some(),

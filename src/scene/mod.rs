@@ -5,6 +5,7 @@ pub mod camera;
 pub mod file;
 pub mod game_item;
 pub mod light;
+pub mod refusals;
 
 use glam::{Vec3, Vec4};
 use serde::{Deserialize, Serialize};

@@ -1,6 +1,6 @@
 use super::*;
 use crate::scene::Scene;
-use crate::settings::{Filter, MapSize};
+use crate::settings::{Filter, LightView, MapSize};
 
 fn scene(name: &str) -> Scene {
     Scene::load(name).unwrap()
