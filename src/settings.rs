@@ -165,36 +165,9 @@ impl Filter {
         Filter::SOFT.contains(&self)
     }
 
-    /// Whether a light whose shadow is stored as `storage` ("a cube map", "cascades", "a 2D
-    /// map") can use this filter: the soft filters read a 2D texel grid, which a cube map
-    /// has not; PCSS needs one light camera per map, which cascades and caster groups have
-    /// not (each layer has its own box). `None` when it can; otherwise why not.
-    pub fn refused_for(self, cube: bool, cascades: bool) -> Option<&'static str> {
-        match self {
-            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss if cube => Some(
-                "a point light's cube map takes single, pcf3x3, pcf5x5, hw2x2 or hw3x3 (the \
-                 soft filters read a 2D map's texel grid)",
-            ),
-            Filter::Pcss if cascades => Some(
-                "cascades and caster groups take every filter but pcss (its penumbra is \
-                 measured in one light camera's units, and each layer has its own box)",
-            ),
-            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cube => Some(
-                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a point light's \
-                 shadow is a cube map; give the light a depth filter of its own (shadow = { \
-                 filter = \"pcf3x3\" }) or use one for the scene",
-            ),
-            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cascades => Some(
-                "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and cascades and \
-                 caster groups have a layer each; use cascades = 1 and caster_groups = 1, or \
-                 a depth filter (pcf3x3) for the light",
-            ),
-            _ => None,
-        }
-    }
-
     /// Whether the map stores moments of depth (a float colour map, blurred) rather than
-    /// depth: those filters need one 2D map (no cube maps, no cascades: [`Filter::refused_for`]).
+    /// depth: those filters need one 2D map (no cube maps, no cascades:
+    /// [`crate::shadows::plan::filter_refusal`]).
     pub fn moments(self) -> bool {
         self.moment_components() > 0
     }

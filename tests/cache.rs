@@ -165,7 +165,9 @@ fn a_still_frame_takes_its_shadow_tests_from_the_mask_and_equals_a_fresh_one() {
             }
         }
         for (what, variant) in variants {
-            let refused = |s: &ShadowSettings| still.check_light_settings(s).is_err();
+            let refused = |s: &ShadowSettings| {
+                shadowmap::shadows::plan::ShadowPlan::resolve(&still.lights, s, None).is_err()
+            };
             let mut probe = still.shadow;
             variant(&mut probe);
             if refused(&probe) {

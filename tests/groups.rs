@@ -114,15 +114,17 @@ fn a_second_sun_keeps_one_map_and_takes_what_one_map_takes() {
         caster_groups: 2,
         ..scene.shadow
     };
-    let kinds = shadowmap::shadows::ShadowKind::for_lights(&scene.lights, &s);
+    use shadowmap::shadows::plan::ShadowPlan;
     use shadowmap::shadows::ShadowKind;
-    assert_eq!(kinds, [ShadowKind::Groups, ShadowKind::Map]);
-    assert!(scene.check_light_settings(&s).is_ok());
+    let plan = ShadowPlan::resolve(&scene.lights, &s, None).unwrap();
+    assert_eq!(plan.kinds(), [ShadowKind::Groups, ShadowKind::Map]);
     let frame = common::render(&ctx, &mut scene, &s, 160, 120);
     assert!(frame.visibility.unwrap().iter().flatten().any(|v| *v < 0.5));
     // Asked of the first light, PCSS is still refused, naming it.
     scene.lights.swap(0, 1);
-    let e = scene.check_light_settings(&s).unwrap_err().to_string();
+    let e = ShadowPlan::resolve(&scene.lights, &s, None)
+        .unwrap_err()
+        .to_string();
     assert!(
         e.starts_with("shadow.filter = pcss: light 0 cannot use it: cascades and caster groups"),
         "{e}"

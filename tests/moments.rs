@@ -8,6 +8,7 @@ use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
 use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::settings::{Filter, ShadowSettings};
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::{filter_cost as cost, ShadowKind};
 use shadowmap::Scene;
 
@@ -115,7 +116,7 @@ fn away_from_edges_the_moment_filters_agree_with_the_hard_reference() {
     }
 }
 
-/// The message `Light::settings_problem` gives a point light under a moment filter.
+/// The message the shadow plan gives a point light under a moment filter.
 fn point_light_refusal(filter: Filter, light: usize) -> String {
     format!(
         "shadow.filter = {}: light {light} cannot use it: the moment maps (vsm, evsm2, evsm4, \
@@ -157,7 +158,7 @@ fn every_moment_filter_draws_every_built_in_scene_or_is_refused_exactly() {
                             light.shadow_patch_mut().filter = Some(Filter::Pcf3x3);
                         }
                     }
-                    let kinds = ShadowKind::for_lights(&mixed.lights, &s);
+                    let kinds = ShadowPlan::decide(&mixed.lights, &s).kinds();
                     let frame = render_frames(ctx.gl(), &mut mixed, &s, w, h, 1, outputs)
                         .unwrap_or_else(|e| panic!("{name} {} mixed: {e}", filter.name()));
                     assert!(frame.visibility.is_some());

@@ -9,6 +9,7 @@ use common::{context, dummy};
 use shadowmap::compare::{compare, CompareOptions, Comparison, AREA_RAYS};
 use shadowmap::reference::penumbra_profiles;
 use shadowmap::settings::{BiasMode, Filter, ShadowSettings};
+use shadowmap::shadows::plan::{filter_refusal, ShadowPlan};
 use shadowmap::Scene;
 
 fn opts(width: u32, height: u32, band: usize) -> CompareOptions {
@@ -205,7 +206,7 @@ fn every_soft_filter_draws_on_every_built_in_scene_or_is_refused_with_its_reason
                 };
                 // The first casting light a filter cannot serve: a point light's cube map
                 // (any soft filter), the cascaded sun (PCSS).
-                let kinds = shadowmap::shadows::ShadowKind::for_lights(&scene.lights, &settings);
+                let kinds = ShadowPlan::decide(&scene.lights, &settings).kinds();
                 use shadowmap::shadows::ShadowKind;
                 let refused = kinds.iter().position(|k| match k {
                     ShadowKind::Cube => true,
@@ -228,9 +229,8 @@ fn every_soft_filter_draws_on_every_built_in_scene_or_is_refused_with_its_reason
                             .unwrap_or_else(|e| panic!("{case}: {e}"));
                     }
                     (Some(i), Err(e)) => {
-                        let why = filter
-                            .refused_for(kinds[i] == ShadowKind::Cube, true)
-                            .unwrap();
+                        let why =
+                            filter_refusal(filter, kinds[i] == ShadowKind::Cube, true).unwrap();
                         assert_eq!(
                             e.to_string(),
                             format!(

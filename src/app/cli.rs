@@ -4,9 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use shadowmap::engine::window_context::WindowApi;
-use shadowmap::scene::Light;
-use shadowmap::settings::{Filter, Fit, LightProjection, ShadowPatch, ShadowTechnique};
-use shadowmap::shadows::ShadowKind;
+use shadowmap::settings::ShadowPatch;
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::steps;
 use shadowmap::{Scene, ShadowSettings};
 
@@ -521,26 +520,30 @@ impl SceneArgs {
 
 impl SettingsArgs {
     /// Checks the settings against the driver, naming where a bad value came from: the
-    /// flag, or the scene file.
+    /// flag, or the scene file. Gives each light's shadow as it will be drawn.
     pub fn check(
         &self,
         gl: &shadowmap::engine::Gl,
         scene: &Scene,
         settings: &ShadowSettings,
-    ) -> shadowmap::Result<()> {
+    ) -> shadowmap::Result<ShadowPlan> {
         let max = shadowmap::engine::gl_limits(gl).max_texture_size;
         settings
             .validate(max)
-            .and_then(|()| scene.check_light_settings(settings))
+            .and_then(|()| ShadowPlan::resolve(&scene.lights, settings, Some(max)))
             .map_err(|e| self.name_source(scene, e))
     }
 
     /// Checks every setting that needs no driver (biases, ranges, cascades): run before any
     /// GL work or file, so a bad flag costs nothing.
-    pub fn check_values(&self, scene: &Scene, settings: &ShadowSettings) -> shadowmap::Result<()> {
+    pub fn check_values(
+        &self,
+        scene: &Scene,
+        settings: &ShadowSettings,
+    ) -> shadowmap::Result<ShadowPlan> {
         settings
             .validate_values()
-            .and_then(|()| scene.check_light_settings(settings))
+            .and_then(|()| ShadowPlan::resolve(&scene.lights, settings, None))
             .map_err(|e| self.name_source(scene, e))
     }
 
@@ -549,12 +552,13 @@ impl SettingsArgs {
     /// file's own values are not the user's doing here).
     pub fn warnings(&self, scene: &Scene, settings: &ShadowSettings) -> Vec<String> {
         let given = self.patch.given();
-        idle_settings(scene, settings)
+        ShadowPlan::decide(&scene.lights, settings)
+            .idle
             .into_iter()
-            .filter(|(name, _)| given.contains(name))
-            .map(|(name, why)| {
-                let value = setting_value(settings, name);
-                format!("--{} {value}: {why}", name.replace('_', "-"))
+            .filter(|idle| given.contains(&idle.setting))
+            .map(|idle| {
+                let value = setting_value(settings, idle.setting);
+                format!("--{} {value}: {}", idle.setting.replace('_', "-"), idle.why)
             })
             .collect()
     }
@@ -636,193 +640,6 @@ impl SettingsArgs {
         }
         Ok(s)
     }
-}
-
-/// The settings that are legal but do nothing for this scene's lights: (field, why). The
-/// one place that knows which setting needs which light; the warnings and [`in_use`] read it.
-pub fn idle_settings(scene: &Scene, settings: &ShadowSettings) -> Vec<(&'static str, String)> {
-    let kinds = ShadowKind::for_lights(&scene.lights, settings);
-    // The casting directional lights, each under its own settings.
-    let suns: Vec<ShadowSettings> = scene
-        .lights
-        .iter()
-        .filter(|l| l.casts_shadows() && matches!(l, Light::Directional(_)))
-        .map(|l| l.settings(settings))
-        .collect();
-    let mut idle = Vec::new();
-    // Why a directional light's layers (`what`: cascades, caster groups) are not drawn.
-    let no_layers = |what: &str| -> String {
-        if !settings.shadows {
-            "shadows are off (--shadows off)".to_string()
-        } else if settings.technique == ShadowTechnique::Volumes {
-            "the lights have shadow volumes (--technique volumes), which have no map".to_string()
-        } else if suns.is_empty() {
-            format!(
-                "no directional light casts shadows in this scene, and only one gets {what}; \
-                 each light keeps one map"
-            )
-        } else if settings.light_projection == LightProjection::Perspective {
-            format!(
-                "{what} need an orthographic light projection (--light-projection \
-                 perspective is set); the light keeps one map"
-            )
-        } else if what != "cascades" && settings.cascades > 1 {
-            "cascades are set (--cascades), and a light has cascades or caster groups, not \
-             both"
-                .to_string()
-        } else {
-            format!("the directional light's own shadow table gives it no {what}")
-        }
-    };
-    if settings.cascades > 1 && !kinds.contains(&ShadowKind::Cascades) {
-        idle.push(("cascades", no_layers("cascades")));
-    }
-    if settings.caster_groups > 1 && !kinds.contains(&ShadowKind::Groups) {
-        idle.push(("caster_groups", no_layers("caster groups")));
-    }
-    if !kinds.contains(&ShadowKind::Cube) {
-        idle.push((
-            "point_pass",
-            "no point light casts shadows in this scene; it says how a cube map's faces are \
-             drawn"
-                .to_string(),
-        ));
-    }
-    if !suns
-        .iter()
-        .any(|s| s.light_projection == LightProjection::Perspective)
-    {
-        idle.push((
-            "perspective_fov",
-            "no directional light has a perspective projection (--light-projection \
-             perspective); spot lights use their own fov"
-                .to_string(),
-        ));
-    }
-    let pcss = scene.lights.iter().any(|l| {
-        l.casts_shadows() && l.settings(settings).filter == shadowmap::settings::Filter::Pcss
-    });
-    if !pcss {
-        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
-            idle.push((
-                name,
-                "no light's filter is pcss (--filter pcss); only PCSS takes its counts".to_string(),
-            ));
-        }
-    }
-    let snapped = |s: &ShadowSettings| {
-        s.light_projection == LightProjection::Ortho
-            && (s.fit == Fit::Scene || s.cascades > 1 || s.caster_groups > 1)
-    };
-    if !suns.iter().any(snapped) {
-        idle.push((
-            "snap",
-            "no light's box is fitted (--fit scene) or cascaded, so there is nothing to snap"
-                .to_string(),
-        ));
-    }
-    let volumes = kinds.contains(&ShadowKind::Volume);
-    let maps = kinds.iter().any(|k| {
-        matches!(
-            k,
-            ShadowKind::Map
-                | ShadowKind::Moments
-                | ShadowKind::Cube
-                | ShadowKind::Cascades
-                | ShadowKind::Groups
-        )
-    });
-    if volumes && !maps {
-        for name in [
-            "map_size",
-            "depth_format",
-            "cascades",
-            "caster_groups",
-            "filter",
-            "bias_mode",
-            "bias",
-            "bias_min",
-            "normal_offset",
-            "wrap",
-            "beyond_far",
-            "cull",
-            "polygon_offset",
-            "point_pass",
-            "shadow_cache",
-            "show_depth_map",
-        ] {
-            if !idle.iter().any(|(n, _)| *n == name) {
-                idle.push((
-                    name,
-                    "every casting light has shadow volumes (technique = volumes): there \
-                     is no map to size, test or draw"
-                        .to_string(),
-                ));
-            }
-        }
-    }
-    // The moment maps' knobs, each for the filters that read it.
-    let moment_filters: Vec<Filter> = scene
-        .lights
-        .iter()
-        .zip(&kinds)
-        .filter(|(_, k)| **k == ShadowKind::Moments)
-        .map(|(l, _)| l.settings(settings).filter)
-        .collect();
-    let uses = |fs: &[Filter]| moment_filters.iter().any(|f| fs.contains(f));
-    let variance = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4];
-    for (names, filters, which) in [
-        (
-            &["blur"][..],
-            &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm][..],
-            "a moment filter (vsm, evsm2, evsm4, msm)",
-        ),
-        (
-            &["min_variance", "bleed_reduction"],
-            &variance,
-            "vsm, evsm2 or evsm4",
-        ),
-        (
-            &["evsm_exponents"],
-            &[Filter::Evsm2, Filter::Evsm4],
-            "evsm2 or evsm4",
-        ),
-        (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
-    ] {
-        if !uses(filters) {
-            for name in names {
-                idle.push((
-                    *name,
-                    format!("no light's filter reads it (it is for {which}, on a 2D map)"),
-                ));
-            }
-        }
-    }
-    if !volumes {
-        idle.push((
-            "show_volumes",
-            "no light has shadow volumes (--technique volumes): there are none to show".to_string(),
-        ));
-    }
-    idle
-}
-
-/// The settings as they act on this scene: those that do nothing set back to their
-/// defaults, so a summary says what is used (no "4 cascades" for a point light).
-pub fn in_use(scene: &Scene, settings: &ShadowSettings) -> ShadowSettings {
-    let idle = idle_settings(scene, settings);
-    let (Ok(serde_json::Value::Object(mut used)), Ok(serde_json::Value::Object(base))) = (
-        serde_json::to_value(settings),
-        serde_json::to_value(ShadowSettings::default()),
-    ) else {
-        return *settings;
-    };
-    for (name, _) in &idle {
-        if let Some(v) = base.get(*name) {
-            used.insert((*name).to_string(), v.clone());
-        }
-    }
-    serde_json::from_value(serde_json::Value::Object(used)).unwrap_or(*settings)
 }
 
 /// A setting's value as its flag takes it (`4`, `six-passes`, `true`).

@@ -20,7 +20,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     check_light(&scene, args.light)?;
     check_output_dir("--out-dir", dir)?;
     let context = HeadlessContext::new()?;
-    args.settings.check(context.gl(), &scene, &settings)?;
+    let plan = args.settings.check(context.gl(), &scene, &settings)?;
     args.scene.check_size(context.gl(), &scene)?;
     let opts = CompareOptions {
         width,
@@ -77,7 +77,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let activity = Activity::start(format!(
         "compare: rendering light {}'s shadow test ({})",
         args.light,
-        super::cli::in_use(&scene, &settings).summary()
+        plan.in_use().summary()
     ));
     let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
     let vis = frame.visibility.as_deref().unwrap_or_default();
@@ -168,12 +168,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     write_into(dir, &batch)?;
     println!(
         "{}",
-        summary(
-            &scene.name,
-            &super::cli::in_use(&scene, &settings).summary(),
-            &metrics,
-            args.band
-        )
+        summary(&scene.name, &plan.in_use().summary(), &metrics, args.band)
     );
     if let Some(a) = &agreement {
         println!(

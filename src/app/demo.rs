@@ -12,6 +12,7 @@ use shadowmap::frame::render_frames;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::check_output_image;
 use shadowmap::settings::{ShadowTechnique, MAX_CASCADES};
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings, Target};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -95,6 +96,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         frame_ms: 0.0,
         shown_ms: None,
         show_keys: false,
+        show_stats: false,
         last_title: Instant::now() - Duration::from_secs(1),
         screenshot_requested: false,
         screenshots: 0,
@@ -253,6 +255,8 @@ struct Demo {
     shown_ms: Option<f64>,
     /// Whether the HUD's key panel is open (H).
     show_keys: bool,
+    /// Whether the HUD shows the shadow cache's counters (P).
+    show_stats: bool,
     last_title: Instant,
     screenshot_requested: bool,
     screenshots: u32,
@@ -403,7 +407,7 @@ impl Demo {
         change(&mut s);
         // What a light cannot be drawn with (cascades with PCSS, a non-square map) is
         // said, and the key does nothing, rather than ending the demo.
-        if let Err(e) = self.scene.check_light_settings(&s) {
+        if let Err(e) = ShadowPlan::resolve(&self.scene.lights, &s, None) {
             eprintln!("note: {e}; the settings stay as they were");
             return;
         }
@@ -569,7 +573,7 @@ impl Demo {
             running.context.bind_default_framebuffer();
             let info = HudInfo {
                 scene: &self.scene,
-                settings: &self.settings,
+                plan: running.renderer.plan(),
                 step: self.step,
                 frame_ms: self.shown_ms,
                 depth_light: self.depth_light,
@@ -577,10 +581,12 @@ impl Demo {
                 show_keys: self.show_keys,
                 azimuth: self.azimuth,
                 angle_keys_idle: self.angle_keys_idle,
-                reuse: Some((
-                    running.renderer.depth_passes(),
-                    running.renderer.mask_uses(),
-                )),
+                reuse: self.show_stats.then(|| {
+                    (
+                        running.renderer.depth_passes(),
+                        running.renderer.mask_uses(),
+                    )
+                }),
             };
             if let Err(e) = hud.draw(&info, w, h) {
                 return self.fail(event_loop, e);
@@ -641,7 +647,7 @@ impl Demo {
                     (false, 1) => String::new(),
                     (false, n) => format!(" (+{} more)", n - 1),
                 },
-                super::cli::in_use(&self.scene, &self.settings).summary(),
+                running.renderer.plan().in_use().summary(),
                 self.frame_ms,
                 w,
                 h
@@ -703,6 +709,7 @@ impl ApplicationHandler for Demo {
                             }
                             KeyCode::KeyM if !event.repeat => self.next_depth_view(event_loop),
                             KeyCode::KeyH if !event.repeat => self.show_keys = !self.show_keys,
+                            KeyCode::KeyP if !event.repeat => self.show_stats = !self.show_stats,
                             KeyCode::KeyI if !event.repeat => self.show_inset = !self.show_inset,
                             KeyCode::ArrowUp
                             | KeyCode::ArrowDown

@@ -1,5 +1,6 @@
 //! The HUD: the text the book's demo shows over the frame (the light angle), with the chapter
-//! step, the settings and the frame time, and on request the demo's keys. A window title is
+//! step, the first light's shadow in words (its technique and settings, from the plan) and
+//! the frame time, and on request the demo's keys and the shadow cache's counters. A window title is
 //! invisible full-screen and in screenshots; this is drawn into the frame itself.
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
@@ -13,7 +14,10 @@ use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
 use shadowmap::engine::{Gl, HeadlessContext, Outputs, PixelRect, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
 use shadowmap::renderer::{DepthPasses, MaskUses};
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
+
+mod words;
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
 const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -34,7 +38,8 @@ const PANEL_COLOUR: [f32; 4] = [0.0, 0.0, 0.0, 0.6];
 /// What the HUD reports about one frame.
 pub struct HudInfo<'a> {
     pub scene: &'a Scene,
-    pub settings: &'a ShadowSettings,
+    /// Each light's shadow as the frame drew it (the renderer's plan).
+    pub plan: &'a ShadowPlan,
     /// The chapter step shown, `None` for the scene's own settings.
     pub step: Option<&'a str>,
     /// The time of the frame before, if there was one.
@@ -51,14 +56,17 @@ pub struct HudInfo<'a> {
     pub azimuth: Option<Vec3>,
     /// The angle keys were pressed but the first light is a spot or point light.
     pub angle_keys_idle: bool,
-    /// Shadow-map passes drawn, patched and reused and frames that read the shadow mask, so far
-    /// (`shadow_cache`); `None`: not shown.
+    /// The shadow cache's counters (the stats key, P): shadow-map passes drawn, patched
+    /// and reused, and frames that read the shadow mask, so far; `None`: not shown.
     pub reuse: Option<(DepthPasses, MaskUses)>,
 }
 
 /// Said once when the angle keys are pressed on a scene whose first light has no angle.
 pub const ANGLE_KEYS_IDLE: &str =
     "Arrow keys: the first light is not directional; they turn nothing here";
+
+/// The last line while the key panel is closed.
+pub const KEYS_HINT: &str = "H: keys, P: shadow cache counters";
 
 /// The status lines, top to bottom.
 pub fn status_lines(info: &HudInfo) -> Vec<String> {
@@ -78,10 +86,6 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         }
         None => upper_first(&scene.light().describe()),
     };
-    let more = match scene.lights.len() {
-        0 | 1 => String::new(),
-        n => format!(" (+{} more)", n - 1),
-    };
     let step = match info.step {
         Some(name) => match steps::of(scene).iter().position(|s| s.name == name) {
             Some(i) => format!("Step {} of {}: {name}", i + 1, steps::of(scene).len()),
@@ -89,16 +93,23 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         },
         None => format!("Settings: the {} scene's own", scene.name),
     };
-    let mut lines = vec![format!("{light}{more}"), step];
-    // The settings summary can be long: wrapped at its commas to stay in the corner.
-    lines.extend(wrap_at_commas(
-        &super::cli::in_use(info.scene, info.settings).summary(),
-        SUMMARY_WIDTH,
-    ));
+    let mut lines = vec![light];
+    match scene.lights.len() {
+        0 | 1 => {}
+        2 => lines.push("and 1 more light".to_string()),
+        n => lines.push(format!("and {} more lights", n - 1)),
+    }
+    lines.push(step);
+    // The first light's shadow in words, each line wrapped to stay in the corner.
+    if let Some(first) = info.plan.lights.first() {
+        for line in words::shadow(first) {
+            lines.extend(wrap_words(&line, LINE_WIDTH));
+        }
+    }
     if info.angle_keys_idle {
         lines.push(ANGLE_KEYS_IDLE.to_string());
     }
-    if info.settings.show_depth_map {
+    if info.plan.scene_settings().show_depth_map {
         lines.push(format!("Showing light {}'s shadow map", info.depth_light));
     }
     lines.push(match info.frame_ms {
@@ -106,14 +117,12 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         None => "Frame time: -".to_string(),
     });
     if let Some((passes, mask)) = info.reuse {
-        lines.push(format!(
-            "Shadow maps: {} drawn, {} patched, {} reused",
-            passes.drawn, passes.patched, passes.skipped
-        ));
-        lines.push(format!("Tests from the mask: {} frames", mask.read));
+        for line in words::cache(passes, mask) {
+            lines.extend(wrap_words(&line, LINE_WIDTH));
+        }
     }
     if info.keys.is_some() && !info.show_keys {
-        lines.push("H: keys".to_string());
+        lines.push(KEYS_HINT.to_string());
     }
     lines
 }
@@ -205,24 +214,21 @@ impl Hud {
     }
 }
 
-/// Characters per line of the settings summary (about 400 pixels at `FONT_PX`).
-const SUMMARY_WIDTH: usize = 48;
+/// Characters per line of a wrapped line (about 400 pixels at `FONT_PX`).
+const LINE_WIDTH: usize = 48;
 
-/// `text` split into lines of at most `width` characters at ", " (a longer piece keeps its
-/// own line).
-fn wrap_at_commas(text: &str, width: usize) -> Vec<String> {
+/// `text` split into lines of at most `width` characters at spaces, the lines after the
+/// first indented (a longer word keeps its own line).
+fn wrap_words(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
-    for piece in text.split(", ") {
+    for word in text.split(' ') {
         match lines.last_mut() {
-            Some(line) if line.len() + 2 + piece.len() <= width => {
-                line.push_str(", ");
-                line.push_str(piece);
+            Some(line) if line.len() + 1 + word.len() <= width => {
+                line.push(' ');
+                line.push_str(word);
             }
-            Some(line) => {
-                line.push(',');
-                lines.push(format!("  {piece}"));
-            }
-            None => lines.push(piece.to_string()),
+            Some(_) => lines.push(format!("  {word}")),
+            None => lines.push(word.to_string()),
         }
     }
     lines
@@ -279,9 +285,10 @@ pub fn render_frames_with_overlays(
                 return Ok(());
             };
             target.bind();
+            // No keys here: the cache's counters go to stdout, not over the frame.
             let info = HudInfo {
                 scene,
-                settings,
+                plan: renderer.plan(),
                 step,
                 frame_ms,
                 depth_light: 0,
@@ -289,7 +296,7 @@ pub fn render_frames_with_overlays(
                 show_keys: false,
                 azimuth: None,
                 angle_keys_idle: false,
-                reuse: Some((renderer.depth_passes(), renderer.mask_uses())),
+                reuse: None,
             };
             hud.draw(&info, target.width(), target.height())
         };
@@ -306,16 +313,20 @@ mod tests {
         scene
     }
 
-    const KEYS: &[(&str, &str)] = &[("H", "these keys"), ("ESC", "quit")];
+    const KEYS: &[(&str, &str)] = &[
+        ("H", "these keys"),
+        ("P", "the shadow cache's counters"),
+        ("ESC", "quit"),
+    ];
 
-    fn info<'a>(
-        scene: &'a Scene,
-        settings: &'a ShadowSettings,
-        step: Option<&'a str>,
-    ) -> HudInfo<'a> {
+    fn plan(scene: &Scene, settings: &ShadowSettings) -> ShadowPlan {
+        ShadowPlan::resolve(&scene.lights, settings, None).unwrap()
+    }
+
+    fn info<'a>(scene: &'a Scene, plan: &'a ShadowPlan, step: Option<&'a str>) -> HudInfo<'a> {
         HudInfo {
             scene,
-            settings,
+            plan,
             step,
             frame_ms: Some(3.25),
             depth_light: 0,
@@ -327,14 +338,18 @@ mod tests {
         }
     }
 
+    /// The lines as one text, the wrapping undone.
+    fn joined(lines: &[String]) -> String {
+        let words: Vec<&str> = lines.iter().map(|l| l.trim()).collect();
+        words.join(" ")
+    }
+
     #[test]
-    fn the_hud_counts_maps_drawn_patched_and_reused_and_frames_read_from_the_mask() {
+    fn the_stats_key_shows_the_caches_counters_and_says_what_they_count() {
         let scene = Scene::load("learnopengl").unwrap();
-        let settings = scene.shadow;
-        let mut i = info(&scene, &settings, None);
-        assert!(!status_lines(&i)
-            .iter()
-            .any(|l| l.starts_with("Shadow maps")));
+        let plan = plan(&scene, &scene.shadow);
+        let mut i = info(&scene, &plan, None);
+        assert!(!joined(&status_lines(&i)).contains("Shadow maps"));
         i.reuse = Some((
             DepthPasses {
                 drawn: 1,
@@ -348,80 +363,100 @@ mod tests {
             },
         ));
         let lines = status_lines(&i);
-        let at = lines
-            .iter()
-            .position(|l| l == "Shadow maps: 1 drawn, 39 patched, 20 reused");
-        assert!(at.is_some(), "{lines:?}");
-        assert_eq!(
-            lines.get(at.unwrap_or(0) + 1).map(String::as_str),
-            Some("Tests from the mask: 58 frames")
+        let text = joined(&lines);
+        assert!(
+            text.contains(
+                "Shadow maps: 1 drawn whole, 39 patched (redrawn only where casters moved), 20 \
+                 reused (nothing changed) Frames whose shadow tests were read from the saved \
+                 mask (camera and lights still): 58"
+            ),
+            "{lines:?}"
+        );
+        // Wrapped to stay in the corner (the light's line is the light's).
+        assert!(
+            lines.iter().skip(1).all(|l| l.len() <= LINE_WIDTH + 2),
+            "{lines:?}"
         );
     }
 
     #[test]
-    fn the_dummy_game_at_45_degrees_shows_angle_step_summary_and_time() {
+    fn the_dummy_game_at_45_degrees_shows_angle_step_shadow_in_words_and_time() {
         let scene = dummy_at(45.0);
         let settings = steps::settings_for(&scene, "pcf").unwrap();
-        let lines = status_lines(&info(&scene, &settings, Some("pcf")));
+        let plan = plan(&scene, &settings);
+        let lines = status_lines(&info(&scene, &plan, Some("pcf")));
         assert_eq!(lines[0], "Light angle: 45.0");
         assert!(
             lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
             "{lines:?}"
         );
-        // The summary, wrapped at its commas into lines that keep to the corner.
-        let summary = settings.summary();
-        let wrapped: Vec<&String> = lines
-            .iter()
-            .skip(2)
-            .take_while(|l| !l.starts_with("Frame time"))
-            .collect();
-        assert!(wrapped.len() > 1, "{lines:?}");
-        assert!(wrapped
-            .iter()
-            .all(|l| l.chars().count() <= SUMMARY_WIDTH + 1));
-        let joined: String = wrapped
-            .iter()
-            .map(|l| l.trim())
-            .collect::<Vec<_>>()
-            .join(" ");
-        assert_eq!(joined, summary);
+        let m = settings.map_size;
+        assert_eq!(
+            lines[2],
+            format!(
+                "Shadow: one {} x {} depth map, 24-bit depth",
+                m.width, m.height
+            )
+        );
+        assert_eq!(lines[3], "Filter: PCF, 3 x 3 depth tests averaged");
+        assert!(lines[4].starts_with("Bias: "), "{lines:?}");
         assert!(
             lines.contains(&"Frame time: 3.25 ms".to_string()),
             "{lines:?}"
         );
-        assert_eq!(lines.last().map(String::as_str), Some("H: keys"));
+        assert_eq!(lines.last().map(String::as_str), Some(KEYS_HINT));
+        assert!(lines.iter().all(|l| l.len() <= LINE_WIDTH + 2), "{lines:?}");
 
-        let own = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let own = status_lines(&info(&scene, &own, None));
         assert_eq!(own[1], "Settings: the dummy scene's own");
-        assert!(scene
-            .shadow
-            .summary()
-            .starts_with(own[2].trim_end_matches(',')));
+        assert!(own[2].starts_with("Shadow: one "), "{own:?}");
+    }
+
+    fn plan_own(scene: &Scene) -> ShadowPlan {
+        plan(scene, &scene.shadow)
     }
 
     #[test]
-    fn other_lights_are_described_and_counted() {
+    fn other_lights_are_counted_in_words_and_a_cube_map_is_described() {
         let scene = Scene::load("three-lights").unwrap();
-        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let lines = status_lines(&info(&scene, &own, None));
         // The sun has an azimuth of its own: the angle is measured from it, and shown.
         let sun = scene.light().as_directional().unwrap();
         let angle = sun.angle_deg();
         assert_eq!(
             lines[0],
-            format!(
-                "Light angle: {angle:.1} over azimuth {:.2} (+3 more)",
-                sun.azimuth()
-            )
+            format!("Light angle: {angle:.1} over azimuth {:.2}", sun.azimuth())
         );
+        assert_eq!(lines[1], "and 3 more lights");
         let mut scene = Scene::load("point-shadows").unwrap();
-        let lines = status_lines(&info(&scene, &scene.shadow, None));
+        let own = plan_own(&scene);
+        let lines = status_lines(&info(&scene, &own, None));
         assert!(lines[0].starts_with("Point light at"), "{lines:?}");
+        let m = scene.shadow.map_size;
+        assert!(
+            joined(&lines).contains(&format!(
+                "Shadow: a cube map, 6 faces of {} x {}, 24-bit depth, drawn in one pass",
+                m.width, m.height
+            )),
+            "{lines:?}"
+        );
         assert!(!lines.iter().any(|l| l == ANGLE_KEYS_IDLE), "{lines:?}");
         // The angle keys pressed on it: said in the HUD.
-        let mut hud = info(&scene, &scene.shadow, None);
+        let mut hud = info(&scene, &own, None);
         hud.angle_keys_idle = true;
         assert!(status_lines(&hud).iter().any(|l| l == ANGLE_KEYS_IDLE));
         assert!(!scene.set_light_angle(30.0));
+        // Shadows off, and a light that casts none: said so.
+        let off = plan(
+            &scene,
+            &ShadowSettings {
+                shadows: false,
+                ..scene.shadow
+            },
+        );
+        assert!(status_lines(&info(&scene, &off, None)).contains(&"Shadows: off".to_string()));
     }
 
     #[test]
@@ -429,7 +464,8 @@ mod tests {
         let mut scene = Scene::load("learnopengl").unwrap();
         let azimuth = scene.light_azimuth().unwrap();
         assert!(scene.set_light_angle_about(azimuth, 120.0));
-        let mut hud = info(&scene, &scene.shadow, None);
+        let own = plan_own(&scene);
+        let mut hud = info(&scene, &own, None);
         hud.azimuth = Some(azimuth);
         assert_eq!(
             status_lines(&hud)[0],
@@ -457,7 +493,8 @@ mod tests {
     fn panels_stay_in_the_top_left_and_the_key_panel_lists_every_key() {
         let atlas = FontAtlas::new(FONT, FONT_PX).unwrap();
         let scene = dummy_at(45.0);
-        let mut hud = info(&scene, &scene.shadow, None);
+        let own = plan_own(&scene);
+        let mut hud = info(&scene, &own, None);
         let closed = layout(&atlas, &hud);
         hud.show_keys = true;
         let open = layout(&atlas, &hud);
@@ -465,7 +502,7 @@ mod tests {
         // The key panel replaces the hint with the keys and their descriptions.
         let glyphs = |s: &str| s.chars().filter(|c| !c.is_whitespace()).count();
         let keys: usize = KEYS.iter().map(|(k, d)| glyphs(k) + glyphs(d)).sum();
-        assert_eq!(open.len(), closed.len() - glyphs("H: keys") + keys + 1);
+        assert_eq!(open.len(), closed.len() - glyphs(KEYS_HINT) + keys + 1);
         for q in &open {
             let [x0, y0, x1, y1] = q.rect;
             assert!(

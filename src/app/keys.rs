@@ -22,6 +22,10 @@ pub const KEYS: &[(&str, &str)] = &[
     ("G", "caster groups: 1, 2, 3, 4, 1, ..."),
     ("I", "the shadow-map inset (bottom-right)"),
     ("H", "show / hide these keys"),
+    (
+        "P",
+        "show / hide the shadow cache's counters (maps drawn, patched, reused)",
+    ),
     ("F12", "save a screenshot (PNG, current folder)"),
     ("ESC", "quit"),
 ];

@@ -23,7 +23,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let mut settings = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     // Everything that can be checked without the driver, before any GL work or file.
-    args.settings.check_values(&scene, &settings)?;
+    let mut plan = args.settings.check_values(&scene, &settings)?;
     check_outputs(args)?;
     if let Some(target) = args.target_error {
         let chosen = choose_for_target(
@@ -34,9 +34,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             &args.settings.patch,
         )?;
         chosen.apply_to(&mut settings);
+        plan = args.settings.check_values(&scene, &settings)?;
     }
     if let Some(path) = &args.depth_out {
-        if ShadowKind::for_lights(&scene.lights, &settings)[0] != ShadowKind::Map {
+        if plan.lights[0].kind != ShadowKind::Map {
             return Err(Error::Invalid(format!(
                 "--depth-out {}: the first light has no 2D depth map (it has a cube map, \
                  cascades, caster groups, a moment map, shadow volumes or casts no shadow): use \
@@ -47,8 +48,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     if args.inset {
         // Legal but it would do nothing: say so once, naming the flag.
-        let kinds = ShadowKind::for_lights(&scene.lights, &settings);
-        if kinds.iter().all(|k| *k == ShadowKind::None) {
+        if plan.lights.iter().all(|l| l.kind == ShadowKind::None) {
             eprintln!(
                 "warning: --inset: no light of the {} scene casts a shadow, so there is no \
                  map to show; the image is drawn without it",
@@ -116,7 +116,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         height,
         scene.name,
         scene.light().describe(),
-        super::cli::in_use(&scene, &settings).summary(),
+        plan.in_use().summary(),
         start.elapsed().as_secs_f64() * 1000.0
     );
     if let Some(line) = args.settings.quality_summary()? {
@@ -138,7 +138,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             size.label()
         );
     }
-    if ShadowKind::for_lights(&scene.lights, &settings).contains(&ShadowKind::Volume) {
+    if plan.has(ShadowKind::Volume) {
         // The documented treatment of meshes that are not closed, said where it applies.
         for (id, mesh) in scene.meshes.iter().enumerate() {
             let casts = scene.items.iter().any(|i| i.mesh == id && i.casts_shadows);

@@ -4,9 +4,9 @@
 
 use shadowmap::engine::Outputs;
 use shadowmap::shaders;
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::program::ProgramKey;
 use shadowmap::shadows::slots::{self, LightPart, MaskMode};
-use shadowmap::shadows::ShadowKind;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
 use super::cli::ShadersArgs;
@@ -42,8 +42,8 @@ pub fn text(scene: &Scene, settings: &ShadowSettings, light: Option<usize>) -> R
 /// The program a plain frame of this scene compiles (the renderer's key with no extra
 /// outputs, the first light's visibility, no shadow mask).
 pub fn key(scene: &Scene, settings: &ShadowSettings) -> Result<ProgramKey> {
-    let kinds = ShadowKind::for_lights(&scene.lights, settings);
-    ProgramKey::of(scene, settings, &kinds, 0, Outputs::default())
+    let plan = ShadowPlan::resolve(&scene.lights, settings, None)?;
+    ProgramKey::of(scene, &plan, 0, Outputs::default())
 }
 
 /// Light `i`'s part: its sampler, its defines, the library files it calls into (each

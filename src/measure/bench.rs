@@ -17,12 +17,14 @@ use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
 use crate::renderer::{Renderer, Target};
+use crate::scene::refusals::Refusal;
 use crate::scene::Scene;
 use crate::scene::{DirectionalLight, Light, OrthoCoords, PointLight, SpotLight};
 use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, Fit, MapSize, PointPass, ShadowPatch, ShadowSettings,
     ShadowTechnique,
 };
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{filter_cost, FilterCost, ShadowKind};
 
 /// The bias configurations the sweep tries, by name.
@@ -128,13 +130,15 @@ impl Family {
     ];
 
     pub fn of(light: &Light, s: &ShadowSettings) -> Family {
-        match (ShadowKind::of(light, &light.settings(s)), s.point_pass) {
+        let plan = ShadowPlan::decide(std::slice::from_ref(light), s);
+        let own = &plan.lights[0];
+        match (own.kind, s.point_pass) {
             (ShadowKind::Cascades, _) => Family::Cascades,
             (ShadowKind::Groups, _) => Family::Groups,
             (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
             (ShadowKind::Volume, _) => Family::Volumes,
-            (ShadowKind::Map, _) if light.settings(s).filter.soft() => Family::Soft,
+            (ShadowKind::Map, _) if own.settings.filter.soft() => Family::Soft,
             _ => Family::OneMap,
         }
     }
@@ -289,17 +293,21 @@ pub fn sweep(
     }
     // Combinations the light refuses (a moment filter on a point light's cube map). The
     // measured light is the scene's first, so it gets the layers it asks for.
-    out.retain(|c| {
-        light
-            .settings_problem("the light", &light.settings(&c.settings), true)
-            .is_none()
-    });
+    out.retain(|c| refused(light, &c.settings).is_none());
     // The tutorials back in the middle of the whole sweep.
     let (tutorials, mut rest): (Vec<_>, Vec<_>) =
         out.into_iter().partition(|c| c.tutorial.is_some());
     let mid = rest.len() / 2;
     rest.splice(mid..mid, tutorials);
     rest
+}
+
+/// Why the measured light (alone, so first) cannot be drawn under `settings`, if it cannot.
+fn refused(light: &Light, settings: &ShadowSettings) -> Option<Refusal> {
+    ShadowPlan::resolve_named(std::slice::from_ref(light), settings, |_| {
+        "the light".into()
+    })
+    .err()
 }
 
 /// The soft filters' configurations, for a light with a size (a point light has none: its
@@ -320,7 +328,7 @@ fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConf
                 s.cull = Cull::None;
                 s.depth_format = DepthFormat::D24;
                 bias.apply(&mut s);
-                if light.settings_problem("the light", &s, true).is_none() {
+                if refused(light, &s).is_none() {
                     out.push(BenchConfig {
                         settings: s,
                         bias_preset: bias,

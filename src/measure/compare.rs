@@ -17,6 +17,7 @@ use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
 use crate::scene::{GameItem, Light, Scene, Shading};
 use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::Rays;
 
 /// How a comparison is made.
@@ -198,12 +199,14 @@ pub fn compute_reference(
         hi.face_normals = face_normals(surfaces, hi, eye);
     }
     check_light(scene, opts.light)?;
-    let light = light_kind(scene, opts.light, settings, origin);
+    // The rays of the light's own map: its own table over the scene's settings.
+    let own = ShadowPlan::decide(&scene.lights, settings).lights[opts.light].settings;
+    let light = light_kind(scene, opts.light, &own, origin);
     let hard = reference_visibility(&bvh, &light, &gbuffer);
     let supersampled = hi
         .as_ref()
         .map(|hi| reference_visibility_supersampled(&bvh, &light, hi, n as usize));
-    let area = light_extent(scene, opts.light, settings).map(|extent| {
+    let area = light_extent(scene, opts.light, &own).map(|extent| {
         let rays = opts.rays.max(1) as usize;
         AreaTruth {
             pixels: area_visibility(&bvh, &light, extent, &gbuffer, rays),

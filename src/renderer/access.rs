@@ -9,6 +9,7 @@ use crate::engine::{state, ShadowMap};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::schedule::DepthPasses;
 use crate::shadows::{CasterCounts, ShadowView};
 
@@ -29,6 +30,11 @@ pub trait PassHooks {
 impl Renderer {
     pub fn settings(&self) -> &ShadowSettings {
         &self.settings
+    }
+
+    /// Each light's shadow as the last frame drew it.
+    pub fn plan(&self) -> &ShadowPlan {
+        &self.plan
     }
 
     /// Switches settings; what they change (programs, maps) is rebuilt on the next frame.

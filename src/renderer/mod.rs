@@ -31,6 +31,7 @@ use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::program::ProgramKey;
 use crate::shadows::schedule::DepthSchedule;
 use crate::shadows::slots::MaskMode;
@@ -43,6 +44,8 @@ use scene_inputs::SceneGpu;
 pub struct Renderer {
     gl: Gl,
     settings: ShadowSettings,
+    /// Each light's kind and settings, decided when the settings or the lights change.
+    plan: ShadowPlan,
     /// The scene's meshes and textures.
     gpu: SceneGpu,
     /// One per scene light, in the scene's order; `None` for a light that does not cast
@@ -87,6 +90,7 @@ impl Renderer {
         let mut renderer = Renderer {
             gl: gl.clone(),
             settings: *settings,
+            plan: ShadowPlan::default(),
             gpu,
             shadows: Vec::new(),
             kinds: Vec::new(),
@@ -139,7 +143,7 @@ impl Renderer {
                 *view = None;
                 continue;
             };
-            let settings = scene.lights[index].settings(&self.settings);
+            let settings = self.plan.lights[index].settings;
             let schedule = &mut self.schedule;
             let step = schedule.step(scene, index, &**technique, &settings, view.is_some());
             let Some(step) = step else { continue };

@@ -1,64 +1,46 @@
-//! Each light's technique made to match the scene's lights and the settings, before a
-//! frame's depth pass.
+//! Each light's technique made to match the shadow plan (the one place that decides each
+//! light's kind and settings, [`crate::shadows::plan`]), before a frame's depth pass.
 
 use super::Renderer;
 use crate::engine::SamplesQuery;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::scene::Scene;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
 impl Renderer {
-    /// Makes each light's technique match the scene's lights and the settings: only lights
-    /// that cast get one, remade when the settings change its kind or storage.
+    /// Makes each light's technique match the plan (resolved again when the settings or the
+    /// lights changed): only lights that cast get one, remade when its kind or storage
+    /// changes.
     pub(super) fn prepare_shadows(&mut self, scene: &Scene) -> Result<()> {
-        let kinds = ShadowKind::for_lights(&scene.lights, &self.settings);
-        if kinds.contains(&ShadowKind::Volume) {
+        if !self.plan.fits(&scene.lights, &self.settings) {
+            let max = Some(self.max_texture_size);
+            self.plan = ShadowPlan::resolve(&scene.lights, &self.settings, max)?;
+        }
+        let plan = &self.plan;
+        if plan.has(ShadowKind::Volume) {
             if !self.volumes.as_ref().is_some_and(|v| v.fits(scene)) {
                 self.volumes = Some(Volumes::new(&self.gl, scene)?);
             }
-            while self.volume_queries.len() < kinds.len() {
+            while self.volume_queries.len() < plan.lights.len() {
                 self.volume_queries.push(SamplesQuery::new(&self.gl)?);
             }
         }
-        self.kinds.clone_from(&kinds);
-        self.shadows.resize_with(kinds.len(), || None);
-        self.views.resize(kinds.len(), None);
-        self.schedule.resize(kinds.len());
-        for (i, ((kind, shadow), light)) in kinds
-            .into_iter()
-            .zip(&mut self.shadows)
-            .zip(&scene.lights)
-            .enumerate()
-        {
-            let settings = light.settings(&self.settings);
-            // Combinations no technique draws (a moment filter on a cube map) are refused
-            // here too, for scenes built in code.
-            if let Some(problem) =
-                light.settings_problem(&format!("light {i}"), &settings, kind.layered())
-            {
-                return Err(Error::Invalid(problem));
-            }
-            if !light.shadow_patch().given().is_empty() {
-                settings
-                    .validate(self.max_texture_size)
-                    .map_err(|e| Error::Invalid(format!("light {i}'s own shadow table: {e}")))?;
-            }
-            // Checked before any frame by the commands; this guards scenes built in code (a
-            // cube map would otherwise take a soft filter as one lookup without a word).
-            let (cube, cascaded) = (kind == ShadowKind::Cube, kind.layered());
-            if let Some(why) = settings.filter.refused_for(cube, cascaded) {
-                return Err(Error::Invalid(format!(
-                    "shadow.filter = {}: light {i} cannot use it: {why}",
-                    settings.filter.name()
-                )));
-            }
+        let n = plan.lights.len();
+        self.kinds.clear();
+        self.kinds.extend(plan.lights.iter().map(|l| l.kind));
+        self.shadows.resize_with(n, || None);
+        self.views.resize(n, None);
+        self.schedule.resize(n);
+        for (i, (own, shadow)) in plan.lights.iter().zip(&mut self.shadows).enumerate() {
+            let (kind, settings) = (own.kind, &own.settings);
             let fits = match shadow {
-                Some(t) => t.kind() == kind && t.fits(&settings),
+                Some(t) => t.kind() == kind && t.fits(settings),
                 None => matches!(kind, ShadowKind::None | ShadowKind::Volume),
             };
             if !fits {
-                *shadow = kind.create(&self.gl, &settings)?;
+                *shadow = kind.create(&self.gl, settings)?;
                 self.schedule.forget(i);
             }
         }

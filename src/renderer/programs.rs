@@ -7,10 +7,9 @@ use super::shadow_mask::Plan;
 use super::{scene_pass, Renderer, Target};
 use crate::engine::{Outputs, Samplers};
 use crate::error::Result;
-use crate::scene::{Scene, MAX_LIGHTS};
+use crate::scene::Scene;
 use crate::shadows::program::ProgramKey;
 use crate::shadows::slots::MaskMode;
-use crate::shadows::ShadowKind;
 
 impl Renderer {
     /// Moves the program for this frame's key to the front of the cache, compiling it if it
@@ -42,19 +41,7 @@ impl Renderer {
 
     /// The scene program's key for this frame's lights and `outputs`, before the mask.
     pub(super) fn program_key(&self, scene: &Scene, outputs: Outputs) -> Result<ProgramKey> {
-        // The kinds the techniques have (prepare_shadows made them): no allocation per frame.
-        let mut kinds = [ShadowKind::None; MAX_LIGHTS];
-        for (k, kind) in kinds.iter_mut().zip(&self.kinds) {
-            *k = *kind;
-        }
-        let n = self.kinds.len().min(MAX_LIGHTS);
-        ProgramKey::of(
-            scene,
-            &self.settings,
-            &kinds[..n],
-            self.visibility_light,
-            outputs,
-        )
+        ProgramKey::of(scene, &self.plan, self.visibility_light, outputs)
     }
 
     /// The scene pass' inputs: the program in front of the cache, the lights' techniques
@@ -64,7 +51,7 @@ impl Renderer {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
             views: &self.views,
-            settings: &self.settings,
+            plan: &self.plan,
             meshes: &self.gpu.meshes,
             textures: &self.gpu.textures,
             white: &self.gpu.white,

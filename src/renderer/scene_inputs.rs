@@ -7,7 +7,7 @@ use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::image_data::ImageData;
 use crate::scene::{Light, Scene, Shading};
-use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView, Technique};
 
 /// The scene's meshes and textures on the GPU (the book's `Mesh` and `Texture`).
@@ -48,7 +48,8 @@ pub struct Inputs<'a> {
     pub program: &'a ShaderProgram,
     pub shadows: &'a [Option<Box<dyn Technique>>],
     pub views: &'a [Option<ShadowView>],
-    pub settings: &'a ShadowSettings,
+    /// Each light's kind and settings.
+    pub plan: &'a ShadowPlan,
     pub meshes: &'a [Mesh],
     pub textures: &'a [Texture],
     pub white: &'a Texture,
@@ -124,7 +125,7 @@ impl LightUniforms {
                 continue;
             };
             u.penumbra[i] = penumbra(light, v);
-            if let Some(s) = t.slot_transform(light, v, &light.settings(inputs.settings)) {
+            if let Some(s) = t.slot_transform(light, v, &inputs.plan.lights[i].settings) {
                 u.normal_offset[p] = s.normal_offset;
                 u.projection[p] = s.projection;
                 u.light_from[p] = s.from;
@@ -165,15 +166,15 @@ pub(super) fn bind_maps(
         Some(_) => &[][..],
         None => inputs.shadows,
     };
-    for (i, (shadow, light)) in tested.iter().zip(&scene.lights).enumerate() {
+    for (i, (shadow, own)) in tested.iter().zip(&inputs.plan.lights).enumerate() {
         let Some(t) = shadow else { continue };
-        let settings = light.settings(inputs.settings);
-        t.set_scene_uniforms(p, scene, &settings);
+        let settings = &own.settings;
+        t.set_scene_uniforms(p, scene, settings);
         if let Some(name) = slots::sampler_name(i, t.kind()) {
             let unit = slots::texture_unit(i);
             p.set_i32(name, unit as i32);
             t.texture().bind(unit);
-            bound.push(samplers.get(gl, t.sampling(&settings))?.bind(unit));
+            bound.push(samplers.get(gl, t.sampling(settings))?.bind(unit));
         }
     }
     Ok(bound)

@@ -15,7 +15,7 @@ use crate::engine::{Gl, LightPass, LightPassGuard, Samplers, SamplesQuery};
 use crate::engine::{VolumeDraw, VolumePassGuard};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
-use crate::settings::ShadowSettings;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
@@ -54,7 +54,7 @@ impl Renderer {
             &inputs, volumes, kinds, light, queries, samplers, gl, scene, size,
         )?;
         if self.settings.show_volumes {
-            draw_debug(volumes, kinds, &self.settings, gl, scene, size);
+            draw_debug(volumes, &self.plan, gl, scene, size);
         }
         self.volume_counted = counted;
         Ok(())
@@ -94,7 +94,7 @@ pub fn draw(
             let _pass = VolumePassGuard::begin(gl, VolumeDraw::Stencil);
             let query = queries.get(i);
             query.inspect(|q| q.begin());
-            volumes.draw(scene, inputs.settings, i, size, Vec4::ZERO);
+            volumes.draw(scene, &inputs.plan.lights[i].settings, i, size, Vec4::ZERO);
             if let Some(q) = query {
                 q.end();
                 counted.push(i);
@@ -122,18 +122,11 @@ pub fn draw(
 }
 
 /// The debug view: every volume light's faces, translucent, over the finished frame.
-pub fn draw_debug(
-    volumes: &Volumes,
-    kinds: &[ShadowKind],
-    settings: &ShadowSettings,
-    gl: &Gl,
-    scene: &Scene,
-    size: (u32, u32),
-) {
+pub fn draw_debug(volumes: &Volumes, plan: &ShadowPlan, gl: &Gl, scene: &Scene, size: (u32, u32)) {
     let _pass = VolumePassGuard::begin(gl, VolumeDraw::Debug);
-    for (i, kind) in kinds.iter().enumerate() {
-        if *kind == ShadowKind::Volume {
-            volumes.draw(scene, settings, i, size, COLOURS[i % COLOURS.len()]);
+    for (i, own) in plan.lights.iter().enumerate() {
+        if own.kind == ShadowKind::Volume {
+            volumes.draw(scene, &own.settings, i, size, COLOURS[i % COLOURS.len()]);
         }
     }
 }

@@ -6,10 +6,7 @@
 use glam::{Mat4, Vec3};
 use serde::{Deserialize, Serialize};
 
-use crate::settings::{
-    DirectionalLayers, Fit, LightProjection, LightView, ShadowPatch, ShadowSettings,
-    ShadowTechnique,
-};
+use crate::settings::{LightView, ShadowPatch};
 use crate::transformation::Transformation;
 
 /// The box the orthographic light projection keeps, in light-view units (the book's
@@ -45,7 +42,8 @@ impl Default for OrthoCoords {
 pub const MAX_ANGULAR_DIAMETER: f32 = 90.0;
 
 /// The largest |x| of a (unit) direction the book's angle view represents: its two angles,
-/// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane.
+/// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane
+/// (`shadows::plan` refuses the view for other directions).
 pub const BOOK_ANGLES_MAX_X: f32 = 1e-6;
 
 /// A light infinitely far away. `direction` points from the scene TOWARDS the light (the
@@ -159,33 +157,6 @@ impl DirectionalLight {
         }
     }
 
-    /// Why the book's angle view cannot stand for this light (`name` names it in the
-    /// message), if `settings` would build its view that way: its direction has an x
-    /// component, and the angles would turn the map away from the light without a word.
-    /// `layered`: the light's map is split into layers (cascades, caster groups), whose
-    /// boxes build their own views.
-    pub fn book_angles_problem(
-        &self,
-        name: &str,
-        settings: &ShadowSettings,
-        layered: bool,
-    ) -> Option<String> {
-        let uses_angles = settings.light_view == LightView::BookAngles
-            && settings.light_projection == LightProjection::Ortho
-            && settings.fit == Fit::Manual
-            && !layered
-            && self.casts_shadows;
-        let d = self.direction.normalize();
-        (uses_angles && d.x.abs() > BOOK_ANGLES_MAX_X).then(|| {
-            format!(
-                "\"book-angles\" cannot build the view of {name} (direction [{:.3}, {:.3}, {:.3}]): \
-                 the book's angles (acos z, asin x) are right only for directions in the YZ \
-                 plane (|x| <= {BOOK_ANGLES_MAX_X:e}); expected \"look-at\" for this light",
-                d.x, d.y, d.z
-            )
-        })
-    }
-
     /// The orthographic projection of the ortho box.
     pub fn projection_matrix(&self) -> Mat4 {
         let o = &self.ortho;
@@ -294,13 +265,6 @@ impl Light {
         }
     }
 
-    /// The settings this light's shadow uses: `scene`'s with its own table on top.
-    pub fn settings(&self, scene: &ShadowSettings) -> ShadowSettings {
-        let mut s = *scene;
-        self.shadow_patch().apply_to(&mut s);
-        s
-    }
-
     /// Its size: a directional light's angular diameter in degrees, a spot or point
     /// light's radius in world units (0 = a point: hard shadows).
     pub fn size(&self) -> f32 {
@@ -376,68 +340,6 @@ impl Light {
         }
     }
 
-    /// The layers (cascades, caster groups) this light asks for under its own `settings`:
-    /// a casting directional light with shadow maps. Only the scene's first such light
-    /// gets them ([`layered_light`]).
-    pub fn layers_asked(&self, settings: &ShadowSettings) -> Option<DirectionalLayers> {
-        match self {
-            Light::Directional(_)
-                if self.casts_shadows()
-                    && settings.shadows
-                    && settings.technique == ShadowTechnique::Maps =>
-            {
-                settings.directional_layers()
-            }
-            _ => None,
-        }
-    }
-
-    /// What is wrong with drawing this light (named `name` in the message) under its own
-    /// `settings`, if anything: see [`crate::Scene::check_light_settings`]. `layered`: the
-    /// light is the scene's layered one ([`layered_light`]), so it gets the layers it asks
-    /// for; another keeps one map and takes what one map takes. The message starts with
-    /// the setting (`shadow.NAME = VALUE: ...`).
-    pub fn settings_problem(
-        &self,
-        name: &str,
-        settings: &ShadowSettings,
-        layered: bool,
-    ) -> Option<String> {
-        if !self.casts_shadows() {
-            return None;
-        }
-        let layers = self.layers_asked(settings).filter(|_| layered);
-        if let Light::Directional(l) = self {
-            if let Some(problem) = l.book_angles_problem(name, settings, layers.is_some()) {
-                return Some(format!("shadow.light_view = {problem}"));
-            }
-        }
-        let cube = matches!(self, Light::Point(_));
-        if let Some(why) = settings.filter.refused_for(cube, layers.is_some()) {
-            return Some(format!(
-                "shadow.filter = {}: {name} cannot use it: {why}",
-                settings.filter.name()
-            ));
-        }
-        let square = match self {
-            Light::Point(_) => Some("a point light's cube map"),
-            _ => match layers {
-                Some(DirectionalLayers::Cascades) => Some("cascades"),
-                Some(DirectionalLayers::CasterGroups) => Some("caster groups"),
-                None => None,
-            },
-        };
-        let what = square?;
-        let size = settings.map_size;
-        (!size.is_square()).then(|| {
-            format!(
-                "shadow.map_size = {size}: {name} has {what}, which needs a square map; \
-                 expected one number, like {}",
-                size.max_side()
-            )
-        })
-    }
-
     /// A short description for titles and reports (with its size, when it has one).
     pub fn describe(&self) -> String {
         let size = match self {
@@ -488,13 +390,4 @@ impl Light {
             },
         }
     }
-}
-
-/// Which of `lights` gets its map split into layers under `settings` (each light's own
-/// table over it): the first that asks for them ([`Light::layers_asked`]); one light's
-/// positions in every layer fit among GL 3.3's vertex outputs, so the others keep one map.
-pub fn layered_light(lights: &[Light], settings: &ShadowSettings) -> Option<usize> {
-    lights
-        .iter()
-        .position(|l| l.layers_asked(&l.settings(settings)).is_some())
 }

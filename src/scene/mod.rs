@@ -5,6 +5,7 @@ pub mod camera;
 pub mod file;
 pub mod game_item;
 pub mod light;
+pub mod refusals;
 
 use glam::{Vec3, Vec4};
 use serde::{Deserialize, Serialize};
@@ -203,23 +204,6 @@ impl Scene {
     /// The first light, to change it.
     pub fn light_mut(&mut self) -> &mut Light {
         &mut self.lights[0]
-    }
-
-    /// Refuses settings a light cannot be drawn with: the book's angle view
-    /// (`light_view = "book-angles"`) for a directional light with an x component, and a
-    /// non-square `map_size` for a light whose map is square (a point light's cube map,
-    /// cascades). `settings` are the scene's; each light's own table goes on top.
-    pub fn check_light_settings(&self, settings: &ShadowSettings) -> Result<()> {
-        let layered = light::layered_light(&self.lights, settings);
-        for (i, light) in self.lights.iter().enumerate() {
-            let own = light.settings(settings);
-            if let Some(problem) =
-                light.settings_problem(&format!("light {i}"), &own, layered == Some(i))
-            {
-                return Err(Error::Invalid(problem));
-            }
-        }
-        Ok(())
     }
 
     /// The lights as the steps show them: each given `[steps] light_size`, if the scene

@@ -50,7 +50,6 @@ impl Map2d {
         index: usize,
         patch: Option<&Patch>,
     ) -> Result<ShadowView> {
-        camera::check_book_angles(scene, index, pass.settings)?;
         let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         let only = patch::casters_within(fitted_casters, patch);
         let program = pass.programs.flat(pass.gl)?;

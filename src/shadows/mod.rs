@@ -12,6 +12,8 @@
 //! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
 //!   [`map2d`]).
 //! - [`patch`]: the part of a cached 2D map that moved casters dirtied, drawn again alone.
+//! - [`plan`]: which kind each light gets, under which settings, and what is refused: decided
+//!   once, before any frame.
 //! - [`volumes`]: the slides' stencil shadow volumes, beside the maps rather than behind
 //!   [`Technique`]: no storage, no depth pass; the renderer draws them per light into the
 //!   stencil buffer (`renderer::volume_pass`).
@@ -32,6 +34,7 @@ pub mod layers;
 pub mod map2d;
 pub mod moments;
 pub mod patch;
+pub mod plan;
 pub mod program;
 pub mod schedule;
 pub mod slots;
@@ -42,7 +45,7 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
-use crate::settings::{DirectionalLayers, ShadowSettings, ShadowTechnique};
+use crate::settings::ShadowSettings;
 
 /// What a light's shadow is stored in, and so which technique draws it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -65,52 +68,9 @@ pub enum ShadowKind {
 }
 
 impl ShadowKind {
-    /// The kind each of a scene's lights gets under the scene's `settings` (with each
-    /// light's own table on top): as [`ShadowKind::of`], except that only the first casting
-    /// directional light gets cascades or caster groups (the sun; its layers' positions are
-    /// computed per vertex, and one light's fit among GL 3.3's 64 vertex outputs), the
-    /// others one map each.
-    pub fn for_lights(lights: &[Light], settings: &ShadowSettings) -> Vec<ShadowKind> {
-        let layered = crate::scene::light::layered_light(lights, settings);
-        lights
-            .iter()
-            .enumerate()
-            .map(|(i, l)| match ShadowKind::of(l, &l.settings(settings)) {
-                kind if kind.layered() && layered != Some(i) => {
-                    ShadowKind::one_map(&l.settings(settings))
-                }
-                kind => kind,
-            })
-            .collect()
-    }
-
     /// Whether the kind is a depth array with a box per layer ([`layers`]).
     pub fn layered(self) -> bool {
         matches!(self, ShadowKind::Cascades | ShadowKind::Groups)
-    }
-
-    /// The kind a light gets under its own `settings`, alone in its scene.
-    pub fn of(light: &Light, settings: &ShadowSettings) -> ShadowKind {
-        match light {
-            l if !l.casts_shadows() || !settings.shadows => ShadowKind::None,
-            _ if settings.technique == ShadowTechnique::Volumes => ShadowKind::Volume,
-            Light::Point(_) => ShadowKind::Cube,
-            Light::Directional(_) => match settings.directional_layers() {
-                Some(DirectionalLayers::Cascades) => ShadowKind::Cascades,
-                Some(DirectionalLayers::CasterGroups) => ShadowKind::Groups,
-                None => ShadowKind::one_map(settings),
-            },
-            Light::Spot(_) => ShadowKind::one_map(settings),
-        }
-    }
-
-    /// The kind of one 2D map under `settings`: a depth map, or with a moment filter a
-    /// moment map.
-    pub fn one_map(settings: &ShadowSettings) -> ShadowKind {
-        match settings.filter.moments() {
-            true => ShadowKind::Moments,
-            false => ShadowKind::Map,
-        }
     }
 
     /// Makes the storage of this kind for `settings` (`None` for a light that does not cast,

@@ -10,7 +10,7 @@
 //! (`shaders/lib/shadow_moments.glsl`). The price is light bleeding where occluders
 //! overlap, which the bleeding reduction, EVSM's warp and MSM's four moments each cut.
 //!
-//! Cube maps and cascades have no moment form here: `Light::settings_problem` refuses
+//! Cube maps and cascades have no moment form here: the shadow plan ([`super::plan`]) refuses
 //! those combinations, naming the light and the filter.
 
 use glam::{DVec2, DVec3};

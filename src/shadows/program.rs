@@ -3,12 +3,13 @@
 //! so they are compile-time constants; the key is a small `Copy` value compared every frame
 //! without allocating, and its text is made only when a program is compiled.
 
+use super::plan::ShadowPlan;
 use super::slots::{self, LightSlot, MaskMode, ShadowTest};
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
-use crate::settings::{glsl_float, ShadowSettings};
+use crate::settings::glsl_float;
 use crate::shaders;
 
 /// A cascaded light's constants (shaders/lib/shadow_cascades.glsl).
@@ -40,15 +41,15 @@ pub struct ProgramKey {
 }
 
 impl ProgramKey {
+    /// The program for `scene`'s lights as `plan` draws them.
     pub fn of(
         scene: &Scene,
-        settings: &ShadowSettings,
-        kinds: &[ShadowKind],
+        plan: &ShadowPlan,
         visibility_light: usize,
         outputs: Outputs,
     ) -> Result<ProgramKey> {
         let n = scene.lights.len();
-        if n == 0 || n > MAX_LIGHTS || kinds.len() != n {
+        if n == 0 || n > MAX_LIGHTS || plan.lights.len() != n {
             return Err(Error::Invalid(format!(
                 "{}: {n} lights: expected 1 to {MAX_LIGHTS}",
                 scene.source.display()
@@ -56,12 +57,12 @@ impl ProgramKey {
         }
         let mut lights = [None; MAX_LIGHTS];
         let mut cascades = None;
-        for ((slot, light), &shadow) in lights.iter_mut().zip(&scene.lights).zip(kinds) {
+        for ((slot, light), planned) in lights.iter_mut().zip(&scene.lights).zip(&plan.lights) {
+            let (shadow, own) = (planned.kind, &planned.settings);
             let (positional, cone) = match light.shading() {
                 Shading::Direction(_) => (false, false),
                 Shading::Position { cone, .. } => (true, cone.is_some()),
             };
-            let own = light.settings(settings);
             if shadow == ShadowKind::Cascades {
                 cascades = Some(CascadeLayout {
                     count: own.cascades,
@@ -84,7 +85,7 @@ impl ProgramKey {
                 cone,
                 // Volumes have no test in the shader: the stencil decides.
                 test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume))
-                    .then(|| ShadowTest::for_light(light, &own)),
+                    .then(|| ShadowTest::for_light(light, own)),
             });
         }
         Ok(ProgramKey {
@@ -95,7 +96,7 @@ impl ProgramKey {
             specular_power_bits: scene.specular_power.to_bits(),
             visibility_light,
             outputs,
-            multipass: kinds.contains(&ShadowKind::Volume),
+            multipass: plan.has(ShadowKind::Volume),
             mask: MaskMode::Off,
         })
     }
@@ -205,16 +206,17 @@ impl ProgramKey {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::settings::ShadowSettings;
 
     #[test]
     fn defines_exist_only_for_what_the_lights_use() {
         let scene = Scene::load("point-shadows").unwrap();
-        let kinds = ShadowKind::for_lights(&scene.lights, &scene.shadow);
         let s = ShadowSettings {
             cascades: 4,
             ..scene.shadow
         };
-        let key = ProgramKey::of(&scene, &s, &kinds, 0, Outputs::default()).unwrap();
+        let plan = ShadowPlan::decide(&scene.lights, &s);
+        let key = ProgramKey::of(&scene, &plan, 0, Outputs::default()).unwrap();
         let names: Vec<String> = key.defines().into_iter().map(|(k, _)| k).collect();
         for absent in [
             "USES_CASCADES",
@@ -232,8 +234,8 @@ mod tests {
         if let crate::scene::Light::Point(p) = &mut dark.lights[0] {
             p.casts_shadows = false;
         }
-        let kinds = ShadowKind::for_lights(&dark.lights, &s);
-        let key = ProgramKey::of(&dark, &s, &kinds, 0, Outputs::default()).unwrap();
+        let plan = ShadowPlan::decide(&dark.lights, &s);
+        let key = ProgramKey::of(&dark, &plan, 0, Outputs::default()).unwrap();
         let names: Vec<String> = key.defines().into_iter().map(|(k, _)| k).collect();
         for absent in ["USES_SHADOWS", "PCF_RADIUS", "BIAS", "USES_CUBE"] {
             assert!(
@@ -246,8 +248,10 @@ mod tests {
     #[test]
     fn keys_differ_exactly_when_the_program_would() {
         let scene = Scene::load("dummy").unwrap();
-        let kinds = ShadowKind::for_lights(&scene.lights, &scene.shadow);
-        let key = |s: &ShadowSettings| ProgramKey::of(&scene, s, &kinds, 0, Outputs::default());
+        let key = |s: &ShadowSettings| {
+            let plan = ShadowPlan::decide(&scene.lights, s);
+            ProgramKey::of(&scene, &plan, 0, Outputs::default())
+        };
         let base = key(&scene.shadow).unwrap();
         assert_eq!(base, key(&scene.shadow).unwrap());
         let biased = ShadowSettings {
@@ -271,9 +275,10 @@ mod tests {
             filter: crate::settings::Filter::Vsm,
             ..scene.shadow
         };
-        let kinds = ShadowKind::for_lights(&scene.lights, &vsm);
-        assert_eq!(kinds, [ShadowKind::Moments]);
-        let key = |s: &ShadowSettings| ProgramKey::of(&scene, s, &kinds, 0, Outputs::default());
+        assert_eq!(
+            ShadowPlan::decide(&scene.lights, &vsm).kinds(),
+            [ShadowKind::Moments]
+        );
         assert_ne!(
             key(&vsm).unwrap(),
             key(&ShadowSettings {

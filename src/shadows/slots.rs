@@ -423,7 +423,7 @@ mod tests {
         };
         use ShadowKind::*;
         assert_eq!(
-            ShadowKind::for_lights(&scene.lights, &settings),
+            crate::shadows::plan::ShadowPlan::decide(&scene.lights, &settings).kinds(),
             [None, Cascades, Map, Map, Cube]
         );
         let one = ShadowSettings {
@@ -431,7 +431,7 @@ mod tests {
             ..settings
         };
         assert_eq!(
-            ShadowKind::for_lights(&scene.lights, &one),
+            crate::shadows::plan::ShadowPlan::decide(&scene.lights, &one).kinds(),
             [None, Map, Map, Map, Cube]
         );
     }

@@ -231,7 +231,7 @@ impl Volumes {
     }
 
     /// Draws light `index`'s volumes for every caster with the bound target and state
-    /// (the stencil pass, or the debug view in `colour`).
+    /// (the stencil pass, or the debug view in `colour`); `settings` are the light's own.
     pub fn draw(
         &self,
         scene: &Scene,
@@ -240,10 +240,10 @@ impl Volumes {
         (width, height): (u32, u32),
         colour: Vec4,
     ) {
-        let Some(light) = scene.lights.get(index) else {
+        if index >= scene.lights.len() {
             return;
-        };
-        let source = rays(scene, index, &light.settings(settings));
+        }
+        let source = rays(scene, index, settings);
         let p = &self.program;
         let view64 = scene.camera.view_matrix64();
         p.bind();

@@ -13,6 +13,7 @@ use super::{
     CameraFile, DirectionalFile, Fixed, PointFile, SceneFile, SpotFile, StepsFile, LIGHT_KINDS,
 };
 use crate::error::{Error, Result};
+use crate::scene::refusals;
 use crate::scene::{
     Camera, DirectionalLight, Light, OrthoCoords, PointLight, Scene, SpotLight, StepContext,
     MAX_LIGHTS,
@@ -74,30 +75,24 @@ fn check_light_settings(lights: &[Light], shadow: &ShadowSettings, cx: &Context)
     };
     for (i, light) in lights.iter().enumerate() {
         if !light.shadow_patch().given().is_empty() {
-            light
-                .settings(shadow)
+            refusals::own_settings(light, shadow)
                 .validate_values()
                 .map_err(|e| cx.bad(format!("{}.shadow", prefix(i)), e.to_string()))?;
         }
     }
-    let layered = crate::scene::light::layered_light(lights, shadow);
-    for (i, light) in lights.iter().enumerate() {
-        let prefix = prefix(i);
-        let own = light.shadow_patch();
-        let own_settings = light.settings(shadow);
-        if let Some(problem) = light.settings_problem(&prefix, &own_settings, layered == Some(i)) {
-            let setting = problem.split(' ').next().unwrap_or_default();
-            let given_by_light = match setting {
-                "shadow.light_view" => own.light_view.is_some(),
-                "shadow.map_size" => own.map_size.is_some(),
-                "shadow.filter" => own.filter.is_some(),
-                _ => false,
-            };
-            return Err(match given_by_light {
-                true => cx.bad(format!("{prefix}.{setting}"), problem),
-                false => Error::file(cx.source, problem),
-            });
-        }
+    if let Err(refused) = refusals::check(lights, shadow, prefix) {
+        let own = lights[refused.light].shadow_patch();
+        let given_by_light = match refused.setting {
+            "light_view" => own.light_view.is_some(),
+            "map_size" => own.map_size.is_some(),
+            "filter" => own.filter.is_some(),
+            _ => false,
+        };
+        let field = format!("{}.shadow.{}", prefix(refused.light), refused.setting);
+        return Err(match given_by_light {
+            true => cx.bad(field, refused.message),
+            false => Error::file(cx.source, refused.message),
+        });
     }
     Ok(())
 }

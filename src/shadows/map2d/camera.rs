@@ -2,27 +2,10 @@
 //! LearnOpenGL's look-at), a perspective frustum (LearnOpenGL's comparison, the slides, the
 //! blog), a spot's frustum, or a box fitted to the scene ([`crate::shadows::fitted`]).
 
-use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
 use crate::shadows::camera::{perspective_view, point_camera, Perspective};
 use crate::shadows::{fitted, Rays, ShadowView};
-
-/// Refuses the book's angles for light `index` where they do not fit its direction. Scene
-/// files and flags are checked before any frame; this guards scenes built in code (the
-/// book's angles would turn the map away from the light without a word).
-pub(super) fn check_book_angles(
-    scene: &Scene,
-    index: usize,
-    settings: &ShadowSettings,
-) -> Result<()> {
-    if let Light::Directional(l) = &scene.lights[index] {
-        if let Some(problem) = l.book_angles_problem(&format!("light {index}"), settings, false) {
-            return Err(Error::Invalid(format!("shadow.light_view = {problem}")));
-        }
-    }
-    Ok(())
-}
 
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with
 /// `fit = "scene"` an orthographic box fitted to this scene ([`fitted::fit_ortho`]).

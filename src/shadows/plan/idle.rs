@@ -1,0 +1,287 @@
+//! Settings that are legal but do nothing: for one light ([`of_light`]), and for every
+//! light of a scene ([`of_scene`], what the commands warn about when a flag gives one).
+
+use crate::scene::Light;
+use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique};
+use crate::shadows::ShadowKind;
+
+use super::LightPlan;
+
+/// A setting that does nothing, and why.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Idle {
+    /// As the scene file names it (`cascades`, `point_pass`, ...).
+    pub setting: &'static str,
+    pub why: String,
+}
+
+impl Idle {
+    fn new(setting: &'static str, why: impl Into<String>) -> Idle {
+        Idle {
+            setting,
+            why: why.into(),
+        }
+    }
+}
+
+/// The settings a map's storage, test and pass read: nothing when there is no map.
+const MAP_SETTINGS: [&str; 16] = [
+    "map_size",
+    "depth_format",
+    "cascades",
+    "caster_groups",
+    "filter",
+    "bias_mode",
+    "bias",
+    "bias_min",
+    "normal_offset",
+    "wrap",
+    "beyond_far",
+    "cull",
+    "polygon_offset",
+    "point_pass",
+    "shadow_cache",
+    "show_depth_map",
+];
+
+/// The moment maps' knobs, each with the filters that read it and those filters in words.
+const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
+    (
+        &["blur"],
+        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm],
+        "a moment filter (vsm, evsm2, evsm4, msm)",
+    ),
+    (
+        &["min_variance", "bleed_reduction"],
+        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4],
+        "vsm, evsm2 or evsm4",
+    ),
+    (
+        &["evsm_exponents"],
+        &[Filter::Evsm2, Filter::Evsm4],
+        "evsm2 or evsm4",
+    ),
+    (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
+];
+
+/// Whether a light's box is snapped to texels: an orthographic one fitted or layered.
+fn snapped(s: &ShadowSettings) -> bool {
+    s.light_projection == LightProjection::Ortho
+        && (s.fit == Fit::Scene || s.cascades > 1 || s.caster_groups > 1)
+}
+
+/// The settings that do nothing for `light`, whose shadow is `kind` under `s`.
+pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> Vec<Idle> {
+    let mut idle = Vec::new();
+    let none = match kind {
+        ShadowKind::None if !light.casts_shadows() => Some("the light casts no shadow"),
+        ShadowKind::None => Some("shadows are off"),
+        ShadowKind::Volume => Some("the light has shadow volumes, which have no map"),
+        _ => None,
+    };
+    if let Some(why) = none {
+        idle.extend(MAP_SETTINGS.iter().map(|n| Idle::new(n, why)));
+    }
+    let directional = matches!(light, Light::Directional(_));
+    let layers = |what: &str| match kind {
+        _ if !directional => format!("only a directional light has {what}"),
+        _ if s.light_projection == LightProjection::Perspective => {
+            format!("{what} need an orthographic light projection")
+        }
+        _ => {
+            format!("only the first casting directional light gets {what}; this one keeps one map")
+        }
+    };
+    let mut push = |name: &'static str, why: String| {
+        if !idle.iter().any(|i: &Idle| i.setting == name) {
+            idle.push(Idle::new(name, why));
+        }
+    };
+    if s.cascades > 1 && kind != ShadowKind::Cascades {
+        push("cascades", layers("cascades"));
+    }
+    if s.caster_groups > 1 && kind != ShadowKind::Groups {
+        push("caster_groups", layers("caster groups"));
+    }
+    if kind != ShadowKind::Cube {
+        push(
+            "point_pass",
+            "only a point light's cube map has faces to draw".into(),
+        );
+    }
+    if !(directional && s.light_projection == LightProjection::Perspective) {
+        push(
+            "perspective_fov",
+            "only a directional light with a perspective projection uses it".into(),
+        );
+    }
+    if !(directional && snapped(s)) || none.is_some() {
+        push("snap", "the light's box is not fitted or cascaded".into());
+    }
+    let filter = (none.is_none()).then_some(s.filter);
+    if filter != Some(Filter::Pcss) {
+        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
+            push(name, "only the pcss filter takes its counts".into());
+        }
+    }
+    for (names, filters, which) in MOMENT_KNOBS {
+        let reads = kind == ShadowKind::Moments && filter.is_some_and(|f| filters.contains(&f));
+        if !reads {
+            for name in names {
+                push(name, format!("it is for {which}, on a 2D map"));
+            }
+        }
+    }
+    if kind != ShadowKind::Volume {
+        push("show_volumes", "the light has no shadow volumes".into());
+    }
+    idle
+}
+
+/// The settings that do nothing for any of `lights` (planned as `plans`) under the scene's
+/// `settings`, each with the reason as a command's warning gives it.
+pub(super) fn of_scene(
+    lights: &[Light],
+    settings: &ShadowSettings,
+    plans: &[LightPlan],
+) -> Vec<Idle> {
+    let has = |k: ShadowKind| plans.iter().any(|p| p.kind == k);
+    // The casting directional lights, each under its own settings.
+    let suns: Vec<&ShadowSettings> = lights
+        .iter()
+        .zip(plans)
+        .filter(|(l, _)| l.casts_shadows() && matches!(l, Light::Directional(_)))
+        .map(|(_, p)| &p.settings)
+        .collect();
+    let mut idle = Vec::new();
+    if settings.cascades > 1 && !has(ShadowKind::Cascades) {
+        idle.push(Idle::new(
+            "cascades",
+            no_layers(settings, !suns.is_empty(), "cascades"),
+        ));
+    }
+    if settings.caster_groups > 1 && !has(ShadowKind::Groups) {
+        let why = no_layers(settings, !suns.is_empty(), "caster groups");
+        idle.push(Idle::new("caster_groups", why));
+    }
+    if !has(ShadowKind::Cube) {
+        idle.push(Idle::new(
+            "point_pass",
+            "no point light casts shadows in this scene; it says how a cube map's faces are \
+             drawn",
+        ));
+    }
+    if !suns
+        .iter()
+        .any(|s| s.light_projection == LightProjection::Perspective)
+    {
+        idle.push(Idle::new(
+            "perspective_fov",
+            "no directional light has a perspective projection (--light-projection \
+             perspective); spot lights use their own fov",
+        ));
+    }
+    let pcss = lights
+        .iter()
+        .zip(plans)
+        .any(|(l, p)| l.casts_shadows() && p.settings.filter == Filter::Pcss);
+    if !pcss {
+        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
+            idle.push(Idle::new(
+                name,
+                "no light's filter is pcss (--filter pcss); only PCSS takes its counts",
+            ));
+        }
+    }
+    if !suns.iter().any(|s| snapped(s)) {
+        idle.push(Idle::new(
+            "snap",
+            "no light's box is fitted (--fit scene) or cascaded, so there is nothing to snap",
+        ));
+    }
+    of_scene_maps(plans, &mut idle);
+    idle
+}
+
+/// Why a directional light's layers (`what`: cascades, caster groups) are not drawn under
+/// the scene's `settings`; `suns`: some directional light casts.
+fn no_layers(settings: &ShadowSettings, suns: bool, what: &str) -> String {
+    if !settings.shadows {
+        "shadows are off (--shadows off)".to_string()
+    } else if settings.technique == ShadowTechnique::Volumes {
+        "the lights have shadow volumes (--technique volumes), which have no map".to_string()
+    } else if !suns {
+        format!(
+            "no directional light casts shadows in this scene, and only one gets {what}; each \
+             light keeps one map"
+        )
+    } else if settings.light_projection == LightProjection::Perspective {
+        format!(
+            "{what} need an orthographic light projection (--light-projection perspective is \
+             set); the light keeps one map"
+        )
+    } else if what != "cascades" && settings.cascades > 1 {
+        "cascades are set (--cascades), and a light has cascades or caster groups, not both"
+            .to_string()
+    } else {
+        format!("the directional light's own shadow table gives it no {what}")
+    }
+}
+
+/// The scene's idle settings that depend on its maps: every map setting without a map,
+/// the moment maps' knobs without a filter that reads them, `show_volumes` without volumes.
+fn of_scene_maps(plans: &[LightPlan], idle: &mut Vec<Idle>) {
+    let has = |k: ShadowKind| plans.iter().any(|p| p.kind == k);
+    let volumes = has(ShadowKind::Volume);
+    let maps = plans
+        .iter()
+        .any(|p| !matches!(p.kind, ShadowKind::None | ShadowKind::Volume));
+    if volumes && !maps {
+        for name in MAP_SETTINGS {
+            if !idle.iter().any(|i| i.setting == name) {
+                idle.push(Idle::new(
+                    name,
+                    "every casting light has shadow volumes (technique = volumes): there is no \
+                     map to size, test or draw",
+                ));
+            }
+        }
+    }
+    let moment_filters: Vec<Filter> = plans
+        .iter()
+        .filter(|p| p.kind == ShadowKind::Moments)
+        .map(|p| p.settings.filter)
+        .collect();
+    for (names, filters, which) in MOMENT_KNOBS {
+        if !moment_filters.iter().any(|f| filters.contains(f)) {
+            for name in names {
+                idle.push(Idle::new(
+                    name,
+                    format!("no light's filter reads it (it is for {which}, on a 2D map)"),
+                ));
+            }
+        }
+    }
+    if !volumes {
+        idle.push(Idle::new(
+            "show_volumes",
+            "no light has shadow volumes (--technique volumes): there are none to show",
+        ));
+    }
+}
+
+/// `settings` with each of `idle` set back to its default.
+pub(super) fn defaults_for(settings: &ShadowSettings, idle: &[Idle]) -> ShadowSettings {
+    let (Ok(serde_json::Value::Object(mut used)), Ok(serde_json::Value::Object(base))) = (
+        serde_json::to_value(settings),
+        serde_json::to_value(ShadowSettings::default()),
+    ) else {
+        return *settings;
+    };
+    for i in idle {
+        if let Some(v) = base.get(i.setting) {
+            used.insert(i.setting.to_string(), v.clone());
+        }
+    }
+    serde_json::from_value(serde_json::Value::Object(used)).unwrap_or(*settings)
+}
