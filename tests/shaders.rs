@@ -3,8 +3,8 @@
 mod common;
 
 use shadowmap::engine::{Outputs, ShaderProgram, ShaderSource};
+use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::program::ProgramKey;
-use shadowmap::shadows::ShadowKind;
 use shadowmap::{Scene, ShadowSettings};
 
 const VERTEX: &str = "// ==== vertex shader: shaders/scene.vert ====\n";
@@ -20,8 +20,8 @@ fn printed(args: &[&str]) -> (String, String) {
 
 /// The texts the renderer's program key hands the driver for `scene` under `settings`.
 fn compiled(scene: &Scene, settings: &ShadowSettings) -> [String; 2] {
-    let kinds = ShadowKind::for_lights(&scene.lights, settings);
-    let key = ProgramKey::of(scene, settings, &kinds, 0, Outputs::default()).unwrap();
+    let plan = ShadowPlan::resolve(&scene.lights, settings, None).unwrap();
+    let key = ProgramKey::of(scene, &plan, 0, Outputs::default()).unwrap();
     key.sources().unwrap().map(|s| s.text)
 }
 

@@ -196,7 +196,7 @@ mod tests {
 
     /// The step for light 0 of `scene` this frame, and whether it patches.
     fn step(s: &mut DepthSchedule, scene: &Scene, has_view: bool) -> Option<Step> {
-        let settings = scene.lights[0].settings(&scene.shadow);
+        let settings = crate::scene::refusals::own_settings(&scene.lights[0], &scene.shadow);
         let techniques: [Option<Box<dyn Technique>>; 1] = [Some(Box::new(Map))];
         s.begin(scene, &techniques, settings.shadow_cache);
         s.step(scene, 0, &Map, &settings, has_view)
