@@ -7,7 +7,7 @@
 //   LAYER_TEXEL    one texel of a layer, vec2(1 / width, 1 / height)
 //   LAYER_RADIUS   the PCF grid's half size, as calcShadow's radius
 //   LAYER_TAPS     0 = that grid, 1 = the playground's weighted 4 x 4, 2 = its soft PCF
-// (PCSS is refused for layers: src/settings.rs, Filter::refused_for.)
+// (PCSS is refused for layers: src/scene/refusals.rs, filter_refusal.)
 
 // The layered light's position in each layer's clip space (scene.vert: one light is
 // layered, so they fit among the vertex outputs).
