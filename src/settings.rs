@@ -827,6 +827,38 @@ impl ShadowSettings {
             BiasMode::Constant => format!("bias {}", self.bias),
             BiasMode::Slope => format!("slope bias {}..{}", self.bias_min, self.bias),
         };
+        let size = self.map_size.label();
+        let mut line = format!(
+            "{size} {} {}, {}{}, cull {}",
+            self.depth_format.name(),
+            self.filter.name(),
+            bias,
+            self.offsets_and_layers(),
+            self.cull.name()
+        );
+        // The rest by their serialised names and values, alphabetically (a new field shows
+        // up here without being listed).
+        let (Ok(serde_json::Value::Object(mine)), Ok(serde_json::Value::Object(base))) = (
+            serde_json::to_value(self),
+            serde_json::to_value(ShadowSettings::default()),
+        ) else {
+            return line;
+        };
+        for (key, value) in &mine {
+            if base.get(key) == Some(value) {
+                continue;
+            }
+            if let Some(part) = self.summary_part(key, value) {
+                line.push_str(", ");
+                line.push_str(&part);
+            }
+        }
+        line
+    }
+
+    /// The summary's offsets and the split of a directional light's map (cascades or
+    /// caster groups), each led by ", ".
+    fn offsets_and_layers(&self) -> String {
         let mut extra = String::new();
         if self.normal_offset != 0.0 {
             extra.push_str(&format!(", normal offset {} texels", self.normal_offset));
@@ -853,71 +885,53 @@ impl ShadowSettings {
         } else if self.caster_groups > 1 {
             extra.push_str(&format!(", {} caster groups", self.caster_groups));
         }
-        let size = self.map_size.label();
-        let mut line = format!(
-            "{size} {} {}, {}{}, cull {}",
-            self.depth_format.name(),
-            self.filter.name(),
-            bias,
-            extra,
-            self.cull.name()
-        );
-        // The rest by their serialised names and values, alphabetically (a new field shows
-        // up here without being listed).
-        let (Ok(serde_json::Value::Object(mine)), Ok(serde_json::Value::Object(base))) =
-            (serde_json::to_value(self), serde_json::to_value(defaults))
-        else {
-            return line;
-        };
+        extra
+    }
+
+    /// How the summary names a field that differs from the default (by its serialised
+    /// name); `None` for the fields shown before it or that do nothing with the others.
+    fn summary_part(&self, key: &str, value: &serde_json::Value) -> Option<String> {
         let perspective = self.light_projection == LightProjection::Perspective;
         let fitted = self.fit == Fit::Scene || self.cascades > 1 || self.caster_groups > 1;
-        for (key, value) in &mine {
-            if base.get(key) == Some(value) {
-                continue;
+        let v = match value {
+            serde_json::Value::String(s) => s.clone(),
+            // Switches read as the flags spell them.
+            serde_json::Value::Bool(b) => if *b { "on" } else { "off" }.to_string(),
+            // Settings are f32: shown as f32 (0.4, not 0.4000000059604645).
+            serde_json::Value::Number(n) if n.is_f64() => {
+                (n.as_f64().unwrap_or_default() as f32).to_string()
             }
-            let v = match value {
-                serde_json::Value::String(s) => s.clone(),
-                // Switches read as the flags spell them.
-                serde_json::Value::Bool(b) => if *b { "on" } else { "off" }.to_string(),
-                // Settings are f32: shown as f32 (0.4, not 0.4000000059604645).
-                serde_json::Value::Number(n) if n.is_f64() => {
-                    (n.as_f64().unwrap_or_default() as f32).to_string()
-                }
-                other => other.to_string(),
-            };
-            let part = match key.as_str() {
-                "map_size" | "depth_format" | "filter" | "bias_mode" | "bias" | "bias_min"
-                | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "caster_groups"
-                | "cascade_lambda" | "cascade_blend" | "shadow_distance" => continue,
-                "perspective_fov" => continue,
-                "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => continue,
-                // The moment maps' knobs do nothing for a depth map.
-                "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
-                | "msm_toward"
-                    if !self.filter.moments() =>
-                {
-                    continue
-                }
-                "light_projection" if perspective => {
-                    format!("perspective light, fov {}", self.perspective_fov)
-                }
-                "light_projection" => format!("{v} light"),
-                "light_view" => format!("{v} view"),
-                "wrap" => format!("wrap {v}"),
-                "beyond_far" => format!("beyond far {v}"),
-                "fit" => format!("box fitted to the {v}"),
-                "snap" if !fitted => continue,
-                "snap" => "unsnapped".to_string(),
-                "point_pass" => format!("point pass {v}"),
-                "show_depth_map" => "showing the depth map".to_string(),
-                "show_cascades" => "cascades tinted".to_string(),
-                "show_volumes" => "volumes shown".to_string(),
-                _ => format!("{} {v}", key.replace('_', " ")),
-            };
-            line.push_str(", ");
-            line.push_str(&part);
-        }
-        line
+            other => other.to_string(),
+        };
+        Some(match key {
+            "map_size" | "depth_format" | "filter" | "bias_mode" | "bias" | "bias_min"
+            | "normal_offset" | "polygon_offset" | "cull" | "cascades" | "caster_groups"
+            | "cascade_lambda" | "cascade_blend" | "shadow_distance" => return None,
+            "perspective_fov" => return None,
+            "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => return None,
+            // The moment maps' knobs do nothing for a depth map.
+            "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
+            | "msm_toward"
+                if !self.filter.moments() =>
+            {
+                return None
+            }
+            "light_projection" if perspective => {
+                format!("perspective light, fov {}", self.perspective_fov)
+            }
+            "light_projection" => format!("{v} light"),
+            "light_view" => format!("{v} view"),
+            "wrap" => format!("wrap {v}"),
+            "beyond_far" => format!("beyond far {v}"),
+            "fit" => format!("box fitted to the {v}"),
+            "snap" if !fitted => return None,
+            "snap" => "unsnapped".to_string(),
+            "point_pass" => format!("point pass {v}"),
+            "show_depth_map" => "showing the depth map".to_string(),
+            "show_cascades" => "cascades tinted".to_string(),
+            "show_volumes" => "volumes shown".to_string(),
+            _ => format!("{} {v}", key.replace('_', " ")),
+        })
     }
 
     /// Checks values against each other and the driver's maximum texture size.

@@ -3,11 +3,12 @@
 
 use std::time::Instant;
 
-use shadowmap::bench::{self, BenchOptions};
-use shadowmap::engine::{gl_limits, HeadlessContext};
+use shadowmap::bench::{self, BenchConfig, BenchOptions, BenchRow};
+use shadowmap::compare::Reference;
+use shadowmap::engine::{gl_limits, Gl, HeadlessContext};
 use shadowmap::output::{check_output_dir, write_into, Activity, Counter};
 use shadowmap::scale;
-use shadowmap::{Error, Result};
+use shadowmap::{Error, Result, Scene, ShadowSettings};
 
 use super::cli::BenchArgs;
 
@@ -16,15 +17,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         return run_scale(args);
     }
     let start = Instant::now();
-    let mut scene = args.scene.load()?;
-    // Time a still frame: the animation would change what is measured between frames.
-    scene
-        .items
-        .iter_mut()
-        .for_each(|i| i.spin = glam::Vec3::ZERO);
-    let base = args.settings.apply(&mut scene)?;
-    let (width, height) = args.scene.size(&scene);
-    scene.size = [width, height];
+    let (scene, base) = load_still_scene(args)?;
+    let [width, height] = scene.size;
     let dir = &args.out_dir;
     // Everything that can be checked without the driver, before any GL work or file
     // (--target-error is checked as it is parsed).
@@ -64,62 +58,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         opts.frames,
         opts.warmup,
     );
-    let n = opts.supersample;
-    let activity = Activity::start(format!(
-        "bench: tracing the exact reference at {width}x{height}{}",
-        match n {
-            1 => String::new(),
-            _ => format!(" (and {n}x{n} supersampled)"),
-        }
-    ));
-    let reference = bench::bench_reference(gl, &scene, &base, &opts)?;
-    activity.done(&format!(
-        "{} caster triangles, {:.0} ms of tracing",
-        reference.triangles, reference.trace_ms
-    ));
-    // The library reports each configuration when its second timing block ends; the first
-    // pass over the sweep gets a spinner of its own.
-    let mut first_pass = Some(Activity::start(format!(
-        "bench: timing pass 1 of 2 over {} configurations",
-        configs.len()
-    )));
-    let mut counter: Option<Counter> = None;
-    let rows = bench::run(gl, &scene, &configs, &reference, &opts, |row| {
-        if let Some(activity) = first_pass.take() {
-            activity.done("");
-            eprintln!("bench: timing pass 2 of 2 (in reverse order) and scoring");
-        }
-        counter
-            .get_or_insert_with(|| Counter::new(configs.len() as u64))
-            .step(&format!(
-                "{}: {:.2} ms, {} {:.3}% (taps / passes / map MiB: {})",
-                row.label(),
-                row.wall_ms.median,
-                row.error_name(),
-                row.error() * 100.0,
-                row.cost_label()
-            ));
-    })?;
-    if let Some(counter) = counter {
-        counter.finish();
-    }
+    let reference = trace_reference(gl, &scene, &base, &opts)?;
+    let rows = time_configs(gl, &scene, &configs, &reference, &opts)?;
 
-    let mut markdown = bench::to_markdown(&rows);
-    markdown.push('\n');
-    markdown.push_str(&bench::against_tutorials_text(&rows));
-    markdown
-        .push_str("\nthe --quality rule (docs/results.md, \"Quality presets\") on this sweep:\n");
-    for (level, row) in bench::preset_choices(&rows) {
-        markdown.push_str(&match row {
-            Some(r) => format!(
-                "  {level}: {} (overhead {:.2} ms, {})\n",
-                r.label(),
-                r.overhead_ms,
-                r.error_text()
-            ),
-            None => format!("  {level}: no configuration meets the rule\n"),
-        });
-    }
+    let markdown = markdown(&rows);
     let title = format!(
         "{}: shadow error against frame time ({width}x{height})",
         scene.name
@@ -146,6 +88,104 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         println!("{}", super::quality::describe_choice(chosen, target));
     }
     Ok(())
+}
+
+/// The scene held still at its frame size, with the settings the flags give.
+fn load_still_scene(args: &BenchArgs) -> Result<(Scene, ShadowSettings)> {
+    let mut scene = args.scene.load()?;
+    // Time a still frame: the animation would change what is measured between frames.
+    scene
+        .items
+        .iter_mut()
+        .for_each(|i| i.spin = glam::Vec3::ZERO);
+    let base = args.settings.apply(&mut scene)?;
+    let (width, height) = args.scene.size(&scene);
+    scene.size = [width, height];
+    Ok((scene, base))
+}
+
+/// The exact reference every configuration is scored against, with a spinner.
+fn trace_reference(
+    gl: &Gl,
+    scene: &Scene,
+    base: &ShadowSettings,
+    opts: &BenchOptions,
+) -> Result<Reference> {
+    let n = opts.supersample;
+    let activity = Activity::start(format!(
+        "bench: tracing the exact reference at {}x{}{}",
+        opts.width,
+        opts.height,
+        match n {
+            1 => String::new(),
+            _ => format!(" (and {n}x{n} supersampled)"),
+        }
+    ));
+    let reference = bench::bench_reference(gl, scene, base, opts)?;
+    activity.done(&format!(
+        "{} caster triangles, {:.0} ms of tracing",
+        reference.triangles, reference.trace_ms
+    ));
+    Ok(reference)
+}
+
+/// The sweep timed and scored, with progress on standard error.
+fn time_configs(
+    gl: &Gl,
+    scene: &Scene,
+    configs: &[BenchConfig],
+    reference: &Reference,
+    opts: &BenchOptions,
+) -> Result<Vec<BenchRow>> {
+    // The library reports each configuration when its second timing block ends; the first
+    // pass over the sweep gets a spinner of its own.
+    let mut first_pass = Some(Activity::start(format!(
+        "bench: timing pass 1 of 2 over {} configurations",
+        configs.len()
+    )));
+    let mut counter: Option<Counter> = None;
+    let rows = bench::run(gl, scene, configs, reference, opts, |row| {
+        if let Some(activity) = first_pass.take() {
+            activity.done("");
+            eprintln!("bench: timing pass 2 of 2 (in reverse order) and scoring");
+        }
+        counter
+            .get_or_insert_with(|| Counter::new(configs.len() as u64))
+            .step(&format!(
+                "{}: {:.2} ms, {} {:.3}% (taps / passes / map MiB: {})",
+                row.label(),
+                row.wall_ms.median,
+                row.error_name(),
+                row.error() * 100.0,
+                row.cost_label()
+            ));
+    })?;
+    if let Some(counter) = counter {
+        counter.finish();
+    }
+    Ok(rows)
+}
+
+/// bench.md: the table, the comparison with the tutorials' settings and the presets the
+/// --quality rule picks from this sweep.
+fn markdown(rows: &[BenchRow]) -> String {
+    let mut markdown = bench::to_markdown(rows);
+    markdown.push('\n');
+    markdown.push_str(&bench::against_tutorials_text(rows));
+    markdown
+        .push_str("\nthe --quality rule (docs/results.md, \"Quality presets\") on this sweep:\n");
+    for (level, row) in bench::preset_choices(rows) {
+        markdown.push_str(&match row {
+            Some(r) => format!(
+                "  {level}: {} (overhead {:.2} ms, {})\n",
+                r.label(),
+                r.overhead_ms,
+                r.error_text()
+            ),
+            None => format!("  {level}: no configuration meets the rule\n"),
+        });
+    }
+    markdown
 }
 
 /// `bench --scale`: each pass' time against the work, with the fitted exponents.

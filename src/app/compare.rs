@@ -1,7 +1,10 @@
 //! `shadowmap compare`: one frame scored against the exact reference, with pictures.
 
-use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
-use shadowmap::engine::HeadlessContext;
+use std::path::Path;
+
+use shadowmap::compare::{compute_reference, render_visibility, CompareOptions, Reference};
+use shadowmap::engine::{Gl, HeadlessContext};
+use shadowmap::frame::Frame;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, write_into, Activity};
 use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
@@ -31,10 +34,74 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         rays: args.rays,
     };
     // The steps of `shadowmap::compare::compare`, one at a time so each can be shown.
+    let (reference, agreement) = trace_truth(context.gl(), args, &scene, &settings, &opts)?;
+    let activity = Activity::start(format!(
+        "compare: rendering light {}'s shadow test ({})",
+        args.light,
+        plan.in_use().summary()
+    ));
+    let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
+    let vis = frame.visibility.as_deref().unwrap_or_default();
+    let metrics = reference.score(vis, args.band);
+    let area = reference.score_area(vis);
+    activity.done("");
+
+    let mut files = picture_files(&frame, &reference, width, height)?;
+    files.extend(gbuffer_files(&reference)?);
+    let json = serde_json::json!({
+        "scene": scene.name,
+        "size": [width, height],
+        "light": args.light,
+        "light_description": scene.lights.get(args.light).map(|l| l.describe()),
+        "settings": settings,
+        "supersample": args.supersample,
+        "band": args.band,
+        "reference_triangles": reference.triangles,
+        "reference_ms": reference.trace_ms,
+        "truth": match args.truth {
+            Truth::Cpu => "cpu",
+            Truth::Volumes => "volumes",
+        },
+        "volumes_vs_cpu": agreement,
+        "metrics": metrics,
+        // A light with a size: the soft truth's figures (null for a point light).
+        "light_size": scene.lights.get(args.light).map(|l| l.size()),
+        "area_light": area,
+    });
+    files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
+    write_files(dir, &files)?;
+    println!(
+        "{}",
+        summary(&scene.name, &plan.in_use().summary(), &metrics, args.band)
+    );
+    print_agreement(agreement.as_ref(), args.band);
+    if let Some(a) = &area {
+        println!("{}", area_summary(a));
+    }
+    println!("{ERROR_COLOURS}");
+    println!(
+        "wrote {}: {}",
+        dir.display(),
+        files.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+    );
+    Ok(())
+}
+
+/// Traces the exact reference, and with `--truth volumes` swaps in the stencil shadow
+/// volumes' answer as the truth, returning how far the two agree.
+fn trace_truth(
+    gl: &Gl,
+    args: &CompareArgs,
+    scene: &Scene,
+    settings: &ShadowSettings,
+    opts: &CompareOptions,
+) -> Result<(Reference, Option<Metrics>)> {
     let n = args.supersample;
     let activity = Activity::start(format!(
-        "compare: tracing the exact reference for the {} scene at {width}x{height}{}{}",
+        "compare: tracing the exact reference for the {} scene at {}x{}{}{}",
         scene.name,
+        opts.width,
+        opts.height,
         match n {
             1 => String::new(),
             _ => format!(" (and {n}x{n} supersampled)"),
@@ -48,18 +115,18 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     // light the scene is shaded with), so their agreement with it can be printed.
     let volumes = ShadowSettings {
         technique: ShadowTechnique::Volumes,
-        ..settings
+        ..*settings
     };
     let traced = match args.truth {
-        Truth::Cpu => &settings,
+        Truth::Cpu => settings,
         Truth::Volumes => &volumes,
     };
-    let reference = compute_reference(context.gl(), &scene, traced, &opts)?;
+    let reference = compute_reference(gl, scene, traced, opts)?;
     activity.done(&format!(
         "{} caster triangles, {:.0} ms of tracing",
         reference.triangles, reference.trace_ms
     ));
-    let (reference, agreement) = match args.truth {
+    Ok(match args.truth {
         Truth::Cpu => (reference, None),
         Truth::Volumes => {
             let activity = Activity::start(format!(
@@ -67,24 +134,24 @@ pub fn run(args: &CompareArgs) -> Result<()> {
                 args.light
             ));
             let frame =
-                render_visibility(context.gl(), &scene, &volumes, width, height, args.light)?;
+                render_visibility(gl, scene, &volumes, opts.width, opts.height, args.light)?;
             let vis = frame.visibility.as_deref().unwrap_or_default();
             let agreement = reference.score(vis, args.band);
             activity.done("");
             (reference.with_volumes_truth(vis), Some(agreement))
         }
-    };
-    let activity = Activity::start(format!(
-        "compare: rendering light {}'s shadow test ({})",
-        args.light,
-        plan.in_use().summary()
-    ));
-    let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
-    let vis = frame.visibility.as_deref().unwrap_or_default();
-    let metrics = reference.score(vis, args.band);
-    let area = reference.score_area(vis);
-    activity.done("");
+    })
+}
 
+/// visibility.png, reference.png and error.png, and for a light with a size
+/// reference-area.png and error-area.png.
+fn picture_files(
+    frame: &Frame,
+    reference: &Reference,
+    width: u32,
+    height: u32,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    let vis = frame.visibility.as_deref().unwrap_or_default();
     let mut files: Vec<(&str, Vec<u8>)> = Vec::new();
     if let Some(image) = frame.visibility_image() {
         files.push(("visibility.png", image.encode_png()?));
@@ -119,10 +186,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         })?;
         files.push(("error-area.png", error.encode_png()?));
     }
+    Ok(files)
+}
+
+/// positions.npy (absolute world positions) and normals.npy from the reference's G-buffer.
+fn gbuffer_files(reference: &Reference) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let g = &reference.gbuffer;
     let world: Vec<[f32; 3]> = (0..g.positions.len())
         .map(|i| reference.world_position(i).as_vec3().to_array())
         .collect();
+    let mut files = Vec::new();
     for (name, data) in [("positions.npy", &world), ("normals.npy", &g.normals)] {
         if data.len() != g.width * g.height {
             return Err(Error::Invalid(format!(
@@ -134,27 +207,11 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         }
         files.push((name, npy_bytes_f32_hw3(g.width, g.height, data)));
     }
-    let json = serde_json::json!({
-        "scene": scene.name,
-        "size": [width, height],
-        "light": args.light,
-        "light_description": scene.lights.get(args.light).map(|l| l.describe()),
-        "settings": settings,
-        "supersample": args.supersample,
-        "band": args.band,
-        "reference_triangles": reference.triangles,
-        "reference_ms": reference.trace_ms,
-        "truth": match args.truth {
-            Truth::Cpu => "cpu",
-            Truth::Volumes => "volumes",
-        },
-        "volumes_vs_cpu": agreement,
-        "metrics": metrics,
-        // A light with a size: the soft truth's figures (null for a point light).
-        "light_size": scene.lights.get(args.light).map(|l| l.size()),
-        "area_light": area,
-    });
-    files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
+    Ok(files)
+}
+
+/// Writes the files into `dir`, each named in an error as an image or a file.
+fn write_files(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<()> {
     let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
         .map(|(name, bytes)| {
@@ -165,12 +222,12 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             (*name, what, bytes.as_slice())
         })
         .collect();
-    write_into(dir, &batch)?;
-    println!(
-        "{}",
-        summary(&scene.name, &plan.in_use().summary(), &metrics, args.band)
-    );
-    if let Some(a) = &agreement {
+    write_into(dir, &batch)
+}
+
+/// With `--truth volumes`: how far the volumes agree with the CPU ray cast.
+fn print_agreement(agreement: Option<&Metrics>, band: usize) {
+    if let Some(a) = agreement {
         println!(
             "truth: stencil shadow volumes; against the CPU ray cast they agree on {} of {} \
              receivers ({} misclassified, {} outside a {}-px edge band)",
@@ -178,19 +235,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
             a.receivers,
             a.misclassified,
             a.misclassified_outside_band,
-            args.band
+            band
         );
     }
-    if let Some(a) = &area {
-        println!("{}", area_summary(a));
-    }
-    println!("{ERROR_COLOURS}");
-    println!(
-        "wrote {}: {}",
-        dir.display(),
-        files.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
-    );
-    Ok(())
 }
 
 /// What error.png's colours mean, printed with every comparison.

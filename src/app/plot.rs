@@ -22,9 +22,27 @@ fn register_font() -> std::result::Result<(), String> {
         .map_err(|_| "the embedded font is not readable".to_string())
 }
 
+/// The Pareto plot's axes: log scales with our own ticks.
+type LogAxis = plotters::coord::combinators::WithKeyPoints<LogCoord<f64>>;
+type ParetoChart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<LogAxis, LogAxis>>;
+
+/// Why pareto.png could not be drawn.
+fn pareto_err(e: &dyn std::fmt::Display) -> Error {
+    Error::Invalid(format!("cannot draw pareto.png: {e}"))
+}
+
+/// A row's place on the Pareto plot: (median wall ms, error in percent), both kept above
+/// zero for the log axes.
+fn pareto_at(r: &BenchRow) -> (f64, f64) {
+    (
+        r.wall_ms.median.max(1e-6),
+        (r.error() * 100.0).max(ERROR_FLOOR_PCT),
+    )
+}
+
 /// The PNG bytes of the Pareto plot.
 pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
-    let err = |e: &dyn std::fmt::Display| Error::Invalid(format!("cannot draw pareto.png: {e}"));
+    let err = pareto_err;
     register_font().map_err(|e| err(&e))?;
     let mut buf = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
     {
@@ -32,11 +50,8 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
         root.fill(&WHITE).map_err(|e| err(&e))?;
         // Log axes with our own ticks: plotters' own label only the powers of ten, often
         // just one or two on a frame-time axis.
-        let time = |r: &BenchRow| r.wall_ms.median.max(1e-6);
-        let error = |r: &BenchRow| (r.error() * 100.0).max(ERROR_FLOOR_PCT);
-        let (x_lo, x_hi) = padded_range(rows.iter().map(time), 1.15);
-        let (y_lo, y_hi) = padded_range(rows.iter().map(error), 1.6);
-        let at = |r: &BenchRow| (time(r), error(r));
+        let (x_lo, x_hi) = padded_range(rows.iter().map(|r| pareto_at(r).0), 1.15);
+        let (y_lo, y_hi) = padded_range(rows.iter().map(|r| pareto_at(r).1), 1.6);
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 22))
             .margin(15)
@@ -59,78 +74,9 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             .label_style(("sans-serif", 14))
             .draw()
             .map_err(|e| err(&e))?;
-        // One series per kind of shadow (one map, cascades, a point light's two ways of
-        // drawing its cube), each in its own colour.
-        for family in Family::ALL {
-            let colour = match family {
-                Family::OneMap => RGBColor(150, 150, 150),
-                Family::Cascades => RGBColor(20, 150, 60),
-                Family::Groups => RGBColor(0, 170, 200),
-                Family::PointLayered => RGBColor(140, 60, 190),
-                Family::PointSixPasses => RGBColor(230, 140, 20),
-                Family::Volumes => RGBColor(220, 30, 30),
-                Family::Soft => RGBColor(30, 110, 220),
-            };
-            let points: Vec<(f64, f64)> = rows
-                .iter()
-                .filter(|r| r.config.family == family)
-                .map(at)
-                .collect();
-            if points.is_empty() {
-                continue;
-            }
-            chart
-                .draw_series(
-                    points
-                        .into_iter()
-                        .map(|p| Circle::new(p, 3, colour.filled())),
-                )
-                .map_err(|e| err(&e))?
-                .label(family.name())
-                .legend(move |(x, y)| Circle::new((x, y), 3, colour.filled()));
-        }
-        let mut front: Vec<&BenchRow> = rows.iter().filter(|r| r.pareto).collect();
-        front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
-        // The front as a staircase: each step holds the best error reached so far.
-        let mut steps = Vec::new();
-        for (i, r) in front.iter().enumerate() {
-            if i > 0 {
-                steps.push((at(r).0, at(front[i - 1]).1));
-            }
-            steps.push(at(r));
-        }
-        chart
-            .draw_series(LineSeries::new(steps, RED.stroke_width(2)))
-            .map_err(|e| err(&e))?
-            .label("Pareto front (named)")
-            .legend(|(x, y)| PathElement::new(vec![(x - 8, y), (x + 8, y)], RED.stroke_width(2)));
-        // Each front point with its configuration's name, alternating above and below so
-        // neighbours do not overlap.
-        for (i, r) in front.iter().enumerate() {
-            let dy = if i % 2 == 0 { -16 } else { 6 };
-            chart
-                .draw_series([EmptyElement::at(at(r))
-                    + Circle::new((0, 0), 4, RED.filled())
-                    + Text::new(
-                        short_label(r),
-                        (7, dy),
-                        ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
-                    )])
-                .map_err(|e| err(&e))?;
-        }
-        // The tutorials' configurations, circled and named.
-        for r in rows.iter().filter(|r| r.config.tutorial.is_some()) {
-            let name = r.config.tutorial.unwrap_or_default();
-            chart
-                .draw_series([EmptyElement::at(at(r))
-                    + Circle::new((0, 0), 6, BLUE.stroke_width(2))
-                    + Text::new(
-                        name.to_string(),
-                        (-30, -24),
-                        ("sans-serif", 16).into_font().color(&BLUE),
-                    )])
-                .map_err(|e| err(&e))?;
-        }
+        draw_families(&mut chart, rows)?;
+        draw_front(&mut chart, rows)?;
+        draw_tutorials(&mut chart, rows)?;
         chart
             .configure_series_labels()
             .border_style(BLACK)
@@ -141,6 +87,92 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
         root.present().map_err(|e| err(&e))?;
     }
     rgb_image(WIDTH, HEIGHT, &buf).encode_png()
+}
+
+/// One series per kind of shadow (one map, cascades, a point light's two ways of drawing
+/// its cube), each in its own colour.
+fn draw_families(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+    for family in Family::ALL {
+        let colour = match family {
+            Family::OneMap => RGBColor(150, 150, 150),
+            Family::Cascades => RGBColor(20, 150, 60),
+            Family::Groups => RGBColor(0, 170, 200),
+            Family::PointLayered => RGBColor(140, 60, 190),
+            Family::PointSixPasses => RGBColor(230, 140, 20),
+            Family::Volumes => RGBColor(220, 30, 30),
+            Family::Soft => RGBColor(30, 110, 220),
+        };
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.config.family == family)
+            .map(pareto_at)
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        chart
+            .draw_series(
+                points
+                    .into_iter()
+                    .map(|p| Circle::new(p, 3, colour.filled())),
+            )
+            .map_err(|e| pareto_err(&e))?
+            .label(family.name())
+            .legend(move |(x, y)| Circle::new((x, y), 3, colour.filled()));
+    }
+    Ok(())
+}
+
+/// The Pareto front as a staircase (each step holds the best error reached so far), each
+/// of its points named.
+fn draw_front(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+    let at = pareto_at;
+    let mut front: Vec<&BenchRow> = rows.iter().filter(|r| r.pareto).collect();
+    front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
+    let mut steps = Vec::new();
+    for (i, r) in front.iter().enumerate() {
+        if i > 0 {
+            steps.push((at(r).0, at(front[i - 1]).1));
+        }
+        steps.push(at(r));
+    }
+    chart
+        .draw_series(LineSeries::new(steps, RED.stroke_width(2)))
+        .map_err(|e| pareto_err(&e))?
+        .label("Pareto front (named)")
+        .legend(|(x, y)| PathElement::new(vec![(x - 8, y), (x + 8, y)], RED.stroke_width(2)));
+    // Each front point with its configuration's name, alternating above and below so
+    // neighbours do not overlap.
+    for (i, r) in front.iter().enumerate() {
+        let dy = if i % 2 == 0 { -16 } else { 6 };
+        chart
+            .draw_series([EmptyElement::at(at(r))
+                + Circle::new((0, 0), 4, RED.filled())
+                + Text::new(
+                    short_label(r),
+                    (7, dy),
+                    ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
+                )])
+            .map_err(|e| pareto_err(&e))?;
+    }
+    Ok(())
+}
+
+/// The tutorials' configurations, circled and named.
+fn draw_tutorials(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+    for r in rows.iter().filter(|r| r.config.tutorial.is_some()) {
+        let name = r.config.tutorial.unwrap_or_default();
+        chart
+            .draw_series([EmptyElement::at(pareto_at(r))
+                + Circle::new((0, 0), 6, BLUE.stroke_width(2))
+                + Text::new(
+                    name.to_string(),
+                    (-30, -24),
+                    ("sans-serif", 16).into_font().color(&BLUE),
+                )])
+            .map_err(|e| pareto_err(&e))?;
+    }
+    Ok(())
 }
 
 /// The PNG bytes of `scale.png`: one log-log panel per axis, each pass' median time against
@@ -247,7 +279,7 @@ fn padded_range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
 }
 
 /// A log axis from `lo` to `hi` labelled at [`log_ticks`] (both plots' axes).
-fn log_axis(lo: f64, hi: f64) -> plotters::coord::combinators::WithKeyPoints<LogCoord<f64>> {
+fn log_axis(lo: f64, hi: f64) -> LogAxis {
     (lo..hi).log_scale().with_key_points(log_ticks(lo, hi))
 }
 

@@ -725,11 +725,6 @@ pub fn run(
     let Some(first) = configs.first() else {
         return Ok(Vec::new());
     };
-    // The bench measures the cost of drawing each map, so no map is reused from the cache.
-    let uncached = |s: &ShadowSettings| ShadowSettings {
-        shadow_cache: false,
-        ..*s
-    };
     let mut renderer = Renderer::new(gl, scene, &uncached(&first.settings))?;
     // The same frame without shadows, for each configuration's overhead.
     let mut plain = Renderer::new(
@@ -761,28 +756,13 @@ pub fn run(
     // Two passes over the sweep, the second in reverse order, `frames` frames each: a burst
     // of load from elsewhere on the machine then spoils at most one block per
     // configuration, and each configuration keeps its quieter block (the lower median).
-    let block = opts.frames.max(1);
     let mut best: Vec<Option<Timings>> = (0..configs.len()).map(|_| None).collect();
     let mut rows: Vec<Option<BenchRow>> = (0..configs.len()).map(|_| None).collect();
     let order: Vec<usize> = (0..configs.len()).chain((0..configs.len()).rev()).collect();
     for (step, &i) in order.iter().enumerate() {
         let config = &configs[i];
         renderer.set_settings(&uncached(&config.settings))?;
-        for _ in 0..opts.warmup {
-            renderer.render(scene, Target::Offscreen(&target))?;
-        }
-        renderer.finish();
-        let mut t = Timings::default();
-        // Each frame paired with an unshadowed one drawn just before it: load from elsewhere
-        // on the machine that lasts longer than a frame falls on both and cancels in their
-        // difference.
-        for _ in 0..block {
-            let start = Instant::now();
-            plain.render(scene, Target::Offscreen(&target))?;
-            plain.finish();
-            t.plain.push(ms(start.elapsed()));
-            time_passes(&mut renderer, scene, &target, &timer, 1, &mut t)?;
-        }
+        let t = time_block(&mut renderer, &mut plain, scene, &target, &timer, opts)?;
         let quieter = match best[i].take() {
             Some(old) if Stat::of(&old.wall).median <= Stat::of(&t.wall).median => old,
             _ => t,
@@ -794,33 +774,78 @@ pub fn run(
         // Second pass: score the frame and finish the row.
         renderer.render(scene, Target::Offscreen(&scored))?;
         let visibility = scored.read_visibility()?;
-        let row = BenchRow {
-            config: config.clone(),
-            wall_ms: Stat::of(&quieter.wall),
-            overhead_ms: Stat::of(
-                &quieter
-                    .wall
-                    .iter()
-                    .zip(&quieter.plain)
-                    .map(|(w, p)| w - p)
-                    .collect::<Vec<_>>(),
-            )
-            .median,
-            depth_wall_ms: Stat::of(&quieter.depth_wall),
-            scene_wall_ms: Stat::of(&quieter.scene_wall),
-            depth_gpu_ms: Stat::of(&quieter.depth_gpu),
-            scene_gpu_ms: Stat::of(&quieter.scene_gpu),
-            volume_pixels: Stat::of(&quieter.volume_pixels).median.max(0.0) as u64,
-            metrics: reference.score(&visibility, opts.band),
-            soft: reference.score_soft(&visibility),
-            pareto: false,
-        };
+        let metrics = reference.score(&visibility, opts.band);
+        let row = timed_row(config, &quieter, metrics, reference.score_soft(&visibility));
         progress(&row);
         rows[i] = Some(row);
     }
     let mut rows: Vec<BenchRow> = rows.into_iter().flatten().collect();
     mark_pareto(&mut rows);
     Ok(rows)
+}
+
+/// The bench measures the cost of drawing each map, so no map is reused from the cache.
+fn uncached(s: &ShadowSettings) -> ShadowSettings {
+    ShadowSettings {
+        shadow_cache: false,
+        ..*s
+    }
+}
+
+/// One block of timed frames of `renderer` (after its warm-up frames), each paired with a
+/// frame of `plain` drawn just before it: load from elsewhere on the machine that lasts
+/// longer than a frame falls on both and cancels in their difference.
+fn time_block(
+    renderer: &mut Renderer,
+    plain: &mut Renderer,
+    scene: &Scene,
+    target: &RenderTarget,
+    timer: &GpuPassTimes,
+    opts: &BenchOptions,
+) -> Result<Timings> {
+    for _ in 0..opts.warmup {
+        renderer.render(scene, Target::Offscreen(target))?;
+    }
+    renderer.finish();
+    let mut t = Timings::default();
+    for _ in 0..opts.frames.max(1) {
+        let start = Instant::now();
+        plain.render(scene, Target::Offscreen(target))?;
+        plain.finish();
+        t.plain.push(ms(start.elapsed()));
+        time_passes(renderer, scene, target, timer, 1, &mut t)?;
+    }
+    Ok(t)
+}
+
+/// A configuration's row from its quieter block of timings and its scores.
+fn timed_row(
+    config: &BenchConfig,
+    quieter: &Timings,
+    metrics: Metrics,
+    soft: SoftMetrics,
+) -> BenchRow {
+    BenchRow {
+        config: config.clone(),
+        wall_ms: Stat::of(&quieter.wall),
+        overhead_ms: Stat::of(
+            &quieter
+                .wall
+                .iter()
+                .zip(&quieter.plain)
+                .map(|(w, p)| w - p)
+                .collect::<Vec<_>>(),
+        )
+        .median,
+        depth_wall_ms: Stat::of(&quieter.depth_wall),
+        scene_wall_ms: Stat::of(&quieter.scene_wall),
+        depth_gpu_ms: Stat::of(&quieter.depth_gpu),
+        scene_gpu_ms: Stat::of(&quieter.scene_gpu),
+        volume_pixels: Stat::of(&quieter.volume_pixels).median.max(0.0) as u64,
+        metrics,
+        soft,
+        pareto: false,
+    }
 }
 
 /// Times `frames` frames of `renderer`, each pass on its own, into `t`.

@@ -4,7 +4,7 @@
 //! camera moves. (The light basis it builds on, finite at the poles, is
 //! [`crate::transformation::light_basis`].)
 
-use glam::{DMat4, DVec3, Vec3};
+use glam::{DMat3, DMat4, DVec3, Vec3};
 
 use super::{Rays, ShadowView};
 use crate::scene::Scene;
@@ -71,7 +71,7 @@ pub fn fit_ortho_casters(
 /// group of them is [`super::groups`].
 pub struct LightFit<'a> {
     scene: &'a Scene,
-    basis: glam::DMat3,
+    basis: DMat3,
     light_boxes: Vec<(DVec3, DVec3)>,
     /// The receivers in view, in light space.
     visible: (DVec3, DVec3),
@@ -90,146 +90,47 @@ impl<'a> LightFit<'a> {
 
     pub fn new(scene: &'a Scene, to_light: Vec3) -> LightFit<'a> {
         let basis = light_basis(to_light.as_dvec3());
-        let to_light_space = |p: DVec3| basis.transpose() * p;
-
         // Every item receives; casters can also shadow. Boxes in world space, then in light space.
         let item_corners = item_corners(scene);
         let boxes: Vec<(DVec3, DVec3)> = item_corners
             .iter()
             .map(|c| aabb(c.iter().copied()))
             .collect();
-        let (rlo, rhi) = union(&boxes);
-
-        // The part of the receivers the camera can see: their box cut by the view frustum's box.
-        // The camera the fit follows: the viewer, or `fit_camera` (to watch the fit from elsewhere).
-        let cam = scene.fitting_camera();
-        let eye = cam.position.as_dvec3();
-        let reach = corners(rlo, rhi)
-            .iter()
-            .map(|c| (*c - eye).length())
-            .fold(0.0, f64::max)
-            .min(cam.far as f64);
-        let (flo, fhi) = aabb(frustum_corners(scene, reach).into_iter());
-        let (vlo, vhi) = (rlo.max(flo), rhi.min(fhi));
-        let (vlo, vhi) = if vlo.cmple(vhi).all() {
-            (vlo, vhi)
-        } else {
-            (rlo, rhi)
-        };
-        let (vl_lo, vl_hi) = aabb(corners(vlo, vhi).map(to_light_space).into_iter());
+        let (reach, visible) = visible_receivers(scene, basis, &boxes);
         let light_boxes: Vec<(DVec3, DVec3)> = item_corners
             .iter()
-            .map(|c| aabb(c.iter().map(|&p| to_light_space(p))))
+            .map(|c| aabb(c.iter().map(|&p| basis.transpose() * p)))
             .collect();
-        let visible = (vl_lo, vl_hi);
-        // Along parallel rays only a caster with the same light-space x, y can shadow a point,
-        // and only one above it (towards the light). A flat caster (a floor) cannot shadow
-        // itself, nor anything on its side facing the light: it matters only if some visible
-        // receiver reaches behind its plane.
-        let to_light = to_light.as_dvec3().normalize();
-        // Each mesh's plane, found once per fit rather than once per pair of items.
-        let planes: Vec<Option<(Vec3, Vec3)>> =
-            scene.meshes.iter().map(|m| m.flat_plane()).collect();
-        // Item `i`'s plane in world space, its normal towards the light, if its mesh is flat.
-        let world_plane = |i: usize| -> Option<(DVec3, DVec3)> {
-            let item = &scene.items[i];
-            let (point, normal) = planes[item.mesh]?;
-            let m = item.model_matrix64();
-            let p = m.transform_point3(point.as_dvec3());
-            let n = m
-                .inverse()
-                .transpose()
-                .transform_vector3(normal.as_dvec3())
-                .normalize();
-            Some((p, if n.dot(to_light) < 0.0 { -n } else { n }))
-        };
-        let behind_plane = |c: usize, r: usize| -> bool {
-            let Some((p, n)) = world_plane(c) else {
-                return true;
-            };
-            let eps = 1e-6 * p.abs().max_element().max(1.0);
-            corners(boxes[r].0, boxes[r].1)
-                .iter()
-                .any(|q| n.dot(*q - p) < -eps)
-        };
-        // A caster shadows only points along its rays, below it: inside the hull of its box and
-        // that box slid down the rays to the deepest receiver under it. If the view frustum
-        // misses that hull, neither the caster nor its shadow is in view and the map need not
-        // cover it.
         let frustum = frustum_corners(scene, reach);
-        let frustum_edges = [
-            frustum[1] - frustum[0],
-            frustum[2] - frustum[0],
-            frustum[4] - frustum[0],
-            frustum[5] - frustum[1],
-            frustum[6] - frustum[2],
-            frustum[7] - frustum[3],
-        ];
-        // The lowest light-space z of item `r` over the x, y rectangle of `over`: a flat item's
-        // plane at the rectangle's corners (a floor far larger than the caster), else its box.
-        let lowest_under = |r: usize, over: &(DVec3, DVec3)| -> f64 {
-            let within = light_boxes[r].0.z;
-            let Some((p, n)) = world_plane(r) else {
-                return within;
-            };
-            let (p, n) = (to_light_space(p), to_light_space(n));
-            if n.z.abs() < 1e-6 {
-                return within;
-            }
-            corners(over.0, over.1)
-                .iter()
-                .map(|q| p.z - (n.x * (q.x - p.x) + n.y * (q.y - p.y)) / n.z)
-                .fold(f64::INFINITY, f64::min)
-                .max(within)
+        let test = CasterTest {
+            scene,
+            basis,
+            to_light: to_light.as_dvec3().normalize(),
+            // Each mesh's plane, found once per fit rather than once per pair of items.
+            planes: scene.meshes.iter().map(|m| m.flat_plane()).collect(),
+            item_corners,
+            boxes,
+            light_boxes,
+            visible,
+            frustum,
+            frustum_edges: [
+                frustum[1] - frustum[0],
+                frustum[2] - frustum[0],
+                frustum[4] - frustum[0],
+                frustum[5] - frustum[1],
+                frustum[6] - frustum[2],
+                frustum[7] - frustum[3],
+            ],
         };
-        let sweep_in_view = |c: usize| {
-            let lo = light_boxes[c].0;
-            let deepest = (0..scene.items.len())
-                .filter(|&r| overlaps_xy(&light_boxes[r], &light_boxes[c]))
-                .map(|r| lowest_under(r, &light_boxes[c]))
-                .fold(lo.z, f64::min);
-            // The caster's box corners and the same corners slid down its rays to that depth:
-            // their hull holds everything the caster can shadow.
-            let sweep: Vec<DVec3> = item_corners[c]
-                .iter()
-                .flat_map(|&p| {
-                    let drop = to_light_space(p).z - deepest;
-                    [p, p - to_light * drop]
-                })
-                .collect();
-            let axes = item_corners[c];
-            let sweep_edges = [
-                axes[1] - axes[0],
-                axes[2] - axes[0],
-                axes[4] - axes[0],
-                to_light,
-                // The box's edges slid onto the plane: the same edges less their drop.
-                axes[1] - axes[0] - to_light * to_light_space(axes[1] - axes[0]).z,
-                axes[2] - axes[0] - to_light * to_light_space(axes[2] - axes[0]).z,
-                axes[4] - axes[0] - to_light * to_light_space(axes[4] - axes[0]).z,
-            ];
-            hulls_overlap(&sweep, &sweep_edges, &frustum, &frustum_edges)
-        };
-        let relevant: Vec<usize> = (0..scene.items.len())
-            .filter(|&c| scene.items[c].casts_shadows && overlaps_xy(&light_boxes[c], &visible))
-            .filter(|&c| sweep_in_view(c))
-            .filter(|&c| {
-                planes[scene.items[c].mesh].is_none()
-                    || (0..scene.items.len()).any(|r| {
-                        r != c
-                            && overlaps_xy(&light_boxes[r], &visible)
-                            && overlaps_xy(&light_boxes[r], &light_boxes[c])
-                            && light_boxes[r].0.z < light_boxes[c].1.z
-                            && behind_plane(c, r)
-                    })
-            })
+        let casters = (0..scene.items.len())
+            .filter(|&c| test.relevant(c))
             .collect();
         LightFit {
             scene,
             basis,
-            light_boxes,
+            light_boxes: test.light_boxes,
             visible,
-            casters: relevant,
+            casters,
         }
     }
 
@@ -311,6 +212,155 @@ impl<'a> LightFit<'a> {
             bounds: [-half_x, half_x, -half_y, half_y, 0.0, z_hi - z_lo],
             texel: (size.x / texels_x).max(size.y / texels_y),
         }
+    }
+}
+
+/// The part of the receivers the camera can see, in light space: their box cut by the view
+/// frustum's box (all of them where the two miss); and how far that frustum reaches.
+fn visible_receivers(
+    scene: &Scene,
+    basis: DMat3,
+    boxes: &[(DVec3, DVec3)],
+) -> (f64, (DVec3, DVec3)) {
+    let (rlo, rhi) = union(boxes);
+    // The camera the fit follows: the viewer, or `fit_camera` (to watch the fit from elsewhere).
+    let cam = scene.fitting_camera();
+    let eye = cam.position.as_dvec3();
+    let reach = corners(rlo, rhi)
+        .iter()
+        .map(|c| (*c - eye).length())
+        .fold(0.0, f64::max)
+        .min(cam.far as f64);
+    let (flo, fhi) = aabb(frustum_corners(scene, reach).into_iter());
+    let (vlo, vhi) = (rlo.max(flo), rhi.min(fhi));
+    let (vlo, vhi) = if vlo.cmple(vhi).all() {
+        (vlo, vhi)
+    } else {
+        (rlo, rhi)
+    };
+    let visible = aabb(corners(vlo, vhi).map(|p| basis.transpose() * p).into_iter());
+    (reach, visible)
+}
+
+/// What deciding which casters can shadow a visible receiver needs (see
+/// [`CasterTest::relevant`]).
+struct CasterTest<'s> {
+    scene: &'s Scene,
+    basis: DMat3,
+    /// Towards the light, normalised.
+    to_light: DVec3,
+    planes: Vec<Option<(Vec3, Vec3)>>,
+    item_corners: Vec<[DVec3; 8]>,
+    /// Each item's box in world space.
+    boxes: Vec<(DVec3, DVec3)>,
+    light_boxes: Vec<(DVec3, DVec3)>,
+    visible: (DVec3, DVec3),
+    frustum: [DVec3; 8],
+    frustum_edges: [DVec3; 6],
+}
+
+impl CasterTest<'_> {
+    fn to_light_space(&self, p: DVec3) -> DVec3 {
+        self.basis.transpose() * p
+    }
+
+    /// Whether item `c` can shadow a receiver the camera sees. Along parallel rays only a
+    /// caster with the same light-space x, y can shadow a point, and only one above it
+    /// (towards the light). A flat caster (a floor) cannot shadow itself, nor anything on its
+    /// side facing the light: it matters only if some visible receiver reaches behind its
+    /// plane.
+    fn relevant(&self, c: usize) -> bool {
+        let (scene, light_boxes, visible) = (self.scene, &self.light_boxes, &self.visible);
+        scene.items[c].casts_shadows
+            && overlaps_xy(&light_boxes[c], visible)
+            && self.sweep_in_view(c)
+            && (self.planes[scene.items[c].mesh].is_none()
+                || (0..scene.items.len()).any(|r| {
+                    r != c
+                        && overlaps_xy(&light_boxes[r], visible)
+                        && overlaps_xy(&light_boxes[r], &light_boxes[c])
+                        && light_boxes[r].0.z < light_boxes[c].1.z
+                        && self.behind_plane(c, r)
+                }))
+    }
+
+    /// Item `i`'s plane in world space, its normal towards the light, if its mesh is flat.
+    fn world_plane(&self, i: usize) -> Option<(DVec3, DVec3)> {
+        let item = &self.scene.items[i];
+        let (point, normal) = self.planes[item.mesh]?;
+        let m = item.model_matrix64();
+        let p = m.transform_point3(point.as_dvec3());
+        let n = m
+            .inverse()
+            .transpose()
+            .transform_vector3(normal.as_dvec3())
+            .normalize();
+        Some((p, if n.dot(self.to_light) < 0.0 { -n } else { n }))
+    }
+
+    /// Whether some corner of item `r`'s box lies behind flat caster `c`'s plane (always,
+    /// for a caster that is not flat).
+    fn behind_plane(&self, c: usize, r: usize) -> bool {
+        let Some((p, n)) = self.world_plane(c) else {
+            return true;
+        };
+        let eps = 1e-6 * p.abs().max_element().max(1.0);
+        corners(self.boxes[r].0, self.boxes[r].1)
+            .iter()
+            .any(|q| n.dot(*q - p) < -eps)
+    }
+
+    /// The lowest light-space z of item `r` over the x, y rectangle of `over`: a flat item's
+    /// plane at the rectangle's corners (a floor far larger than the caster), else its box.
+    fn lowest_under(&self, r: usize, over: &(DVec3, DVec3)) -> f64 {
+        let within = self.light_boxes[r].0.z;
+        let Some((p, n)) = self.world_plane(r) else {
+            return within;
+        };
+        let (p, n) = (self.to_light_space(p), self.to_light_space(n));
+        if n.z.abs() < 1e-6 {
+            return within;
+        }
+        corners(over.0, over.1)
+            .iter()
+            .map(|q| p.z - (n.x * (q.x - p.x) + n.y * (q.y - p.y)) / n.z)
+            .fold(f64::INFINITY, f64::min)
+            .max(within)
+    }
+
+    /// A caster shadows only points along its rays, below it: inside the hull of its box and
+    /// that box slid down the rays to the deepest receiver under it. If the view frustum
+    /// misses that hull, neither the caster nor its shadow is in view and the map need not
+    /// cover it.
+    fn sweep_in_view(&self, c: usize) -> bool {
+        let (light_boxes, to_light) = (&self.light_boxes, self.to_light);
+        let lo = light_boxes[c].0;
+        let deepest = (0..self.scene.items.len())
+            .filter(|&r| overlaps_xy(&light_boxes[r], &light_boxes[c]))
+            .map(|r| self.lowest_under(r, &light_boxes[c]))
+            .fold(lo.z, f64::min);
+        // The caster's box corners and the same corners slid down its rays to that depth:
+        // their hull holds everything the caster can shadow.
+        let sweep: Vec<DVec3> = self.item_corners[c]
+            .iter()
+            .flat_map(|&p| {
+                let drop = self.to_light_space(p).z - deepest;
+                [p, p - to_light * drop]
+            })
+            .collect();
+        let axes = self.item_corners[c];
+        let slid = |e: DVec3| e - to_light * self.to_light_space(e).z;
+        let sweep_edges = [
+            axes[1] - axes[0],
+            axes[2] - axes[0],
+            axes[4] - axes[0],
+            to_light,
+            // The box's edges slid onto the plane: the same edges less their drop.
+            slid(axes[1] - axes[0]),
+            slid(axes[2] - axes[0]),
+            slid(axes[4] - axes[0]),
+        ];
+        hulls_overlap(&sweep, &sweep_edges, &self.frustum, &self.frustum_edges)
     }
 }
 
