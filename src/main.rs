@@ -9,7 +9,7 @@ use clap::Parser;
 fn main() -> ExitCode {
     let cli = app::cli::Cli::parse();
     let result = match cli.command {
-        None => app::demo::run(&app::cli::DemoArgs::default()),
+        None => app::demo::run(&cli.demo),
         Some(app::cli::Command::Demo(args)) => app::demo::run(&args),
         Some(app::cli::Command::Render(args)) => app::render::run(&args),
         Some(app::cli::Command::Compare(args)) => app::compare::run(&args),

@@ -627,7 +627,7 @@ shadow_settings! {
         /// Shadows at all: `off` lets every light light all it faces, the frame a shadow
         /// technique's cost (its overhead) is measured against.
         shadows: bool = true,
-            arg(value_name = "on|off", value_parser = clap::builder::BoolishValueParser::new());
+            arg(value_name = "on|off", hide_possible_values = true, value_parser = clap::builder::BoolishValueParser::new());
         /// The shadow map's size in texels: N for N x N (the book: 1024), or WxH (the
         /// shadow-playground's 400x300); each side at most the driver's maximum texture
         /// size. Cube maps and cascades need a square size.
@@ -715,7 +715,7 @@ shadow_settings! {
         /// a caster, and for a box fitted to the view the camera); `off` draws every map every
         /// frame, as the chapters do. A cached frame is the same, pixel for pixel.
         shadow_cache: bool = true,
-            arg(value_name = "on|off", value_parser = clap::builder::BoolishValueParser::new());
+            arg(value_name = "on|off", hide_possible_values = true, value_parser = clap::builder::BoolishValueParser::new());
     }
     /// Where the light's camera looks from and what it covers.
     "Light camera" {
@@ -732,7 +732,8 @@ shadow_settings! {
         fit: Fit = Fit::Manual;
         /// With `fit = "scene"`, cascades or caster groups: snap the boxes to whole texels so
         /// shadows hold still as the camera moves.
-        snap: bool = true, arg(value_name = "BOOL", value_parser = clap::builder::BoolishValueParser::new());
+        snap: bool = true,
+            arg(value_name = "on|off", hide_possible_values = true, value_parser = clap::builder::BoolishValueParser::new());
         /// Where the cascades split: 0 = uniform slices, 1 = logarithmic (the practical
         /// scheme).
         cascade_lambda: f32 = 0.75, range(Range::from_to(0.0, 1.0)),

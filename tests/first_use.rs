@@ -166,3 +166,65 @@ fn consecutive_steps_read_differently() {
         }
     }
 }
+
+/// The demo is the command a bare `shadowmap` runs, so it takes the demo's options without
+/// naming it: a bad scene is refused with the scene's message, not "unexpected argument".
+#[test]
+fn the_bare_command_takes_the_demos_options() {
+    let out = common::bin()
+        .args(["--scene", "no-such-scene"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.starts_with("error: unknown scene 'no-such-scene': expected one of dummy"),
+        "{stderr}"
+    );
+    // A command and the demo's options at once: clap refuses, naming the argument.
+    let out = common::bin()
+        .args(["--scene", "dummy", "render"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+}
+
+/// Every image `render` writes is announced once; the on/off flags show on and off, not
+/// clap's true and false; the pass counts read as counts.
+#[test]
+fn render_says_what_it_wrote_in_plain_words() {
+    let dir = case_dir("announced");
+    let (stdout, _) = render(
+        &dir,
+        &[
+            "--shadow-out",
+            "s.png",
+            "--depth-out",
+            "d.png",
+            "--frames",
+            "3",
+        ],
+    );
+    for file in ["o.png", "s.png", "d.png"] {
+        let lines = stdout
+            .lines()
+            .filter(|l| l.starts_with(&format!("wrote {file} ")))
+            .count();
+        assert_eq!(lines, 1, "{file} announced {lines} times:\n{stdout}");
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    assert!(
+        stdout.contains("shadow-map passes over 3 frames: 1 drawn whole, 2 patched"),
+        "{stdout}"
+    );
+    let help = common::stdout_of(common::bin().args(["render", "--help"]));
+    for flag in [
+        "--shadows <on|off>",
+        "--shadow-cache <on|off>",
+        "--snap <on|off>",
+    ] {
+        let (_, after) = help.split_once(flag).unwrap_or_else(|| panic!("{flag}"));
+        let entry = after.split("\n      --").next().unwrap_or_default();
+        assert!(!entry.contains("possible values"), "{flag}:{entry}");
+    }
+}

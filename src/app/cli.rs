@@ -27,9 +27,14 @@ use super::quality::Quality;
         shadowmap render --scene large --cascades 4 --map-size 1024 --show-cascades --out csm.png\n  \
         shadowmap compare --scene three-lights --light 2 --out-dir point"
 )]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// With no command: the demo's options (`shadowmap --scene learnopengl` is
+    /// `shadowmap demo --scene learnopengl`).
+    #[command(flatten)]
+    pub demo: DemoArgs,
 }
 
 #[derive(Subcommand, Debug)]
@@ -163,31 +168,6 @@ impl From<GlApi> for WindowApi {
             GlApi::Auto => WindowApi::Auto,
             GlApi::Glx => WindowApi::Glx,
             GlApi::Egl => WindowApi::Egl,
-        }
-    }
-}
-
-impl Default for DemoArgs {
-    fn default() -> Self {
-        DemoArgs {
-            scene: SceneArgs {
-                scene: "dummy".into(),
-                light_angle: None,
-                light_size: None,
-                size: None,
-                camera_position: None,
-                camera_rotation: None,
-                camera_target: None,
-            },
-            settings: SettingsArgs::default(),
-            target_error: None,
-            exit_after_frames: None,
-            screenshot: None,
-            no_animation: false,
-            stress_window: false,
-            no_hud: false,
-            inset: false,
-            gl_api: GlApi::Auto,
         }
     }
 }

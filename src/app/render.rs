@@ -59,6 +59,12 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(line) = args.settings.quality_summary()? {
         println!("{line}");
     }
+    if let Some(path) = &args.shadow_out {
+        println!(
+            "wrote {} (what the shadow test said per pixel: white lit, black shadowed)",
+            path.display()
+        );
+    }
     if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
         print_depth_out(path, &size.label(), frame.depth_perspective);
     }
@@ -199,7 +205,9 @@ fn print_frame_stats(frame: &Frame, settings: &ShadowSettings) {
     );
     let p = frame.depth_passes;
     println!(
-        "shadow maps: {} depth passes drawn, {} patched ({} texels redrawn), {} reused (shadow_cache {}); casters drawn {} of {} offered",
+        "shadow-map passes over {} frames: {} drawn whole, {} patched where casters moved ({} \
+         texels redrawn), {} kept unchanged (shadow cache {}); {} of {} casters drawn",
+        frame.frame_ms.len(),
         p.drawn,
         p.patched,
         p.patched_texels,
