@@ -445,3 +445,38 @@ fn compare_writes_the_area_figures_for_a_sized_light_and_none_for_a_point() {
     }
     std::fs::remove_dir_all(&base).unwrap();
 }
+
+/// The playground's bulb has its size, so `compare` scores a soft filter against the area
+/// light by default; on a light of size 0 it says the truth is hard.
+#[test]
+fn compare_says_when_a_soft_filters_truth_is_hard() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("hard_truth");
+    let compare_with = |scene: &str| {
+        common::stdout_of(
+            common::bin()
+                .args([
+                    "compare",
+                    "--scene",
+                    scene,
+                    "--filter",
+                    "pcss",
+                    "--size",
+                    "80x60",
+                    "--rays",
+                    "16",
+                    "--out-dir",
+                ])
+                .arg(dir.join(scene)),
+        )
+    };
+    let note = "note: --filter pcss softens edges, but the measured light has size 0";
+    let playground = compare_with("playground");
+    assert!(
+        playground.contains("against the area light (16 rays per pixel)"),
+        "{playground}"
+    );
+    assert!(!playground.contains(note), "{playground}");
+    let dummy = compare_with("dummy");
+    assert!(dummy.contains(note), "{dummy}");
+    assert!(!dummy.contains("against the area light ("), "{dummy}");
+}

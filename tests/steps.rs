@@ -369,7 +369,8 @@ fn the_playground_has_its_demo_pages_as_steps() {
             "{name}"
         );
     }
-    assert_eq!(scene.steps.light_size, Some(1.0));
+    // The bulb is a sphere of radius 1 in the scene itself, so every command sees it.
+    assert_eq!(scene.lights[0].size(), 1.0);
     // Each scene takes its own list's steps, and says which it has.
     let e = steps::settings_for(&scene, "cull-front")
         .unwrap_err()

@@ -78,6 +78,11 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(a) = &area {
         println!("{}", area_summary(a));
     }
+    let measured = &plan.lights[args.light.min(plan.lights.len().saturating_sub(1))];
+    let filter = measured.settings.filter;
+    if area.is_none() && (filter.soft() || filter.moments()) {
+        println!("{}", hard_truth_note(filter.name()));
+    }
     println!("{ERROR_COLOURS}");
     println!(
         "wrote {}: {}",
@@ -310,4 +315,14 @@ fn reference_image(width: u32, height: u32, hard: &[RefPixel]) -> ImageData {
         height,
         rgba,
     }
+}
+
+/// Said when a soft filter is scored against a light of size 0: its truth is hard, so the
+/// filter's penumbra counts as error.
+fn hard_truth_note(filter: &str) -> String {
+    format!(
+        "note: --filter {filter} softens edges, but the measured light has size 0, so its \
+         truth is the hard shadow and every penumbra pixel counts as error; give the light a \
+         size (--light-size, or `size` in the scene) to score it against the area light"
+    )
 }
