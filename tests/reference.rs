@@ -206,6 +206,14 @@ fn quick_bench_fills_every_csv_column() {
         stdout.contains("cheapest configuration with error <= 50.000%"),
         "{stdout}"
     );
+    // bench.md: every row of its table, the delimiter row included, has the header's cells.
+    let md = std::fs::read_to_string(dir.join("bench.md")).unwrap();
+    let cells = |l: &str| l.trim().trim_matches('|').split('|').count();
+    let table: Vec<&str> = md.lines().filter(|l| l.starts_with('|')).collect();
+    assert!(table.len() >= 4 && table[1].starts_with("|---|"), "{md}");
+    for line in &table {
+        assert_eq!(cells(line), cells(table[0]), "{line}");
+    }
     let csv = std::fs::read_to_string(dir.join("bench.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
