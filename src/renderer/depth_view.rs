@@ -99,14 +99,7 @@ impl Renderer {
         }
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         // A light without a map: the cleared target says so.
-        if let Some(technique) = self.shadows[index].as_deref() {
-            self.depth_view.draw(
-                &self.gl,
-                &mut self.samplers,
-                technique,
-                self.views[index].as_ref(),
-            )?;
-        }
+        self.draw_depth_view(index)?;
         check_gl(&self.gl, "the depth-map view")
     }
 
@@ -142,15 +135,19 @@ impl Renderer {
             return Ok(());
         };
         target.bind(&self.gl);
-        if let Some(technique) = self.shadows[index].as_deref() {
-            let _overlay = state::OverlayViewport::begin(&self.gl, rect);
-            self.depth_view.draw(
-                &self.gl,
-                &mut self.samplers,
-                technique,
-                self.views[index].as_ref(),
-            )?;
-        }
+        let _overlay = state::OverlayViewport::begin(&self.gl, rect);
+        self.draw_depth_view(index)?;
         check_gl(&self.gl, "the shadow-map inset")
+    }
+
+    /// Light `index`'s map drawn by the depth view over the bound viewport; nothing for a
+    /// light without a map.
+    fn draw_depth_view(&mut self, index: usize) -> Result<()> {
+        let Some(technique) = self.shadows[index].as_deref() else {
+            return Ok(());
+        };
+        let view = self.views[index].as_ref();
+        self.depth_view
+            .draw(&self.gl, &mut self.samplers, technique, view)
     }
 }

@@ -36,7 +36,7 @@ use crate::shadows::program::ProgramKey;
 use crate::shadows::schedule::DepthSchedule;
 use crate::shadows::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
-use crate::shadows::{CasterCounts, DepthPass, ShadowKind, ShadowView, Technique};
+use crate::shadows::{CasterCounts, DepthPass, ShadowView, Technique};
 use scene_inputs::SceneGpu;
 
 /// Owns the GL side of one scene: its meshes and textures, the programs, and one shadow
@@ -51,8 +51,6 @@ pub struct Renderer {
     /// One per scene light, in the scene's order; `None` for a light that does not cast
     /// or has shadow volumes.
     shadows: Vec<Option<Box<dyn Technique>>>,
-    /// Each light's kind of shadow (a light with volumes has no technique above).
-    kinds: Vec<ShadowKind>,
     /// Each light's camera in the last depth pass.
     views: Vec<Option<ShadowView>>,
     /// What each map holds, and which to keep, patch or draw this frame.
@@ -93,7 +91,6 @@ impl Renderer {
             plan: ShadowPlan::default(),
             gpu,
             shadows: Vec::new(),
-            kinds: Vec::new(),
             views: Vec::new(),
             schedule: DepthSchedule::default(),
             depth_programs: DepthPrograms::default(),

@@ -28,8 +28,6 @@ impl Renderer {
             }
         }
         let n = plan.lights.len();
-        self.kinds.clear();
-        self.kinds.extend(plan.lights.iter().map(|l| l.kind));
         self.shadows.resize_with(n, || None);
         self.views.resize(n, None);
         self.schedule.resize(n);

@@ -32,7 +32,7 @@ impl Renderer {
     /// Whether a light has shadow volumes (and their meshes are made): the scene pass is
     /// then one pass per light.
     pub(super) fn uses_volumes(&self) -> bool {
-        self.volumes.is_some() && self.kinds.contains(&ShadowKind::Volume)
+        self.volumes.is_some() && self.plan.has(ShadowKind::Volume)
     }
 
     /// The frame with volumes into the bound, cleared target of `size`, with the volumes'
@@ -47,12 +47,10 @@ impl Renderer {
         let Some(volumes) = &self.volumes else {
             return Err(Error::Invalid("the shadow volumes are missing".into()));
         };
-        let (inputs, gl, kinds) = (self.scene_inputs(mode), &self.gl, &self.kinds);
+        let (inputs, gl) = (self.scene_inputs(mode), &self.gl);
         let queries = &self.volume_queries;
         let light = self.visibility_light;
-        let counted = draw(
-            &inputs, volumes, kinds, light, queries, samplers, gl, scene, size,
-        )?;
+        let counted = draw(&inputs, volumes, light, queries, samplers, gl, scene, size)?;
         if self.settings.show_volumes {
             draw_debug(volumes, &self.plan, gl, scene, size);
         }
@@ -67,7 +65,6 @@ impl Renderer {
 pub fn draw(
     inputs: &Inputs,
     volumes: &Volumes,
-    kinds: &[ShadowKind],
     visibility_light: usize,
     queries: &[SamplesQuery],
     samplers: &mut Samplers,
@@ -87,14 +84,14 @@ pub fn draw(
         size,
     )?;
     let mut counted = Vec::new();
-    for (i, kind) in kinds.iter().enumerate() {
-        let stencil_lit = *kind == ShadowKind::Volume;
+    for (i, own) in inputs.plan.lights.iter().enumerate() {
+        let stencil_lit = own.kind == ShadowKind::Volume;
         if stencil_lit {
             clear_stencil(gl);
             let _pass = VolumePassGuard::begin(gl, VolumeDraw::Stencil);
             let query = queries.get(i);
             query.inspect(|q| q.begin());
-            volumes.draw(scene, &inputs.plan.lights[i].settings, i, size, Vec4::ZERO);
+            volumes.draw(scene, &own.settings, i, size, Vec4::ZERO);
             if let Some(q) = query {
                 q.end();
                 counted.push(i);
