@@ -15,6 +15,7 @@ names::named_by_clap!(
     Filter,
     Blur,
     MsmToward,
+    DepthLookup,
     BiasMode,
     Cull,
     BeyondFar,
@@ -270,6 +271,18 @@ impl MsmToward {
             MsmToward::Playground => [0.0, 0.63, 0.0, 0.63],
         }
     }
+}
+
+/// How each lookup of a 2D depth map reads it: one texel, or (the shadow-playground, whose
+/// depth is a colour map filtered LINEAR, `js/glh.js`) the depth interpolated between the
+/// four nearest texels, compared as one.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum DepthLookup {
+    /// The nearest texel (the book's NEAREST depth texture).
+    #[default]
+    Nearest,
+    /// A depth interpolated between four texels, then compared.
+    Linear,
 }
 
 /// How the depth comparison is offset against acne.
@@ -651,6 +664,10 @@ shadow_settings! {
     "Shadow test" {
         /// How the shadow map is sampled.
         filter: Filter = Filter::Pcf3x3;
+        /// How each lookup reads a 2D depth map: `nearest` (one texel) or `linear` (a depth
+        /// interpolated between four texels, then compared, as the shadow-playground reads
+        /// its colour map); the hardware and moment filters filter on their own.
+        depth_lookup: DepthLookup = DepthLookup::Nearest;
         /// How the depth comparison is offset against acne.
         bias_mode: BiasMode = BiasMode::Constant;
         /// Constant bias, or the slope bias' maximum, in [0, 1] depth units (a cube map:
@@ -910,6 +927,7 @@ impl ShadowSettings {
             | "cascade_lambda" | "cascade_blend" | "shadow_distance" => return None,
             "perspective_fov" => return None,
             "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => return None,
+            "depth_lookup" if self.filter.hardware() || self.filter.moments() => return None,
             // The moment maps' knobs do nothing for a depth map.
             "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
             | "msm_toward"

@@ -6,8 +6,8 @@
 use crate::error::{Error, Result};
 use crate::scene::{Scene, StepContext, StepList};
 use crate::settings::{
-    BeyondFar, BiasMode, Blur, Cull, Filter, LightProjection, MapSize, MsmToward, ShadowSettings,
-    ShadowTechnique, Wrap,
+    BeyondFar, BiasMode, Blur, Cull, DepthLookup, Filter, LightProjection, MapSize, MsmToward,
+    ShadowSettings, ShadowTechnique, Wrap,
 };
 
 /// One step of the chapters.
@@ -154,13 +154,16 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
     Step {
         name: "basic",
         change: "The playground's basic demo: one comparison, shadowed when the fragment is \
-                 more than its epsilon (5e-3) behind the stored depth.",
-        look_for: "Hard, blocky edges; texels of the 400 x 300 map show along them.",
+                 more than its epsilon (5e-3) behind the stored depth. Its depth is a colour \
+                 map read LINEAR, so the lookup compares a depth interpolated between four \
+                 texels (depth_lookup = \"linear\"), as every page after it.",
+        look_for: "Hard edges with the corners of the 400 x 300 map's texels cut diagonally.",
         cumulative: true,
         apply: |s, c| {
             s.filter = Filter::Single;
             s.bias_mode = BiasMode::Constant;
             s.bias = c.bias;
+            s.depth_lookup = DepthLookup::Linear;
         },
     },
     Step {
@@ -193,12 +196,14 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
         name: "variance",
         change: "Its variance demo: the map stores (z, z^2), blurred by its 3 x 3 Gaussian \
                  (0.045 / 0.122 / 0.332), and Chebyshev's bound gives the lit fraction \
-                 (variance at least 1e-8, no bleeding reduction, as the demo).",
+                 (variance at least 1e-8, no bleeding reduction, and no epsilon: the demo \
+                 subtracts no bias, the variance keeps acne away).",
         look_for: "Smooth edges from one filtered lookup; where the slab's shadow falls behind \
                    the cube's, light bleeds into it.",
         cumulative: true,
         apply: |s, _| {
             s.filter = Filter::Vsm;
+            s.bias_mode = BiasMode::None;
             s.blur = Blur::Playground3x3;
             s.min_variance = 1e-8;
             s.bleed_reduction = 0.0;
@@ -207,7 +212,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
     Step {
         name: "moment",
         change: "Its moment demo: (z, z^2, z^3, z^4), the same blur, the moments biased by \
-                 9e-4 toward (0, 0.63, 0, 0.63), the Hamburger four-moment reconstruction.",
+                 9e-4 toward (0, 0.63, 0, 0.63), the Hamburger four-moment reconstruction; \
+                 like the variance demo, no epsilon is subtracted from the fragment's depth.",
         look_for: "Edges as soft as the variance step's, with less light bleeding.",
         cumulative: true,
         apply: |s, _| {
@@ -219,11 +225,17 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
     Step {
         name: "pcss",
         change: "Percentage-closer soft shadows (the engines' answer): a blocker search, then a \
-                 filter as wide as the penumbra the light's size casts from that depth.",
+                 filter as wide as the penumbra the light's size casts from that depth; the \
+                 PCF pages' epsilon again, each lookup one texel (NEAREST), as the engines \
+                 read their depth maps.",
         look_for: "Shadows sharp where the cube touches the slab and wider away from it, as the \
                    area-light truth's.",
         cumulative: true,
-        apply: |s, _| s.filter = Filter::Pcss,
+        apply: |s, _| {
+            s.filter = Filter::Pcss;
+            s.bias_mode = BiasMode::Constant;
+            s.depth_lookup = DepthLookup::Nearest;
+        },
     },
 ];
 

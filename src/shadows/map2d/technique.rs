@@ -5,7 +5,7 @@ use super::{slot_transform, Map2d};
 use crate::engine::{Sampling, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
-use crate::settings::ShadowSettings;
+use crate::settings::{DepthLookup, ShadowSettings};
 use crate::shadows::patch::Patch;
 use crate::shadows::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 
@@ -46,11 +46,13 @@ impl Technique for Map2d {
         self.map.depth_map_texture()
     }
 
+    /// LINEAR for the hardware's 2 x 2 comparison, or for `depth_lookup = "linear"` (each
+    /// lookup an interpolated depth, the shadow-playground's colour map).
     fn sampling(&self, settings: &ShadowSettings) -> Sampling {
         let s = settings.effective();
         Sampling {
             compare: s.filter.hardware(),
-            linear: s.filter.hardware(),
+            linear: s.filter.hardware() || s.depth_lookup == DepthLookup::Linear,
             wrap: s.wrap,
         }
     }

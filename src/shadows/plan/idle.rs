@@ -25,12 +25,13 @@ impl Idle {
 }
 
 /// The settings a map's storage, test and pass read: nothing when there is no map.
-const MAP_SETTINGS: [&str; 16] = [
+const MAP_SETTINGS: [&str; 17] = [
     "map_size",
     "depth_format",
     "cascades",
     "caster_groups",
     "filter",
+    "depth_lookup",
     "bias_mode",
     "bias",
     "bias_min",
@@ -63,6 +64,20 @@ const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
     ),
     (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
 ];
+
+/// Why `depth_lookup` does nothing for a light whose shadow is `kind` under `filter`, if
+/// it does nothing: only a single 2D depth map read by a shader's own lookups takes it.
+fn depth_lookup_idle(kind: ShadowKind, filter: Filter) -> Option<&'static str> {
+    match kind {
+        ShadowKind::Map if filter.hardware() => Some(
+            "the hardware filters compare in the sampler, which filters LINEAR whatever it says",
+        ),
+        ShadowKind::Map => None,
+        ShadowKind::Moments => Some("a moment map is always read LINEAR (its filtering is the filter)"),
+        ShadowKind::Cube => Some("it is for a 2D depth map; a point light's cube map is read NEAREST"),
+        _ => Some("it is for one 2D depth map; cascades and caster groups are read NEAREST"),
+    }
+}
 
 /// Whether a light's box is snapped to texels: an orthographic one fitted or layered.
 fn snapped(s: &ShadowSettings) -> bool {
@@ -117,6 +132,11 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
     }
     if !(directional && snapped(s)) || none.is_some() {
         push("snap", "the light's box is not fitted or cascaded".into());
+    }
+    if none.is_none() {
+        if let Some(why) = depth_lookup_idle(kind, s.filter) {
+            push("depth_lookup", why.into());
+        }
     }
     let filter = (none.is_none()).then_some(s.filter);
     if filter != Some(Filter::Pcss) {
@@ -197,6 +217,16 @@ pub(super) fn of_scene(
         idle.push(Idle::new(
             "snap",
             "no light's box is fitted (--fit scene) or cascaded, so there is nothing to snap",
+        ));
+    }
+    let lookups = plans
+        .iter()
+        .any(|p| depth_lookup_idle(p.kind, p.settings.filter).is_none());
+    if !lookups {
+        idle.push(Idle::new(
+            "depth_lookup",
+            "no light has a 2D depth map read by the shader's own lookups (hardware and moment \
+             filters, cube maps, cascades and caster groups filter on their own)",
         ));
     }
     of_scene_maps(plans, &mut idle);
