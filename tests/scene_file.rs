@@ -108,3 +108,29 @@ fn a_table_an_inline_table_and_dotted_keys_load_the_same_scene_and_frame() {
     assert!(frames[0] == frames[1], "inline tables render differently");
     assert!(frames[0] == frames[2], "dotted keys render differently");
 }
+
+/// `depth_lookup` is a `[shadow]` key like the others (and a light's own); a value it does
+/// not know is refused with the file, the field, the line and column, and the two it takes.
+#[test]
+fn the_shadow_table_takes_depth_lookup_and_refuses_a_bad_one_where_it_is() {
+    use shadowmap::settings::DepthLookup;
+    let scene = |shadow: &str| {
+        format!("[light]\nangle = 45.0\n\n[shadow]\nfilter = \"pcf4x4-weighted\"\n{shadow}\n\n[[item]]\nmesh = \"cube\"\n")
+    };
+    let read = |text: &str| parse(text, Path::new("lookup.toml"), None);
+    let linear = read(&scene("depth_lookup = \"linear\"")).unwrap();
+    assert_eq!(linear.shadow.depth_lookup, DepthLookup::Linear);
+    let default = read(&scene("")).unwrap();
+    assert_eq!(default.shadow.depth_lookup, DepthLookup::Nearest);
+    let own = read(
+        "[light]\nangle = 45.0\nshadow.depth_lookup = \"linear\"\n\n[[item]]\nmesh = \"cube\"\n",
+    )
+    .unwrap();
+    assert_eq!(own.lights[0].shadow_patch().depth_lookup, Some(DepthLookup::Linear));
+    let e = read(&scene("depth_lookup = \"bilinear\"")).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "lookup.toml: shadow.depth_lookup: line 6, column 16: unknown variant `bilinear`, \
+         expected `nearest` or `linear`"
+    );
+}
