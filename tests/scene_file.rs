@@ -126,8 +126,13 @@ fn the_shadow_table_takes_depth_lookup_and_refuses_a_bad_one_where_it_is() {
         "[light]\nangle = 45.0\nshadow.depth_lookup = \"linear\"\n\n[[item]]\nmesh = \"cube\"\n",
     )
     .unwrap();
-    assert_eq!(own.lights[0].shadow_patch().depth_lookup, Some(DepthLookup::Linear));
-    let e = read(&scene("depth_lookup = \"bilinear\"")).unwrap_err().to_string();
+    assert_eq!(
+        own.lights[0].shadow_patch().depth_lookup,
+        Some(DepthLookup::Linear)
+    );
+    let e = read(&scene("depth_lookup = \"bilinear\""))
+        .unwrap_err()
+        .to_string();
     assert_eq!(
         e,
         "lookup.toml: shadow.depth_lookup: line 6, column 16: unknown variant `bilinear`, \

@@ -509,13 +509,21 @@ fn the_playgrounds_moment_pages_carry_no_bias_and_its_pcf_pages_read_depth_linea
         assert_eq!(s.bias_mode, BiasMode::None, "{name}");
         assert!(s.summary().contains("no bias"), "{name}: {}", s.summary());
         let text = steps::of(&scene).iter().find(|st| st.name == name).unwrap();
-        assert!(text.change.contains("no epsilon"), "{name}: {}", text.change);
+        assert!(
+            text.change.contains("no epsilon"),
+            "{name}: {}",
+            text.change
+        );
     }
     let pcss = step(&scene, "pcss");
     assert_eq!((pcss.bias_mode, pcss.bias), (BiasMode::Constant, 1.125e-2));
     assert_eq!(pcss.depth_lookup, DepthLookup::Nearest);
     for name in ["basic", "pcf", "soft-pcf"] {
-        assert_eq!(step(&scene, name).depth_lookup, DepthLookup::Linear, "{name}");
+        assert_eq!(
+            step(&scene, name).depth_lookup,
+            DepthLookup::Linear,
+            "{name}"
+        );
     }
     // The chapters' steps keep the book's NEAREST lookups.
     let dummy = Scene::load("dummy").unwrap();
@@ -582,7 +590,10 @@ fn linear_depth_lookups_change_the_pcf_penumbra_and_nothing_where_they_are_idle(
         let b = playground_visibility(&ctx, &with(&s, DepthLookup::Nearest));
         assert!(a == b, "{filter:?}: linear lookups changed the picture");
         let plan = ShadowPlan::decide(&scene.lights, &with(&s, DepthLookup::Linear));
-        let idle = plan.lights[0].idle.iter().find(|i| i.setting == "depth_lookup");
+        let idle = plan.lights[0]
+            .idle
+            .iter()
+            .find(|i| i.setting == "depth_lookup");
         assert!(
             idle.is_some_and(|i| i.why.contains(why)),
             "{filter:?}: {idle:?}"
@@ -600,7 +611,10 @@ fn linear_depth_lookups_change_the_pcf_penumbra_and_nothing_where_they_are_idle(
     };
     let frames = [DepthLookup::Linear, DepthLookup::Nearest]
         .map(|l| common::render(&ctx, &mut point, &with(&s, l), 160, 90).visibility);
-    assert!(frames[0] == frames[1], "a cube map changed with linear lookups");
+    assert!(
+        frames[0] == frames[1],
+        "a cube map changed with linear lookups"
+    );
     let plan = ShadowPlan::decide(&point.lights, &with(&s, DepthLookup::Linear));
     let why = plan.idle.iter().find(|i| i.setting == "depth_lookup");
     assert!(why.is_some_and(|i| i.why.contains("cube maps")), "{why:?}");

@@ -73,8 +73,12 @@ fn depth_lookup_idle(kind: ShadowKind, filter: Filter) -> Option<&'static str> {
             "the hardware filters compare in the sampler, which filters LINEAR whatever it says",
         ),
         ShadowKind::Map => None,
-        ShadowKind::Moments => Some("a moment map is always read LINEAR (its filtering is the filter)"),
-        ShadowKind::Cube => Some("it is for a 2D depth map; a point light's cube map is read NEAREST"),
+        ShadowKind::Moments => {
+            Some("a moment map is always read LINEAR (its filtering is the filter)")
+        }
+        ShadowKind::Cube => {
+            Some("it is for a 2D depth map; a point light's cube map is read NEAREST")
+        }
         _ => Some("it is for one 2D depth map; cascades and caster groups are read NEAREST"),
     }
 }
