@@ -28,6 +28,8 @@ bin=${3:-target/release/shadowmap}
 checkout=$(cd "$checkout" && pwd)
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
+[ -n "${3:-}" ] && bin=$(realpath "$bin")
+cd "$(dirname "$0")/.."
 chromium=${CHROMIUM:-chromium}
 
 cargo build --release --quiet --example playground_score
