@@ -38,6 +38,7 @@ pub mod plan;
 pub mod program;
 pub mod schedule;
 pub mod slots;
+pub mod summed;
 pub mod volumes;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
@@ -243,6 +244,10 @@ pub trait Technique {
     /// The texture the scene pass samples: a depth texture, or a moment map's float colour
     /// texture (its `sampling` says how it is read).
     fn texture(&self) -> &Texture;
+    /// The texture the depth view shows (a summed-area table's moment map).
+    fn view_texture(&self) -> &Texture {
+        self.texture()
+    }
     /// How the scene pass samples it under `settings`.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling;
     /// The light-space transform of a technique with a map slot (2D and cube maps).

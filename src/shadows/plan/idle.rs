@@ -53,15 +53,19 @@ const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
     ),
     (
         &["min_variance", "bleed_reduction"],
-        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4],
-        "vsm, evsm2 or evsm4",
+        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Vssm],
+        "vsm, evsm2, evsm4 or vssm",
     ),
     (
         &["evsm_exponents"],
         &[Filter::Evsm2, Filter::Evsm4],
         "evsm2 or evsm4",
     ),
-    (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
+    (
+        &["msm_bias", "msm_toward"],
+        &[Filter::Msm, Filter::MsmSoft],
+        "msm or msm-soft",
+    ),
 ];
 
 /// Whether a light's box is snapped to texels: an orthographic one fitted or layered.
