@@ -118,6 +118,18 @@ pub fn filter_cost(settings: &ShadowSettings) -> FilterCost {
             bytes_per_texel: 4,
         };
     }
+    if summed::reads_table(f) {
+        let size = settings.map_size;
+        let build = crate::engine::summed_area::axis_passes(size.width)
+            + crate::engine::summed_area::axis_passes(size.height);
+        return FilterCost {
+            taps: f.lookups(settings),
+            passes: 1 + build,
+            blur_taps: crate::engine::summed_area::SAT_RADIX * build,
+            // The moment map's two float textures and depth, and the table's two.
+            bytes_per_texel: 2 * 4 * components + 4 + 2 * 4 * components,
+        };
+    }
     let blur = settings.blur.taps();
     FilterCost {
         taps: 1,
