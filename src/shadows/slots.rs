@@ -572,6 +572,7 @@ mod tests {
                 slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Map, with(Filter::Pcss)),
                 slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Moments, with(Filter::Vssm)),
             ],
             MaskMode::Off,
         );
@@ -616,6 +617,8 @@ mod tests {
             (Moments, Filter::Vsm, "calcShadowVsm("),
             (Moments, Filter::Evsm2, "calcShadowEvsm("),
             (Moments, Filter::Msm, "calcShadowMsm("),
+            (Moments, Filter::Vssm, "vssm("),
+            (Moments, Filter::MsmSoft, "msmSoft("),
             (Cube, Filter::Single, "calcShadowCube("),
             (Cube, Filter::Pcf3x3, "calcShadowCubeSoft("),
         ] {
