@@ -42,7 +42,9 @@ fn with(scene: &Scene, filter: Filter) -> ShadowSettings {
 /// The area truth's MAE of `filter` on `scene`, printed with its other figures.
 fn area_mae(scene: &Scene, filter: Filter, o: &CompareOptions) -> f64 {
     let c = run(scene, &with(scene, filter), o);
-    let a = c.area.expect("a sized light is scored against its area truth");
+    let a = c
+        .area
+        .expect("a sized light is scored against its area truth");
     eprintln!("{} on {}: {a:?}", filter.name(), scene.name);
     a.mae
 }
@@ -187,7 +189,11 @@ fn on_the_wide_penumbra_scene_the_soft_moment_filters_beat_every_fixed_kernel() 
             );
         }
         // Measured: msm-soft 1.6 x PCSS's, vssm 1.8 x (their light bleeding under the low plate).
-        assert!(mae < 2.0 * pcss, "{}: {mae} against PCSS's {pcss}", filter.name());
+        assert!(
+            mae < 2.0 * pcss,
+            "{}: {mae} against PCSS's {pcss}",
+            filter.name()
+        );
     }
 }
 
@@ -254,7 +260,11 @@ fn the_penumbra_widens_with_the_blockers_height_as_the_truths() {
             filter.name(),
             c.area.as_ref().unwrap().mae
         );
-        assert!(high > 3.0 * low, "{}: {low} px and {high} px", filter.name());
+        assert!(
+            high > 3.0 * low,
+            "{}: {low} px and {high} px",
+            filter.name()
+        );
         for (got, truth) in [(low, truth_low), (high, truth_high)] {
             assert!(
                 (got - truth).abs() < 0.5 * truth + 1.0,
@@ -316,8 +326,18 @@ fn on_a_step_and_under_overlapping_casters_the_error_is_reported_and_bounded() {
         let a = c.area.expect("a sized light");
         eprintln!("{}: {a:?} (pcss {pcss:.4}, pcf3x3 {pcf:.4})", filter.name());
         assert!(a.receivers > 50_000, "{a:?}");
-        assert!(a.mae < pcf, "{}: {} against pcf3x3's {pcf}", filter.name(), a.mae);
-        assert!(a.mae < 2.0 * pcss, "{}: {} against PCSS's {pcss}", filter.name(), a.mae);
+        assert!(
+            a.mae < pcf,
+            "{}: {} against pcf3x3's {pcf}",
+            filter.name(),
+            a.mae
+        );
+        assert!(
+            a.mae < 2.0 * pcss,
+            "{}: {} against PCSS's {pcss}",
+            filter.name(),
+            a.mae
+        );
         // Light bleeding: pixels lit where the truth is fully shadowed, under 1%.
         assert!(a.light_bleed_rate < 0.01, "{}: {a:?}", filter.name());
     }

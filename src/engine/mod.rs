@@ -33,8 +33,8 @@ pub use render_target::{Outputs, RenderTarget};
 pub use sampler::{BoundSampler, Sampler, Samplers, Sampling};
 pub use shader_program::{ShaderProgram, ShaderSource};
 pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
-pub use summed_area::SummedAreaTable;
 pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
+pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
 pub use volume::{

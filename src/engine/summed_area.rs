@@ -109,7 +109,8 @@ impl SummedAreaTable {
         let _no_depth = NoDepthTest::begin(&self.gl);
         unsafe {
             self.gl.disable(glow::SCISSOR_TEST);
-            self.gl.viewport(0, 0, size.width as i32, size.height as i32);
+            self.gl
+                .viewport(0, 0, size.width as i32, size.height as i32);
             self.gl.bind_sampler(0, None);
         }
         let mut steps = Vec::new();
@@ -219,7 +220,7 @@ pub fn float_texture_from(
     } else {
         glow::RGBA
     };
-        unsafe {
+    unsafe {
         gl.bind_texture(glow::TEXTURE_2D, Some(texture.id()));
         gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 4);
         gl.tex_sub_image_2d(

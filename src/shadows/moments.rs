@@ -17,8 +17,8 @@ use glam::{DVec2, DVec3};
 
 use super::casters::{depth_state, may_land};
 use super::fitted;
-use super::summed::{self, Summed};
 use super::map2d::{camera, draw_map_casters};
+use super::summed::{self, Summed};
 use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,

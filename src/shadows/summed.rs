@@ -153,7 +153,12 @@ mod tests {
         let m = test.moments.expect("vssm is a moment filter");
         let g = glsl(1, 0, &test, &m);
         assert_eq!(g.sampler_type, "usampler2D");
-        assert!(g.test.starts_with("vssm(shadowMap1, mlightviewVertexPos[0], "), "{}", g.test);
+        assert!(
+            g.test
+                .starts_with("vssm(shadowMap1, mlightviewVertexPos[0], "),
+            "{}",
+            g.test
+        );
         assert!(g.test.contains(", lightPenumbra[1], "), "{}", g.test);
         let msm = ShadowSettings {
             filter: Filter::MsmSoft,
