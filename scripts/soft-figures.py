@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Per filter on dummy, playground and large: frame time (render --frames, median) and the
+"""Per filter on dummy, playground, large and penumbra: frame time (render --frames, median) and the
 figures against the area-light truth (compare --supersample 1). Prints Markdown rows."""
 import json, subprocess, sys, tempfile, re, os
 B = sys.argv[1]
@@ -7,9 +7,11 @@ scenes = {
     "dummy": ["--scene", "dummy", "--light-size", "5", "--bias", "0.005"],
     "playground": ["--scene", "playground", "--step", "pcss", "--light-size", "1"],
     "large": ["--scene", "large", "--light-size", "2", "--map-size", "2048"],
+    "penumbra": ["--scene", "penumbra"],
 }
-filters = ["single", "pcf3x3", "pcf5x5", "pcf4x4-weighted", "soft-pcf", "pcss", "vsm", "evsm2", "evsm4", "msm"]
+filters = ["single", "pcf3x3", "pcf5x5", "pcf4x4-weighted", "soft-pcf", "pcss", "vsm", "evsm2", "evsm4", "msm", "vssm", "msm-soft"]
 only = sys.argv[2].split(",") if len(sys.argv) > 2 else list(scenes)
+filters = sys.argv[3].split(",") if len(sys.argv) > 3 else filters
 for name in only:
     args = scenes[name]
     print(f"\n{name}: {' '.join(args)}", flush=True)

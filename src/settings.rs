@@ -104,6 +104,13 @@ pub enum Filter {
     Evsm4,
     /// Moment shadow maps: (z, z^2, z^3, z^4), the Hamburger 4MSM reconstruction.
     Msm,
+    // Soft shadows on summed-area tables of the moments (src/shadows/summed.rs).
+    /// Variance soft shadow maps: a blocker search and a filter as wide as the penumbra,
+    /// each one box of (z, z^2) read from a summed-area table.
+    Vssm,
+    /// Moment soft shadow maps: the same on four moments, with the 4MSM reconstruction.
+    #[value(name = "msm-soft")]
+    MsmSoft,
 }
 
 impl Filter {
@@ -124,6 +131,9 @@ impl Filter {
     /// The moment maps' filters (a map of their own, `src/shadows/moments.rs`).
     pub const MOMENTS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
 
+    /// The soft filters on summed-area tables of a moment map (`src/shadows/summed.rs`).
+    pub const SOFT_MOMENTS: [Filter; 2] = [Filter::Vssm, Filter::MsmSoft];
+
     /// Half the grid of lookups in texels (0 = one lookup); the soft filters have their
     /// own taps ([`Filter::kernel`]) and no grid.
     pub fn radius(self) -> u32 {
@@ -134,6 +144,8 @@ impl Filter {
             Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => 0,
             // One filtered lookup: the blur did the averaging.
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 0,
+            // Boxes of a summed-area table, as wide as the penumbra.
+            Filter::Vssm | Filter::MsmSoft => 0,
         }
     }
 
@@ -157,6 +169,8 @@ impl Filter {
             Filter::Pcss => settings.pcss_blocker_taps + settings.pcss_filter_taps,
             // One filtered lookup: the blur did the averaging.
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 1,
+            // Two boxes (blocker search, filter), each 4 x 4 texels of the table.
+            Filter::Vssm | Filter::MsmSoft => 32,
             _ => (2 * self.radius() + 1).pow(2),
         }
     }
@@ -176,8 +190,8 @@ impl Filter {
     /// The components of a moment map's texel (0: a depth map).
     pub fn moment_components(self) -> u32 {
         match self {
-            Filter::Vsm | Filter::Evsm2 => 2,
-            Filter::Evsm4 | Filter::Msm => 4,
+            Filter::Vsm | Filter::Evsm2 | Filter::Vssm => 2,
+            Filter::Evsm4 | Filter::Msm | Filter::MsmSoft => 4,
             _ => 0,
         }
     }

@@ -41,6 +41,7 @@ shader!(volume_geom, "volume.geom");
 shader!(volume_frag, "volume.frag");
 shader!(moments_depth_frag, "moments_depth.frag");
 shader!(moments_blur_frag, "moments_blur.frag");
+shader!(summed_area_frag, "summed_area.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
 
@@ -82,6 +83,10 @@ const LIBRARY: &[(&str, &str)] = &[
     (
         "lib/shadow_moments.glsl",
         include_str!("../shaders/lib/shadow_moments.glsl"),
+    ),
+    (
+        "lib/soft_moments.glsl",
+        include_str!("../shaders/lib/soft_moments.glsl"),
     ),
     (
         "lib/outputs.glsl",

@@ -132,6 +132,7 @@ fn the_reference_scene_lists_every_filter() {
         .iter()
         .chain(&Filter::SOFT)
         .chain(&Filter::MOMENTS)
+        .chain(&Filter::SOFT_MOMENTS)
         .map(|f| f.name())
         .collect();
     assert_eq!(listed, all, "{REFERENCE}: {line}");

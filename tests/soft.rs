@@ -346,7 +346,11 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
         best("single")
     );
     // The soft filters, each a row of the "soft" series.
-    for filter in Filter::SOFT {
+    let soft: Vec<Filter> = Filter::SOFT
+        .into_iter()
+        .chain(Filter::SOFT_MOMENTS)
+        .collect();
+    for &filter in &soft {
         assert!(
             rows.iter()
                 .any(|r| r[col("family")] == "soft" && r[col("filter")] == filter.name()),
@@ -354,8 +358,11 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
             filter.name()
         );
     }
-    assert!(rows.iter().all(|r| (r[col("family")] == "soft")
-        == Filter::SOFT.iter().any(|f| f.name() == r[col("filter")])));
+    assert!(
+        rows.iter()
+            .all(|r| (r[col("family")] == "soft")
+                == soft.iter().any(|f| f.name() == r[col("filter")]))
+    );
     // Each states its lookups per fragment: 16 + 16 for PCSS by default.
     for (filter, lookups) in [
         ("single", "1"),
@@ -363,6 +370,8 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
         ("pcf4x4-weighted", "16"),
         ("soft-pcf", "16"),
         ("pcss", "32"),
+        ("vssm", "32"),
+        ("msm-soft", "32"),
     ] {
         // (Shadow volumes read no map: their row states 0. Caster groups read every layer.)
         for r in rows

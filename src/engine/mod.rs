@@ -13,6 +13,7 @@ pub mod sampler;
 pub mod shader_program;
 pub mod shadow_map;
 pub mod state;
+pub mod summed_area;
 pub mod text;
 pub mod texture;
 pub mod timer;
@@ -33,6 +34,7 @@ pub use sampler::{BoundSampler, Sampler, Samplers, Sampling};
 pub use shader_program::{ShaderProgram, ShaderSource};
 pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
 pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
+pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
 pub use volume::{

@@ -139,6 +139,9 @@ impl Family {
             (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
             (ShadowKind::Volume, _) => Family::Volumes,
             (ShadowKind::Map, _) if own.settings.filter.soft() => Family::Soft,
+            (ShadowKind::Moments, _) if Filter::SOFT_MOMENTS.contains(&own.settings.filter) => {
+                Family::Soft
+            }
             _ => Family::OneMap,
         }
     }
@@ -311,7 +314,8 @@ fn refused(light: &Light, settings: &ShadowSettings) -> Option<Refusal> {
 }
 
 /// The soft filters' configurations, for a light with a size (a point light has none: its
-/// cube map takes no soft filter): 1024^2 (and 2048^2 in the full sweep), each soft filter,
+/// cube map takes no soft filter): 1024^2 (and 2048^2 in the full sweep), each soft filter
+/// (and the soft moment filters, vssm and msm-soft),
 /// LearnOpenGL's constant and slope biases.
 fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConfig> {
     if light.size() <= 0.0 {
@@ -320,7 +324,7 @@ fn soft_grid(base: &ShadowSettings, quick: bool, light: &Light) -> Vec<BenchConf
     let sizes: &[u32] = if quick { &[1024] } else { &[1024, 2048] };
     let mut out = Vec::new();
     for &side in sizes {
-        for filter in Filter::SOFT {
+        for filter in Filter::SOFT.into_iter().chain(Filter::SOFT_MOMENTS) {
             for bias in [BiasPreset::LearnOpenGL, BiasPreset::Slope] {
                 let mut s = *base;
                 s.map_size = MapSize::square(side);

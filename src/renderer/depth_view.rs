@@ -75,7 +75,7 @@ impl DepthView {
             _ => 0.0,
         };
         p.set_f32("warp", warp);
-        technique.texture().bind(0);
+        technique.view_texture().bind(0);
         // A plain sampler: the map may be read in compare mode by the scene pass.
         let _sampler = samplers.get(gl, Sampling::PLAIN)?.bind(0);
         let _no_depth = NoDepthTest::begin(gl);

@@ -46,6 +46,10 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         include_str!("../../assets/scenes/three-lights.toml"),
     ),
     ("overlap", include_str!("../../assets/scenes/overlap.toml")),
+    (
+        "penumbra",
+        include_str!("../../assets/scenes/penumbra.toml"),
+    ),
 ];
 
 /// The lighting equation of the scene pass.

@@ -167,6 +167,16 @@ pub fn filter_refusal(filter: Filter, cube: bool, layered: bool) -> Option<&'sta
              groups have a layer each; use cascades = 1 and caster_groups = 1, or a depth \
              filter (pcf3x3) for the light",
         ),
+        Filter::Vssm | Filter::MsmSoft if cube => Some(
+            "the soft moment filters (vssm, msm-soft) read summed-area tables of one 2D map and \
+             a point light's shadow is a cube map; give the light a depth filter of its own \
+             (shadow = { filter = \"pcf3x3\" }) or use one for the scene",
+        ),
+        Filter::Vssm | Filter::MsmSoft if layered => Some(
+            "the soft moment filters (vssm, msm-soft) measure the penumbra in one light \
+             camera's units and cascades and caster groups have a box each; use cascades = 1 \
+             and caster_groups = 1, or a depth filter (pcf3x3) for the light",
+        ),
         _ => None,
     }
 }

@@ -38,6 +38,7 @@ pub mod plan;
 pub mod program;
 pub mod schedule;
 pub mod slots;
+pub mod summed;
 pub mod volumes;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
@@ -115,6 +116,18 @@ pub fn filter_cost(settings: &ShadowSettings) -> FilterCost {
             passes: 1,
             blur_taps: 0,
             bytes_per_texel: 4,
+        };
+    }
+    if summed::reads_table(f) {
+        let size = settings.map_size;
+        let build = crate::engine::summed_area::axis_passes(size.width)
+            + crate::engine::summed_area::axis_passes(size.height);
+        return FilterCost {
+            taps: f.lookups(settings),
+            passes: 1 + build,
+            blur_taps: crate::engine::summed_area::SAT_RADIX * build,
+            // The moment map's two float textures and depth, and the table's two.
+            bytes_per_texel: 2 * 4 * components + 4 + 2 * 4 * components,
         };
     }
     let blur = settings.blur.taps();
@@ -243,6 +256,10 @@ pub trait Technique {
     /// The texture the scene pass samples: a depth texture, or a moment map's float colour
     /// texture (its `sampling` says how it is read).
     fn texture(&self) -> &Texture;
+    /// The texture the depth view shows (a summed-area table's moment map).
+    fn view_texture(&self) -> &Texture {
+        self.texture()
+    }
     /// How the scene pass samples it under `settings`.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling;
     /// The light-space transform of a technique with a map slot (2D and cube maps).

@@ -18,6 +18,7 @@ use glam::{DVec2, DVec3};
 use super::casters::{depth_state, may_land};
 use super::fitted;
 use super::map2d::{camera, draw_map_casters};
+use super::summed::{self, Summed};
 use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{
     DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
@@ -34,7 +35,19 @@ pub fn mode(filter: Filter) -> u32 {
         Filter::Evsm2 => 2,
         Filter::Evsm4 => 3,
         Filter::Msm => 4,
+        Filter::Vssm => summed::MODE_VSSM,
+        Filter::MsmSoft => summed::MODE_MSM_SOFT,
         _ => 0,
+    }
+}
+
+/// The depth pass' `MOMENT_MODE` (shaders/moments_depth.frag): the moments `filter` stores
+/// (the soft filters store VSM's and MSM's).
+fn depth_mode(filter: Filter) -> u32 {
+    match mode(filter) {
+        summed::MODE_VSSM => 1,
+        summed::MODE_MSM_SOFT => 4,
+        m => m,
     }
 }
 
@@ -51,7 +64,7 @@ pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
             let (pos, neg) = (p.exp(), -(-n).exp());
             [pos, pos * pos, neg, neg * neg]
         }
-        Filter::Vsm => [1.0, 1.0, 0.0, 0.0],
+        Filter::Vsm | Filter::Vssm => [1.0, 1.0, 0.0, 0.0],
         _ => [1.0; 4],
     }
 }
@@ -167,6 +180,8 @@ pub struct Moments {
     depth: Option<((u32, [u32; 2]), ShaderProgram)>,
     /// The blur program and its kernel.
     blur: Option<(Blur, ShaderProgram)>,
+    /// The summed-area table of a soft filter (vssm, msm-soft), which the scene pass reads.
+    summed: Option<Summed>,
     triangle: FullScreenTriangle,
     /// What the last depth pass stored, for the depth view: the filter and EVSM's
     /// positive exponent.
@@ -187,6 +202,9 @@ impl Moments {
             map: MomentMap::new(gl, settings.map_size, components)?,
             depth: None,
             blur: None,
+            summed: summed::reads_table(settings.filter)
+                .then(|| Summed::new(gl, settings.map_size, components))
+                .transpose()?,
             triangle: FullScreenTriangle::new(gl)?,
             map_mode: settings.filter,
             evsm_positive: evsm_exponents(settings)[0],
@@ -196,7 +214,7 @@ impl Moments {
     /// Compiles the depth program for `s`' filter and exponents unless it is the one there.
     fn prepare_depth(&mut self, gl: &Gl, s: &ShadowSettings) -> Result<()> {
         let exponents = evsm_exponents(s);
-        let key = (mode(s.filter), exponents.map(f32::to_bits));
+        let key = (depth_mode(s.filter), exponents.map(f32::to_bits));
         if self.depth.as_ref().map(|(k, _)| *k) != Some(key) {
             let defines = vec![
                 ("MOMENT_MODE".to_string(), key.0.to_string()),
@@ -241,7 +259,9 @@ impl Technique for Moments {
     }
 
     fn fits(&self, s: &ShadowSettings) -> bool {
-        self.map.size() == s.map_size && self.map.components() == s.filter.moment_components()
+        self.map.size() == s.map_size
+            && self.map.components() == s.filter.moment_components()
+            && self.summed.is_some() == summed::reads_table(s.filter)
     }
 
     /// The chapter's depth pass with moments for depth, then the blur.
@@ -262,7 +282,10 @@ impl Technique for Moments {
             self.map.begin_depth_pass(far_moments(settings));
             draw_map_casters(pass, scene, index, &view, program, None);
         }
-        if settings.blur != Blur::None {
+        if let Some(table) = &mut self.summed {
+            // The table is the filter: no blur.
+            table.build(self.map.texture(), &self.triangle);
+        } else if settings.blur != Blur::None {
             self.prepare_blur(&gl, settings.blur)?;
             let footprint = caster_footprint(scene, pass.boxes, index, &view, self.map.size());
             let radius = settings.blur.taps() / 2;
@@ -276,17 +299,26 @@ impl Technique for Moments {
         Ok(view)
     }
 
+    /// The summed-area table for a soft filter, else the (blurred) moments.
     fn texture(&self) -> &Texture {
+        match &self.summed {
+            Some(table) => table.table().texture(),
+            None => self.map.texture(),
+        }
+    }
+
+    fn view_texture(&self) -> &Texture {
         self.map.texture()
     }
 
     /// Filtered, never compared: the blur and the bilinear lookup are the filter. Outside
     /// the map the shader decides (`BORDER_LIT`): a border colour of depth 1 is not the
     /// moments of depth 1 for every filter.
+    /// A summed-area table is read texel by texel (integer textures do not filter).
     fn sampling(&self, _settings: &ShadowSettings) -> Sampling {
         Sampling {
             compare: false,
-            linear: true,
+            linear: self.summed.is_none(),
             wrap: Wrap::ClampToEdge,
         }
     }
@@ -301,7 +333,7 @@ impl Technique for Moments {
     }
 
     fn bytes(&self) -> u64 {
-        self.map.bytes()
+        self.map.bytes() + self.summed.as_ref().map_or(0, |t| t.table().bytes())
     }
 
     fn depth_view(&self) -> DepthViewKind {

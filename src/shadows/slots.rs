@@ -15,7 +15,7 @@
 //! would.
 
 use super::moments::MomentTest;
-use super::{cascades, cube, groups, layers, map2d, volumes, LightGlsl, ShadowKind};
+use super::{cascades, cube, groups, layers, map2d, summed, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
@@ -87,7 +87,8 @@ impl ShadowTest {
             Light::Point(_) => false,
         };
         ShadowTest {
-            pcss_perspective: perspective && settings.filter == Filter::Pcss,
+            pcss_perspective: perspective
+                && (settings.filter == Filter::Pcss || summed::reads_table(settings.filter)),
             ..ShadowTest::of(settings)
         }
     }
@@ -211,6 +212,9 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         ShadowKind::Cube => Some(cube_glsl(i, p, &test)),
         ShadowKind::Cascades => Some(layered_glsl(&cascades::SNIPPET, i, &test)),
         ShadowKind::Groups => Some(layered_glsl(&groups::SNIPPET, i, &test)),
+        ShadowKind::Moments if summed::reads_table_mode(test.moments?.mode) => {
+            Some(summed::glsl(i, p, &test, &test.moments?))
+        }
         ShadowKind::Moments => Some(moments_glsl(i, p, &test, &test.moments?)),
     });
     let mut part = LightPart::default();
@@ -568,6 +572,7 @@ mod tests {
                 slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Map, with(Filter::Pcss)),
                 slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+                slot(ShadowKind::Moments, with(Filter::Vssm)),
             ],
             MaskMode::Off,
         );
@@ -612,6 +617,8 @@ mod tests {
             (Moments, Filter::Vsm, "calcShadowVsm("),
             (Moments, Filter::Evsm2, "calcShadowEvsm("),
             (Moments, Filter::Msm, "calcShadowMsm("),
+            (Moments, Filter::Vssm, "vssm("),
+            (Moments, Filter::MsmSoft, "msmSoft("),
             (Cube, Filter::Single, "calcShadowCube("),
             (Cube, Filter::Pcf3x3, "calcShadowCubeSoft("),
         ] {

@@ -87,6 +87,8 @@ fn filter(f: Filter) -> &'static str {
         Filter::Evsm2 => "EVSM, exponential variance (2 moments)",
         Filter::Evsm4 => "EVSM, exponential variance (4 moments)",
         Filter::Msm => "MSM, 4 moments of depth",
+        Filter::Vssm => "VSSM, variance soft shadows on summed-area tables",
+        Filter::MsmSoft => "moment soft shadows on summed-area tables",
     }
 }
 

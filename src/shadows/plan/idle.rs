@@ -54,15 +54,19 @@ const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
     ),
     (
         &["min_variance", "bleed_reduction"],
-        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4],
-        "vsm, evsm2 or evsm4",
+        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Vssm],
+        "vsm, evsm2, evsm4 or vssm",
     ),
     (
         &["evsm_exponents"],
         &[Filter::Evsm2, Filter::Evsm4],
         "evsm2 or evsm4",
     ),
-    (&["msm_bias", "msm_toward"], &[Filter::Msm], "msm"),
+    (
+        &["msm_bias", "msm_toward"],
+        &[Filter::Msm, Filter::MsmSoft],
+        "msm or msm-soft",
+    ),
 ];
 
 /// Why `depth_lookup` does nothing for a light whose shadow is `kind` under `filter`, if

@@ -1,0 +1,139 @@
+// Soft shadows on summed-area tables of the moments (src/shadows/summed.rs): variance soft
+// shadow maps (Yang et al. 2010, on Lauritzen's summed-area variance shadow maps, GPU Gems 3
+// ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
+// whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
+// filter as wide as the penumbra; but each stage is one box of the table, whatever its
+// width: 16 integer reads, the same cost at 2 texels as at 64.
+
+// The box's half width in texels: at least 1.5 (a kernel that vanishes at contact brings
+// back acne), at most 64 (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
+const float SOFT_MIN_TEXELS = 1.5;
+const float SOFT_MAX_TEXELS = 64.0;
+// Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
+const float SAT_SCALE_F = 131072.0;
+
+// The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
+// (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
+void satDiffs(uvec4 v[4], out uvec4 d[3])
+{
+    d[0] = v[2] - v[0];
+    d[1] = v[3] - v[2];
+    d[2] = v[1] - v[0];
+}
+
+// The mean of the map over the box centre +- reach (texels of the map, continuous): the
+// prefix sum at a fractional corner is the table's two neighbours interpolated, so the box
+// sum is 9 boxes of whole texels (each a difference of four unsigned corners, exact, then
+// a float) weighted by the corners' fractions. Clamped to the map, a texel wide at least.
+vec4 satBoxMean(usampler2D table, vec2 centre, vec2 reach, vec2 size)
+{
+    vec2 lo = clamp(centre - reach, vec2(1.0), size - 2.0) - 1.0;
+    vec2 hi = clamp(centre + reach, lo + 2.0, size - 1.0) - 1.0;
+    ivec2 i0 = ivec2(floor(lo));
+    ivec2 i1 = ivec2(floor(hi));
+    vec2 f0 = lo - vec2(i0);
+    vec2 f1 = hi - vec2(i1);
+    int xs[4] = int[](i0.x, i0.x + 1, i1.x, i1.x + 1);
+    int ys[4] = int[](i0.y, i0.y + 1, i1.y, i1.y + 1);
+    // Differences across, row by row (three columns of four rows), then down: boxes of
+    // whole texels.
+    uvec4 wide[4];
+    uvec4 right[4];
+    uvec4 left[4];
+    for (int r = 0; r < 4; ++r) {
+        uvec4 row[4];
+        for (int c = 0; c < 4; ++c) {
+            row[c] = texelFetch(table, ivec2(xs[c], ys[r]), 0);
+        }
+        uvec4 d[3];
+        satDiffs(row, d);
+        wide[r] = d[0];
+        right[r] = d[1];
+        left[r] = d[2];
+    }
+    vec3 wx = vec3(1.0, f1.x, -f0.x);
+    vec3 wy = vec3(1.0, f1.y, -f0.y);
+    uvec4 dw[3];
+    uvec4 dr[3];
+    uvec4 dl[3];
+    satDiffs(wide, dw);
+    satDiffs(right, dr);
+    satDiffs(left, dl);
+    vec4 sum = vec4(0.0);
+    for (int j = 0; j < 3; ++j) {
+        sum += wy[j] * (wx.x * vec4(dw[j]) + wx.y * vec4(dr[j]) + wx.z * vec4(dl[j]));
+    }
+    vec2 extent = hi - lo;
+    return sum / (SAT_SCALE_F * extent.x * extent.y);
+}
+
+// A box's half width in texels for a penumbra's half width in uv, within the bounds.
+vec2 softHalf(vec2 halfUv, vec2 size)
+{
+    return clamp(halfUv * size, vec2(SOFT_MIN_TEXELS), vec2(SOFT_MAX_TEXELS));
+}
+
+// The blockers' mean depth from a box's mean depth `mean` and the fraction `unoccluded`
+// of it at the receiver's depth t or beyond (the moments' bound): the box is a mix of
+// blockers and a planar receiver at t, mean = unoccluded t + (1 - unoccluded) blockers
+// (Yang et al. 2010). Unstable as the blockers' share nears 0; t then.
+float softBlockerDepth(float mean, float unoccluded, float t)
+{
+    float share = 1.0 - unoccluded;
+    return share > 1e-3 ? clamp((mean - unoccluded * t) / share, 0.0, t) : t;
+}
+
+// The filter's half width in texels, from the blocker search: the penumbra of blockers at
+// depth zb for a receiver at z (pcssPenumbra), within the bounds.
+vec2 softFilterHalf(float z, float zb, vec4 light, bool perspective, vec2 size)
+{
+    float dr = pcssDistance(z, light, perspective);
+    float db = pcssDistance(zb, light, perspective);
+    return softHalf(pcssPenumbra(dr, db, light, perspective), size);
+}
+
+// The search region's half width in texels: the light's disc seen from the receiver
+// through the near plane (as PCSS's).
+vec2 softSearchHalf(float z, vec4 light, bool perspective, vec2 size)
+{
+    float dr = pcssDistance(z, light, perspective);
+    return softHalf(pcssPenumbra(dr, light.z, light, perspective), size);
+}
+
+// Variance soft shadow maps: (z, z^2) over the search box, Chebyshev's bound for the
+// blockers' share and depth, then the bound over a box as wide as their penumbra, with
+// the light-bleeding reduction.
+float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
+           float minVariance, float bleedReduction, bool perspective, bool borderLit,
+           bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    vec2 size = 1.0 / texel;
+    vec2 centre = projCoords.xy * size;
+    float t = projCoords.z - bias;
+    vec2 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size).xy;
+    float unoccluded = chebyshevUpperBound(search, t, minVariance);
+    float zb = softBlockerDepth(search.x, unoccluded, t);
+    vec2 reach = softFilterHalf(t, zb, light, perspective, size);
+    vec2 m = satBoxMean(table, centre, reach, size).xy;
+    float lit = reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
+}
+
+// Moment soft shadow maps: the same with four moments, the Hamburger 4MSM reconstruction
+// for both the blockers' share and the filter, the moment bias `alpha` toward `toward`.
+float msmSoft(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
+              float alpha, vec4 toward, bool perspective, bool borderLit, bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    vec2 size = 1.0 / texel;
+    vec2 centre = projCoords.xy * size;
+    float t = projCoords.z - bias;
+    vec4 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size);
+    float unoccluded = momentVisibility(search, t, alpha, toward);
+    float zb = softBlockerDepth(search.x, unoccluded, t);
+    vec2 reach = softFilterHalf(t, zb, light, perspective, size);
+    vec4 m = satBoxMean(table, centre, reach, size);
+    float lit = momentVisibility(m, t, alpha, toward);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
+}
