@@ -288,9 +288,9 @@ const OUTSIDE_THE_BOX: &[Stage] = &[
     Stage {
         scene: "dummy",
         note: "The book's box (20 x 20, far 20) holds the DummyGame's whole floor, so it is \
-               narrowed to 2.5 x 2.5 with far 7.2 and seen from further back: floor runs past \
-               its sides, its front and, at the back, its far plane.",
-        camera: Some(([0.0, 3.5, 5.5], [0.0, -1.0, -0.3])),
+               narrowed to 2.5 x 2.5 with far 7.2 and seen from above and aside: floor runs \
+               past its sides, its front and, at the back, its far plane.",
+        camera: Some(([2.2, 3.6, 2.2], [0.0, -1.0, -0.5])),
         light_box: Some([-1.25, 1.25, -1.25, 1.25, -1.0, 7.2]),
         items: &[],
     },
@@ -446,6 +446,39 @@ pub fn settings_for(scene: &Scene, name: &str) -> Result<ShadowSettings> {
     }
     (steps[index].apply)(&mut s, &scene.steps);
     Ok(s)
+}
+
+/// The built-in scenes that take `list` (their files' `[steps] list`, read from the text).
+fn builtin_scenes_of(list: StepList) -> Vec<&'static str> {
+    let list_of = |text: &str| -> StepList {
+        let table: toml::Table = toml::from_str(text).unwrap_or_default();
+        let named = table.get("steps").and_then(|s| s.get("list")).cloned();
+        named.and_then(|l| l.try_into().ok()).unwrap_or_default()
+    };
+    crate::scene::BUILTIN_SCENES
+        .iter()
+        .filter(|(_, text)| list_of(text) == list)
+        .map(|(name, _)| *name)
+        .collect()
+}
+
+/// Which built-in scenes take which steps, from the lists themselves (for `--step`'s and
+/// `steps`' help).
+pub fn lists_help() -> String {
+    let mut text = String::from("The steps each scene takes (its file's [steps] list):");
+    for (list, steps) in [
+        (StepList::Chapters, STEPS),
+        (StepList::Playground, PLAYGROUND_STEPS),
+    ] {
+        let names: Vec<&str> = steps.iter().map(|s| s.name).collect();
+        text.push_str(&format!(
+            "\n  {} (scenes {}):\n    {}",
+            list.name(),
+            builtin_scenes_of(list).join(", "),
+            names.join(", ")
+        ));
+    }
+    text
 }
 
 /// Every list's step names, each once (what `--step` takes; a scene takes its own list's).

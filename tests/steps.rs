@@ -9,6 +9,7 @@ use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::reference::Metrics;
 use shadowmap::settings::{BeyondFar, BiasMode, Cull, Filter, MapSize, ShadowSettings, Wrap};
+use shadowmap::scene::StepList;
 use shadowmap::{steps, Scene};
 
 fn scene(name: &str) -> Scene {
@@ -645,5 +646,35 @@ fn every_step_shows_its_change_or_says_why_not() {
                 base = settings;
             }
         }
+    }
+}
+
+/// `render --help` (for `--step`) and `steps --help` say which scenes take which steps: each
+/// list's line names exactly the built-in scenes that load with it, and the next line its
+/// steps in order.
+#[test]
+fn the_help_names_each_scenes_steps() {
+    for command in ["render", "steps"] {
+        let help = common::stdout_of(common::bin().args([command, "--help"]));
+        let lines: Vec<&str> = help.lines().map(str::trim).collect();
+        let mut listed: Vec<String> = Vec::new();
+        for list in [StepList::Chapters, StepList::Playground] {
+            let scenes: Vec<Scene> = Scene::builtin_names()
+                .into_iter()
+                .map(|n| Scene::load(n).unwrap())
+                .filter(|s| s.steps.list == list)
+                .collect();
+            let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
+            let head = format!("{} (scenes {}):", list.name(), names.join(", "));
+            let at = lines.iter().position(|l| *l == head);
+            let at = at.unwrap_or_else(|| panic!("{command} --help lacks '{head}':\n{help}"));
+            let steps: Vec<&str> = steps::of(&scenes[0]).iter().map(|s| s.name).collect();
+            assert_eq!(lines[at + 1], steps.join(", "), "{command} --help");
+            listed.extend(names.iter().map(|n| n.to_string()));
+        }
+        listed.sort_unstable();
+        let mut all: Vec<String> = Scene::builtin_names().iter().map(|n| n.to_string()).collect();
+        all.sort_unstable();
+        assert_eq!(listed, all, "{command} --help: every built-in scene once");
     }
 }
