@@ -8,8 +8,8 @@ use shadowmap::compare::{compare, CompareOptions, Comparison};
 use shadowmap::engine::Outputs;
 use shadowmap::frame::render_frames;
 use shadowmap::reference::Metrics;
-use shadowmap::settings::{BeyondFar, BiasMode, Cull, Filter, MapSize, ShadowSettings, Wrap};
 use shadowmap::scene::StepList;
+use shadowmap::settings::{BeyondFar, BiasMode, Cull, Filter, MapSize, ShadowSettings, Wrap};
 use shadowmap::{steps, Scene};
 
 fn scene(name: &str) -> Scene {
@@ -541,7 +541,9 @@ fn staged_frame(
 
 /// The pixels (by index) whose colours differ by more than [`CHANGED_LEVELS`].
 fn changed_pixels(a: &[u8], b: &[u8]) -> Vec<usize> {
-    let far = |p: &[u8], q: &[u8]| (0..3).any(|k| (i32::from(p[k]) - i32::from(q[k])).abs() > CHANGED_LEVELS);
+    let far = |p: &[u8], q: &[u8]| {
+        (0..3).any(|k| (i32::from(p[k]) - i32::from(q[k])).abs() > CHANGED_LEVELS)
+    };
     a.chunks_exact(4)
         .zip(b.chunks_exact(4))
         .enumerate()
@@ -569,7 +571,10 @@ fn named_region(
             }))
         }
         "cull-front" => {
-            let floor = staged.items.iter().find(|i| ["plane", "floor"].contains(&&*i.name));
+            let floor = staged
+                .items
+                .iter()
+                .find(|i| ["plane", "floor"].contains(&&*i.name));
             let y = floor.unwrap().position.y;
             Some(Box::new(move |p: Vec3| (p.y - y).abs() < 0.01))
         }
@@ -640,7 +645,11 @@ fn every_step_shows_its_change_or_says_why_not() {
                 ),
             }
             if let Some(s) = inside {
-                assert!(s >= IN_REGION_SHARE, "{name} {}: {s} in its region", st.name);
+                assert!(
+                    s >= IN_REGION_SHARE,
+                    "{name} {}: {s} in its region",
+                    st.name
+                );
             }
             if st.cumulative {
                 base = settings;
@@ -673,7 +682,10 @@ fn the_help_names_each_scenes_steps() {
             listed.extend(names.iter().map(|n| n.to_string()));
         }
         listed.sort_unstable();
-        let mut all: Vec<String> = Scene::builtin_names().iter().map(|n| n.to_string()).collect();
+        let mut all: Vec<String> = Scene::builtin_names()
+            .iter()
+            .map(|n| n.to_string())
+            .collect();
         all.sort_unstable();
         assert_eq!(listed, all, "{command} --help: every built-in scene once");
     }
