@@ -297,9 +297,10 @@ const OUTSIDE_THE_BOX: &[Stage] = &[
     Stage {
         scene: "learnopengl",
         note: "LearnOpenGL's box (20 x 20) is narrowed to 6 x 6, still around the three cubes, \
-               and seen from straight above: the floor outside it and beyond its far plane \
-               (7.5 units from the light) is in view.",
-        camera: Some(([1.5, 7.0, 1.5], [1.5, 0.0, 1.5])),
+               and seen from high above: the floor outside it, where REPEAT tiles the cubes' \
+               shadows 6 units apart, and beyond its far plane (7.5 units from the light) is \
+               in view.",
+        camera: Some(([1.0, 13.0, 1.0], [1.0, -0.5, 1.0])),
         light_box: Some([-3.0, 3.0, -3.0, 3.0, 1.0, 7.5]),
         items: &[],
     },
