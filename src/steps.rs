@@ -162,8 +162,9 @@ pub const STEPS: &[Step] = &[
                  depth, so it cannot have acne whatever the bias.",
         look_for: "With the bias kept, the floor beside a caster that rests on it now compares \
                    against the caster's near back face: the shadow lifts off at the contact \
-                   (LearnOpenGL warns of casters close to their receiver). Single-sided \
-                   geometry still casts only if wound to face away from the light.",
+                   (LearnOpenGL warns of casters close to their receiver), so the step is shown \
+                   at such a contact. Single-sided geometry still casts only if wound to face \
+                   away from the light.",
         cumulative: true,
         stages: &[
             Stage {
@@ -189,7 +190,8 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "over-sampling-repeat",
         change: "The shadow map wraps with REPEAT (LearnOpenGL's first steps).",
-        look_for: "False shadows outside the light's box: the map repeats across the floor.",
+        look_for: "False shadows outside the light's box: the map repeats across the floor. \
+                   (Where the tutorial's box holds all that is seen, the step narrows it.)",
         cumulative: false,
         stages: OUTSIDE_THE_BOX,
         same_picture: &[(
@@ -206,7 +208,7 @@ pub const STEPS: &[Step] = &[
         name: "over-sampling-book",
         change: "The book's choice: CLAMP_TO_EDGE and no test past the far plane.",
         look_for: "Outside the box the edge texels repeat; beyond the far plane everything is \
-                   shadowed.",
+                   shadowed. (Shown with the narrowed box of the step before.)",
         cumulative: false,
         stages: OUTSIDE_THE_BOX,
         same_picture: &[],
@@ -218,7 +220,8 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "over-sampling",
         change: "LearnOpenGL's fix: clamp to a border of depth 1 and treat z > 1 as lit.",
-        look_for: "Everything outside the light's box is lit.",
+        look_for: "Everything outside the light's box is lit (the narrowed box of the steps \
+                   before).",
         cumulative: true,
         stages: OUTSIDE_THE_BOX,
         same_picture: &[],
