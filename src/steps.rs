@@ -2,9 +2,13 @@
 //! applying every earlier step's change to the tutorial's starting point. Nothing here
 //! draws; the renderer is the same for every step. A scene names its list (`[steps] list`):
 //! the chapters' ([`STEPS`]) or the shadow-playground's demo pages ([`PLAYGROUND_STEPS`]).
+//! Where a tutorial's own view hides a step's change, the step carries a [`Stage`] for that
+//! scene: its own camera or a small change of the scene, said in its caption.
+
+use glam::Vec3;
 
 use crate::error::{Error, Result};
-use crate::scene::{Scene, StepContext, StepList};
+use crate::scene::{Camera, Scene, StepContext, StepList};
 use crate::settings::{
     BeyondFar, BiasMode, Blur, Cull, DepthLookup, Filter, LightProjection, MapSize, MsmToward,
     ShadowSettings, ShadowTechnique, Wrap,
@@ -19,7 +23,87 @@ pub struct Step {
     pub look_for: &'static str,
     /// Whether the step carries over into the following ones (variants do not).
     pub cumulative: bool,
+    /// How the step is shown on the scenes whose own view hides its change (by scene name).
+    pub stages: &'static [Stage],
+    /// Scenes (by name) on which the step's picture is its predecessor's by design, and why.
+    pub same_picture: &'static [(&'static str, &'static str)],
     apply: fn(&mut ShadowSettings, &StepContext),
+}
+
+/// A step's view of one scene: a camera of its own and small changes of the scene, so the
+/// region its caption names is in the frame. The renderer is the same for every step.
+pub struct Stage {
+    /// The scene's name.
+    pub scene: &'static str,
+    /// What the stage changes, for the caption.
+    pub note: &'static str,
+    /// The camera's position and the point it looks at (the scene camera's lens kept).
+    pub camera: Option<([f32; 3], [f32; 3])>,
+    /// The first light's orthographic box: left, right, bottom, top, near, far.
+    pub light_box: Option<[f32; 6]>,
+    /// Items by name, each given a position and a scale.
+    pub items: &'static [(&'static str, [f32; 3], [f32; 3])],
+}
+
+impl Step {
+    /// The step's stage for `scene`, if it has one.
+    pub fn stage(&self, scene: &Scene) -> Option<&'static Stage> {
+        self.stages.iter().find(|s| s.scene == scene.name)
+    }
+
+    /// Why the step shows its predecessor's picture on `scene`, if it does by design.
+    pub fn same_picture_on(&self, scene: &Scene) -> Option<&'static str> {
+        self.same_picture
+            .iter()
+            .find(|(name, _)| *name == scene.name)
+            .map(|(_, why)| *why)
+    }
+
+    /// Sets `scene` up as this step shows it: its stage's camera (unless `keep_camera`),
+    /// light box and items. Nothing changes on a scene the step has no stage for.
+    pub fn set_stage(&self, scene: &mut Scene, keep_camera: bool) -> Result<()> {
+        let Some(stage) = self.stage(scene) else {
+            return Ok(());
+        };
+        if let (Some((position, target)), false) = (stage.camera, keep_camera) {
+            let at = Camera::look_at(position.into(), target.into()).ok_or_else(|| {
+                Error::Invalid(format!("step {}: its camera looks at itself", self.name))
+            })?;
+            scene.camera.position = at.position;
+            scene.camera.rotation = at.rotation;
+        }
+        let scene_name = scene.name.clone();
+        if let Some([left, right, bottom, top, near, far]) = stage.light_box {
+            let light = scene.light_mut().as_directional_mut().ok_or_else(|| {
+                Error::Invalid(format!(
+                    "step {}: its stage sets the light's box, but the {scene_name} scene's \
+                     first light is not directional",
+                    self.name
+                ))
+            })?;
+            light.ortho = crate::scene::OrthoCoords {
+                left,
+                right,
+                bottom,
+                top,
+                near,
+                far,
+            };
+        }
+        for (name, position, scale) in stage.items {
+            let item = scene.items.iter_mut().find(|i| i.name == *name);
+            let item = item.ok_or_else(|| {
+                Error::Invalid(format!(
+                    "step {}: its stage moves item '{name}', which the {scene_name} scene \
+                     lacks",
+                    self.name
+                ))
+            })?;
+            item.position = Vec3::from(*position);
+            item.scale = Vec3::from(*scale);
+        }
+        Ok(())
+    }
 }
 
 /// The steps in the chapters' order (LWJGL "Shadows", LearnOpenGL "Shadow Mapping", the
@@ -31,6 +115,8 @@ pub const STEPS: &[Step] = &[
         look_for: "Dark is near the light. An orthographic map is shown raw; a perspective one \
                    is linearised first.",
         cumulative: false,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.show_depth_map = true,
     },
     Step {
@@ -39,6 +125,8 @@ pub const STEPS: &[Step] = &[
                  light than the depth stored for its texel.",
         look_for: "Shadow acne: stripes of false shadow on every lit surface.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.bias_mode = BiasMode::None,
     },
     Step {
@@ -47,6 +135,8 @@ pub const STEPS: &[Step] = &[
                  LearnOpenGL 0.005).",
         look_for: "The acne is gone; a large bias detaches shadows from their casters.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, c| {
             s.bias_mode = BiasMode::Constant;
             s.bias = c.bias;
@@ -57,6 +147,8 @@ pub const STEPS: &[Step] = &[
         change: "LearnOpenGL's slope-scaled bias: max(0.05 (1 - n.l), 0.005).",
         look_for: "Surfaces facing the light get a small bias, grazing ones a larger one.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.bias_mode = BiasMode::Slope;
             s.bias = 0.05;
@@ -65,18 +157,48 @@ pub const STEPS: &[Step] = &[
     },
     Step {
         name: "cull-front",
-        change: "Front faces are culled in the depth pass, so closed objects store their back \
-                 faces.",
-        look_for: "Less peter panning at contacts; single-sided geometry still casts only if \
-                   wound to face away from the light.",
+        change: "Front faces are culled in the depth pass (LearnOpenGL's text, the slides), so \
+                 closed objects store their back faces: a lit face no longer meets its own \
+                 depth, so it cannot have acne whatever the bias.",
+        look_for: "With the bias kept, the floor beside a caster that rests on it now compares \
+                   against the caster's near back face: the shadow lifts off at the contact \
+                   (LearnOpenGL warns of casters close to their receiver), so the step is shown \
+                   at such a contact. Single-sided geometry still casts only if wound to face \
+                   away from the light.",
         cumulative: true,
+        stages: &[
+            Stage {
+                scene: "dummy",
+                note: "The DummyGame's cube is lowered to rest on the floor and seen from the \
+                       side of its shadow, the contact in the middle.",
+                camera: Some(([3.2, 1.2, -0.6], [0.0, -1.0, -1.0])),
+                light_box: None,
+                items: &[("cube", [0.0, -0.5, 0.0], [0.5, 0.5, 0.5])],
+            },
+            Stage {
+                scene: "learnopengl",
+                note: "Seen close up at the contact of the cube resting on the floor, from \
+                       the side of its shadow.",
+                camera: Some(([3.6, 0.9, 2.8], [2.0, -0.5, 1.0])),
+                light_box: None,
+                items: &[],
+            },
+        ],
+        same_picture: &[],
         apply: |s, _| s.cull = Cull::Front,
     },
     Step {
         name: "over-sampling-repeat",
         change: "The shadow map wraps with REPEAT (LearnOpenGL's first steps).",
-        look_for: "False shadows outside the light's box: the map repeats across the floor.",
+        look_for: "False shadows outside the light's box: the map repeats across the floor. \
+                   (Where the tutorial's box holds all that is seen, the step narrows it.)",
         cumulative: false,
+        stages: OUTSIDE_THE_BOX,
+        same_picture: &[(
+            "learnopengl",
+            "LearnOpenGL wraps with REPEAT from its first step, so the map has repeated \
+             since then: this step names what the slope bias step already shows.",
+        )],
         apply: |s, _| {
             s.wrap = Wrap::Repeat;
             s.beyond_far = BeyondFar::Shadowed;
@@ -86,8 +208,10 @@ pub const STEPS: &[Step] = &[
         name: "over-sampling-book",
         change: "The book's choice: CLAMP_TO_EDGE and no test past the far plane.",
         look_for: "Outside the box the edge texels repeat; beyond the far plane everything is \
-                   shadowed.",
+                   shadowed. (Shown with the narrowed box of the step before.)",
         cumulative: false,
+        stages: OUTSIDE_THE_BOX,
+        same_picture: &[],
         apply: |s, _| {
             s.wrap = Wrap::ClampToEdge;
             s.beyond_far = BeyondFar::Shadowed;
@@ -96,8 +220,11 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "over-sampling",
         change: "LearnOpenGL's fix: clamp to a border of depth 1 and treat z > 1 as lit.",
-        look_for: "Everything outside the light's box is lit.",
+        look_for: "Everything outside the light's box is lit (the narrowed box of the steps \
+                   before).",
         cumulative: true,
+        stages: OUTSIDE_THE_BOX,
+        same_picture: &[],
         apply: |s, _| {
             s.wrap = Wrap::ClampToBorder;
             s.beyond_far = BeyondFar::Lit;
@@ -108,6 +235,8 @@ pub const STEPS: &[Step] = &[
         change: "Percentage-closer filtering: the average of a 3 x 3 block of comparisons.",
         look_for: "Softer, less blocky shadow edges with intermediate values.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.filter = Filter::Pcf3x3,
     },
     Step {
@@ -115,6 +244,8 @@ pub const STEPS: &[Step] = &[
         change: "A 4096 x 4096 shadow map (the slides go 2K, 4K, 8K).",
         look_for: "Sharper edges: each texel covers a sixteenth of the area.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.map_size = s.map_size.at_least(4096),
     },
     Step {
@@ -123,6 +254,8 @@ pub const STEPS: &[Step] = &[
                  blog): a point-like light.",
         look_for: "Shadows spread out with distance from the light.",
         cumulative: false,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.light_projection = LightProjection::Perspective,
     },
     Step {
@@ -130,6 +263,8 @@ pub const STEPS: &[Step] = &[
         change: "The perspective light's depth map, linearised for display.",
         look_for: "Without linearising, everything past the nearest surfaces would be white.",
         cumulative: false,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.light_projection = LightProjection::Perspective;
             s.show_depth_map = true;
@@ -144,7 +279,33 @@ pub const STEPS: &[Step] = &[
         look_for: "Hard, pixel-exact edges with no acne and no peter panning; the error image \
                    is grey but for single pixels on the edges.",
         cumulative: false,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| s.technique = ShadowTechnique::Volumes,
+    },
+];
+
+/// The over-sampling steps' view: the light's box narrowed so that floor lies outside it
+/// (and, on the DummyGame, beyond its far plane), seen from far enough back.
+const OUTSIDE_THE_BOX: &[Stage] = &[
+    Stage {
+        scene: "dummy",
+        note: "The book's box (20 x 20, far 20) holds the DummyGame's whole floor, so it is \
+               narrowed to 2.5 x 2.5 with far 7.2 and seen from above and aside: floor runs \
+               past its sides, its front and, at the back, its far plane.",
+        camera: Some(([2.2, 3.6, 2.2], [0.0, -1.0, -0.5])),
+        light_box: Some([-1.25, 1.25, -1.25, 1.25, -1.0, 7.2]),
+        items: &[],
+    },
+    Stage {
+        scene: "learnopengl",
+        note: "LearnOpenGL's box (20 x 20) is narrowed to 6 x 6, still around the three cubes, \
+               and seen from high above: the floor outside it, where REPEAT tiles the cubes' \
+               shadows 6 units apart, and beyond its far plane (7.5 units from the light) is \
+               in view.",
+        camera: Some(([1.0, 13.0, 1.0], [1.0, -0.5, 1.0])),
+        light_box: Some([-3.0, 3.0, -3.0, 3.0, 1.0, 7.5]),
+        items: &[],
     },
 ];
 
@@ -159,6 +320,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
                  texels (depth_lookup = \"linear\"), as every page after it.",
         look_for: "Hard edges with the corners of the 400 x 300 map's texels cut diagonally.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, c| {
             s.filter = Filter::Single;
             s.bias_mode = BiasMode::Constant;
@@ -174,6 +337,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
         look_for: "Edges soften over about three texels; the larger epsilon detaches the shadow \
                    a little at the contact.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.filter = Filter::Pcf4x4Weighted;
             s.bias = 1.125e-2;
@@ -190,6 +355,13 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
         look_for: "Smoother steps inside the penumbra; surfaces within a few thousandths of \
                    depth of their own texels are slightly darker.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[(
+            "playground",
+            "The sigmoid departs from the plain comparison only within a few thousandths of \
+             depth of the stored value: here the frame differs from the PCF step's in a few \
+             isolated pixels (the playground's two demos look alike too).",
+        )],
         apply: |s, _| s.filter = Filter::SoftPcf,
     },
     Step {
@@ -201,6 +373,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
         look_for: "Smooth edges from one filtered lookup; where the slab's shadow falls behind \
                    the cube's, light bleeds into it.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.filter = Filter::Vsm;
             s.bias_mode = BiasMode::None;
@@ -216,6 +390,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
                  like the variance demo, no epsilon is subtracted from the fragment's depth.",
         look_for: "Edges as soft as the variance step's, with less light bleeding.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.filter = Filter::Msm;
             s.msm_bias = 9e-4;
@@ -231,6 +407,8 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
         look_for: "Shadows sharp where the cube touches the slab and wider away from it, as the \
                    area-light truth's.",
         cumulative: true,
+        stages: &[],
+        same_picture: &[],
         apply: |s, _| {
             s.filter = Filter::Pcss;
             s.bias_mode = BiasMode::Constant;
@@ -286,6 +464,39 @@ pub fn settings_for(scene: &Scene, name: &str) -> Result<ShadowSettings> {
     Ok(s)
 }
 
+/// The built-in scenes that take `list` (their files' `[steps] list`, read from the text).
+fn builtin_scenes_of(list: StepList) -> Vec<&'static str> {
+    let list_of = |text: &str| -> StepList {
+        let table: toml::Table = toml::from_str(text).unwrap_or_default();
+        let named = table.get("steps").and_then(|s| s.get("list")).cloned();
+        named.and_then(|l| l.try_into().ok()).unwrap_or_default()
+    };
+    crate::scene::BUILTIN_SCENES
+        .iter()
+        .filter(|(_, text)| list_of(text) == list)
+        .map(|(name, _)| *name)
+        .collect()
+}
+
+/// Which built-in scenes take which steps, from the lists themselves (for `--step`'s and
+/// `steps`' help).
+pub fn lists_help() -> String {
+    let mut text = String::from("The steps each scene takes (its file's [steps] list):");
+    for (list, steps) in [
+        (StepList::Chapters, STEPS),
+        (StepList::Playground, PLAYGROUND_STEPS),
+    ] {
+        let names: Vec<&str> = steps.iter().map(|s| s.name).collect();
+        text.push_str(&format!(
+            "\n  {} (scenes {}):\n    {}",
+            list.name(),
+            builtin_scenes_of(list).join(", "),
+            names.join(", ")
+        ));
+    }
+    text
+}
+
 /// Every list's step names, each once (what `--step` takes; a scene takes its own list's).
 pub fn names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
@@ -295,6 +506,22 @@ pub fn names() -> Vec<&'static str> {
         }
     }
     names
+}
+
+/// Sets `scene` up as step `name` is shown by `steps` and `render --step`: from the scene's
+/// steps camera with its steps' light size, then the step's own stage. `keep_camera` and
+/// `keep_light_size`: a flag chose them.
+pub fn show(scene: &mut Scene, name: &str, keep_camera: bool, keep_light_size: bool) -> Result<()> {
+    if !keep_camera {
+        scene.camera = scene.steps_camera();
+    }
+    if !keep_light_size {
+        scene.use_steps_light_size();
+    }
+    match get(scene, name) {
+        Some(step) => step.set_stage(scene, keep_camera),
+        None => Ok(()),
+    }
 }
 
 /// Step `name` of `scene`'s list.

@@ -49,6 +49,7 @@ pub enum Command {
     /// Sweep shadow settings: time each one and score it against the reference.
     Bench(BenchArgs),
     /// Render every chapter step with its measured errors: PNGs and index.html.
+    #[command(after_help = steps::lists_help())]
     Steps(StepsArgs),
     /// Render many frames headless while the light, map size and step change; report memory.
     Soak(SoakArgs),
@@ -101,7 +102,10 @@ pub struct SceneArgs {
 #[derive(Args, Debug, Clone, Default)]
 pub struct SettingsArgs {
     /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
-    #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()))]
+    #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()),
+          long_help = format!("A chapter step: its preset of settings replaces the scene's (flags \
+              still apply on top). `render` draws it as `steps` does: from the scene's steps \
+              camera, and from the step's own view where it has one.\n\n{}", steps::lists_help()))]
     pub step: Option<String>,
     /// A preset chosen from the bench's measurements (docs/results.md, "Quality presets"): map
     /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags

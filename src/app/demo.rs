@@ -109,6 +109,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         show_inset: args.inset,
         camera_before_steps: None,
         sizes_before_steps: None,
+        before_stage: None,
         frame_times: Vec::new(),
     };
     // Taken once: past the overhead a light's own horizontal part points the other way.
@@ -278,9 +279,19 @@ struct Demo {
     /// The lights' sizes to go back to when the steps (shown with the scene's
     /// `[steps] light_size`) end.
     sizes_before_steps: Option<Vec<f32>>,
+    /// The camera, lights and items as they were before the shown step's own view of the
+    /// scene (its stage), to go back to when another step is picked.
+    before_stage: Option<StageUndo>,
     /// Wall time of each frame after the first, frame to frame (printed at a scripted exit).
     frame_times: Vec<f64>,
 }
+
+/// What a step's stage changes, as it was before: the camera, the lights, the items.
+type StageUndo = (
+    shadowmap::scene::Camera,
+    Vec<shadowmap::scene::Light>,
+    Vec<shadowmap::scene::GameItem>,
+);
 
 /// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
 const STEP_KEYS: [KeyCode; 12] = [
@@ -346,6 +357,9 @@ impl Demo {
 
     /// Switches to a chapter step (or back to the scene's settings with `None`).
     fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
+        if let Some((camera, lights, items)) = self.before_stage.take() {
+            (self.scene.camera, self.scene.lights, self.scene.items) = (camera, lights, items);
+        }
         // Steps are shown from the scene's steps camera (where its own does not show what
         // they change); back to the scene's camera with its own settings.
         if self.scene.steps.camera.is_some() {
@@ -375,6 +389,16 @@ impl Demo {
                     }
                 }
                 (_, kept) => self.sizes_before_steps = kept,
+            }
+        }
+        // The step's own view of the scene, where it has one (undone by the next pick).
+        if let Some(staged) = step.and_then(|name| steps::get(&self.scene, name)) {
+            if staged.stage(&self.scene).is_some() {
+                let s = &self.scene;
+                self.before_stage = Some((s.camera, s.lights.clone(), s.items.clone()));
+                if let Err(e) = staged.set_stage(&mut self.scene, false) {
+                    return self.fail(event_loop, e);
+                }
             }
         }
         let settings = match step {

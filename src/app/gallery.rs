@@ -28,6 +28,9 @@ struct Row {
     metrics: Option<Metrics>,
     area: Option<SoftMetrics>,
     changed: String,
+    /// How the step is shown on this scene (its stage) and why its picture is the one
+    /// before's, where it is by design: HTML paragraphs, or empty.
+    view: String,
 }
 
 /// What every step is rendered and scored with.
@@ -36,8 +39,10 @@ struct Bench<'a> {
     scene: &'a Scene,
     opts: CompareOptions,
     /// One reference per kind of light projection (orthographic: parallel rays;
-    /// perspective: rays to a point).
-    references: HashMap<LightProjection, Reference>,
+    /// perspective: rays to a point) and per stage (a step's own view of the scene).
+    references: HashMap<(LightProjection, Option<&'static str>), Reference>,
+    /// A camera flag picked the view: the stages keep it.
+    keep_camera: bool,
 }
 
 pub fn run(args: &StepsArgs) -> Result<()> {
@@ -81,6 +86,7 @@ pub fn run(args: &StepsArgs) -> Result<()> {
             light: 0,
         },
         references: HashMap::new(),
+        keep_camera: camera_flag,
     };
     let mut rows = Vec::new();
     // Every picture and the page, written together at the end.
@@ -130,12 +136,29 @@ impl Bench<'_> {
             c if c.is_empty() => format!("nothing on this scene against {}", base.1),
             c => format!("{} (against {})", c.join(", "), base.1),
         };
+        // The step's own view of the scene, where it has one.
+        let stage = step.stage(scene);
+        let mut staged = None;
+        if stage.is_some() {
+            let mut s = scene.clone();
+            step.set_stage(&mut s, self.keep_camera)?;
+            staged = Some(s);
+        }
+        let mut view = String::new();
+        if let Some(note) = stage.map(|s| s.note) {
+            let _ = write!(view, "<p><b>Shown here:</b> {}</p>", escape(note));
+        }
+        if let Some(why) = step.same_picture_on(scene) {
+            let _ = write!(view, "<p><b>The same picture:</b> {}</p>", escape(why));
+        }
+        let scene = staged.as_ref().unwrap_or(scene);
         let frame = render_visibility(gl, scene, &settings, width, height, 0)?;
         let image = format!("{n:02}-{}.png", step.name);
         files.push((image.clone(), frame.colour.encode_png()?));
         let (mut metrics, mut error_file, mut area) = (None, None, None);
         if !settings.show_depth_map {
-            let reference = match self.references.entry(settings.light_projection) {
+            let key = (settings.light_projection, stage.map(|s| s.note));
+            let reference = match self.references.entry(key) {
                 Entry::Occupied(e) => e.into_mut(),
                 Entry::Vacant(e) => e.insert(compute_reference(gl, scene, &settings, opts)?),
             };
@@ -176,6 +199,7 @@ impl Bench<'_> {
             metrics,
             area,
             changed,
+            view,
         })
     }
 }
@@ -404,7 +428,7 @@ fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
         "<section class=\"step\" id=\"{name}\"><h2>{n}. {name}{variant}</h2>\n<div class=\"row\">\
          <figure><a href=\"{image}\"><img src=\"{image}\" alt=\"{name}\"></a>\
          <figcaption>The frame.</figcaption></figure>\n{errors}\n<div class=\"lesson\">\
-         <p><b>What changed:</b> {change}</p><p><b>Look for:</b> {look}</p>\
+         <p><b>What changed:</b> {change}</p><p><b>Look for:</b> {look}</p>{view}\
          <p><b>Settings changed:</b> {changed}</p>{figures}\
          <p><small>All settings: {summary}</small></p></div></div></section>\n",
         variant = if row.step.cumulative {
@@ -416,6 +440,7 @@ fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
         change = escape(row.step.change),
         look = escape(row.step.look_for),
         changed = escape(&row.changed),
+        view = row.view,
         summary = escape(&row.settings.summary()),
     )
 }
