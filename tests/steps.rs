@@ -635,7 +635,7 @@ const VISIBLE_SHARE: f64 = 0.0005;
 
 /// A step that says it keeps its predecessor's picture changes fewer than this share of the
 /// pixels (a few isolated ones).
-const SAME_SHARE: f64 = 0.00005;
+const SAME_SHARE: f64 = 0.0001;
 
 /// Of a staged step's changed pixels, at least this share lie in the region its caption
 /// names.
