@@ -135,6 +135,8 @@ pub fn draw_map_casters(
         view.view64,
         keep,
     );
+    let uniform = "modelLightViewMatrix";
+    let drawn = drawn + super::volumetric::draw_solid(pass, scene, program, uniform, view.view64);
     pass.casters.drawn += drawn as u64;
     pass.casters.total += casters(scene);
 }
