@@ -46,6 +46,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         include_str!("../../assets/scenes/three-lights.toml"),
     ),
     ("overlap", include_str!("../../assets/scenes/overlap.toml")),
+    ("smoke", include_str!("../../assets/scenes/smoke.toml")),
 ];
 
 /// The lighting equation of the scene pass.
@@ -117,6 +118,8 @@ pub enum StepList {
     Chapters,
     /// The shadow-playground's demo pages, then PCSS.
     Playground,
+    /// How translucent items cast: not at all, then as opaque.
+    Volumetric,
 }
 
 impl StepList {
@@ -124,6 +127,7 @@ impl StepList {
         match self {
             StepList::Chapters => "chapters",
             StepList::Playground => "playground",
+            StepList::Volumetric => "volumetric",
         }
     }
 }

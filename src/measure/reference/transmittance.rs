@@ -129,6 +129,72 @@ pub fn reference_transmittance(
     })
 }
 
+/// How far a rendered light (the visibility output: the shadow test times the light its
+/// translucent casters leave) is from the transmittance truth, over its receivers.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TransmittanceMetrics {
+    pub receivers: usize,
+    pub mae: f64,
+    pub max_error: f64,
+    /// Receivers the opaque casters leave lit but a translucent one dims (truth below 1).
+    pub in_shadow: usize,
+    /// The mean error there ("within the translucent shadow"); 0 where there are none.
+    pub mae_in_shadow: f64,
+    /// The mean error over the other receivers.
+    pub mae_outside: f64,
+}
+
+/// Scores `rendered` (`None` or NaN: no value) against `truth` ([`reference_transmittance`]).
+/// A receiver without a rendered value counts as fully wrong.
+pub fn score_transmittance(rendered: &[Option<f32>], truth: &[RefPixel]) -> TransmittanceMetrics {
+    let (mut all, mut inside, mut outside) = ((0.0, 0), (0.0, 0), (0.0, 0));
+    let mut max_error = 0.0f64;
+    for (i, r) in truth.iter().enumerate().filter(|(_, r)| r.receiver) {
+        let v = rendered.get(i).copied().flatten().filter(|v| v.is_finite());
+        let e = v.map_or(1.0, |v| f64::from((v.clamp(0.0, 1.0) - r.visibility).abs()));
+        let part = match r.visibility > 0.0 && r.visibility < 1.0 {
+            true => &mut inside,
+            false => &mut outside,
+        };
+        *part = (part.0 + e, part.1 + 1);
+        all = (all.0 + e, all.1 + 1);
+        max_error = max_error.max(e);
+    }
+    let mean = |(sum, n): (f64, usize)| if n == 0 { 0.0 } else { sum / n as f64 };
+    TransmittanceMetrics {
+        receivers: all.1,
+        mae: mean(all),
+        max_error,
+        in_shadow: inside.1,
+        mae_in_shadow: mean(inside),
+        mae_outside: mean(outside),
+    }
+}
+
+/// RGBA picture of the errors against the transmittance truth: `base_grey` where they
+/// agree, towards red where the rendered light is too dark, towards blue where too bright
+/// (full colour at an error of 0.5 or more).
+pub fn transmittance_error_image(
+    rendered: &[Option<f32>],
+    truth: &[RefPixel],
+    base_grey: &[u8],
+) -> Vec<[u8; 4]> {
+    (0..truth.len())
+        .map(|i| {
+            let g = f32::from(base_grey.get(i).copied().unwrap_or(0));
+            let v = rendered.get(i).copied().flatten().filter(|v| v.is_finite());
+            let e = match (truth[i].receiver, v) {
+                (true, Some(v)) => v.clamp(0.0, 1.0) - truth[i].visibility,
+                _ => 0.0,
+            };
+            let w = (e.abs() * 2.0).min(1.0);
+            let towards = if e < 0.0 { [255.0, 0.0, 0.0] } else { [0.0, 0.0, 255.0] };
+            let c = towards.map(|t| (g + (t - g) * w).round() as u8);
+            [c[0], c[1], c[2], 255]
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -172,6 +238,29 @@ mod tests {
         let t = Translucent::new([(0.4, sheet(1.0))]);
         let c = t.crossings(Vec3::new(0.25, 0.0, 0.25), UP, 0.0, f32::INFINITY);
         assert_eq!(c.len(), 1, "{c:?}");
+    }
+
+    fn px(visibility: f32) -> RefPixel {
+        RefPixel {
+            covered: true,
+            receiver: true,
+            visibility,
+        }
+    }
+
+    #[test]
+    fn scores_split_within_and_outside_the_translucent_shadow() {
+        let truth = [px(0.5), px(0.5), px(1.0), px(0.0), RefPixel::EMPTY];
+        let rendered = [Some(0.5), Some(1.0), Some(0.75), None, Some(0.0)];
+        let m = score_transmittance(&rendered, &truth);
+        assert_eq!((m.receivers, m.in_shadow), (4, 2));
+        assert!((m.mae - (0.0 + 0.5 + 0.25 + 1.0) / 4.0).abs() < 1e-9, "{m:?}");
+        assert!((m.mae_in_shadow - 0.25).abs() < 1e-9);
+        assert!((m.mae_outside - 0.625).abs() < 1e-9);
+        assert_eq!(m.max_error, 1.0);
+        let image = transmittance_error_image(&rendered, &truth, &[100; 5]);
+        assert_eq!(image[0], [100, 100, 100, 255]);
+        assert_eq!(image[1], [0, 0, 255, 255]);
     }
 
     #[test]
