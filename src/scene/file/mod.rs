@@ -407,17 +407,11 @@ const MAX_SCATTER: u32 = 10_000;
 
 impl ScatterFile {
     /// (position offset in x, y and z, turn in degrees, scale factor) for each copy:
-    /// SplitMix64, so a seed gives the same scene on every machine (the height is drawn
-    /// last, so a scatter without one places its copies as before heights existed).
+    /// SplitMix64, so a seed gives the same scene on every machine. Heights come from a
+    /// stream of their own, so giving a scatter a `height` moves no copy across.
     fn placements(&self) -> Vec<(Vec3, f32, Vec3)> {
-        let mut state = self.seed;
-        let mut next = move || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut next = splitmix(self.seed);
+        let mut next_height = splitmix(self.seed ^ 0xD1B5_4A32_D192_ED03);
         let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
         let [x0, x1, z0, z1] = self.area.0;
         (0..self.count)
@@ -426,10 +420,22 @@ impl ScatterFile {
                 let scale = Vec3::from_array(std::array::from_fn(|k| {
                     lerp(self.scale_min.0[k], self.scale_max.0[k], next())
                 }));
-                let y = self.height.map_or(0.0, |Fixed([y0, y1])| lerp(y0, y1, next()));
+                let y = (self.height).map_or(0.0, |Fixed([y0, y1])| lerp(y0, y1, next_height()));
                 (Vec3::new(x, y, z), turn, scale)
             })
             .collect()
+    }
+}
+
+/// SplitMix64 from `seed`: numbers in [0, 1) with 24 bits.
+fn splitmix(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
     }
 }
 
