@@ -45,7 +45,11 @@ fn run(scene: &Scene, volumetric: Volumetric) -> Comparison {
 
 /// The truth's values over its receivers in the translucent shadow (below 1, above 0).
 fn shadow_values(c: &Comparison) -> Vec<f32> {
-    let truth = c.reference.transmittance.as_ref().expect("a transmittance truth");
+    let truth = c
+        .reference
+        .transmittance
+        .as_ref()
+        .expect("a transmittance truth");
     (truth.iter())
         .filter(|r| r.receiver && r.visibility < 1.0)
         .map(|r| r.visibility)
@@ -57,14 +61,20 @@ fn one_sheet_leaves_one_minus_its_opacity_which_off_renders_as_one_and_solid_as_
     let scene = sheets_scene(&[(0.0, 0.4)]);
     let off = run(&scene, Volumetric::Off);
     let values = shadow_values(&off);
-    assert!(values.len() > 2000, "{} receivers in the sheet's shadow", values.len());
+    assert!(
+        values.len() > 2000,
+        "{} receivers in the sheet's shadow",
+        values.len()
+    );
     assert!(values.iter().all(|v| (v - 0.6).abs() < 1e-6), "{values:?}");
     let t = off.transmittance.expect("scored");
     assert_eq!(t.in_shadow, values.len());
     // `off` renders 1 there: wrong by the opacity, and right elsewhere.
     assert!((t.mae_in_shadow - 0.4).abs() < 0.01, "{t:?}");
     assert!(t.mae_outside < 0.005, "{t:?}");
-    let solid = run(&scene, Volumetric::Solid).transmittance.expect("scored");
+    let solid = run(&scene, Volumetric::Solid)
+        .transmittance
+        .expect("scored");
     // `solid` renders 0 there (to the edge pixels PCF softens).
     assert!((solid.mae_in_shadow - 0.6).abs() < 0.02, "{solid:?}");
     assert!(solid.mae_outside < 0.01, "{solid:?}");
@@ -77,8 +87,15 @@ fn stacked_sheets_multiply_in_the_truth() {
     let both = values.iter().filter(|v| (*v - 0.375).abs() < 1e-6).count();
     let lower = values.iter().filter(|v| (*v - 0.5).abs() < 1e-6).count();
     let upper = values.iter().filter(|v| (*v - 0.75).abs() < 1e-6).count();
-    assert_eq!(both + lower + upper, values.len(), "other values: {values:?}");
-    assert!(both > 1000 && lower > 10 && upper > 10, "{both} {lower} {upper}");
+    assert_eq!(
+        both + lower + upper,
+        values.len(),
+        "other values: {values:?}"
+    );
+    assert!(
+        both > 1000 && lower > 10 && upper > 10,
+        "{both} {lower} {upper}"
+    );
 }
 
 #[test]
@@ -95,10 +112,16 @@ fn a_translucent_item_is_blended_by_its_opacity_over_what_is_behind_it() {
     // The middle of the frame shows the sheet.
     let i = (120 * 320 + 160) * 4;
     for c in 0..3 {
-        let (floor, sheet) = (f32::from(bare.colour.rgba[i + c]), f32::from(opaque.colour.rgba[i + c]));
+        let (floor, sheet) = (
+            f32::from(bare.colour.rgba[i + c]),
+            f32::from(opaque.colour.rgba[i + c]),
+        );
         let expected = 0.25 * sheet + 0.75 * floor;
         let got = f32::from(glass.colour.rgba[i + c]);
-        assert!((got - expected).abs() <= 1.0, "channel {c}: {got} against {expected}");
+        assert!(
+            (got - expected).abs() <= 1.0,
+            "channel {c}: {got} against {expected}"
+        );
     }
     // The measurement outputs keep the floor under the glass: the bare floor's position.
     let p = |f: &shadowmap::frame::Frame| f.positions.as_ref().unwrap()[120 * 320 + 160];
@@ -109,12 +132,20 @@ fn a_translucent_item_is_blended_by_its_opacity_over_what_is_behind_it() {
 #[test]
 fn the_smoke_scene_scores_both_wrongs_of_a_depth_map() {
     let scene = common::frozen("smoke");
-    let size = |s: &Scene| Scene { size: [320, 180], ..s.clone() };
+    let size = |s: &Scene| Scene {
+        size: [320, 180],
+        ..s.clone()
+    };
     let scene = size(&scene);
     let off = run(&scene, Volumetric::Off).transmittance.expect("scored");
-    let solid = run(&scene, Volumetric::Solid).transmittance.expect("scored");
+    let solid = run(&scene, Volumetric::Solid)
+        .transmittance
+        .expect("scored");
     assert!(off.in_shadow > 500, "{off:?}");
     // Off is too bright by what the smoke and glass stop, solid too dark by what they pass.
-    assert!(off.mae_in_shadow > 0.3 && solid.mae_in_shadow > 0.3, "{off:?} {solid:?}");
+    assert!(
+        off.mae_in_shadow > 0.3 && solid.mae_in_shadow > 0.3,
+        "{off:?} {solid:?}"
+    );
     assert!(off.mae_outside < 0.01, "{off:?}");
 }

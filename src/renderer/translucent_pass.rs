@@ -62,7 +62,10 @@ pub(super) fn draw(
         p.set_mat4_array("modelLightViewMatrix", &light_matrices);
         let m = &item.material;
         let colour = m.colour.truncate();
-        p.set_vec4("material.ambient", (scene.ambient * colour).extend(m.reflectance));
+        p.set_vec4(
+            "material.ambient",
+            (scene.ambient * colour).extend(m.reflectance),
+        );
         for (d, light) in diffuse.iter_mut().zip(&u.colour) {
             *d = *light * colour;
         }

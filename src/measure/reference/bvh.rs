@@ -69,7 +69,13 @@ fn hit(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> bool
 
 /// [`hit`], giving the distance of the hit.
 #[inline(always)]
-pub(super) fn hit_t(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+pub(super) fn hit_t(
+    tri: &[Vec3; 3],
+    origin: Vec3,
+    dir: Vec3,
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
     let [v0, e1, e2] = *tri;
     let p = dir.cross(e2);
     let det = e1.dot(p);

@@ -23,11 +23,11 @@ pub use metrics::{
     compute_metrics, compute_soft_metrics, error_image, penumbra_profiles, Metrics,
     PenumbraProfile, SoftMetrics,
 };
+pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
 pub use transmittance::{
     left_after, reference_transmittance, score_transmittance, transmittance_error_image, Crossing,
     Translucent, TransmittanceMetrics,
 };
-pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
 pub use visibility::{
     face_normals, reference_visibility, reference_visibility_supersampled, GBuffer, LightKind,
     RefPixel, RAY_EPSILON,

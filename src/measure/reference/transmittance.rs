@@ -55,7 +55,8 @@ impl Translucent {
     pub fn crossings(&self, origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Vec<Crossing> {
         let mut hits = Vec::new();
         let b = &self.bvh;
-        if b.nodes.is_empty() || !(t_max > t_min) {
+        // Written so that NaN bounds give no crossings.
+        if b.nodes.is_empty() || t_max.partial_cmp(&t_min) != Some(std::cmp::Ordering::Greater) {
             return hits;
         }
         let inv = Vec3::ONE / dir;
@@ -81,7 +82,10 @@ impl Translucent {
         hits.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.item.cmp(&b.item)));
         let mut out: Vec<Crossing> = Vec::with_capacity(hits.len());
         for h in hits {
-            let same = out.iter().rev().take_while(|c| h.t - c.t <= SAME_CROSSING * h.t.abs().max(1.0));
+            let same = out
+                .iter()
+                .rev()
+                .take_while(|c| h.t - c.t <= SAME_CROSSING * h.t.abs().max(1.0));
             if !same.clone().any(|c| c.item == h.item) {
                 out.push(h);
             }
@@ -188,7 +192,11 @@ pub fn transmittance_error_image(
                 _ => 0.0,
             };
             let w = (e.abs() * 2.0).min(1.0);
-            let towards = if e < 0.0 { [255.0, 0.0, 0.0] } else { [0.0, 0.0, 255.0] };
+            let towards = if e < 0.0 {
+                [255.0, 0.0, 0.0]
+            } else {
+                [0.0, 0.0, 255.0]
+            };
             let c = towards.map(|t| (g + (t - g) * w).round() as u8);
             [c[0], c[1], c[2], 255]
         })
@@ -201,10 +209,19 @@ mod tests {
 
     /// A square sheet at height `y`, x and z in [-1, 1].
     fn sheet(y: f32) -> Vec<Triangle> {
-        let p = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| Vec3::new(x, y, z));
+        let p =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| Vec3::new(x, y, z));
         vec![
-            Triangle { a: p[0], b: p[1], c: p[2] },
-            Triangle { a: p[0], b: p[2], c: p[3] },
+            Triangle {
+                a: p[0],
+                b: p[1],
+                c: p[2],
+            },
+            Triangle {
+                a: p[0],
+                b: p[2],
+                c: p[3],
+            },
         ]
     }
 
@@ -254,7 +271,10 @@ mod tests {
         let rendered = [Some(0.5), Some(1.0), Some(0.75), None, Some(0.0)];
         let m = score_transmittance(&rendered, &truth);
         assert_eq!((m.receivers, m.in_shadow), (4, 2));
-        assert!((m.mae - (0.0 + 0.5 + 0.25 + 1.0) / 4.0).abs() < 1e-9, "{m:?}");
+        assert!(
+            (m.mae - (0.0 + 0.5 + 0.25 + 1.0) / 4.0).abs() < 1e-9,
+            "{m:?}"
+        );
         assert!((m.mae_in_shadow - 0.25).abs() < 1e-9);
         assert!((m.mae_outside - 0.625).abs() < 1e-9);
         assert_eq!(m.max_error, 1.0);

@@ -423,7 +423,8 @@ fn a_scatter_with_a_height_fills_a_volume_and_moves_no_copy_across() {
     assert!(flat.iter().all(|i| i.position.y == 2.0));
     let ys: Vec<f32> = cloud.iter().map(|i| i.position.y).collect();
     assert!(ys.iter().all(|y| (1.5..=3.5).contains(y)), "{ys:?}");
-    let spread = ys.iter().fold(f32::MIN, |a, b| a.max(*b)) - ys.iter().fold(f32::MAX, |a, b| a.min(*b));
+    let spread =
+        ys.iter().fold(f32::MIN, |a, b| a.max(*b)) - ys.iter().fold(f32::MAX, |a, b| a.min(*b));
     assert!(spread > 1.5, "heights spread over {spread}");
     for (a, b) in flat.iter().zip(&cloud) {
         assert_eq!((a.position.x, a.position.z), (b.position.x, b.position.z));
@@ -448,11 +449,19 @@ fn volumetric_is_refused_by_name_where_it_cannot_cast() {
         "s.toml: shadow.volumetric = solid: light cannot use it: a point light's cube map \
          takes volumetric = \"off\" only"
     );
-    let (_, message) = fails(&format!("{LIGHT}[shadow]\nvolumetric = \"solid\"\ncascades = 2\n"));
-    assert!(message.contains("shadow.volumetric = solid: light cannot use it: cascades"), "{message}");
+    let (_, message) = fails(&format!(
+        "{LIGHT}[shadow]\nvolumetric = \"solid\"\ncascades = 2\n"
+    ));
+    assert!(
+        message.contains("shadow.volumetric = solid: light cannot use it: cascades"),
+        "{message}"
+    );
     let (_, message) = fails(&format!("{LIGHT}[shadow]\nvolumetric = \"smoky\"\n"));
     assert!(message.contains("volumetric"), "{message}");
-    assert!(message.contains("off") && message.contains("solid"), "{message}");
+    assert!(
+        message.contains("off") && message.contains("solid"),
+        "{message}"
+    );
     let ok = format!("{LIGHT}[shadow]\nvolumetric = \"solid\"\n");
     assert!(parse(&ok, Path::new("s.toml"), None).is_ok());
 }
