@@ -135,10 +135,9 @@ pub fn draw_map_casters(
         view.view64,
         keep,
     );
-    let uniform = "modelLightViewMatrix";
-    let drawn = drawn + super::volumetric::draw_solid(pass, scene, program, uniform, view.view64);
     pass.casters.drawn += drawn as u64;
     pass.casters.total += casters(scene);
+    super::volumetric::draw_solid(pass, scene, program, view.view64);
 }
 
 /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a

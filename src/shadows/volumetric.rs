@@ -21,19 +21,14 @@ pub fn translucent_casters(scene: &Scene) -> impl Iterator<Item = (usize, &GameI
 }
 
 /// With `volumetric = "solid"`, draws the translucent casters into the bound 2D depth map
-/// as opaque ones (`light`: the light's view, `uniform` the program's model-light-view
-/// matrix); otherwise nothing. Returns how many it drew.
-pub fn draw_solid(
-    pass: &mut DepthPass,
-    scene: &Scene,
-    program: &ShaderProgram,
-    uniform: &'static str,
-    light: DMat4,
-) -> usize {
+/// as opaque ones (`light`: the light's view; depth.vert's uniforms) and counts them among
+/// the casters drawn and offered; otherwise nothing.
+pub fn draw_solid(pass: &mut DepthPass, scene: &Scene, program: &ShaderProgram, light: DMat4) {
     if pass.settings.volumetric != Volumetric::Solid {
-        return 0;
+        return;
     }
-    let mut drawn = 0;
+    let uniform = "modelLightViewMatrix";
+    let mut drawn = 0u64;
     for (mesh_id, mesh) in pass.meshes.iter().enumerate() {
         let items = translucent_casters(scene).filter(|(_, i)| i.mesh == mesh_id);
         mesh.render_list(items, |(_, item)| {
@@ -41,5 +36,6 @@ pub fn draw_solid(
             program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
         });
     }
-    drawn
+    pass.casters.drawn += drawn;
+    pass.casters.total += drawn;
 }
