@@ -186,7 +186,11 @@ fn a_still_frame_takes_its_shadow_tests_from_the_mask_and_equals_a_fresh_one() {
             }
             if still.items.iter().any(|i| i.is_translucent()) {
                 let never = (uses.written, uses.read);
-                assert_eq!(never, (0, 0), "{name}, {what}: translucent items need their tests");
+                assert_eq!(
+                    never,
+                    (0, 0),
+                    "{name}, {what}: translucent items need their tests"
+                );
                 continue;
             }
             assert_eq!(
