@@ -23,6 +23,7 @@ names::named_by_clap!(
     LightProjection,
     Fit,
     PointPass,
+    Volumetric,
 );
 
 /// Which technique draws a light's shadow: the chapters' depth maps, or the slides' closing
@@ -320,6 +321,17 @@ pub enum Cull {
     Back,
     /// LearnOpenGL's peter-panning fix.
     Front,
+}
+
+/// How a light casts its translucent items (opacity below 1): the depth map holds one
+/// depth per texel, so without a volumetric technique they cast all or nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum Volumetric {
+    /// They cast nothing (the chapters' depth map ignores them): one wrong.
+    #[default]
+    Off,
+    /// They cast as if opaque, into the depth map: the other wrong.
+    Solid,
 }
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
@@ -777,6 +789,12 @@ shadow_settings! {
         shadow_distance: f32 = 0.0,
             range(Range::at_least(0.0).note("0 = the camera's far plane")),
             arg(value_name = "DEPTH", value_parser = parse_finite, allow_negative_numbers = true);
+    }
+    /// Translucent casters (items with `opacity` below 1).
+    "Translucent casters" {
+        /// How a light casts its translucent items: `off` (not at all) or `solid` (as
+        /// opaque, in the depth map); a directional or spot light's 2D map only.
+        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid");
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {

@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Camera, Scene, StepContext, StepList};
 use crate::settings::{
     BeyondFar, BiasMode, Blur, Cull, DepthLookup, Filter, LightProjection, MapSize, MsmToward,
-    ShadowSettings, ShadowTechnique, Wrap,
+    ShadowSettings, ShadowTechnique, Volumetric, Wrap,
 };
 
 /// One step of the chapters.
@@ -417,11 +417,36 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
     },
 ];
 
+/// How translucent items cast (`[steps] list = "volumetric"`, the smoke scene): the two
+/// wrongs of a depth map first.
+pub const VOLUMETRIC_STEPS: &[Step] = &[
+    Step {
+        name: "volumetric-off",
+        change: "Translucent items stay out of the depth map, as the chapters' depth pass \
+                 would have it: they cast nothing.",
+        look_for: "No shadow under the smoke or the glass; the cube's shadow alone.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| s.volumetric = Volumetric::Off,
+    },
+    Step {
+        name: "volumetric-solid",
+        change: "Translucent items go into the depth map as if opaque.",
+        look_for: "The smoke and the glass cast shadows as black as the cube's.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| s.volumetric = Volumetric::Solid,
+    },
+];
+
 /// The steps of `scene`'s list (`[steps] list`).
 pub fn of(scene: &Scene) -> &'static [Step] {
     match scene.steps.list {
         StepList::Chapters => STEPS,
         StepList::Playground => PLAYGROUND_STEPS,
+        StepList::Volumetric => VOLUMETRIC_STEPS,
     }
 }
 
@@ -500,7 +525,7 @@ pub fn lists_help() -> String {
 /// Every list's step names, each once (what `--step` takes; a scene takes its own list's).
 pub fn names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
-    for step in STEPS.iter().chain(PLAYGROUND_STEPS) {
+    for step in STEPS.iter().chain(PLAYGROUND_STEPS).chain(VOLUMETRIC_STEPS) {
         if !names.contains(&step.name) {
             names.push(step.name);
         }

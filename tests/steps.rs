@@ -622,9 +622,9 @@ fn linear_depth_lookups_change_the_pcf_penumbra_and_nothing_where_they_are_idle(
 }
 
 /// The scenes the step lists were written for: the chapters' on the DummyGame and on
-/// LearnOpenGL's, the playground's on its own. (Other scenes take the chapters' list too,
+/// LearnOpenGL's, the playground's and the translucent casters' on their own. (Other scenes take the chapters' list too,
 /// without stages of their own.)
-const STEP_SCENES: [&str; 3] = ["dummy", "learnopengl", "playground"];
+const STEP_SCENES: [&str; 4] = ["dummy", "learnopengl", "playground", "smoke"];
 
 /// A pixel has changed when a channel moved by more than this many levels of 255.
 const CHANGED_LEVELS: i32 = 8;

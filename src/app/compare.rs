@@ -7,7 +7,10 @@ use shadowmap::engine::{Gl, HeadlessContext};
 use shadowmap::frame::Frame;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, write_into, Activity};
-use shadowmap::reference::{error_image, npy_bytes_f32_hw3, Metrics, RefPixel};
+use shadowmap::reference::{
+    error_image, npy_bytes_f32_hw3, transmittance_error_image, Metrics, RefPixel,
+    TransmittanceMetrics,
+};
 use shadowmap::settings::ShadowTechnique;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
@@ -44,6 +47,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     let vis = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(vis, args.band);
     let area = reference.score_area(vis);
+    let transmittance = reference.score_transmittance(vis);
     activity.done("");
 
     let mut files = picture_files(&frame, &reference, width, height)?;
@@ -67,6 +71,8 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         // A light with a size: the soft truth's figures (null for a point light).
         "light_size": scene.lights.get(args.light).map(|l| l.size()),
         "area_light": area,
+        // With translucent casters: against the transmittance truth (null without).
+        "transmittance": transmittance,
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
     write_files(dir, &files)?;
@@ -77,6 +83,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     print_agreement(agreement.as_ref(), args.band);
     if let Some(a) = &area {
         println!("{}", area_summary(a));
+    }
+    if let Some(t) = &transmittance {
+        println!("{}", transmittance_summary(t, settings.volumetric.name()));
     }
     let measured = &plan.lights[args.light.min(plan.lights.len().saturating_sub(1))];
     let filter = measured.settings.filter;
@@ -178,6 +187,19 @@ fn picture_files(
         rgba: error.concat(),
     })?;
     files.push(("error.png", error.encode_png()?));
+    if let Some(truth) = &reference.transmittance {
+        files.push((
+            "reference-transmittance.png",
+            reference_image(width, height, truth).encode_png()?,
+        ));
+        let error = transmittance_error_image(vis, truth, &grey);
+        let error = ImageData {
+            width,
+            height,
+            rgba: error.concat(),
+        };
+        files.push(("error-transmittance.png", error.encode_png()?));
+    }
     if let Some(truth) = &reference.area {
         files.push((
             "reference-area.png",
@@ -295,6 +317,16 @@ pub fn area_summary(a: &shadowmap::reference::SoftMetrics) -> String {
         a.penumbra_width_px,
         a.penumbra_width_truth_px,
         a.penumbra_edges
+    )
+}
+
+/// The line `compare` adds for a scene with translucent casters.
+pub fn transmittance_summary(t: &TransmittanceMetrics, volumetric: &str) -> String {
+    format!(
+        "transmittance: MAE {:.4} (within the translucent shadow {:.4} over {} receivers, \
+         outside it {:.4}), max {:.4}, over {} receivers, volumetric = {volumetric}; \
+         error-transmittance.png: red = too dark, blue = too bright",
+        t.mae, t.mae_in_shadow, t.in_shadow, t.mae_outside, t.max_error, t.receivers
     )
 }
 

@@ -4,6 +4,7 @@
 //! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
+pub mod blend;
 pub mod check;
 pub mod headless;
 pub mod mesh;
@@ -25,6 +26,7 @@ use std::rc::Rc;
 /// A shared handle to the current GL context; every GL object keeps one so it can free itself.
 pub type Gl = Rc<glow::Context>;
 
+pub use blend::TranslucentBlend;
 pub use check::{check_gl, gl_limits, GlLimits};
 pub use headless::HeadlessContext;
 pub use mesh::{FullScreenTriangle, Mesh};

@@ -9,9 +9,10 @@ use glam::{DMat4, DVec3};
 
 use super::frame::{render_frames, render_frames_of_light, Frame};
 use super::reference::{
-    area_visibility, compute_metrics, compute_soft_metrics, face_normals, reference_visibility,
-    reference_visibility_supersampled, Bvh, GBuffer, LightExtent, LightKind, Metrics, RefPixel,
-    SoftMetrics, Triangle,
+    area_visibility, compute_metrics, compute_soft_metrics, face_normals, reference_transmittance,
+    reference_visibility, reference_visibility_supersampled, score_transmittance, Bvh, GBuffer,
+    LightExtent, LightKind, Metrics, RefPixel, SoftMetrics, Translucent, TransmittanceMetrics,
+    Triangle,
 };
 use crate::engine::{Gl, Outputs};
 use crate::error::{Error, Result};
@@ -57,6 +58,10 @@ pub struct Reference {
     /// With a light of non-zero size, the soft truth ([`crate::reference::area`]); the
     /// figures above stay the hard ones of a point at its centre.
     pub area: Option<AreaTruth>,
+    /// With translucent casters, the light each receiver gets: 0 behind an opaque caster,
+    /// else the product of (1 - opacity) over the translucent crossings
+    /// ([`crate::reference::transmittance`]).
+    pub transmittance: Option<Vec<RefPixel>>,
     /// CPU time to build the BVH and trace the references.
     pub trace_ms: f64,
     pub triangles: usize,
@@ -134,13 +139,28 @@ pub fn caster_bvh(scene: &Scene, origin: DVec3) -> Bvh {
 fn bvh_of(scene: &Scene, origin: DVec3, keep: impl Fn(&GameItem) -> bool) -> Bvh {
     let mut triangles = Vec::new();
     for item in scene.items.iter().filter(|i| keep(i)) {
-        let m = DMat4::from_translation(-origin) * item.model_matrix64();
-        triangles.extend(scene.meshes[item.mesh].triangles().map(|t| {
-            let [a, b, c] = t.map(|p| m.transform_point3(p.as_dvec3()).as_vec3());
-            Triangle { a, b, c }
-        }));
+        triangles.extend(triangles_of(scene, item, origin));
     }
     Bvh::build(triangles)
+}
+
+/// An item's triangles in world space minus `origin` (composed in double precision).
+fn triangles_of<'a>(
+    scene: &'a Scene,
+    item: &GameItem,
+    origin: DVec3,
+) -> impl Iterator<Item = Triangle> + 'a {
+    let m = DMat4::from_translation(-origin) * item.model_matrix64();
+    scene.meshes[item.mesh].triangles().map(move |t| {
+        let [a, b, c] = t.map(|p| m.transform_point3(p.as_dvec3()).as_vec3());
+        Triangle { a, b, c }
+    })
+}
+
+/// The translucent casters, each its opacity and triangles, relative to `origin`.
+pub fn translucent_casters(scene: &Scene, origin: DVec3) -> Translucent {
+    let items = crate::shadows::volumetric::translucent_casters(scene);
+    Translucent::new(items.map(|(_, i)| (i.opacity, triangles_of(scene, i, origin).collect())))
 }
 
 /// Renders the view's G-buffer (and, with supersampling, one at N times the resolution) and
@@ -206,6 +226,9 @@ pub fn compute_reference(
     let supersampled = hi
         .as_ref()
         .map(|hi| reference_visibility_supersampled(&bvh, &light, hi, n as usize));
+    let translucent = translucent_casters(scene, origin);
+    let transmittance = (!translucent.is_empty())
+        .then(|| reference_transmittance(&hard, &translucent, &light, &gbuffer));
     let area = light_extent(scene, opts.light, &own).map(|extent| {
         let rays = opts.rays.max(1) as usize;
         AreaTruth {
@@ -221,6 +244,7 @@ pub fn compute_reference(
         hard,
         supersampled,
         area,
+        transmittance,
         trace_ms: start.elapsed().as_secs_f64() * 1000.0,
         triangles: bvh.triangle_count(),
         origin,
@@ -275,6 +299,12 @@ impl Reference {
         })
     }
 
+    /// Scores a rendered visibility image against the transmittance truth, when the scene
+    /// has translucent casters.
+    pub fn score_transmittance(&self, rendered: &[Option<f32>]) -> Option<TransmittanceMetrics> {
+        (self.transmittance.as_ref()).map(|truth| score_transmittance(rendered, truth))
+    }
+
     /// Scores a rendered visibility image against this reference.
     pub fn score(&self, rendered: &[Option<f32>], band: usize) -> Metrics {
         compute_metrics(
@@ -317,6 +347,7 @@ impl Reference {
             hard,
             supersampled: None,
             area: None,
+            transmittance: None,
             trace_ms: self.trace_ms,
             triangles: self.triangles,
             origin: self.origin,
@@ -331,6 +362,8 @@ pub struct Comparison {
     pub metrics: Metrics,
     /// Against the soft truth, for a light with a size.
     pub area: Option<SoftMetrics>,
+    /// Against the transmittance truth, for a scene with translucent casters.
+    pub transmittance: Option<TransmittanceMetrics>,
 }
 
 /// Renders `scene` with `settings`, traces the reference and scores the frame.
@@ -345,11 +378,13 @@ pub fn compare(
     let visibility = frame.visibility.as_deref().unwrap_or_default();
     let metrics = reference.score(visibility, opts.band);
     let area = reference.score_area(visibility);
+    let transmittance = reference.score_transmittance(visibility);
     Ok(Comparison {
         frame,
         reference,
         metrics,
         area,
+        transmittance,
     })
 }
 

@@ -16,6 +16,7 @@ mod scene_inputs;
 mod scene_pass;
 mod shadow_mask;
 mod target;
+mod translucent_pass;
 mod volume_pass;
 
 pub use crate::shadows::schedule::DepthPasses;

@@ -6,6 +6,7 @@
 use glam::{DMat4, Mat4, Vec3};
 
 use super::scene_inputs::{bind_maps, normal_matrix, Inputs, LightUniforms};
+use super::translucent_pass;
 use crate::engine::{Gl, Samplers};
 use crate::error::Result;
 use crate::scene::Scene;
@@ -42,7 +43,8 @@ pub fn draw(
     let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
     let mut diffuse = vec![Vec3::ZERO; u.colour.len()];
     for (mesh_id, mesh) in inputs.meshes.iter().enumerate() {
-        let items = scene.items.iter().filter(|i| i.mesh == mesh_id);
+        let items = (scene.items.iter())
+            .filter(|i| i.mesh == mesh_id && !translucent_pass::drawn_later(inputs, i));
         mesh.render_list(items, |item| {
             let model = item.model_matrix64();
             let model_view = (view64 * model).as_mat4();
@@ -68,6 +70,7 @@ pub fn draw(
                 .bind(MATERIAL_UNIT);
         });
     }
+    translucent_pass::draw(inputs, gl, scene, view64, origin, &u);
     p.unbind();
     drop(bound);
     Ok(())

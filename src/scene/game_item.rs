@@ -29,11 +29,23 @@ pub struct GameItem {
     pub material: Material,
     /// Degrees added to `rotation` per update (the DummyGame's cube turns 0.5 about Y).
     pub spin: Vec3,
-    /// Whether the item is drawn into the shadow map.
+    /// Whether the item is drawn into the shadow map (never a translucent one: see
+    /// `casts_translucent`).
     pub casts_shadows: bool,
+    /// How much of the light a crossing of its surface stops: each crossing multiplies the
+    /// light left by (1 - opacity). 1 = opaque, the chapters' items.
+    pub opacity: f32,
+    /// A translucent item's own `casts_shadows`: whether it casts at all, by the light's
+    /// volumetric technique (`crate::shadows::volumetric`) rather than the depth map.
+    pub casts_translucent: bool,
 }
 
 impl GameItem {
+    /// Whether light passes it in part (opacity below 1).
+    pub fn is_translucent(&self) -> bool {
+        self.opacity < 1.0
+    }
+
     pub fn model_matrix(&self) -> Mat4 {
         Transformation::model(self.position, self.rotation, self.scale)
     }

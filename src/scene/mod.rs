@@ -50,6 +50,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "penumbra",
         include_str!("../../assets/scenes/penumbra.toml"),
     ),
+    ("smoke", include_str!("../../assets/scenes/smoke.toml")),
 ];
 
 /// The lighting equation of the scene pass.
@@ -121,6 +122,8 @@ pub enum StepList {
     Chapters,
     /// The shadow-playground's demo pages, then PCSS.
     Playground,
+    /// How translucent items cast: not at all, then as opaque.
+    Volumetric,
 }
 
 impl StepList {
@@ -128,6 +131,7 @@ impl StepList {
         match self {
             StepList::Chapters => "chapters",
             StepList::Playground => "playground",
+            StepList::Volumetric => "volumetric",
         }
     }
 }

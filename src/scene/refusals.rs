@@ -6,6 +6,7 @@
 use super::light::{DirectionalLight, Light, BOOK_ANGLES_MAX_X};
 use crate::settings::{
     DirectionalLayers, Filter, Fit, LightProjection, LightView, ShadowSettings, ShadowTechnique,
+    Volumetric,
 };
 
 /// Why a light cannot be drawn with its settings: the setting, and the message (which
@@ -98,6 +99,11 @@ fn refusal(
             ),
         ));
     }
+    if let Some(why) = volumetric_refusal(settings, cube, layers.is_some()) {
+        let value = settings.volumetric.name();
+        let message = format!("shadow.volumetric = {value}: {name} cannot use it: {why}");
+        return Some(("volumetric", message));
+    }
     let what = match light {
         Light::Point(_) => "a point light's cube map",
         _ => match layers? {
@@ -141,6 +147,39 @@ fn book_angles_problem(
             d.x, d.y, d.z
         )
     })
+}
+
+/// Why a light cannot cast its translucent items by `settings.volumetric`, if it cannot:
+/// the techniques draw into one 2D depth map, with the box given by hand.
+pub fn volumetric_refusal(
+    settings: &ShadowSettings,
+    cube: bool,
+    layered: bool,
+) -> Option<&'static str> {
+    if settings.volumetric == Volumetric::Off {
+        return None;
+    }
+    if settings.technique == ShadowTechnique::Volumes {
+        return Some("shadow volumes cast opaque silhouettes only; expected technique = \"maps\"");
+    }
+    if cube {
+        return Some("a point light's cube map takes volumetric = \"off\" only");
+    }
+    if layered {
+        return Some(
+            "cascades and caster groups take volumetric = \"off\" only; use cascades = 1 and \
+             caster_groups = 1",
+        );
+    }
+    if settings.filter.moments() {
+        return Some("the moment maps (vsm, evsm2, evsm4, msm) take volumetric = \"off\" only");
+    }
+    if settings.fit != Fit::Manual {
+        return Some(
+            "a fitted box is fitted to the opaque casters only; expected fit = \"manual\"",
+        );
+    }
+    None
 }
 
 /// Why a light whose shadow is a cube map (`cube`) or layers (`layered`: cascades, caster

@@ -137,6 +137,7 @@ pub fn draw_map_casters(
     );
     pass.casters.drawn += drawn as u64;
     pass.casters.total += casters(scene);
+    super::volumetric::draw_solid(pass, scene, program, view.view64);
 }
 
 /// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a

@@ -14,6 +14,7 @@
 //! - [`patch`]: the part of a cached 2D map that moved casters dirtied, drawn again alone.
 //! - [`plan`]: which kind each light gets, under which settings, and what is refused: decided
 //!   once, before any frame.
+//! - [`volumetric`]: how translucent items cast (`volumetric = "off"` or `"solid"`).
 //! - [`volumes`]: the slides' stencil shadow volumes, beside the maps rather than behind
 //!   [`Technique`]: no storage, no depth pass; the renderer draws them per light into the
 //!   stencil buffer (`renderer::volume_pass`).
@@ -40,6 +41,7 @@ pub mod schedule;
 pub mod slots;
 pub mod summed;
 pub mod volumes;
+pub mod volumetric;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 

@@ -69,7 +69,13 @@ fn hit(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> bool
 
 /// [`hit`], giving the distance of the hit.
 #[inline(always)]
-fn hit_t(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+pub(super) fn hit_t(
+    tri: &[Vec3; 3],
+    origin: Vec3,
+    dir: Vec3,
+    t_min: f32,
+    t_max: f32,
+) -> Option<f32> {
     let [v0, e1, e2] = *tri;
     let p = dir.cross(e2);
     let det = e1.dot(p);
@@ -95,11 +101,11 @@ fn hit_t(tri: &[Vec3; 3], origin: Vec3, dir: Vec3, t_min: f32, t_max: f32) -> Op
 /// Flat node. Leaves have `count > 0` and own `tris[start..start + count]`;
 /// inner nodes have `count == 0` and children at `start` and `start + 1`.
 #[derive(Debug, Clone, Copy)]
-struct Node {
+pub(super) struct Node {
     lo: Vec3,
     hi: Vec3,
-    start: u32,
-    count: u32,
+    pub(super) start: u32,
+    pub(super) count: u32,
 }
 
 impl Node {
@@ -115,9 +121,12 @@ impl Node {
 /// vectors so traversal is a loop over indices, not pointer chasing.
 #[derive(Debug, Clone)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    pub(super) nodes: Vec<Node>,
     /// Triangles in leaf order, prepared as `[v0, e1, e2]`.
-    tris: Vec<[Vec3; 3]>,
+    pub(super) tris: Vec<[Vec3; 3]>,
+    /// Each of `tris`' index in the triangles it was built from (for the crossings of
+    /// [`super::transmittance`], which need to know whose surface a hit is).
+    pub(super) ids: Vec<u32>,
 }
 
 /// Axis-aligned box used during the build.
@@ -164,15 +173,16 @@ impl Bvh {
     /// # Panics
     /// If more than `u32::MAX` triangles remain (memory would run out first).
     pub fn build(triangles: Vec<Triangle>) -> Bvh {
-        let tris: Vec<Triangle> = triangles
-            .into_iter()
-            .filter(|t| !t.is_degenerate())
-            .collect();
+        let (kept, tris): (Vec<u32>, Vec<Triangle>) = (0u32..)
+            .zip(triangles)
+            .filter(|(_, t)| !t.is_degenerate())
+            .unzip();
         let n = tris.len();
         if n == 0 {
             return Bvh {
                 nodes: Vec::new(),
                 tris: Vec::new(),
+                ids: Vec::new(),
             };
         }
         assert!(u32::try_from(n).is_ok(), "too many triangles for the BVH");
@@ -230,7 +240,8 @@ impl Bvh {
         }
 
         let tris = order.iter().map(|&i| tris[i as usize].prepared()).collect();
-        Bvh { nodes, tris }
+        let ids = order.iter().map(|&i| kept[i as usize]).collect();
+        Bvh { nodes, tris, ids }
     }
 
     /// Number of triangles stored (after dropping degenerate ones).
@@ -357,7 +368,7 @@ impl Bvh {
 /// Entry distance of the ray into the node's box clipped to (t_min, t_max),
 /// or None if it misses.
 #[inline(always)]
-fn slab_entry(node: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+pub(super) fn slab_entry(node: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
     let mut near = t_min;
     let mut far = t_max;
     slab_axis(node.lo.x, node.hi.x, o.x, inv.x, &mut near, &mut far);

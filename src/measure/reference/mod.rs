@@ -1,4 +1,5 @@
-//! Exact CPU reference for hard shadows, and for soft ones ([`area`]: a light with a size).
+//! Exact CPU reference for hard shadows, for soft ones ([`area`]: a light with a size), and
+//! for translucent casters ([`transmittance`]).
 //!
 //! Shadow maps are approximations: they trade exactness for speed and show
 //! acne, peter-panning and aliased edges. To measure those errors we need the
@@ -13,6 +14,7 @@ pub mod area;
 pub mod bvh;
 pub mod metrics;
 pub mod npy;
+pub mod transmittance;
 pub mod visibility;
 
 pub use area::{area_visibility, LightExtent};
@@ -22,6 +24,10 @@ pub use metrics::{
     PenumbraProfile, SoftMetrics,
 };
 pub use npy::{npy_bytes_f32_hw3, write_npy_f32_hw3};
+pub use transmittance::{
+    left_after, reference_transmittance, score_transmittance, transmittance_error_image, Crossing,
+    Translucent, TransmittanceMetrics,
+};
 pub use visibility::{
     face_normals, reference_visibility, reference_visibility_supersampled, GBuffer, LightKind,
     RefPixel, RAY_EPSILON,

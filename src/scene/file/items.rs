@@ -55,6 +55,13 @@ impl Items {
                 format!("{}: expected a finite number > 0", item.tiles),
             ));
         }
+        let opacity = item.opacity;
+        if !(opacity > 0.0 && opacity <= 1.0) {
+            return Err(cx.bad(
+                field("opacity"),
+                format!("{opacity}: expected a number above 0 and at most 1 (1 = opaque)"),
+            ));
+        }
         let mesh = self.mesh(&item, &field, cx)?;
         let texture = self.texture(item.texture.as_deref(), &field, cx)?;
         let one = GameItem {
@@ -69,7 +76,10 @@ impl Items {
                 reflectance: item.reflectance,
             },
             spin: Vec3::from(item.spin.0),
-            casts_shadows: item.casts_shadows,
+            // A translucent item stays out of the depth map: its technique casts it.
+            casts_shadows: item.casts_shadows && opacity >= 1.0,
+            opacity,
+            casts_translucent: item.casts_shadows && opacity < 1.0,
         };
         match &item.scatter {
             None => self.items.push(one),
@@ -280,6 +290,15 @@ fn scatter(
             ),
         ));
     }
+    if let Some(h) = sc.height {
+        let [y0, y1] = h.0;
+        if !(y0 <= y1 && (y1 - y0).is_finite()) {
+            return Err(cx.bad(
+                field("scatter.height"),
+                format!("{:?}: expected [y_min, y_max] with y_min <= y_max", h.0),
+            ));
+        }
+    }
     let scales = sc.scale_min.0.iter().chain(&sc.scale_max.0);
     if scales.clone().any(|v| *v <= 0.0) {
         return Err(cx.bad(
@@ -291,9 +310,9 @@ fn scatter(
         .placements()
         .into_iter()
         .enumerate()
-        .map(|(k, ([x, z], turn, factor))| GameItem {
+        .map(|(k, (offset, turn, factor))| GameItem {
             name: format!("{}{k}", one.name),
-            position: one.position + Vec3::new(x, 0.0, z),
+            position: one.position + offset,
             rotation: one.rotation + Vec3::new(0.0, turn, 0.0),
             scale: one.scale * factor,
             ..one.clone()

@@ -365,6 +365,11 @@ struct ItemFile {
     spin: Fixed<f32, 3>,
     #[serde(default = "yes")]
     casts_shadows: bool,
+    /// How much light a crossing of its surface stops, 0 < opacity <= 1: each crossing
+    /// multiplies the light left by (1 - opacity). Below 1 the item is translucent: drawn
+    /// blended, and cast by the volumetric technique instead of the depth map.
+    #[serde(default = "one")]
+    opacity: f32,
     /// Instead of one item, `count` copies strewn over an area (the `large` scene's
     /// forest of pillars), each turned and scaled at random from a fixed seed.
     scatter: Option<ScatterFile>,
@@ -378,7 +383,8 @@ fn unit_scale() -> ScaleFile {
 }
 
 /// Copies of an item at random (but repeatable) places: x and z uniform over `area`, y
-/// from the item's position, a turn about y, and the item's scale times a factor per axis
+/// from the item's position (plus a height uniform over `height`, when given: a cloud in a
+/// volume, such as smoke), a turn about y, and the item's scale times a factor per axis
 /// between `scale_min` and `scale_max`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -392,23 +398,20 @@ struct ScatterFile {
     scale_min: Fixed<f32, 3>,
     #[serde(default = "one3")]
     scale_max: Fixed<f32, 3>,
+    /// [y_min, y_max] added to the item's y; `None`: every copy at the item's y.
+    height: Option<Fixed<f32, 2>>,
 }
 
 /// The most copies one scatter makes (a typo of a few zeros should not hang the loader).
 const MAX_SCATTER: u32 = 10_000;
 
 impl ScatterFile {
-    /// (position offset in x and z, turn in degrees, scale factor) for each copy: SplitMix64,
-    /// so a seed gives the same scene on every machine.
-    fn placements(&self) -> Vec<([f32; 2], f32, Vec3)> {
-        let mut state = self.seed;
-        let mut next = move || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        };
+    /// (position offset in x, y and z, turn in degrees, scale factor) for each copy:
+    /// SplitMix64, so a seed gives the same scene on every machine. Heights come from a
+    /// stream of their own, so giving a scatter a `height` moves no copy across.
+    fn placements(&self) -> Vec<(Vec3, f32, Vec3)> {
+        let mut next = splitmix(self.seed);
+        let mut next_height = splitmix(self.seed ^ 0xD1B5_4A32_D192_ED03);
         let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
         let [x0, x1, z0, z1] = self.area.0;
         (0..self.count)
@@ -417,9 +420,22 @@ impl ScatterFile {
                 let scale = Vec3::from_array(std::array::from_fn(|k| {
                     lerp(self.scale_min.0[k], self.scale_max.0[k], next())
                 }));
-                ([x, z], turn, scale)
+                let y = (self.height).map_or(0.0, |Fixed([y0, y1])| lerp(y0, y1, next_height()));
+                (Vec3::new(x, y, z), turn, scale)
             })
             .collect()
+    }
+}
+
+/// SplitMix64 from `seed`: numbers in [0, 1) with 24 bits.
+fn splitmix(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
     }
 }
 

@@ -51,7 +51,7 @@ fn a_lights_size_is_read_and_checked_for_its_kind() {
     refuses(
         "[light]\nangle = 45.0\n[steps]\nlist = \"book\"\n",
         "steps.list",
-        "unknown variant `book`, expected `chapters` or `playground`",
+        "unknown variant `book`, expected one of `chapters`, `playground`, `volumetric`",
     );
 }
 
@@ -378,4 +378,90 @@ fn fields_are_named_down_to_the_element_and_its_name() {
         message,
         "s.toml: line 3, column 1, at `angle`: duplicate key"
     );
+}
+
+#[test]
+fn opacity_makes_an_item_translucent_and_is_checked() {
+    let text = format!(
+        "{LIGHT}[[item]]\nmesh = \"plane\"\nopacity = 0.25\n\
+         [[item]]\nmesh = \"cube\"\nopacity = 0.5\ncasts_shadows = false\n[[item]]\nmesh = \"cube\"\n"
+    );
+    let scene = parse(&text, Path::new("s.toml"), None).unwrap();
+    let [sheet, quiet, solid] = [0, 1, 2].map(|i| &scene.items[i]);
+    assert_eq!(sheet.opacity, 0.25);
+    // A translucent item stays out of the depth map; its technique casts it.
+    assert!(sheet.is_translucent() && !sheet.casts_shadows && sheet.casts_translucent);
+    assert!(!quiet.casts_shadows && !quiet.casts_translucent);
+    assert!(!solid.is_translucent() && solid.casts_shadows && !solid.casts_translucent);
+    for bad in ["0.0", "1.5", "-0.25"] {
+        let (field, message) = fails(&format!(
+            "{LIGHT}[[item]]\nname = \"glass\"\nmesh = \"plane\"\nopacity = {bad}\n"
+        ));
+        assert_eq!(field.as_deref(), Some("item[0] (\"glass\").opacity"));
+        let shown = bad.parse::<f32>().unwrap();
+        assert_eq!(
+            message,
+            format!(
+                "s.toml: item[0] (\"glass\").opacity: {shown}: expected a number above 0 and \
+                 at most 1 (1 = opaque)"
+            )
+        );
+    }
+}
+
+#[test]
+fn a_scatter_with_a_height_fills_a_volume_and_moves_no_copy_across() {
+    let scatter = |height: &str| {
+        let text = format!(
+            "{LIGHT}[[item]]\nmesh = \"sphere\"\nposition = [0.0, 2.0, 0.0]\n\
+             scatter = {{ count = 50, seed = 3, area = [-1.0, 1.0, -1.0, 1.0]{height} }}\n"
+        );
+        parse(&text, Path::new("s.toml"), None).unwrap().items
+    };
+    let flat = scatter("");
+    let cloud = scatter(", height = [-0.5, 1.5]");
+    assert!(flat.iter().all(|i| i.position.y == 2.0));
+    let ys: Vec<f32> = cloud.iter().map(|i| i.position.y).collect();
+    assert!(ys.iter().all(|y| (1.5..=3.5).contains(y)), "{ys:?}");
+    let spread =
+        ys.iter().fold(f32::MIN, |a, b| a.max(*b)) - ys.iter().fold(f32::MAX, |a, b| a.min(*b));
+    assert!(spread > 1.5, "heights spread over {spread}");
+    for (a, b) in flat.iter().zip(&cloud) {
+        assert_eq!((a.position.x, a.position.z), (b.position.x, b.position.z));
+        assert_eq!((a.rotation, a.scale), (b.rotation, b.scale));
+    }
+    refuses(
+        &format!(
+            "{LIGHT}[[item]]\nmesh = \"cube\"\n\
+             scatter = {{ count = 2, area = [0.0, 1.0, 0.0, 1.0], height = [1.0, 0.0] }}\n"
+        ),
+        "item[0].scatter.height",
+        "[1.0, 0.0]: expected [y_min, y_max] with y_min <= y_max",
+    );
+}
+
+#[test]
+fn volumetric_is_refused_by_name_where_it_cannot_cast() {
+    let point = "[light]\nkind = \"point\"\nposition = [0.0, 3.0, 0.0]\n";
+    let (_, message) = fails(&format!("{point}[shadow]\nvolumetric = \"solid\"\n"));
+    assert_eq!(
+        message,
+        "s.toml: shadow.volumetric = solid: light cannot use it: a point light's cube map \
+         takes volumetric = \"off\" only"
+    );
+    let (_, message) = fails(&format!(
+        "{LIGHT}[shadow]\nvolumetric = \"solid\"\ncascades = 2\n"
+    ));
+    assert!(
+        message.contains("shadow.volumetric = solid: light cannot use it: cascades"),
+        "{message}"
+    );
+    let (_, message) = fails(&format!("{LIGHT}[shadow]\nvolumetric = \"smoky\"\n"));
+    assert!(message.contains("volumetric"), "{message}");
+    assert!(
+        message.contains("off") && message.contains("solid"),
+        "{message}"
+    );
+    let ok = format!("{LIGHT}[shadow]\nvolumetric = \"solid\"\n");
+    assert!(parse(&ok, Path::new("s.toml"), None).is_ok());
 }
