@@ -427,7 +427,11 @@ pub const VOLUMETRIC_STEPS: &[Step] = &[
         look_for: "No shadow under the smoke or the glass; the cube's shadow alone.",
         cumulative: false,
         stages: &[],
-        same_picture: &[],
+        same_picture: &[(
+            "smoke",
+            "The smoke scene's own setting: the list starts from the scene as it is, and the \
+             next step shows the other wrong.",
+        )],
         apply: |s, _| s.volumetric = Volumetric::Off,
     },
     Step {
@@ -443,12 +447,24 @@ pub const VOLUMETRIC_STEPS: &[Step] = &[
 
 /// The steps of `scene`'s list (`[steps] list`).
 pub fn of(scene: &Scene) -> &'static [Step] {
-    match scene.steps.list {
+    list(scene.steps.list)
+}
+
+/// The steps of one list.
+fn list(list: StepList) -> &'static [Step] {
+    match list {
         StepList::Chapters => STEPS,
         StepList::Playground => PLAYGROUND_STEPS,
         StepList::Volumetric => VOLUMETRIC_STEPS,
     }
 }
+
+/// Every list, in the order the help shows them.
+const LISTS: [StepList; 3] = [
+    StepList::Chapters,
+    StepList::Playground,
+    StepList::Volumetric,
+];
 
 /// The chapter's starting point for a scene: its own settings with one lookup, no bias, no
 /// culling, an orthographic light and the wrap its tutorial starts with.
@@ -507,15 +523,12 @@ fn builtin_scenes_of(list: StepList) -> Vec<&'static str> {
 /// `steps`' help).
 pub fn lists_help() -> String {
     let mut text = String::from("The steps each scene takes (its file's [steps] list):");
-    for (list, steps) in [
-        (StepList::Chapters, STEPS),
-        (StepList::Playground, PLAYGROUND_STEPS),
-    ] {
-        let names: Vec<&str> = steps.iter().map(|s| s.name).collect();
+    for l in LISTS {
+        let names: Vec<&str> = list(l).iter().map(|s| s.name).collect();
         text.push_str(&format!(
             "\n  {} (scenes {}):\n    {}",
-            list.name(),
-            builtin_scenes_of(list).join(", "),
+            l.name(),
+            builtin_scenes_of(l).join(", "),
             names.join(", ")
         ));
     }
@@ -525,7 +538,7 @@ pub fn lists_help() -> String {
 /// Every list's step names, each once (what `--step` takes; a scene takes its own list's).
 pub fn names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
-    for step in STEPS.iter().chain(PLAYGROUND_STEPS).chain(VOLUMETRIC_STEPS) {
+    for step in LISTS.iter().flat_map(|l| list(*l)) {
         if !names.contains(&step.name) {
             names.push(step.name);
         }

@@ -790,7 +790,11 @@ fn the_help_names_each_scenes_steps() {
         let help = common::stdout_of(common::bin().args([command, "--help"]));
         let lines: Vec<&str> = help.lines().map(str::trim).collect();
         let mut listed: Vec<String> = Vec::new();
-        for list in [StepList::Chapters, StepList::Playground] {
+        for list in [
+            StepList::Chapters,
+            StepList::Playground,
+            StepList::Volumetric,
+        ] {
             let scenes: Vec<Scene> = Scene::builtin_names()
                 .into_iter()
                 .map(|n| Scene::load(n).unwrap())
