@@ -89,8 +89,8 @@ fn cascade_tints_tell_apart_on_the_blue_floor() {
 }
 
 /// The depth view of the DummyGame: the cube's texels against the floor's texels around it
-/// differ by at least 40 grey levels (as stored, 20 units of depth over 255 levels, they
-/// differed by about 10).
+/// differ by at least 40 grey levels (shown as stored, 21 units of depth over 255 levels,
+/// they differed by 21).
 #[test]
 fn the_depth_view_shows_the_cube_against_the_floor() {
     const SIZE: u32 = 256;
