@@ -46,7 +46,10 @@ fn floor_hue(settings: &ShadowSettings) -> (f32, f32) {
             y += h.to_radians().sin();
         }
     }
-    assert!(floor > 10_000, "the lit floor fills the view: {floor} pixels");
+    assert!(
+        floor > 10_000,
+        "the lit floor fills the view: {floor} pixels"
+    );
     let hue = y.atan2(x).to_degrees().rem_euclid(360.0);
     (hue, coloured as f32 / floor as f32)
 }
@@ -77,7 +80,10 @@ fn cascade_tints_tell_apart_on_the_blue_floor() {
         };
         let (hue, share) = floor_hue(&tinted);
         eprintln!("{cascades} cascades tinted: the floor's hue {hue:.0} ({share:.2} of it)");
-        assert!(share > 0.9, "{cascades} cascades: {share} of the floor coloured");
+        assert!(
+            share > 0.9,
+            "{cascades} cascades: {share} of the floor coloured"
+        );
         for (k, other) in hues.iter().enumerate() {
             assert!(
                 hue_gap(hue, *other) >= 40.0,
@@ -136,7 +142,10 @@ fn the_depth_view_shows_the_cube_against_the_floor() {
             ring_n += 1;
         }
     }
-    assert!(cube_n > 50 && ring_n > 50, "cube {cube_n}, floor {ring_n} texels");
+    assert!(
+        cube_n > 50 && ring_n > 50,
+        "cube {cube_n}, floor {ring_n} texels"
+    );
     let (cube_grey, ring_grey) = (cube_sum / cube_n as f64, ring_sum / ring_n as f64);
     eprintln!(
         "depth view: cube {cube_grey:.1} ({cube_n} texels), the floor around it {ring_grey:.1} \
@@ -149,5 +158,8 @@ fn the_depth_view_shows_the_cube_against_the_floor() {
     // The caption's range: the casters' depths, inside the light's near..far.
     let range = view.depth_view_range.expect("a range for a 2D map");
     assert!(range.near <= range.black && range.black < range.white && range.white <= range.far);
-    assert!(range.white - range.black < 0.5 * (range.far - range.near), "{range:?}");
+    assert!(
+        range.white - range.black < 0.5 * (range.far - range.near),
+        "{range:?}"
+    );
 }

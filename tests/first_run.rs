@@ -53,7 +53,11 @@ fn help_fits_the_width_clap_wraps_to() {
             }
         }
     }
-    assert!(long.is_empty(), "lines over {HELP_WIDTH}:\n{}", long.join("\n"));
+    assert!(
+        long.is_empty(),
+        "lines over {HELP_WIDTH}:\n{}",
+        long.join("\n")
+    );
 }
 
 #[test]
@@ -72,12 +76,17 @@ fn a_folder_for_an_image_is_said_to_be_a_folder() {
             args.extend(["--out", "frame.png"]);
         }
         args.extend([flag, given]);
-        let out = common::bin().current_dir(&dir).args(&args).output().unwrap();
+        let out = common::bin()
+            .current_dir(&dir)
+            .args(&args)
+            .output()
+            .unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success(), "{args:?}");
         assert!(
-            stderr.contains(&format!("{given}: cannot write the image (given to {flag}): it"))
-                && stderr.contains(&format!("folder; expected a file name such as {instead}")),
+            stderr.contains(&format!(
+                "{given}: cannot write the image (given to {flag}): it"
+            )) && stderr.contains(&format!("folder; expected a file name such as {instead}")),
             "{args:?}: {stderr}"
         );
         assert!(!stderr.contains("extension-less"), "{stderr}");
@@ -195,10 +204,7 @@ fn compare_names_each_written_file_once() {
 
 #[test]
 fn steps_names_each_written_file_once() {
-    announces_each_file_once(
-        "steps",
-        &["steps", "--size", "80x60", "--out-dir", "st"],
-    );
+    announces_each_file_once("steps", &["steps", "--size", "80x60", "--out-dir", "st"]);
 }
 
 #[test]

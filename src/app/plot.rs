@@ -54,7 +54,10 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
         let (y_lo, y_hi) = padded_range(rows.iter().map(|r| pareto_at(r).1), 1.6);
         // The plot's inner size, for ticks whose labels keep apart (margins and label areas
         // off, the caption's line off the height).
-        let (x_px, y_px) = (f64::from(WIDTH - 2 * 15 - 80), f64::from(HEIGHT - 2 * 15 - 50 - 30));
+        let (x_px, y_px) = (
+            f64::from(WIDTH - 2 * 15 - 80),
+            f64::from(HEIGHT - 2 * 15 - 50 - 30),
+        );
         let x_ticks = spaced_log_ticks(x_lo, x_hi, x_px, &|a, b| {
             (label_px(&tick_label(a)) + label_px(&tick_label(b))) / 2.0 + 14.0
         });
@@ -180,7 +183,9 @@ impl Labels {
             let covered = self
                 .points
                 .iter()
-                .filter(|p| (b[0] - 5..=b[2] + 5).contains(&p.0) && (b[1] - 5..=b[3] + 5).contains(&p.1))
+                .filter(|p| {
+                    (b[0] - 5..=b[2] + 5).contains(&p.0) && (b[1] - 5..=b[3] + 5).contains(&p.1)
+                })
                 .count();
             let crossed = self.placed.iter().filter(|o| overlap(&b, o)).count();
             let a = self.area;
@@ -188,7 +193,10 @@ impl Labels {
             covered + 4 * crossed + 8 * usize::from(outside)
         };
         // The first place of the least cost (min_by_key keeps the first of equals).
-        let best = offsets.into_iter().min_by_key(|o| cost(*o)).unwrap_or((8, 4));
+        let best = offsets
+            .into_iter()
+            .min_by_key(|o| cost(*o))
+            .unwrap_or((8, 4));
         self.placed.push([
             at.0 + best.0,
             at.1 + best.1,
@@ -241,11 +249,7 @@ fn draw_front(
 }
 
 /// A name's size in pixels as the plot draws it.
-fn text_size(
-    chart: &ParetoChart<'_, '_>,
-    text: &str,
-    font: &TextStyle<'_>,
-) -> Result<(i32, i32)> {
+fn text_size(chart: &ParetoChart<'_, '_>, text: &str, font: &TextStyle<'_>) -> Result<(i32, i32)> {
     let (w, h) = chart
         .plotting_area()
         .estimate_text_size(text, font)
@@ -604,7 +608,8 @@ mod tests {
     /// pixels apart, less than the labels need; 1, 2 and 5 keep them apart.
     #[test]
     fn crowded_log_ticks_thin_out_until_their_labels_fit() {
-        let gap = |a: f64, b: f64| (label_px(&tick_label(a)) + label_px(&tick_label(b))) / 2.0 + 14.0;
+        let gap =
+            |a: f64, b: f64| (label_px(&tick_label(a)) + label_px(&tick_label(b))) / 2.0 + 14.0;
         assert_eq!(log_ticks(8.0, 230.0).len(), 15);
         let ticks = spaced_log_ticks(8.0, 230.0, 990.0, &gap);
         assert_eq!(ticks, [10.0, 20.0, 50.0, 100.0, 200.0]);
