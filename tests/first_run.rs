@@ -126,7 +126,7 @@ fn printed_names(text: &str) -> Vec<String> {
 /// Runs `args` in a fresh `case` folder: every file that appears there is named exactly once
 /// on the output (by its name, or its path below the folder), and every file a "wrote" line
 /// names was written.
-fn announces_each_file_once(case: &str, args: &[&str]) {
+fn announces_each_file_once(case: &str, args: &[&str]) -> String {
     let dir = case_dir(case);
     let out = common::bin().current_dir(&dir).args(args).output().unwrap();
     let (stdout, stderr) = (
@@ -160,6 +160,7 @@ fn announces_each_file_once(case: &str, args: &[&str]) {
             "{args:?}: {p} announced but not written ({written:?}):\n{all}"
         );
     }
+    stderr.into_owned()
 }
 
 #[test]
@@ -186,9 +187,11 @@ fn render_names_each_written_file_once() {
     );
 }
 
+/// Without a terminal each progress line is printed once, ended with its result; the
+/// tracing's own time and the whole step's are both named.
 #[test]
 fn compare_names_each_written_file_once() {
-    announces_each_file_once(
+    let stderr = announces_each_file_once(
         "compare",
         &[
             "compare",
@@ -199,6 +202,24 @@ fn compare_names_each_written_file_once() {
             "--out-dir",
             "cmp",
         ],
+    );
+    let tracing: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("compare: tracing the exact reference"))
+        .collect();
+    assert_eq!(tracing.len(), 1, "{stderr}");
+    assert!(
+        tracing[0].contains(" ... 14 caster triangles, rays traced in ")
+            && tracing[0].ends_with(" s in all"),
+        "{stderr}"
+    );
+    assert_eq!(
+        stderr
+            .lines()
+            .filter(|l| l.starts_with("compare: rendering light 0's shadow test"))
+            .count(),
+        1,
+        "{stderr}"
     );
 }
 

@@ -245,8 +245,8 @@ fn print_agreement(agreement: Option<&Metrics>, band: usize) {
     }
 }
 
-/// What the error images' colours mean, printed with every comparison (before the line
-/// naming the files, so each file is named once).
+/// What the error images' colours mean, printed with every comparison (without a file
+/// name: each file is named once, on the line that says it was written).
 pub const ERROR_COLOURS: &str = "the error images: red = false shadow (shadowed here, lit in the \
     reference), blue = false light (lit here, shadowed in the reference), grey = agrees";
 
