@@ -1,7 +1,7 @@
 #version 330 core
 // The depth-map debug view (LearnOpenGL's debug quad). An orthographic map stores linear
-// depth and is shown raw; a perspective map is linearised first, or everything but the
-// nearest surfaces would look white. A cube map (CUBE) is shown as a panorama, a cascade
+// depth; a perspective map is linearised first, or everything but the nearest surfaces
+// would look white. Either is then stretched over the casters' depths (shownFrom..shownTo). A cube map (CUBE) is shown as a panorama, a cascade
 // array (ARRAY) as its layers side by side. A moment map shows its first moment (the mean
 // depth), an EVSM map unwarped back to depth.
 
@@ -20,6 +20,10 @@ uniform int linearize;
 uniform float warp;
 uniform float nearPlane;
 uniform float farPlane;
+// The greys' range as fractions of near..far: the casters' depths (depth_view.rs), 0..1 for
+// a cube map or layers.
+uniform float shownFrom;
+uniform float shownTo;
 
 // Depth in [0, 1] back to eye distance, then scaled to [0, 1] over [near, far].
 float linearDepth(float depth)
@@ -47,5 +51,6 @@ void main()
     d = warp > 0.0 ? (log(max(d, 1e-30)) / warp + 1.0) * 0.5 : d;
     float shown = linearize == 1 ? linearDepth(d) : d;
 #endif
+    shown = clamp((shown - shownFrom) / (shownTo - shownFrom), 0.0, 1.0);
     fragColor = vec4(vec3(shown), 1.0);
 }

@@ -111,6 +111,7 @@ pub const IMAGE_EXTENSIONS: &[&str] = &["png"];
 /// Checks, before any work, that `path` (given with `flag`) can be written: a known image
 /// extension, an existing folder that accepts files, and not a folder itself.
 pub fn check_output_image(flag: &str, path: &Path) -> Result<()> {
+    check_not_a_folder(flag, path)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -133,6 +134,32 @@ pub fn check_output_image(flag: &str, path: &Path) -> Result<()> {
         }
     }
     check_output_file(flag, path, "the image")
+}
+
+/// A folder given where an image file belongs (an existing one, or a name ending in `/`):
+/// said as a folder, with a file name in it to write instead.
+fn check_not_a_folder(flag: &str, path: &Path) -> Result<()> {
+    let text = path.as_os_str().to_string_lossy();
+    let exists = std::fs::metadata(path).is_ok_and(|m| m.is_dir());
+    if !exists && !text.ends_with('/') {
+        return Ok(());
+    }
+    let instead = Path::new(text.trim_end_matches('/')).join(match flag {
+        "--shadow-out" => "shadow.png",
+        "--depth-out" => "depth.png",
+        _ => "frame.png",
+    });
+    Err(Error::file(
+        path,
+        format!(
+            "cannot write the image (given to {flag}): {}; expected a file name such as {}",
+            match exists {
+                true => "it is a folder",
+                false => "it names a folder",
+            },
+            instead.display()
+        ),
+    ))
 }
 
 /// True for an existing path that is neither a file nor a folder (`/dev/stdout`, a FIFO):
@@ -246,11 +273,13 @@ fn probe(folder: &Path) -> std::result::Result<(), String> {
 }
 
 /// What a long command is doing, on standard error: a spinner with the elapsed time on a
-/// terminal, or a plain line when it starts and one when it ends otherwise (a log, a pipe).
+/// terminal; otherwise (a log, a pipe) one line, begun when it starts and ended with what came
+/// of it.
 pub struct Activity {
     bar: Option<indicatif::ProgressBar>,
     what: String,
     start: Instant,
+    finished: bool,
 }
 
 impl Activity {
@@ -269,7 +298,9 @@ impl Activity {
                 Some(bar)
             }
             false => {
-                eprintln!("{what} ...");
+                // The line is ended by `done` (or by the drop of an unfinished activity), so
+                // a log shows each activity once, with its result.
+                eprint!("{what} ... ");
                 None
             }
         };
@@ -277,30 +308,32 @@ impl Activity {
             bar,
             what,
             start: Instant::now(),
+            finished: false,
         }
     }
 
-    /// Ends the activity with a line saying how long it took and, if given, what came of it.
-    pub fn done(self, result: &str) {
+    /// Ends the activity saying how long it took in all and, if given, what came of it.
+    pub fn done(mut self, result: &str) {
         let secs = self.start.elapsed().as_secs_f64();
-        let line = match result.is_empty() {
-            true => format!("{}: done in {secs:.1} s", self.what),
-            false => format!("{}: {result} ({secs:.1} s)", self.what),
+        let outcome = match result.is_empty() {
+            true => format!("done in {secs:.1} s"),
+            false => format!("{result}; {secs:.1} s in all"),
         };
+        self.finished = true;
         match &self.bar {
-            Some(bar) => bar.finish_with_message(line),
-            None => eprintln!("{line}"),
+            Some(bar) => bar.finish_with_message(format!("{}: {outcome}", self.what)),
+            None => eprintln!("{outcome}"),
         }
     }
 }
 
 impl Drop for Activity {
     fn drop(&mut self) {
-        // An activity dropped by an error leaves no spinner behind.
-        if let Some(bar) = &self.bar {
-            if !bar.is_finished() {
-                bar.finish_and_clear();
-            }
+        // An activity dropped by an error leaves no spinner, and no line unended, behind.
+        match &self.bar {
+            Some(bar) if !bar.is_finished() => bar.finish_and_clear(),
+            None if !self.finished => eprintln!("stopped"),
+            _ => {}
         }
     }
 }

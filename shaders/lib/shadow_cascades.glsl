@@ -39,13 +39,16 @@ float calcShadowCascades(LAYER_SAMPLER map, float bias, inout Fragment f)
     return lit;
 }
 
-// SHOW_CASCADES: tint each cascade's part of the frame.
+// SHOW_CASCADES: tint each cascade's part of the frame. The colour is mixed toward the tint
+// at the pixel's own brightness (its largest channel), so shadows stay dark and the tints
+// tell apart on any surface colour (a product would only darken a pure blue floor).
 vec3 cascadeTint(vec3 colour, int cascade)
 {
-    const vec3 tints[4] = vec3[](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),
-                                 vec3(0.35, 0.5, 1.0), vec3(1.0, 1.0, 0.3));
+    const vec3 tints[4] = vec3[](vec3(1.0, 0.1, 0.1), vec3(0.1, 1.0, 0.1),
+                                 vec3(0.15, 0.35, 1.0), vec3(1.0, 0.85, 0.0));
     if (cascade >= 0) {
-        colour = mix(colour, colour * tints[cascade], 0.6);
+        float value = max(colour.r, max(colour.g, colour.b));
+        colour = mix(colour, tints[cascade] * value, 0.7);
     }
     return colour;
 }

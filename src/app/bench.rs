@@ -123,7 +123,7 @@ fn trace_reference(
     ));
     let reference = bench::bench_reference(gl, scene, base, opts)?;
     activity.done(&format!(
-        "{} caster triangles, {:.0} ms of tracing",
+        "{} caster triangles, rays traced in {:.0} ms",
         reference.triangles, reference.trace_ms
     ));
     Ok(reference)

@@ -137,7 +137,7 @@ fn trace_truth(
     };
     let reference = compute_reference(gl, scene, traced, opts)?;
     activity.done(&format!(
-        "{} caster triangles, {:.0} ms of tracing",
+        "{} caster triangles, rays traced in {:.0} ms",
         reference.triangles, reference.trace_ms
     ));
     Ok(match args.truth {
@@ -267,8 +267,9 @@ fn print_agreement(agreement: Option<&Metrics>, band: usize) {
     }
 }
 
-/// What error.png's colours mean, printed with every comparison.
-pub const ERROR_COLOURS: &str = "error.png: red = false shadow (shadowed here, lit in the \
+/// What the error images' colours mean, printed with every comparison (without a file
+/// name: each file is named once, on the line that says it was written).
+pub const ERROR_COLOURS: &str = "the error images: red = false shadow (shadowed here, lit in the \
     reference), blue = false light (lit here, shadowed in the reference), grey = agrees";
 
 /// The measured light must exist and cast shadows; checked before any work.

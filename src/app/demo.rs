@@ -633,6 +633,10 @@ impl Demo {
                 step: self.step,
                 frame_ms: self.shown_ms,
                 depth_light: self.depth_light,
+                depth_range: running
+                    .renderer
+                    .depth_view_range()
+                    .filter(|_| self.show_inset || self.settings.show_depth_map),
                 keys: Some(super::keys::KEYS),
                 show_keys: self.show_keys,
                 azimuth: self.azimuth,

@@ -102,7 +102,6 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         rows.push(row);
     }
     let html = page(&scene, args.supersample, &rows);
-    let path = dir.join("index.html");
     files.push(("index.html".into(), html.into_bytes()));
     let batch: Vec<(&str, &str, &[u8])> = files
         .iter()
@@ -115,7 +114,8 @@ pub fn run(args: &StepsArgs) -> Result<()> {
         })
         .collect();
     write_into(dir, &batch)?;
-    println!("wrote {} and {} images", path.display(), rows.len());
+    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
+    println!("wrote {}: {}", dir.display(), names.join(", "));
     Ok(())
 }
 
@@ -186,7 +186,11 @@ impl Bench<'_> {
             files.push((name.clone(), err.encode_png()?));
             error_file = Some(name);
         }
-        let figures = metrics.as_ref().map_or("(depth map)".into(), line_figures);
+        let figures = match (&metrics, frame.depth_view_range) {
+            (Some(m), _) => line_figures(m),
+            (None, Some(range)) => format!("(depth map; {})", range.words()),
+            (None, None) => "(depth map)".into(),
+        };
         println!("{n:>2} {:<22} {figures}; changed: {changed}", step.name);
         if let Some(a) = &area {
             println!("   {}", super::compare::area_summary(a));

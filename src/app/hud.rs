@@ -13,7 +13,7 @@ use glam::Vec3;
 use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
 use shadowmap::engine::{Gl, HeadlessContext, Outputs, PixelRect, RenderTarget};
 use shadowmap::frame::{render_frames_with, Frame};
-use shadowmap::renderer::{DepthPasses, MaskUses};
+use shadowmap::renderer::{DepthPasses, DepthRange, MaskUses};
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
 
@@ -46,6 +46,8 @@ pub struct HudInfo<'a> {
     pub frame_ms: Option<f64>,
     /// The light whose map is shown when the settings show a depth map.
     pub depth_light: usize,
+    /// The greys of the depth view or inset on screen, when it shows a 2D map.
+    pub depth_range: Option<DepthRange>,
     /// The keys to offer (the demo's); `None` where there are no keys (`render`).
     pub keys: Option<&'a [(&'a str, &'a str)]>,
     /// Whether the key panel is open.
@@ -111,6 +113,9 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
     }
     if info.plan.scene_settings().show_depth_map {
         lines.push(format!("Showing light {}'s shadow map", info.depth_light));
+    }
+    if let Some(range) = info.depth_range {
+        lines.extend(wrap_words(&upper_first(&range.words()), LINE_WIDTH));
     }
     lines.push(match info.frame_ms {
         Some(ms) => format!("Frame time: {ms:.2} ms"),
@@ -292,6 +297,9 @@ pub fn render_frames_with_overlays(
                 step,
                 frame_ms,
                 depth_light: 0,
+                depth_range: renderer
+                    .depth_view_range()
+                    .filter(|_| overlays.inset || renderer.plan().scene_settings().show_depth_map),
                 keys: None,
                 show_keys: false,
                 azimuth: None,
@@ -330,6 +338,7 @@ mod tests {
             step,
             frame_ms: Some(3.25),
             depth_light: 0,
+            depth_range: None,
             keys: Some(KEYS),
             show_keys: false,
             azimuth: None,

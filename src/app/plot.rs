@@ -52,12 +52,25 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
         // just one or two on a frame-time axis.
         let (x_lo, x_hi) = padded_range(rows.iter().map(|r| pareto_at(r).0), 1.15);
         let (y_lo, y_hi) = padded_range(rows.iter().map(|r| pareto_at(r).1), 1.6);
+        // The plot's inner size, for ticks whose labels keep apart (margins and label areas
+        // off, the caption's line off the height).
+        let (x_px, y_px) = (
+            f64::from(WIDTH - 2 * 15 - 80),
+            f64::from(HEIGHT - 2 * 15 - 50 - 30),
+        );
+        let x_ticks = spaced_log_ticks(x_lo, x_hi, x_px, &|a, b| {
+            (label_px(&tick_label(a)) + label_px(&tick_label(b))) / 2.0 + 14.0
+        });
+        let y_ticks = spaced_log_ticks(y_lo, y_hi, y_px, &|_, _| 22.0);
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 22))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(80)
-            .build_cartesian_2d(log_axis(x_lo, x_hi), log_axis(y_lo, y_hi))
+            .build_cartesian_2d(
+                (x_lo..x_hi).log_scale().with_key_points(x_ticks),
+                (y_lo..y_hi).log_scale().with_key_points(y_ticks),
+            )
             .map_err(|e| err(&e))?;
         chart
             .configure_mesh()
@@ -75,8 +88,9 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             .draw()
             .map_err(|e| err(&e))?;
         draw_families(&mut chart, rows)?;
-        draw_front(&mut chart, rows)?;
-        draw_tutorials(&mut chart, rows)?;
+        let mut labels = Labels::new(&chart, rows);
+        draw_front(&mut chart, rows, &mut labels)?;
+        draw_tutorials(&mut chart, rows, &mut labels)?;
         chart
             .configure_series_labels()
             .border_style(BLACK)
@@ -123,9 +137,88 @@ fn draw_families(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<(
     Ok(())
 }
 
+/// Where the Pareto plot's names go: beside their point, over no data point and no name
+/// placed before (the first free of a few places around the point, else the least covered).
+struct Labels {
+    /// Every row's point, in pixels.
+    points: Vec<(i32, i32)>,
+    /// The names placed so far: left, top, right, bottom in pixels.
+    placed: Vec<[i32; 4]>,
+    /// The plotting area: left, top, right, bottom.
+    area: [i32; 4],
+}
+
+impl Labels {
+    fn new(chart: &ParetoChart<'_, '_>, rows: &[BenchRow]) -> Labels {
+        let (x, y) = chart.plotting_area().get_pixel_range();
+        Labels {
+            points: rows
+                .iter()
+                .map(|r| chart.backend_coord(&pareto_at(r)))
+                .collect(),
+            placed: Vec::new(),
+            area: [x.start, y.start, x.end, y.end],
+        }
+    }
+
+    /// The offset from the point `at` (pixels) of the top-left corner of a name `size`
+    /// pixels large, and the name recorded as placed there.
+    fn place(&mut self, at: (i32, i32), (w, h): (i32, i32)) -> (i32, i32) {
+        let offsets = [
+            (8, -h - 4),
+            (8, 4),
+            (-w - 8, -h - 4),
+            (-w - 8, 4),
+            (-w / 2, -h - 8),
+            (-w / 2, 8),
+            (8, -h - 18),
+            (8, 18),
+            (-w - 8, -h - 18),
+            (-w - 8, 18),
+            (-w / 2, -h - 24),
+            (-w / 2, 24),
+        ];
+        let cost = |(dx, dy): (i32, i32)| {
+            let b = [at.0 + dx, at.1 + dy, at.0 + dx + w, at.1 + dy + h];
+            let covered = self
+                .points
+                .iter()
+                .filter(|p| {
+                    (b[0] - 5..=b[2] + 5).contains(&p.0) && (b[1] - 5..=b[3] + 5).contains(&p.1)
+                })
+                .count();
+            let crossed = self.placed.iter().filter(|o| overlap(&b, o)).count();
+            let a = self.area;
+            let outside = b[0] < a[0] || b[1] < a[1] || b[2] > a[2] || b[3] > a[3];
+            covered + 4 * crossed + 8 * usize::from(outside)
+        };
+        // The first place of the least cost (min_by_key keeps the first of equals).
+        let best = offsets
+            .into_iter()
+            .min_by_key(|o| cost(*o))
+            .unwrap_or((8, 4));
+        self.placed.push([
+            at.0 + best.0,
+            at.1 + best.1,
+            at.0 + best.0 + w,
+            at.1 + best.1 + h,
+        ]);
+        best
+    }
+}
+
+/// Whether two boxes (left, top, right, bottom) overlap.
+fn overlap(a: &[i32; 4], b: &[i32; 4]) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
 /// The Pareto front as a staircase (each step holds the best error reached so far), each
 /// of its points named.
-fn draw_front(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+fn draw_front(
+    chart: &mut ParetoChart<'_, '_>,
+    rows: &[BenchRow],
+    labels: &mut Labels,
+) -> Result<()> {
     let at = pareto_at;
     let mut front: Vec<&BenchRow> = rows.iter().filter(|r| r.pareto).collect();
     front.sort_by(|a, b| a.wall_ms.median.total_cmp(&b.wall_ms.median));
@@ -141,35 +234,44 @@ fn draw_front(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> 
         .map_err(|e| pareto_err(&e))?
         .label("Pareto front (named)")
         .legend(|(x, y)| PathElement::new(vec![(x - 8, y), (x + 8, y)], RED.stroke_width(2)));
-    // Each front point with its configuration's name, alternating above and below so
-    // neighbours do not overlap.
-    for (i, r) in front.iter().enumerate() {
-        let dy = if i % 2 == 0 { -16 } else { 6 };
+    // Each front point with its configuration's name, where it covers no point.
+    for r in &front {
+        let name = short_label(r);
+        let font = ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0));
+        let offset = labels.place(chart.backend_coord(&at(r)), text_size(chart, &name, &font)?);
         chart
             .draw_series([EmptyElement::at(at(r))
                 + Circle::new((0, 0), 4, RED.filled())
-                + Text::new(
-                    short_label(r),
-                    (7, dy),
-                    ("sans-serif", 12).into_font().color(&RGBColor(160, 0, 0)),
-                )])
+                + Text::new(name, offset, font)])
             .map_err(|e| pareto_err(&e))?;
     }
     Ok(())
 }
 
-/// The tutorials' configurations, circled and named.
-fn draw_tutorials(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+/// A name's size in pixels as the plot draws it.
+fn text_size(chart: &ParetoChart<'_, '_>, text: &str, font: &TextStyle<'_>) -> Result<(i32, i32)> {
+    let (w, h) = chart
+        .plotting_area()
+        .estimate_text_size(text, font)
+        .map_err(|e| pareto_err(&e))?;
+    Ok((w as i32, h as i32))
+}
+
+/// The tutorials' configurations, circled and named where the name covers no point.
+fn draw_tutorials(
+    chart: &mut ParetoChart<'_, '_>,
+    rows: &[BenchRow],
+    labels: &mut Labels,
+) -> Result<()> {
     for r in rows.iter().filter(|r| r.config.tutorial.is_some()) {
-        let name = r.config.tutorial.unwrap_or_default();
+        let name = r.config.tutorial.unwrap_or_default().to_string();
+        let font = ("sans-serif", 16).into_font().color(&BLUE);
+        let at = pareto_at(r);
+        let offset = labels.place(chart.backend_coord(&at), text_size(chart, &name, &font)?);
         chart
-            .draw_series([EmptyElement::at(pareto_at(r))
+            .draw_series([EmptyElement::at(at)
                 + Circle::new((0, 0), 6, BLUE.stroke_width(2))
-                + Text::new(
-                    name.to_string(),
-                    (-30, -24),
-                    ("sans-serif", 16).into_font().color(&BLUE),
-                )])
+                + Text::new(name, offset, font)])
             .map_err(|e| pareto_err(&e))?;
     }
     Ok(())
@@ -292,18 +394,65 @@ pub fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
         d if d <= 5.0 => &[1.0, 2.0, 5.0],
         _ => &[1.0],
     };
+    ticks_with(lo, hi, mantissas, 1)
+}
+
+/// Ticks for a log axis from `lo` to `hi` drawn `px` pixels long: the densest of
+/// [`log_ticks`]' choices (every digit, then 1, 2 and 5, then 1 and 3, then powers of ten,
+/// then every second or third power) whose neighbours are at least `gap(a, b)` pixels apart,
+/// so their labels never run together.
+pub fn spaced_log_ticks(lo: f64, hi: f64, px: f64, gap: &dyn Fn(f64, f64) -> f64) -> Vec<f64> {
+    let per_decade = px / (hi / lo).log10().max(1e-9);
+    let fits = |ticks: &[f64]| {
+        ticks
+            .windows(2)
+            .all(|w| (w[1] / w[0]).log10() * per_decade >= gap(w[0], w[1]))
+    };
+    let choices: [&[f64]; 4] = [
+        &[1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0],
+        &[1.0, 2.0, 5.0],
+        &[1.0, 3.0],
+        &[1.0],
+    ];
+    for mantissas in choices {
+        let ticks = ticks_with(lo, hi, mantissas, 1);
+        if fits(&ticks) {
+            return ticks;
+        }
+    }
+    (2..)
+        .map(|every| ticks_with(lo, hi, &[1.0], every))
+        .find(|t| fits(t))
+        .unwrap_or_default()
+}
+
+/// `mantissas` times every `every`-th power of ten, from `lo` to `hi`.
+fn ticks_with(lo: f64, hi: f64, mantissas: &[f64], every: i32) -> Vec<f64> {
     let mut ticks = Vec::new();
     let mut exp = lo.log10().floor() as i32;
     while 10f64.powi(exp) <= hi {
-        for m in mantissas {
-            let v = m * 10f64.powi(exp);
-            if (lo..=hi).contains(&v) {
-                ticks.push(v);
+        if exp.rem_euclid(every) == 0 {
+            for m in mantissas {
+                let v = m * 10f64.powi(exp);
+                if (lo..=hi).contains(&v) {
+                    ticks.push(v);
+                }
             }
         }
         exp += 1;
     }
     ticks
+}
+
+/// A tick label's width in pixels at the plots' 14-pixel font (DejaVu Sans: digits and
+/// most signs 0.64 em, the point and the comma 0.32 em).
+fn label_px(text: &str) -> f64 {
+    text.chars()
+        .map(|c| match c {
+            '.' | ',' => 4.5,
+            _ => 9.0,
+        })
+        .sum()
 }
 
 /// A tick value with three significant digits at most and no trailing zeros.
@@ -453,6 +602,48 @@ mod tests {
             .map(|&v| tick_label(v))
             .collect();
         assert_eq!(labels, ["0.001", "0.05", "1.5", "20", "150"]);
+    }
+
+    /// An axis of 990 pixels over 1.46 decades: every digit would put "90" and "100" 31
+    /// pixels apart, less than the labels need; 1, 2 and 5 keep them apart.
+    #[test]
+    fn crowded_log_ticks_thin_out_until_their_labels_fit() {
+        let gap =
+            |a: f64, b: f64| (label_px(&tick_label(a)) + label_px(&tick_label(b))) / 2.0 + 14.0;
+        assert_eq!(log_ticks(8.0, 230.0).len(), 15);
+        let ticks = spaced_log_ticks(8.0, 230.0, 990.0, &gap);
+        assert_eq!(ticks, [10.0, 20.0, 50.0, 100.0, 200.0]);
+        // A wide axis keeps every digit; a short one over many decades every third power.
+        assert_eq!(
+            spaced_log_ticks(60.0, 120.0, 990.0, &gap),
+            [60.0, 70.0, 80.0, 90.0, 100.0]
+        );
+        let sparse = spaced_log_ticks(1e-3, 1e6, 200.0, &gap);
+        assert_eq!(sparse, [1e-3, 1.0, 1e3, 1e6]);
+    }
+
+    /// A name goes where it covers no point and no name placed before.
+    #[test]
+    fn names_are_placed_off_the_points() {
+        let mut labels = Labels {
+            // A row of points through the name's first choices, right and left of (500, 300).
+            points: (0..40).map(|i| (400 + 5 * i, 300)).collect(),
+            placed: Vec::new(),
+            area: [0, 0, 1000, 600],
+        };
+        let (w, h) = (60, 16);
+        let clear = |l: &Labels, (dx, dy): (i32, i32)| {
+            let b = [500 + dx, 300 + dy, 500 + dx + w, 300 + dy + h];
+            l.points.iter().all(|p| {
+                !((b[0] - 5..=b[2] + 5).contains(&p.0) && (b[1] - 5..=b[3] + 5).contains(&p.1))
+            })
+        };
+        let first = labels.place((500, 300), (w, h));
+        assert!(clear(&labels, first), "{first:?}");
+        let second = labels.place((500, 300), (w, h));
+        assert!(clear(&labels, second), "{second:?}");
+        let (a, b) = (labels.placed[0], labels.placed[1]);
+        assert!(!overlap(&a, &b), "{a:?} {b:?}");
     }
 
     #[test]

@@ -75,6 +75,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
         print_depth_out(path, &size.label(), frame.depth_perspective);
     }
+    if let Some(range) = frame.depth_view_range {
+        let shown = match settings.show_depth_map {
+            true => "the depth view",
+            false => "the inset",
+        };
+        println!("{shown}: {}", range.words());
+    }
     if plan.has(ShadowKind::Volume) {
         print_open_meshes(&scene);
     }

@@ -27,6 +27,8 @@ pub struct Frame {
     /// The light camera's near and far planes when that map is perspective (its depths
     /// are then not linear in distance); `None` for an orthographic map.
     pub depth_perspective: Option<(f32, f32)>,
+    /// The greys of the depth view or inset the last frame drew, when it showed a 2D map.
+    pub depth_view_range: Option<crate::renderer::DepthRange>,
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
     /// The camera position the G-buffer positions are relative to.
@@ -235,6 +237,7 @@ pub fn render_frames_with(
         normals,
         depth_map,
         depth_perspective,
+        depth_view_range: renderer.depth_view_range(),
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),

@@ -1,7 +1,9 @@
 //! The chapters' debug quad: a light's shadow map on the whole target (LearnOpenGL's
 //! debug quad, the book's "depth map" picture). Linearised for a perspective light
 //! (LearnOpenGL's `LinearizeDepth`), raw for an orthographic one; a cube map as a panorama,
-//! cascades side by side.
+//! cascades side by side. A 2D map's greys are stretched over the depths its casters can
+//! reach ([`DepthRange`]): the book's 20 x 20 box around a 5-unit scene otherwise shows a
+//! white square with a small grey blob where the cube is.
 
 use super::{Renderer, Target};
 use crate::engine::mesh::FullScreenTriangle;
@@ -10,6 +12,7 @@ use crate::engine::{check_gl, Gl, Samplers, Sampling, ShaderProgram};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shaders;
+use crate::shadows::fitted::corners;
 use crate::shadows::{DepthViewKind, ShadowView, Technique};
 
 /// The view's programs (one per kind of texture, compiled on first use) and its triangle.
@@ -18,6 +21,66 @@ pub struct DepthView {
     cube: Option<ShaderProgram>,
     array: Option<ShaderProgram>,
     full_screen: FullScreenTriangle,
+    /// The grey range of the last 2D map drawn.
+    last_range: Option<DepthRange>,
+}
+
+/// Where a 2D map's greys run: black at `black`, white at `white`, distances along the
+/// light's view from the light, between its `near` and `far` planes. They are the nearest
+/// and farthest depths of the casters' boxes (each mesh's box turned with its item: exact
+/// for the chapters' cubes and planes), so the view shows the depths the map holds; texels
+/// no caster reached (the cleared far plane) stay white.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DepthRange {
+    pub near: f32,
+    pub far: f32,
+    pub black: f32,
+    pub white: f32,
+}
+
+impl DepthRange {
+    /// The casters' span of `view`'s depths, or `None` with no caster in front of the far
+    /// plane or a span too thin to stretch.
+    pub fn of_casters(scene: &Scene, view: &ShadowView) -> Option<DepthRange> {
+        let view64 = view.view64;
+        let (mut black, mut white) = (f64::INFINITY, f64::NEG_INFINITY);
+        for item in scene.items.iter().filter(|i| i.casts_shadows) {
+            let (lo, hi) = scene.meshes.get(item.mesh)?.bounds();
+            let to_view = view64 * item.model_matrix64();
+            for c in corners(lo.as_dvec3(), hi.as_dvec3()) {
+                let depth = -to_view.transform_point3(c).z;
+                black = black.min(depth);
+                white = white.max(depth);
+            }
+        }
+        let (near, far) = (f64::from(view.near), f64::from(view.far));
+        let (black, white) = (black.max(near), white.min(far));
+        (white - black > 1e-4 * (far - near)).then_some(DepthRange {
+            near: view.near,
+            far: view.far,
+            black: black as f32,
+            white: white as f32,
+        })
+    }
+
+    /// The range as the shader's fractions of near..far (what an orthographic map stores and
+    /// a perspective one is linearised to).
+    fn fractions(&self) -> (f32, f32) {
+        let span = self.far - self.near;
+        (
+            (self.black - self.near) / span,
+            (self.white - self.near) / span,
+        )
+    }
+
+    /// The range in words, for the view's caption.
+    pub fn words(&self) -> String {
+        format!(
+            "greys stretched over the casters' depths: black {:.2}, white {:.2} units from \
+             the light (its map spans {:.2} to {:.2})",
+            self.black, self.white, self.near, self.far
+        )
+    }
 }
 
 impl DepthView {
@@ -27,6 +90,7 @@ impl DepthView {
             cube: None,
             array: None,
             full_screen: FullScreenTriangle::new(gl)?,
+            last_range: None,
         })
     }
 
@@ -36,9 +100,18 @@ impl DepthView {
         gl: &Gl,
         samplers: &mut Samplers,
         technique: &dyn Technique,
-        view: Option<&ShadowView>,
+        (scene, view): (&Scene, Option<&ShadowView>),
     ) -> Result<()> {
         let kind = technique.depth_view();
+        // A cube map and layers keep their own scales (each layer has its own box).
+        let flat = matches!(
+            kind,
+            DepthViewKind::Flat | DepthViewKind::Exponential { .. }
+        );
+        self.last_range = view
+            .filter(|_| flat)
+            .and_then(|v| DepthRange::of_casters(scene, v));
+        let shown = self.last_range.map_or((0.0, 1.0), |r| r.fractions());
         let (slot, cube, array) = match kind {
             DepthViewKind::Flat | DepthViewKind::Exponential { .. } => {
                 (&mut self.flat, false, false)
@@ -75,6 +148,8 @@ impl DepthView {
             _ => 0.0,
         };
         p.set_f32("warp", warp);
+        p.set_f32("shownFrom", shown.0);
+        p.set_f32("shownTo", shown.1);
         technique.view_texture().bind(0);
         // A plain sampler: the map may be read in compare mode by the scene pass.
         let _sampler = samplers.get(gl, Sampling::PLAIN)?.bind(0);
@@ -99,7 +174,7 @@ impl Renderer {
         }
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         // A light without a map: the cleared target says so.
-        self.draw_depth_view(index)?;
+        self.draw_depth_view(scene, index)?;
         check_gl(&self.gl, "the depth-map view")
     }
 
@@ -136,18 +211,24 @@ impl Renderer {
         };
         target.bind(&self.gl);
         let _overlay = state::OverlayViewport::begin(&self.gl, rect);
-        self.draw_depth_view(index)?;
+        self.draw_depth_view(scene, index)?;
         check_gl(&self.gl, "the shadow-map inset")
     }
 
     /// Light `index`'s map drawn by the depth view over the bound viewport; nothing for a
     /// light without a map.
-    fn draw_depth_view(&mut self, index: usize) -> Result<()> {
+    fn draw_depth_view(&mut self, scene: &Scene, index: usize) -> Result<()> {
         let Some(technique) = self.shadows[index].as_deref() else {
             return Ok(());
         };
         let view = self.views[index].as_ref();
         self.depth_view
-            .draw(&self.gl, &mut self.samplers, technique, view)
+            .draw(&self.gl, &mut self.samplers, technique, (scene, view))
+    }
+
+    /// The grey range of the 2D map the depth view or the inset drew last; `None` after a
+    /// cube map, layers, or no map.
+    pub fn depth_view_range(&self) -> Option<DepthRange> {
+        self.depth_view.last_range
     }
 }

@@ -21,6 +21,7 @@ mod volume_pass;
 
 pub use crate::shadows::schedule::DepthPasses;
 pub use access::{Pass, PassHooks};
+pub use depth_view::DepthRange;
 pub use shadow_mask::MaskUses;
 pub use target::Target;
 
