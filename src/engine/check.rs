@@ -19,8 +19,13 @@ pub fn gl_error_name(code: u32) -> &'static str {
     }
 }
 
-/// Error reports from the driver's KHR_debug output, waiting for the next [`check_gl`].
-static DEBUG_ERRORS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+thread_local! {
+    /// Error reports from the driver's KHR_debug output, waiting for the next [`check_gl`]
+    /// on this thread (the output is synchronous: the report comes on the calling thread,
+    /// so tests drawing in parallel do not read each other's).
+    static DEBUG_ERRORS: std::cell::RefCell<Vec<String>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
 
 /// Whether contexts are made as debug contexts with the driver's messages on: in debug
 /// builds (and so in tests), or with `SHADOWMAP_GL_DEBUG=1`.
@@ -38,11 +43,11 @@ pub(crate) fn install_debug_output(gl: &mut glow::Context) {
     unsafe {
         gl.enable(glow::DEBUG_OUTPUT);
         gl.enable(glow::DEBUG_OUTPUT_SYNCHRONOUS);
-        gl.debug_message_callback(|_source, kind, _id, severity, message| {
-            if kind == glow::DEBUG_TYPE_ERROR || severity == glow::DEBUG_SEVERITY_HIGH {
-                if let Ok(mut errors) = DEBUG_ERRORS.lock() {
-                    errors.push(message.to_string());
-                }
+        // The compiler's messages come with the info log, which names files and lines.
+        gl.debug_message_callback(|source, kind, _id, severity, message| {
+            let error = kind == glow::DEBUG_TYPE_ERROR || severity == glow::DEBUG_SEVERITY_HIGH;
+            if error && source != glow::DEBUG_SOURCE_SHADER_COMPILER {
+                DEBUG_ERRORS.with(|e| e.borrow_mut().push(message.to_string()));
             }
         });
     }
@@ -51,10 +56,7 @@ pub(crate) fn install_debug_output(gl: &mut glow::Context) {
 /// Drains glGetError (and the KHR_debug errors) and reports the first error, naming the
 /// pass it happened in.
 pub fn check_gl(gl: &Gl, during: &str) -> Result<()> {
-    let debug: Vec<String> = DEBUG_ERRORS
-        .lock()
-        .map(|mut e| std::mem::take(&mut *e))
-        .unwrap_or_default();
+    let debug: Vec<String> = DEBUG_ERRORS.with(|e| std::mem::take(&mut *e.borrow_mut()));
     let mut first = None;
     // glGetError keeps one flag per error kind; drain them all so the next check starts clean.
     for _ in 0..16 {

@@ -5,6 +5,7 @@
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
 pub mod check;
+pub mod counters;
 pub mod headless;
 pub mod mesh;
 pub mod moment_map;

@@ -164,6 +164,7 @@ impl ShaderProgram {
     ) -> Result<ShaderProgram> {
         let program =
             unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
+        super::counters::count(|c| c.programs += 1);
         let this = ShaderProgram {
             gl: gl.clone(),
             program,

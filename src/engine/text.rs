@@ -248,6 +248,10 @@ impl TextRenderer {
                     return Err(Error::Create(format!("text vertex buffer: {e}")));
                 }
             };
+            super::counters::count(|c| {
+                c.buffers += 1;
+                c.textures += 1;
+            });
             let texture = match gl.create_texture() {
                 Ok(t) => t,
                 Err(e) => {

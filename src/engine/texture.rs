@@ -226,6 +226,7 @@ impl Texture {
         }
         let id =
             unsafe { gl.create_texture() }.map_err(|e| Error::Create(format!("{what}: {e}")))?;
+        super::counters::count(|c| c.textures += 1);
         Ok(Texture {
             gl: gl.clone(),
             id,
