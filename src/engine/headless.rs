@@ -53,7 +53,7 @@ impl HeadlessContext {
                     };
                     super::check::install_debug_output(&mut gl);
                     return Ok(HeadlessContext {
-                        gl: Rc::new(gl),
+                        gl: Rc::new(super::bindings::GlContext::new(gl)),
                         _context: context,
                         _display: display,
                         device_name: name,

@@ -4,6 +4,7 @@
 //! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
+pub mod bindings;
 pub mod check;
 pub mod counters;
 pub mod headless;
@@ -23,7 +24,7 @@ pub mod window_context;
 use std::rc::Rc;
 
 /// A shared handle to the current GL context; every GL object keeps one so it can free itself.
-pub type Gl = Rc<glow::Context>;
+pub type Gl = Rc<bindings::GlContext>;
 
 pub use check::{check_gl, gl_limits, GlLimits};
 pub use headless::HeadlessContext;

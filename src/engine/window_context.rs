@@ -112,7 +112,7 @@ impl WindowContext {
             _ => "EGL",
         };
         Ok(WindowContext {
-            gl: Rc::new(gl),
+            gl: Rc::new(super::bindings::GlContext::new(gl)),
             api,
             surface,
             context,
