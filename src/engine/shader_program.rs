@@ -217,23 +217,8 @@ impl ShaderProgram {
     /// `None` and are skipped. Names are found by address (a literal's address does not
     /// change), so no name is hashed per call.
     fn changed(&self, name: &'static str, bits: &[u32]) -> Option<glow::UniformLocation> {
+        let slot = self.slot(name);
         let mut u = self.uniforms.borrow_mut();
-        let slot = match u.names.iter().find(|n| std::ptr::eq(n.0, name)) {
-            Some(n) => n.1,
-            None => {
-                let slot = match u.names.iter().find(|n| n.0 == name) {
-                    // The same name at another address: the same uniform.
-                    Some(n) => n.1,
-                    None => {
-                        let loc = unsafe { self.gl.get_uniform_location(self.program, name) };
-                        u.slots.push((loc, Vec::new()));
-                        u.slots.len() - 1
-                    }
-                };
-                u.names.push((name, slot));
-                slot
-            }
-        };
         let (loc, held) = &mut u.slots[slot];
         let loc = loc.clone()?;
         if held.as_slice() == bits {
@@ -242,6 +227,32 @@ impl ShaderProgram {
         held.clear();
         held.extend_from_slice(bits);
         Some(loc)
+    }
+
+    /// The slot of uniform `name`, looked up the first time.
+    fn slot(&self, name: &'static str) -> usize {
+        let mut u = self.uniforms.borrow_mut();
+        if let Some(n) = u.names.iter().find(|n| std::ptr::eq(n.0, name)) {
+            return n.1;
+        }
+        let slot = match u.names.iter().find(|n| n.0 == name) {
+            // The same name at another address: the same uniform.
+            Some(n) => n.1,
+            None => {
+                let loc = unsafe { self.gl.get_uniform_location(self.program, name) };
+                u.slots.push((loc, Vec::new()));
+                u.slots.len() - 1
+            }
+        };
+        u.names.push((name, slot));
+        slot
+    }
+
+    /// Whether the program reads uniform `name` (the compiler keeps only those), so a
+    /// caller can skip computing a value no one reads.
+    pub fn uses(&self, name: &'static str) -> bool {
+        let slot = self.slot(name);
+        self.uniforms.borrow().slots[slot].0.is_some()
     }
 
     fn changed_f32(&self, name: &'static str, v: &[f32]) -> Option<glow::UniformLocation> {
