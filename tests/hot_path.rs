@@ -47,9 +47,12 @@ fn no_frame_after_the_first_makes_gl_objects() {
     }
 }
 
+/// A settings change for a case.
+type Tweak = dyn Fn(&mut ShadowSettings);
+
 #[test]
 fn no_frame_after_the_first_makes_gl_objects_with_other_techniques() {
-    let cases: [(&str, &dyn Fn(&mut ShadowSettings)); 5] = [
+    let cases: [(&str, &Tweak); 5] = [
         ("large", &|s| s.cascades = 4),
         ("playground", &|s| s.filter = Filter::Pcss),
         ("dummy", &|s| s.filter = Filter::Vsm),

@@ -220,7 +220,7 @@ impl ShaderProgram {
         let slot = self.slot(name);
         let mut u = self.uniforms.borrow_mut();
         let (loc, held) = &mut u.slots[slot];
-        let loc = loc.clone()?;
+        let loc = (*loc)?;
         if held.as_slice() == bits {
             return None;
         }
