@@ -19,24 +19,35 @@ pub fn gl_error_name(code: u32) -> &'static str {
     }
 }
 
-/// Error reports from the driver's KHR_debug output, waiting for the next [`check_gl`].
-static DEBUG_ERRORS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
+thread_local! {
+    /// Error reports from the driver's KHR_debug output, waiting for the next [`check_gl`]
+    /// on this thread (the output is synchronous: the report comes on the calling thread,
+    /// so tests drawing in parallel do not read each other's).
+    static DEBUG_ERRORS: std::cell::RefCell<Vec<String>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
 
-/// In debug builds (and so in tests), or with `SHADOWMAP_GL_DEBUG=1`, asks the driver to
-/// report errors through KHR_debug where it has it; [`check_gl`] then fails on them too,
-/// with the driver's own explanation.
+/// Whether contexts are made as debug contexts with the driver's messages on: in debug
+/// builds (and so in tests), or with `SHADOWMAP_GL_DEBUG=1`.
+pub(crate) fn debug_wanted() -> bool {
+    cfg!(debug_assertions) || std::env::var_os("SHADOWMAP_GL_DEBUG").is_some()
+}
+
+/// When [`debug_wanted`], asks the driver to report errors through KHR_debug where it has
+/// it; [`check_gl`] then fails on them too, with the driver's own explanation. Messages flow
+/// only with `GL_DEBUG_OUTPUT` on (a debug context starts with it on, others do not).
 pub(crate) fn install_debug_output(gl: &mut glow::Context) {
-    let wanted = cfg!(debug_assertions) || std::env::var_os("SHADOWMAP_GL_DEBUG").is_some();
-    if !wanted || !gl.supported_extensions().contains("GL_KHR_debug") {
+    if !debug_wanted() || !gl.supported_extensions().contains("GL_KHR_debug") {
         return;
     }
     unsafe {
+        gl.enable(glow::DEBUG_OUTPUT);
         gl.enable(glow::DEBUG_OUTPUT_SYNCHRONOUS);
-        gl.debug_message_callback(|_source, kind, _id, severity, message| {
-            if kind == glow::DEBUG_TYPE_ERROR || severity == glow::DEBUG_SEVERITY_HIGH {
-                if let Ok(mut errors) = DEBUG_ERRORS.lock() {
-                    errors.push(message.to_string());
-                }
+        // The compiler's messages come with the info log, which names files and lines.
+        gl.debug_message_callback(|source, kind, _id, severity, message| {
+            let error = kind == glow::DEBUG_TYPE_ERROR || severity == glow::DEBUG_SEVERITY_HIGH;
+            if error && source != glow::DEBUG_SOURCE_SHADER_COMPILER {
+                DEBUG_ERRORS.with(|e| e.borrow_mut().push(message.to_string()));
             }
         });
     }
@@ -45,10 +56,7 @@ pub(crate) fn install_debug_output(gl: &mut glow::Context) {
 /// Drains glGetError (and the KHR_debug errors) and reports the first error, naming the
 /// pass it happened in.
 pub fn check_gl(gl: &Gl, during: &str) -> Result<()> {
-    let debug: Vec<String> = DEBUG_ERRORS
-        .lock()
-        .map(|mut e| std::mem::take(&mut *e))
-        .unwrap_or_default();
+    let debug: Vec<String> = DEBUG_ERRORS.with(|e| std::mem::take(&mut *e.borrow_mut()));
     let mut first = None;
     // glGetError keeps one flag per error kind; drain them all so the next check starts clean.
     for _ in 0..16 {
@@ -150,4 +158,25 @@ pub fn renderer_name(gl: &Gl) -> String {
 /// Whether a texture name still names a texture (for tests that owners delete theirs).
 pub fn object_exists(gl: &Gl, texture: glow::Texture) -> bool {
     unsafe { gl.is_texture(texture) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A call the driver refuses comes back from `check_gl` with the driver's own words
+    /// (Mesa: "GL_INVALID_ENUM in glEnable(...)"), not only the error code.
+    #[test]
+    fn a_bad_call_is_reported_with_the_drivers_message() {
+        let context = crate::engine::HeadlessContext::new().expect("a headless context");
+        let gl = context.gl();
+        check_gl(gl, "setup").expect("a clean start");
+        unsafe { gl.enable(0x1234) };
+        let error = check_gl(gl, "a bad enable").expect_err("the bad call is reported");
+        let text = error.to_string();
+        assert!(text.contains("GL_INVALID_ENUM"), "{text}");
+        assert!(text.contains("(driver: "), "no driver message: {text}");
+        assert!(text.contains("glEnable"), "not the driver's words: {text}");
+        check_gl(gl, "after the report").expect("the report drained the errors");
+    }
 }

@@ -53,7 +53,7 @@ impl HeadlessContext {
                     };
                     super::check::install_debug_output(&mut gl);
                     return Ok(HeadlessContext {
-                        gl: Rc::new(gl),
+                        gl: Rc::new(super::bindings::GlContext::new(gl)),
                         _context: context,
                         _display: display,
                         device_name: name,
@@ -92,6 +92,7 @@ impl HeadlessContext {
         let attributes = ContextAttributesBuilder::new()
             .with_context_api(ContextApi::OpenGl(Some(Version::new(3, 3))))
             .with_profile(GlProfile::Core)
+            .with_debug(super::check::debug_wanted())
             .build(None);
         // SAFETY: the config came from this display.
         let context = unsafe { display.create_context(&config, &attributes) }?;

@@ -154,6 +154,7 @@ pub(super) fn upload(
                 return Err(Error::Create(format!("index buffer: {e}")));
             }
         };
+        super::counters::count(|c| c.buffers += 2);
         gl.bind_vertex_array(Some(vao));
         gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
         gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, vertices, glow::STATIC_DRAW);

@@ -4,8 +4,10 @@
 //! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
+pub mod bindings;
 pub mod blend;
 pub mod check;
+pub mod counters;
 pub mod headless;
 pub mod mesh;
 pub mod moment_map;
@@ -24,7 +26,7 @@ pub mod window_context;
 use std::rc::Rc;
 
 /// A shared handle to the current GL context; every GL object keeps one so it can free itself.
-pub type Gl = Rc<glow::Context>;
+pub type Gl = Rc<bindings::GlContext>;
 
 pub use blend::TranslucentBlend;
 pub use check::{check_gl, gl_limits, GlLimits};

@@ -44,6 +44,7 @@ impl MomentMap {
             let depth = gl
                 .create_renderbuffer()
                 .map_err(|e| Error::Create(format!("moment map depth buffer: {e}")))?;
+            super::counters::count(|c| c.renderbuffers += 1);
             map.depth = Some(depth);
             gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
             gl.renderbuffer_storage(
@@ -57,6 +58,7 @@ impl MomentMap {
                 let fbo = gl
                     .create_framebuffer()
                     .map_err(|e| Error::Create(format!("moment map framebuffer: {e}")))?;
+                super::counters::count(|c| c.framebuffers += 1);
                 map.fbos[i] = Some(fbo);
                 gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
                 gl.framebuffer_texture_2d(

@@ -87,6 +87,10 @@ impl RenderTarget {
             let fbo = gl
                 .create_framebuffer()
                 .map_err(|e| Error::Create(format!("render-target framebuffer: {e}")))?;
+            super::counters::count(|c| {
+                c.framebuffers += 1;
+                c.renderbuffers += 1;
+            });
             let depth = match gl.create_renderbuffer() {
                 Ok(d) => d,
                 Err(e) => {

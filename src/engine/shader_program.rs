@@ -2,7 +2,6 @@
 //! into `file:line:column` messages (the book's `ShaderProgram` class).
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use glow::HasContext;
@@ -135,7 +134,7 @@ fn annotate_line(files: &[String], line: &str) -> Option<String> {
 pub struct ShaderProgram {
     gl: Gl,
     program: glow::Program,
-    uniforms: RefCell<HashMap<&'static str, Option<glow::UniformLocation>>>,
+    uniforms: RefCell<Uniforms>,
 }
 
 impl ShaderProgram {
@@ -164,10 +163,11 @@ impl ShaderProgram {
     ) -> Result<ShaderProgram> {
         let program =
             unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
+        super::counters::count(|c| c.programs += 1);
         let this = ShaderProgram {
             gl: gl.clone(),
             program,
-            uniforms: RefCell::new(HashMap::new()),
+            uniforms: RefCell::new(Uniforms::default()),
         };
         let mut shaders = Vec::with_capacity(stages.len());
         for (kind, source) in stages {
@@ -204,114 +204,157 @@ impl ShaderProgram {
     }
 
     pub fn bind(&self) {
-        unsafe { self.gl.use_program(Some(self.program)) };
+        self.gl.use_program_once(Some(self.program));
     }
 
     pub fn unbind(&self) {
-        unsafe { self.gl.use_program(None) };
+        self.gl.use_program_once(None);
     }
 
-    /// Looks a uniform up once and remembers it (the book's `createUniform`, done lazily).
-    /// Uniforms the compiler removed as unused resolve to `None` and are skipped.
-    fn location(&self, name: &'static str) -> Option<glow::UniformLocation> {
-        let mut cache = self.uniforms.borrow_mut();
-        *cache
-            .entry(name)
-            .or_insert_with(|| unsafe { self.gl.get_uniform_location(self.program, name) })
+    /// Looks a uniform up once and remembers it (the book's `createUniform`, done lazily),
+    /// and returns its location only when `bits` differ from the value it holds: a value
+    /// already there is not sent again. Uniforms the compiler removed as unused resolve to
+    /// `None` and are skipped. Names are found by address (a literal's address does not
+    /// change), so no name is hashed per call.
+    fn changed(&self, name: &'static str, bits: &[u32]) -> Option<glow::UniformLocation> {
+        let slot = self.slot(name);
+        let mut u = self.uniforms.borrow_mut();
+        let (loc, held) = &mut u.slots[slot];
+        let loc = (*loc)?;
+        if held.as_slice() == bits {
+            return None;
+        }
+        held.clear();
+        held.extend_from_slice(bits);
+        Some(loc)
+    }
+
+    /// The slot of uniform `name`, looked up the first time.
+    fn slot(&self, name: &'static str) -> usize {
+        let mut u = self.uniforms.borrow_mut();
+        if let Some(n) = u.names.iter().find(|n| std::ptr::eq(n.0, name)) {
+            return n.1;
+        }
+        let slot = match u.names.iter().find(|n| n.0 == name) {
+            // The same name at another address: the same uniform.
+            Some(n) => n.1,
+            None => {
+                let loc = unsafe { self.gl.get_uniform_location(self.program, name) };
+                u.slots.push((loc, Vec::new()));
+                u.slots.len() - 1
+            }
+        };
+        u.names.push((name, slot));
+        slot
+    }
+
+    /// Whether the program reads uniform `name` (the compiler keeps only those), so a
+    /// caller can skip computing a value no one reads.
+    pub fn uses(&self, name: &'static str) -> bool {
+        let slot = self.slot(name);
+        self.uniforms.borrow().slots[slot].0.is_some()
+    }
+
+    fn changed_f32(&self, name: &'static str, v: &[f32]) -> Option<glow::UniformLocation> {
+        self.changed(name, bytemuck::cast_slice(v))
     }
 
     pub fn set_mat4(&self, name: &'static str, m: &Mat4) {
-        if let Some(loc) = self.location(name) {
-            unsafe {
-                self.gl
-                    .uniform_matrix_4_f32_slice(Some(&loc), false, &m.to_cols_array())
-            };
+        let v = m.to_cols_array();
+        if let Some(loc) = self.changed_f32(name, &v) {
+            unsafe { self.gl.uniform_matrix_4_f32_slice(Some(&loc), false, &v) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice (`name` without the index).
     pub fn set_mat4_array(&self, name: &'static str, ms: &[Mat4]) {
-        let loc = self.location(name);
-        if let Some(loc) = loc {
-            // glam's matrices and vectors are plain f32s: no copy per call.
-            let flat: &[f32] = bytemuck::cast_slice(ms);
+        // glam's matrices and vectors are plain f32s: no copy per call.
+        let flat: &[f32] = bytemuck::cast_slice(ms);
+        if let Some(loc) = self.changed_f32(name, flat) {
             unsafe { self.gl.uniform_matrix_4_f32_slice(Some(&loc), false, flat) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_vec3_array(&self, name: &'static str, vs: &[Vec3]) {
-        if let Some(loc) = self.location(name) {
-            let flat: &[f32] = bytemuck::cast_slice(vs);
+        let flat: &[f32] = bytemuck::cast_slice(vs);
+        if let Some(loc) = self.changed_f32(name, flat) {
             unsafe { self.gl.uniform_3_f32_slice(Some(&loc), flat) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_vec4_array(&self, name: &'static str, vs: &[Vec4]) {
-        if let Some(loc) = self.location(name) {
-            let flat: &[f32] = bytemuck::cast_slice(vs);
+        let flat: &[f32] = bytemuck::cast_slice(vs);
+        if let Some(loc) = self.changed_f32(name, flat) {
             unsafe { self.gl.uniform_4_f32_slice(Some(&loc), flat) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_f32_array(&self, name: &'static str, vs: &[f32]) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed_f32(name, vs) {
             unsafe { self.gl.uniform_1_f32_slice(Some(&loc), vs) };
         }
     }
 
     /// Sets `name[0]`, `name[1]`, ... from a slice.
     pub fn set_mat3_array(&self, name: &'static str, ms: &[Mat3]) {
-        if let Some(loc) = self.location(name) {
-            let flat: &[f32] = bytemuck::cast_slice(ms);
+        let flat: &[f32] = bytemuck::cast_slice(ms);
+        if let Some(loc) = self.changed_f32(name, flat) {
             unsafe { self.gl.uniform_matrix_3_f32_slice(Some(&loc), false, flat) };
         }
     }
 
     pub fn set_mat3(&self, name: &'static str, m: &Mat3) {
-        if let Some(loc) = self.location(name) {
-            unsafe {
-                self.gl
-                    .uniform_matrix_3_f32_slice(Some(&loc), false, &m.to_cols_array())
-            };
+        let v = m.to_cols_array();
+        if let Some(loc) = self.changed_f32(name, &v) {
+            unsafe { self.gl.uniform_matrix_3_f32_slice(Some(&loc), false, &v) };
         }
     }
 
     pub fn set_vec2(&self, name: &'static str, v: [f32; 2]) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed_f32(name, &v) {
             unsafe { self.gl.uniform_2_f32(Some(&loc), v[0], v[1]) };
         }
     }
 
     pub fn set_vec3(&self, name: &'static str, v: Vec3) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed_f32(name, &v.to_array()) {
             unsafe { self.gl.uniform_3_f32(Some(&loc), v.x, v.y, v.z) };
         }
     }
 
     pub fn set_vec4(&self, name: &'static str, v: Vec4) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed_f32(name, &v.to_array()) {
             unsafe { self.gl.uniform_4_f32(Some(&loc), v.x, v.y, v.z, v.w) };
         }
     }
 
     pub fn set_f32(&self, name: &'static str, v: f32) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed_f32(name, &[v]) {
             unsafe { self.gl.uniform_1_f32(Some(&loc), v) };
         }
     }
 
     pub fn set_i32(&self, name: &'static str, v: i32) {
-        if let Some(loc) = self.location(name) {
+        if let Some(loc) = self.changed(name, &[v as u32]) {
             unsafe { self.gl.uniform_1_i32(Some(&loc), v) };
         }
     }
 }
 
+/// A program's uniforms: each name's slot (by the name's address), and each slot's location
+/// and the value last sent there (as bits, so -0.0 and NaN compare as sent).
+#[derive(Default)]
+struct Uniforms {
+    names: Vec<(&'static str, usize)>,
+    slots: Vec<(Option<glow::UniformLocation>, Vec<u32>)>,
+}
+
 impl Drop for ShaderProgram {
     fn drop(&mut self) {
+        self.gl.forget_program(self.program);
         unsafe { self.gl.delete_program(self.program) };
     }
 }

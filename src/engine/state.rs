@@ -58,7 +58,7 @@ impl DepthPassGuard {
 impl Drop for DepthPassGuard {
     fn drop(&mut self) {
         unsafe {
-            self.gl.use_program(None);
+            self.gl.use_program_once(None);
             self.gl.disable(glow::CULL_FACE);
             self.gl.disable(glow::POLYGON_OFFSET_FILL);
             self.gl.disable(glow::SCISSOR_TEST);

@@ -248,6 +248,10 @@ impl TextRenderer {
                     return Err(Error::Create(format!("text vertex buffer: {e}")));
                 }
             };
+            super::counters::count(|c| {
+                c.buffers += 1;
+                c.textures += 1;
+            });
             let texture = match gl.create_texture() {
                 Ok(t) => t,
                 Err(e) => {
@@ -307,6 +311,7 @@ impl TextRenderer {
             gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, previous_alignment);
             gl.bind_texture(glow::TEXTURE_2D, previous_texture);
             gl.active_texture(previous_unit);
+            gl.forget_bindings();
             check_gl(gl, "uploading the glyph atlas")?;
             Ok(text)
         }
@@ -350,6 +355,7 @@ impl TextRenderer {
             gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &self.bytes, glow::STREAM_DRAW);
             gl.draw_arrays(glow::TRIANGLES, 0, count);
             saved.restore(gl);
+            gl.forget_bindings();
         }
         check_gl(gl, "drawing the HUD's text")
     }

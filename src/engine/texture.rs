@@ -226,6 +226,9 @@ impl Texture {
         }
         let id =
             unsafe { gl.create_texture() }.map_err(|e| Error::Create(format!("{what}: {e}")))?;
+        super::counters::count(|c| c.textures += 1);
+        // The caller binds it to set it up, on whatever unit is active.
+        gl.forget_bindings();
         Ok(Texture {
             gl: gl.clone(),
             id,
@@ -237,10 +240,7 @@ impl Texture {
 
     /// Binds the texture to a texture unit (0-based).
     pub fn bind(&self, unit: u32) {
-        unsafe {
-            self.gl.active_texture(glow::TEXTURE0 + unit);
-            self.gl.bind_texture(self.target, Some(self.id));
-        }
+        self.gl.bind_texture_once(unit, self.target, self.id);
     }
 
     pub fn id(&self) -> glow::Texture {
@@ -258,6 +258,7 @@ impl Texture {
 
 impl Drop for Texture {
     fn drop(&mut self) {
+        self.gl.forget_texture(self.id);
         unsafe { self.gl.delete_texture(self.id) };
     }
 }

@@ -132,7 +132,7 @@ impl Drop for VolumePassGuard {
 
 /// The resting state the guards put back.
 unsafe fn rest(gl: &Gl) {
-    gl.use_program(None);
+    gl.use_program_once(None);
     gl.depth_func(glow::LESS);
     gl.depth_mask(true);
     gl.color_mask(true, true, true, true);

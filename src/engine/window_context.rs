@@ -86,6 +86,7 @@ impl WindowContext {
         let attributes = ContextAttributesBuilder::new()
             .with_context_api(ContextApi::OpenGl(Some(Version::new(3, 3))))
             .with_profile(GlProfile::Core)
+            .with_debug(super::check::debug_wanted())
             .build(Some(raw));
         // SAFETY: the config and the window handle come from the same display and live on.
         let not_current = unsafe { display.create_context(&config, &attributes) }.map_err(|e| {
@@ -111,7 +112,7 @@ impl WindowContext {
             _ => "EGL",
         };
         Ok(WindowContext {
-            gl: Rc::new(gl),
+            gl: Rc::new(super::bindings::GlContext::new(gl)),
             api,
             surface,
             context,

@@ -185,6 +185,7 @@ pub fn render_frames_with(
     let mut renderer = Renderer::new(gl, scene, settings)?;
     renderer.set_visibility_light(light);
     let target = RenderTarget::new(gl, width, height, outputs)?;
+    renderer.prepare_frame(scene, Target::Offscreen(&target))?;
     let mut frame_ms = Vec::with_capacity(frames as usize);
     for i in 0..frames.max(1) {
         if i > 0 {

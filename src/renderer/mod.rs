@@ -78,6 +78,9 @@ pub struct Renderer {
     visibility_light: usize,
     /// The light whose map the depth view shows.
     depth_view_light: usize,
+    /// The scene program's key, the target size and the cache setting
+    /// [`Renderer::prepare_frame`] made everything for.
+    prepared: Option<(ProgramKey, (u32, u32), bool)>,
 }
 
 impl Renderer {
@@ -108,6 +111,7 @@ impl Renderer {
             max_texture_size,
             visibility_light: 0,
             depth_view_light: 0,
+            prepared: None,
         };
         renderer.prepare_shadows(scene)?;
         // Compile the scene program now, so a shader error shows before the first frame.
@@ -168,6 +172,7 @@ impl Renderer {
     /// on its texture unit. Call after [`Renderer::render_depth_map`].
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
         self.after_depth_map(scene, "render_scene")?;
+        self.prepare_frame(scene, target)?;
         let plan = self.mask_plan(scene, target.size())?;
         self.hook(Pass::Scene, true);
         // The samplers leave the renderer for the pass, so the inputs can borrow the rest.

@@ -1,7 +1,7 @@
 //! Each light's technique made to match the shadow plan (the one place that decides each
 //! light's kind and settings, [`crate::shadows::plan`]), before a frame's depth pass.
 
-use super::Renderer;
+use super::{Renderer, Target};
 use crate::engine::SamplesQuery;
 use crate::error::Result;
 use crate::scene::Scene;
@@ -10,6 +10,21 @@ use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
 impl Renderer {
+    /// Makes what frames into `target` need before the first of them: each light's
+    /// technique, the scene program and, when the shadow mask may serve, its programs and
+    /// target (else the frame that first writes the mask would stall on two shader
+    /// compiles). Each frame asks again, which costs a key comparison when nothing changed.
+    pub fn prepare_frame(&mut self, scene: &Scene, target: Target) -> Result<()> {
+        self.prepare_shadows(scene)?;
+        let program = self.program_key(scene, target.outputs())?;
+        let key = (program, target.size(), self.settings.shadow_cache);
+        if self.prepared != Some(key) {
+            self.prepare_mask(scene, target.size(), target.outputs())?;
+            self.prepared = Some(key);
+        }
+        Ok(())
+    }
+
     /// Makes each light's technique match the plan (resolved again when the settings or the
     /// lights changed): only lights that cast get one, remade when its kind or storage
     /// changes.

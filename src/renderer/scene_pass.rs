@@ -42,16 +42,20 @@ pub fn draw(
     let bound = bind_maps(inputs, samplers, gl, scene)?;
     let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
     let mut diffuse = vec![Vec3::ZERO; u.colour.len()];
+    // Only a target with world outputs reads these: no matrices per item for nothing.
+    let world_outputs = p.uses("modelOriginMatrix") || p.uses("worldNormalMatrix");
     for (mesh_id, mesh) in inputs.meshes.iter().enumerate() {
         let items = (scene.items.iter())
             .filter(|i| i.mesh == mesh_id && !translucent_pass::drawn_later(inputs, i));
         mesh.render_list(items, |item| {
             let model = item.model_matrix64();
             let model_view = (view64 * model).as_mat4();
-            p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
             p.set_mat4("modelViewMatrix", &model_view);
             p.set_mat3("normalMatrix", &normal_matrix(&model_view));
-            p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
+            if world_outputs {
+                p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
+                p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
+            }
             for (m, from) in light_matrices.iter_mut().zip(&u.light_from) {
                 *m = (*from * model).as_mat4();
             }

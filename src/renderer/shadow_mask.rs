@@ -78,18 +78,26 @@ impl ShadowMask {
         channels: usize,
     ) -> Result<&RenderTarget> {
         self.holds = None;
+        self.fit(gl, (width, height), channels)?;
+        match &self.target {
+            Some((t, _)) => Ok(t),
+            None => Err(crate::Error::Invalid("the shadow mask is missing".into())),
+        }
+    }
+
+    /// Makes the target fit `width` x `height` and `channels` (before the frame that writes
+    /// it, so that frame compiles and allocates nothing); a new one holds nothing yet.
+    pub fn fit(&mut self, gl: &Gl, (width, height): (u32, u32), channels: usize) -> Result<()> {
         let fits = self
             .target
             .as_ref()
             .is_some_and(|(t, c)| (t.width(), t.height()) == (width, height) && *c == channels);
         if !fits {
+            self.holds = None;
             self.target = None;
             self.target = Some((RenderTarget::float(gl, width, height, channels)?, channels));
         }
-        match &self.target {
-            Some((t, _)) => Ok(t),
-            None => Err(crate::Error::Invalid("the shadow mask is missing".into())),
-        }
+        Ok(())
     }
 
     /// The mask now holds the tests of the frame `key`.
@@ -162,6 +170,33 @@ impl Renderer {
         Ok(frame_key(scene, size, &program, &maps))
     }
 
+    /// One channel per light up to the last with a map.
+    fn mask_channels(&self) -> usize {
+        1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0)
+    }
+
+    /// Makes the mask's programs (writing it, and the scene program reading it for
+    /// `outputs`) and its target at `size` now, when the mask may serve the frames to come;
+    /// the scene program without the mask stays in front.
+    pub(super) fn prepare_mask(
+        &mut self,
+        scene: &Scene,
+        size: (u32, u32),
+        outputs: Outputs,
+    ) -> Result<()> {
+        let may_serve = self.settings.shadow_cache
+            && !self.uses_volumes()
+            && self.shadows.iter().any(Option::is_some)
+            && self.program_key(scene, Outputs::default())?.maskable();
+        if may_serve {
+            self.use_program(scene, Outputs::default(), MaskMode::Write)?;
+            self.use_program(scene, outputs, MaskMode::Read)?;
+            let channels = self.mask_channels();
+            self.mask.fit(&self.gl, size, channels)?;
+        }
+        self.use_program(scene, outputs, MaskMode::Off)
+    }
+
     /// Writes the mask first if `plan` says so; returns how the scene program then takes
     /// the shadow tests (its own, or read from the mask).
     pub(super) fn apply_mask_plan(
@@ -191,7 +226,7 @@ impl Renderer {
         samplers: &mut Samplers,
     ) -> Result<()> {
         self.use_program(scene, Outputs::default(), MaskMode::Write)?;
-        let channels = 1 + self.shadows.iter().rposition(Option::is_some).unwrap_or(0);
+        let channels = self.mask_channels();
         self.mask
             .begin_write(&self.gl, (width, height), channels)?
             .bind_and_clear([1.0; 4]);

@@ -18,6 +18,7 @@ impl DepthFbo {
     pub(super) fn new(gl: &Gl, what: &str) -> Result<DepthFbo> {
         let fbo = unsafe { gl.create_framebuffer() }
             .map_err(|e| Error::Create(format!("{what}: {e}")))?;
+        crate::engine::counters::count(|c| c.framebuffers += 1);
         Ok(DepthFbo {
             gl: gl.clone(),
             fbo,

@@ -81,11 +81,12 @@ impl CubeShadowMap {
 }
 
 /// The cascades of a cascaded shadow map: one depth texture array (a layer per cascade) and
-/// the framebuffer each layer is drawn into in turn. GL 3.3 has texture arrays and
-/// `glFramebufferTextureLayer`, so no extension is needed.
+/// a framebuffer per layer, its layer attached once when made (not re-pointed at each layer
+/// every frame). GL 3.3 has texture arrays and `glFramebufferTextureLayer`, so no extension
+/// is needed.
 pub struct CascadeShadowMap {
     gl: Gl,
-    fbo: DepthFbo,
+    fbos: Vec<DepthFbo>,
     array: Texture,
     format: DepthFormat,
     layers: u32,
@@ -93,34 +94,39 @@ pub struct CascadeShadowMap {
 
 impl CascadeShadowMap {
     pub fn new(gl: &Gl, size: u32, layers: u32, format: DepthFormat) -> Result<CascadeShadowMap> {
-        let map = CascadeShadowMap {
+        let array = Texture::depth_array(gl, size, layers, format)?;
+        let mut fbos = Vec::with_capacity(layers as usize);
+        for layer in 0..layers {
+            let fbo = DepthFbo::new(gl, "cascade shadow-map framebuffer")?;
+            fbo.bind();
+            unsafe {
+                gl.framebuffer_texture_layer(
+                    glow::FRAMEBUFFER,
+                    glow::DEPTH_ATTACHMENT,
+                    Some(array.id()),
+                    0,
+                    layer as i32,
+                );
+            }
+            fbo.finish(&format!(
+                "cascaded shadow map {size}x{size}x{layers}, layer {layer}"
+            ))?;
+            fbos.push(fbo);
+        }
+        Ok(CascadeShadowMap {
             gl: gl.clone(),
-            fbo: DepthFbo::new(gl, "cascade shadow-map framebuffer")?,
-            array: Texture::depth_array(gl, size, layers, format)?,
+            fbos,
+            array,
             format,
             layers,
-        };
-        map.bind_layer(0);
-        map.fbo
-            .finish(&format!("cascaded shadow map {size}x{size}x{layers}"))?;
-        Ok(map)
+        })
     }
 
-    /// Binds the framebuffer with cascade `layer` as its depth attachment, and the viewport
-    /// to the layer's size.
+    /// Binds the framebuffer of cascade `layer`, and the viewport to the layer's size.
     pub fn bind_layer(&self, layer: u32) {
-        self.fbo.bind();
-        unsafe {
-            self.gl.framebuffer_texture_layer(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
-                Some(self.array.id()),
-                0,
-                layer as i32,
-            );
-            let size = self.array.width() as i32;
-            self.gl.viewport(0, 0, size, size);
-        }
+        self.fbos[layer as usize].bind();
+        let size = self.array.width() as i32;
+        unsafe { self.gl.viewport(0, 0, size, size) };
     }
 
     pub fn texture(&self) -> &Texture {
