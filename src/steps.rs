@@ -6,7 +6,8 @@
 use crate::error::{Error, Result};
 use crate::scene::{Scene, StepContext, StepList};
 use crate::settings::{
-    BeyondFar, BiasMode, Blur, Cull, Filter, LightProjection, MapSize, MsmToward, ShadowSettings,
+    BeyondFar, BiasMode, Blur, Cull, Filter, LightProjection, MapSize, MsmToward, PerspectiveDepth,
+    ShadowSettings,
     ShadowTechnique, Wrap,
 };
 
@@ -123,7 +124,10 @@ pub const STEPS: &[Step] = &[
                  blog): a point-like light.",
         look_for: "Shadows spread out with distance from the light.",
         cumulative: false,
-        apply: |s, _| s.light_projection = LightProjection::Perspective,
+        apply: |s, _| {
+            s.light_projection = LightProjection::Perspective;
+            s.perspective_depth = PerspectiveDepth::Hyperbolic;
+        },
     },
     Step {
         name: "perspective-depth-map",
@@ -132,6 +136,7 @@ pub const STEPS: &[Step] = &[
         cumulative: false,
         apply: |s, _| {
             s.light_projection = LightProjection::Perspective;
+            s.perspective_depth = PerspectiveDepth::Hyperbolic;
             s.show_depth_map = true;
         },
     },

@@ -66,7 +66,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
-        print_depth_out(path, &size.label(), frame.depth_perspective);
+        let linear = frame.depth_linear;
+        print_depth_out(path, &size.label(), frame.depth_perspective, linear);
     }
     if plan.has(ShadowKind::Volume) {
         print_open_meshes(&scene);
@@ -166,8 +167,12 @@ fn write_images(args: &RenderArgs, frame: &Frame) -> Result<()> {
 }
 
 /// What the `--depth-out` image's greys mean.
-fn print_depth_out(path: &Path, size: &str, perspective: Option<(f32, f32)>) {
+fn print_depth_out(path: &Path, size: &str, perspective: Option<(f32, f32)>, linear: bool) {
     let shown = match perspective {
+        Some((near, far)) if linear => format!(
+            "a perspective light's depth as stored, linear in distance along its axis: black \
+             at its near plane ({near}), white at its far plane ({far})"
+        ),
         Some((near, far)) => format!(
             "a perspective light's depth, linearised to eye distance as the depth view \
              does: black at its near plane ({near}), white at its far plane ({far})"

@@ -22,7 +22,8 @@ use super::{DepthPass, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::ShadowSettings;
+use crate::settings::{Filter, PerspectiveDepth, ShadowSettings};
+use glam::Mat4;
 
 /// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
@@ -50,14 +51,21 @@ impl Map2d {
         index: usize,
         patch: Option<&Patch>,
     ) -> Result<ShadowView> {
-        let (view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
+        let (mut view, fitted_casters) = camera_and_casters(scene, index, pass.settings);
         let only = patch::casters_within(fitted_casters, patch);
-        let program = pass.programs.flat(pass.gl)?;
+        view.linear_depth = stores_linear_depth(view.perspective, pass.settings);
+        let program = match view.linear_depth {
+            true => pass.programs.linear(pass.gl)?,
+            false => pass.programs.flat(pass.gl)?,
+        };
         let depth = DepthState {
             scissor: patch.map(|p| p.region.pixels()),
             ..depth_state(pass.settings)
         };
         let _state = DepthPassGuard::begin(pass.gl, depth, &program);
+        if view.linear_depth {
+            program.set_vec2("depthRange", [view.near, view.far]);
+        }
         self.map.bind_for_writing();
         state::clear_depth(pass.gl);
         draw_map_casters(pass, scene, index, &view, &program, only.as_deref());
@@ -67,11 +75,41 @@ impl Map2d {
 
 /// The light-space transform of a 2D map drawn through `view` (the chapter's map and a
 /// moment map alike): world to the light's view, its projection, the normal offset in world
-/// units.
+/// units. A map of linear depth gets its depth in place of clip z ([`linear_depth_row`]).
 pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTransform {
+    let projection = match view.linear_depth {
+        true => linear_depth_row(view.projection, view.near, view.far),
+        false => view.projection,
+    };
     SlotTransform {
         from: view.view64,
-        projection: view.projection,
+        projection,
         normal_offset: settings.normal_offset * view.texel_world,
     }
+}
+
+/// Whether a 2D depth map seen through a perspective camera stores linear depth under
+/// `settings` ([`PerspectiveDepth::Linear`]): not with PCSS, whose penumbra estimate reads
+/// the projection's depth, nor in a moment map (its own pass).
+pub fn stores_linear_depth(perspective: bool, settings: &ShadowSettings) -> bool {
+    perspective
+        && settings.perspective_depth == PerspectiveDepth::Linear
+        && settings.filter != Filter::Pcss
+        && !settings.filter.moments()
+}
+
+/// `projection` with its z row giving the linear depth (w - near) / (far - near), w the
+/// distance along the light's axis: linear in the position, so it interpolates exactly as
+/// a vertex output. The scene's test (lib/linear_depth.glsl) puts it back as z / w.
+pub fn linear_depth_row(projection: Mat4, near: f32, far: f32) -> Mat4 {
+    let mut m = projection;
+    let range = far - near;
+    // Clip w is row 3 (w = -z for GL's perspective); z' = (w - near) / range.
+    let w_row = projection.row(3);
+    let z_row = (w_row - glam::Vec4::W * near) / range;
+    m.x_axis.z = z_row.x;
+    m.y_axis.z = z_row.y;
+    m.z_axis.z = z_row.z;
+    m.w_axis.z = z_row.w;
+    m
 }

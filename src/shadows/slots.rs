@@ -52,6 +52,8 @@ pub struct ShadowTest {
     pub pcss_filter_taps: u32,
     /// PCSS: the light's map is a perspective one (its depth is not linear).
     pub pcss_perspective: bool,
+    /// The light's 2D map stores linear depth ([`map2d::stores_linear_depth`]).
+    pub linear_depth: bool,
     /// A moment filter's own constants.
     pub moments: Option<MomentTest>,
 }
@@ -75,6 +77,7 @@ impl ShadowTest {
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
+            linear_depth: false,
         }
     }
 
@@ -88,6 +91,7 @@ impl ShadowTest {
         };
         ShadowTest {
             pcss_perspective: perspective && settings.filter == Filter::Pcss,
+            linear_depth: map2d::stores_linear_depth(perspective, settings),
             ..ShadowTest::of(settings)
         }
     }
@@ -234,6 +238,9 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
         part.snippets.push("lib/bias.glsl");
     }
+    if slot.shadow == ShadowKind::Map && slot.test.is_some_and(|t| t.linear_depth) {
+        part.snippets.push("lib/linear_depth.glsl");
+    }
     part.snippets.extend(glsl.snippets);
     part.lines = vec![
         format!("vec3 toLight{i} = toLightOf({i}, {positional});"),
@@ -298,8 +305,12 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
 /// (hardware comparisons, the playground's soft filters, PCSS).
 pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     let map = map2d::SAMPLERS[i];
+    let position = match test.linear_depth {
+        true => format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
+        false => format!("mlightviewVertexPos[{p}]"),
+    };
     let head = format!(
-        "{map}, mlightviewVertexPos[{p}], {}, {}",
+        "{map}, {position}, {}, {}",
         test.bias_glsl(i),
         test.texel_glsl()
     );

@@ -44,6 +44,7 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
                 view64: view.as_dmat4(),
                 projection: l.projection_matrix(),
                 perspective: false,
+                linear_depth: false,
                 near: o.near,
                 far: o.far,
                 texel_world: ((o.right - o.left) / settings.map_size.width as f32)
