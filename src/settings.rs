@@ -344,6 +344,10 @@ pub enum PerspectiveDepth {
     /// The projection's own depth, as the chapters store it (LearnOpenGL linearises it only
     /// to show it).
     Hyperbolic,
+    /// The projection's depth stored, the bias taken off the fragment's linear depth before
+    /// it is compared: the same reach as `linear` with the depth pass untouched, as long as
+    /// the stored depth resolves it (not 16 bits at small near planes).
+    HyperbolicLinearBias,
 }
 
 /// Where a directional light's orthographic box comes from.

@@ -75,11 +75,11 @@ impl Map2d {
 
 /// The light-space transform of a 2D map drawn through `view` (the chapter's map and a
 /// moment map alike): world to the light's view, its projection, the normal offset in world
-/// units. A map of linear depth gets its depth in place of clip z ([`linear_depth_row`]).
+/// units. A map tested in linear depth gets it in place of clip z ([`linear_depth_row`]).
 pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTransform {
-    let projection = match view.linear_depth {
-        true => linear_depth_row(view.projection, view.near, view.far),
-        false => view.projection,
+    let projection = match map_depth(view.perspective, settings) {
+        MapDepth::Projected => view.projection,
+        _ => linear_depth_row(view.projection, view.near, view.far),
     };
     SlotTransform {
         from: view.view64,
@@ -88,14 +88,35 @@ pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTrans
     }
 }
 
-/// Whether a 2D depth map seen through a perspective camera stores linear depth under
-/// `settings` ([`PerspectiveDepth::Linear`]): not with PCSS, whose penumbra estimate reads
-/// the projection's depth, nor in a moment map (its own pass).
+/// How a 2D depth map's test reads depth ([`PerspectiveDepth`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MapDepth {
+    /// The projection's depth, compared as stored: an orthographic map, or a perspective
+    /// one as the chapters draw it.
+    Projected,
+    /// A perspective map of linear depth.
+    Linear,
+    /// A perspective map of projected depth, biased in linear depth.
+    LinearBias,
+}
+
+/// How a 2D depth map seen through a camera (`perspective` or not) stores and tests depth
+/// under `settings`: never linear for PCSS, whose penumbra estimate reads the projection's
+/// depth, nor in a moment map (its own pass).
+pub fn map_depth(perspective: bool, settings: &ShadowSettings) -> MapDepth {
+    if !perspective || settings.filter == Filter::Pcss || settings.filter.moments() {
+        return MapDepth::Projected;
+    }
+    match settings.perspective_depth {
+        PerspectiveDepth::Linear => MapDepth::Linear,
+        PerspectiveDepth::Hyperbolic => MapDepth::Projected,
+        PerspectiveDepth::HyperbolicLinearBias => MapDepth::LinearBias,
+    }
+}
+
+/// Whether the map stores linear depth (its depth pass writes it).
 pub fn stores_linear_depth(perspective: bool, settings: &ShadowSettings) -> bool {
-    perspective
-        && settings.perspective_depth == PerspectiveDepth::Linear
-        && settings.filter != Filter::Pcss
-        && !settings.filter.moments()
+    map_depth(perspective, settings) == MapDepth::Linear
 }
 
 /// `projection` with its z row giving the linear depth (w - near) / (far - near), w the

@@ -14,6 +14,7 @@
 //! compiler inlines it and folds them, so a light's test costs what a hand-written one
 //! would.
 
+use super::map2d::MapDepth;
 use super::moments::MomentTest;
 use super::{cascades, cube, groups, layers, map2d, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
@@ -52,8 +53,8 @@ pub struct ShadowTest {
     pub pcss_filter_taps: u32,
     /// PCSS: the light's map is a perspective one (its depth is not linear).
     pub pcss_perspective: bool,
-    /// The light's 2D map stores linear depth ([`map2d::stores_linear_depth`]).
-    pub linear_depth: bool,
+    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
+    pub map_depth: map2d::MapDepth,
     /// A moment filter's own constants.
     pub moments: Option<MomentTest>,
 }
@@ -77,7 +78,7 @@ impl ShadowTest {
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
-            linear_depth: false,
+            map_depth: map2d::MapDepth::Projected,
         }
     }
 
@@ -91,7 +92,7 @@ impl ShadowTest {
         };
         ShadowTest {
             pcss_perspective: perspective && settings.filter == Filter::Pcss,
-            linear_depth: map2d::stores_linear_depth(perspective, settings),
+            map_depth: map2d::map_depth(perspective, settings),
             ..ShadowTest::of(settings)
         }
     }
@@ -238,7 +239,8 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
         part.snippets.push("lib/bias.glsl");
     }
-    if slot.shadow == ShadowKind::Map && slot.test.is_some_and(|t| t.linear_depth) {
+    let projected = |t: ShadowTest| t.map_depth == map2d::MapDepth::Projected;
+    if slot.shadow == ShadowKind::Map && slot.test.is_some_and(|t| !projected(t)) {
         part.snippets.push("lib/linear_depth.glsl");
     }
     part.snippets.extend(glsl.snippets);
@@ -305,15 +307,21 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
 /// (hardware comparisons, the playground's soft filters, PCSS).
 pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     let map = map2d::SAMPLERS[i];
-    let position = match test.linear_depth {
-        true => format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
-        false => format!("mlightviewVertexPos[{p}]"),
+    let (position, bias) = match test.map_depth {
+        MapDepth::Projected => (format!("mlightviewVertexPos[{p}]"), test.bias_glsl(i)),
+        MapDepth::Linear => (
+            format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
+            test.bias_glsl(i),
+        ),
+        MapDepth::LinearBias => (
+            format!(
+                "projectedBiasedPosition(mlightviewVertexPos[{p}], {}, lightDepthRange[{i}])",
+                test.bias_glsl(i)
+            ),
+            "0.0".into(),
+        ),
     };
-    let head = format!(
-        "{map}, {position}, {}, {}",
-        test.bias_glsl(i),
-        test.texel_glsl()
-    );
+    let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
     let (r, far) = (test.pcf_radius, test.beyond_far_lit);
     let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
         _ if test.hardware => (
