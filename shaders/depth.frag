@@ -11,11 +11,19 @@
 
 #ifdef LINEAR_DEPTH
 in float lightDepth;
+// glPolygonOffset does not move a depth the shader writes, so its (factor, units x the
+// format's least step) are added here as GL would: factor x the depth's slope + units.
+uniform vec2 polygonOffset;
 #endif
 
 void main()
 {
 #ifdef LINEAR_DEPTH
-    gl_FragDepth = lightDepth;
+    float offset = 0.0;
+    if (polygonOffset != vec2(0.0)) {
+        float slope = max(abs(dFdx(lightDepth)), abs(dFdy(lightDepth)));
+        offset = polygonOffset.x * slope + polygonOffset.y;
+    }
+    gl_FragDepth = lightDepth + offset;
 #endif
 }

@@ -7,8 +7,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Scene, StepContext, StepList};
 use crate::settings::{
     BeyondFar, BiasMode, Blur, Cull, Filter, LightProjection, MapSize, MsmToward, PerspectiveDepth,
-    ShadowSettings,
-    ShadowTechnique, Wrap,
+    ShadowSettings, ShadowTechnique, Wrap,
 };
 
 /// One step of the chapters.

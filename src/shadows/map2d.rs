@@ -22,7 +22,7 @@ use super::{DepthPass, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::{Filter, PerspectiveDepth, ShadowSettings};
+use crate::settings::{DepthFormat, Filter, PerspectiveDepth, ShadowSettings};
 use glam::Mat4;
 
 /// Its sampler in the scene shader, per light (GLSL 3.30 cannot index sampler arrays).
@@ -65,6 +65,9 @@ impl Map2d {
         let _state = DepthPassGuard::begin(pass.gl, depth, &program);
         if view.linear_depth {
             program.set_vec2("depthRange", [view.near, view.far]);
+            let [factor, units] = pass.settings.polygon_offset;
+            let step = least_depth_step(pass.settings.depth_format);
+            program.set_vec2("polygonOffset", [factor, units * step]);
         }
         self.map.bind_for_writing();
         state::clear_depth(pass.gl);
@@ -117,6 +120,15 @@ pub fn map_depth(perspective: bool, settings: &ShadowSettings) -> MapDepth {
 /// Whether the map stores linear depth (its depth pass writes it).
 pub fn stores_linear_depth(perspective: bool, settings: &ShadowSettings) -> bool {
     map_depth(perspective, settings) == MapDepth::Linear
+}
+
+/// The least depth step GL's polygon offset `units` count in: 2^-bits for a fixed-point
+/// format; for 32-bit floats 2^(e - 23) with e the depth's exponent, taken at [0.5, 1).
+fn least_depth_step(format: DepthFormat) -> f32 {
+    match format {
+        DepthFormat::D16 => (-16f32).exp2(),
+        DepthFormat::D24 | DepthFormat::D32F => (-24f32).exp2(),
+    }
 }
 
 /// `projection` with its z row giving the linear depth (w - near) / (far - near), w the
