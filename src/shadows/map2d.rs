@@ -146,3 +146,32 @@ pub fn linear_depth_row(projection: Mat4, near: f32, far: f32) -> Mat4 {
     m.w_axis.z = z_row.w;
     m
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec4;
+
+    #[test]
+    fn the_linear_row_runs_from_the_near_plane_to_the_far_plane() {
+        let (near, far) = (1e-4, 30.0);
+        let p = linear_depth_row(Mat4::perspective_rh_gl(1.2, 1.0, near, far), near, far);
+        let depth = |z: f32| p * Vec4::new(0.3, -0.2, -z, 1.0);
+        assert!(depth(near).z.abs() < 1e-6);
+        assert!((depth(far).z - 1.0).abs() < 1e-6);
+        assert!((depth(15.00005).z - 0.5).abs() < 1e-6);
+        // x, y and w are the projection's own.
+        assert_eq!(depth(6.0).w, 6.0);
+        let s = ShadowSettings {
+            perspective_depth: PerspectiveDepth::Linear,
+            ..ShadowSettings::default()
+        };
+        assert_eq!(map_depth(true, &s), MapDepth::Linear);
+        assert_eq!(map_depth(false, &s), MapDepth::Projected);
+        let pcss = ShadowSettings {
+            filter: Filter::Pcss,
+            ..s
+        };
+        assert_eq!(map_depth(true, &pcss), MapDepth::Projected);
+    }
+}

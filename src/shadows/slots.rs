@@ -582,11 +582,16 @@ mod tests {
             MaskMode::Off,
         );
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
+        let mut linear = slot(ShadowKind::Map, with(Filter::Pcf3x3));
+        linear.test = linear.test.map(|t| ShadowTest {
+            map_depth: MapDepth::Linear,
+            ..t
+        });
         let others = snippets(
             &[
                 slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Map, with(Filter::Pcss)),
-                slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+                linear,
             ],
             MaskMode::Off,
         );
@@ -640,6 +645,35 @@ mod tests {
                 "{filter:?}: {line}"
             );
         }
+        // A perspective map tested in linear depth: its position through the library's
+        // helper, the bias in it or in the call.
+        let depth = |map_depth| {
+            let slot = LightSlot {
+                shadow: Map,
+                positional: true,
+                cone: true,
+                test: Some(ShadowTest {
+                    map_depth,
+                    ..ShadowTest::of(&ShadowSettings::default())
+                }),
+            };
+            light_part(1, 0, &slot, MaskMode::Off)
+        };
+        let linear = depth(MapDepth::Linear);
+        assert!(linear.snippets.contains(&"lib/linear_depth.glsl"));
+        assert_eq!(
+            linear.lines[1],
+            "float lit1 = calcShadow(shadowMap1, linearDepthPosition(mlightviewVertexPos[0]), \
+             0.05, vec2(0.0009765625, 0.0009765625), 1, false);"
+        );
+        assert_eq!(
+            depth(MapDepth::LinearBias).lines[1],
+            "float lit1 = calcShadow(shadowMap1, projectedBiasedPosition(mlightviewVertexPos[0], \
+             0.05, lightDepthRange[1]), 0.0, vec2(0.0009765625, 0.0009765625), 1, false);"
+        );
+        assert!(!depth(MapDepth::Projected)
+            .snippets
+            .contains(&"lib/linear_depth.glsl"));
         // The grid's radius is the filter's.
         assert!(call(Map, Filter::Single).ends_with(", 0, false);"));
         assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false);"));
