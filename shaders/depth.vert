@@ -9,7 +9,17 @@ layout (location = 2) in vec3 vertexNormal;
 uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
 
+#ifdef LINEAR_DEPTH
+// A perspective map's linear depth (depth.frag): clip w is the distance along the light's
+// axis, so (w - near) / (far - near) runs from 0 to 1 and interpolates exactly.
+uniform vec2 depthRange;  // the light's near and far planes
+out float lightDepth;
+#endif
+
 void main()
 {
     gl_Position = orthoProjectionMatrix * modelLightViewMatrix * vec4(position, 1.0);
+#ifdef LINEAR_DEPTH
+    lightDepth = (gl_Position.w - depthRange.x) / (depthRange.y - depthRange.x);
+#endif
 }

@@ -1,7 +1,9 @@
 #version 330 core
 // The depth-map debug view (LearnOpenGL's debug quad). An orthographic map stores linear
-// depth; a perspective map is linearised first, or everything but the nearest surfaces
-// would look white. Either is then stretched over the casters' depths (shownFrom..shownTo). A cube map (CUBE) is shown as a panorama, a cascade
+// depth and is shown as stored, as is a perspective map that stores linear depth (the
+// default); one that stores its projection's depth (the chapters') is linearised first, or
+// everything but the nearest surfaces would look white. Either is then stretched over the
+// casters' depths (shownFrom..shownTo). A cube map (CUBE) is shown as a panorama, a cascade
 // array (ARRAY) as its layers side by side. A moment map shows its first moment (the mean
 // depth), an EVSM map unwarped back to depth.
 

@@ -45,9 +45,12 @@ flat out vec3 lightVector[LIGHT_COUNT];
 
 #ifdef USES_CASCADES
 // The cascaded light (one per scene): camera-relative world position to each cascade's
-// clip space, and each cascade's normal offset in world units (its own texel size).
+// clip space, each cascade's normal offset in world units (its own texel size), and what
+// its depth bias is multiplied by so that it spans the same world distance in every layer
+// (the deepest box's over its own). Orthographic: w is free to carry it.
 uniform mat4 cascadeMatrix[CASCADES];
 uniform float cascadeNormalOffset[CASCADES];
+uniform float cascadeBiasScale[CASCADES];
 out vec4 cascadePos[CASCADES];
 #endif
 
@@ -84,6 +87,7 @@ void main()
 #else
         cascadePos[c] = cascadeMatrix[c] * vec4(worldPos, 1.0);
 #endif
+        cascadePos[c].w = cascadeBiasScale[c];
     }
 #endif
 }

@@ -21,6 +21,7 @@ names::named_by_clap!(
     BeyondFar,
     LightView,
     LightProjection,
+    PerspectiveDepth,
     Fit,
     PointPass,
     Volumetric,
@@ -368,6 +369,26 @@ pub enum LightProjection {
     Perspective,
 }
 
+/// What a perspective map (a spot light's, a directional light's `perspective` one) stores.
+/// Its projection's z / w crowds every depth past the near plane towards 1 (at near 0.01
+/// and far 30 the last 99.9% of the range gets 0.03% of the values), so a bias in those
+/// units spans a distance that depends on the near plane: docs/techniques/perspective-depth.md.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum PerspectiveDepth {
+    /// The depth along the light's axis, linear from its near plane (0) to its far plane
+    /// (1), written per fragment: a bias is the same fraction of the light's range, the
+    /// same world distance, at any near plane (as in an orthographic map).
+    #[default]
+    Linear,
+    /// The projection's own depth, as the chapters store it (LearnOpenGL linearises it only
+    /// to show it).
+    Hyperbolic,
+    /// The projection's depth stored, the bias taken off the fragment's linear depth before
+    /// it is compared: the same reach as `linear` with the depth pass untouched, as long as
+    /// the stored depth resolves it (not 16 bits at small near planes).
+    HyperbolicLinearBias,
+}
+
 /// Where a directional light's orthographic box comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum Fit {
@@ -674,6 +695,11 @@ shadow_settings! {
             arg(value_name = "SIZE", value_parser = parse_map_size, allow_negative_numbers = true);
         /// Depth-map precision.
         depth_format: DepthFormat = DepthFormat::D24;
+        /// What a perspective map stores: `linear` (depth from the light's near plane to its
+        /// far plane: the bias means the same at any near plane) or `hyperbolic` (the
+        /// projection's z / w, the chapters'). Depth maps only; a moment map and PCSS keep
+        /// the projection's depth.
+        perspective_depth: PerspectiveDepth = PerspectiveDepth::Linear;
         /// Cascaded shadow maps for directional lights: 1 = one map (the chapters), 2 to 4
         /// = that many `map_size` layers of a depth texture array, one per slice of the view.
         cascades: u32 = 1, range(Range::from_to(1, MAX_CASCADES).low_means("one map")),

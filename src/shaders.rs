@@ -53,6 +53,10 @@ const LIBRARY: &[(&str, &str)] = &[
     ),
     ("lib/bias.glsl", include_str!("../shaders/lib/bias.glsl")),
     (
+        "lib/linear_depth.glsl",
+        include_str!("../shaders/lib/linear_depth.glsl"),
+    ),
+    (
         "lib/shadow_2d.glsl",
         include_str!("../shaders/lib/shadow_2d.glsl"),
     ),

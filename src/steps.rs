@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Camera, Scene, StepContext, StepList};
 use crate::settings::{
     BeyondFar, BiasMode, Blur, Cull, DepthLookup, Filter, LightProjection, MapSize, MsmToward,
-    ShadowSettings, ShadowTechnique, Volumetric, Wrap,
+    PerspectiveDepth, ShadowSettings, ShadowTechnique, Volumetric, Wrap,
 };
 
 /// One step of the chapters.
@@ -256,7 +256,10 @@ pub const STEPS: &[Step] = &[
         cumulative: false,
         stages: &[],
         same_picture: &[],
-        apply: |s, _| s.light_projection = LightProjection::Perspective,
+        apply: |s, _| {
+            s.light_projection = LightProjection::Perspective;
+            s.perspective_depth = PerspectiveDepth::Hyperbolic;
+        },
     },
     Step {
         name: "perspective-depth-map",
@@ -267,6 +270,7 @@ pub const STEPS: &[Step] = &[
         same_picture: &[],
         apply: |s, _| {
             s.light_projection = LightProjection::Perspective;
+            s.perspective_depth = PerspectiveDepth::Hyperbolic;
             s.show_depth_map = true;
         },
     },

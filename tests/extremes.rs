@@ -10,7 +10,8 @@ use shadowmap::engine::HeadlessContext;
 use shadowmap::reference::Metrics;
 use shadowmap::scene::{Light, SpotLight};
 use shadowmap::settings::{
-    BeyondFar, BiasMode, DepthFormat, Filter, Fit, LightView, MapSize, ShadowSettings, Wrap,
+    BeyondFar, BiasMode, DepthFormat, Filter, Fit, LightProjection, LightView, MapSize,
+    PerspectiveDepth, ShadowSettings, Wrap,
 };
 use shadowmap::Scene;
 
@@ -404,6 +405,134 @@ fn perspective_lights_over_near_planes_and_ratios() {
         "{err}"
     );
 }
+
+/// A perspective light over the DummyGame with its near plane at `near` and far at 20: a
+/// spot 4.5 units from the centre, or the sun's perspective map (its eye 5 units up the
+/// light's direction, 60 degrees).
+fn perspective_light(spot: bool, near: f32) -> Scene {
+    let mut scene = common::dummy(60.0);
+    if spot {
+        scene.lights[0] = Light::Spot(SpotLight {
+            colour: Vec3::ONE,
+            intensity: 1.0,
+            position: Vec3::new(0.0, 4.0, 2.0),
+            target: Vec3::ZERO,
+            up: None,
+            fov: 90.0,
+            aspect: 1.0,
+            cone: true,
+            near,
+            far: 20.0,
+            casts_shadows: true,
+            shadow: Default::default(),
+            size: 0.0,
+        });
+    } else if let Light::Directional(l) = &mut scene.lights[0] {
+        l.ortho.near = near;
+        l.ortho.far = 20.0;
+        scene.shadow.light_projection = LightProjection::Perspective;
+    }
+    scene
+}
+
+const NEARS: [f32; 5] = [1e-4, 1e-3, 1e-2, 0.1, 1.0];
+
+#[test]
+fn perspective_maps_over_near_planes_formats_and_biases() {
+    let ctx = common::context();
+    let depths = [
+        PerspectiveDepth::Linear,
+        PerspectiveDepth::HyperbolicLinearBias,
+        PerspectiveDepth::Hyperbolic,
+    ];
+    for (spot, light) in [(true, "spot"), (false, "perspective directional")] {
+        for depth in depths {
+            let name = depth.name();
+            eprintln!("\n{light} light, `perspective_depth = \"{name}\"` (16 / 24 / 32f):\n");
+            // By near plane, then bias mode, then format.
+            let mut grid: Vec<Vec<Vec<Metrics>>> = Vec::new();
+            for near in NEARS {
+                let scene = perspective_light(spot, near);
+                let base = ShadowSettings {
+                    perspective_depth: depth,
+                    ..scene.shadow
+                };
+                let modes = bias_modes(&base);
+                if grid.is_empty() {
+                    let names: Vec<&str> = modes.iter().map(|(n, _)| *n).collect();
+                    eprintln!("| near | {} |", names.join(" | "));
+                    eprintln!("|---|{}", "---|".repeat(names.len()));
+                }
+                let row: Vec<Vec<Metrics>> = modes
+                    .iter()
+                    .map(|(_, s)| {
+                        DepthFormat::ALL
+                            .iter()
+                            .map(|&f| {
+                                measure(
+                                    &ctx,
+                                    &scene,
+                                    &ShadowSettings {
+                                        depth_format: f,
+                                        ..*s
+                                    },
+                                )
+                            })
+                            .collect()
+                    })
+                    .collect();
+                let cells: Vec<String> = row
+                    .iter()
+                    .map(|by_format| {
+                        let pct: Vec<String> = by_format
+                            .iter()
+                            .map(|m| format!("{:.2}", m.misclassified_rate * 100.0))
+                            .collect();
+                        format!("{}%", pct.join(" / "))
+                    })
+                    .collect();
+                eprintln!("| {near} | {} |", cells.join(" | "));
+                grid.push(row);
+            }
+            if depth == PerspectiveDepth::Linear {
+                assert_steady_over_near_planes(light, &grid);
+            }
+        }
+    }
+}
+
+/// Linear depth: with every bias mode but none (acne everywhere), every format, the share
+/// misclassified at each near plane, and the share outside the 1-pixel edge band, are
+/// within 1.5 x of near 1's (two pixels' slack for the rasteriser's rounding); with the
+/// slope bias nothing lies outside the band.
+fn assert_steady_over_near_planes(light: &str, grid: &[Vec<Vec<Metrics>>]) {
+    let at_one = &grid[NEARS.len() - 1];
+    for (near, row) in NEARS.iter().zip(grid) {
+        for (mode, by_format) in row.iter().enumerate().skip(1) {
+            for (f, m) in by_format.iter().enumerate() {
+                let one = &at_one[mode][f];
+                let slack = 2.0 / m.receivers.max(1) as f64;
+                let steady = |now: f64, then: f64| now <= 1.5 * then + slack;
+                let outside = m.misclassified_outside_band_rate;
+                let ok = steady(m.misclassified_rate, one.misclassified_rate)
+                    && steady(outside, one.misclassified_outside_band_rate)
+                    && (mode != SLOPE || outside <= slack);
+                assert!(
+                    ok,
+                    "{light}, near {near}, bias mode {mode}, format {f}: {:.4}% ({:.4}% outside \
+                     the band) against {:.4}% ({:.4}%) at near 1",
+                    m.misclassified_rate * 100.0,
+                    outside * 100.0,
+                    one.misclassified_rate * 100.0,
+                    one.misclassified_outside_band_rate * 100.0
+                );
+            }
+        }
+    }
+}
+
+/// The slope bias' place in [`bias_modes`].
+const SLOPE: usize = 3;
 
 #[test]
 fn far_from_the_origin_the_error_is_unchanged() {

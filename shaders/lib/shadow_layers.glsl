@@ -10,7 +10,9 @@
 // (PCSS is refused for layers: src/scene/refusals.rs, filter_refusal.)
 
 // The layered light's position in each layer's clip space (scene.vert: one light is
-// layered, so they fit among the vertex outputs).
+// layered, so they fit among the vertex outputs); w, 1 in an orthographic box, carries the
+// layer's bias scale: the bias is a fraction of the deepest layer's depth range, the same
+// world distance in every layer.
 in vec4 cascadePos[CASCADES];
 
 // One comparison in a layer: 1 = lit. Through a shadow sampler the hardware compares the
@@ -33,7 +35,7 @@ float layerLookup(LAYER_SAMPLER map, int c, float bias)
     vec3 projCoords = cascadePos[c].xyz * 0.5 + 0.5;
     vec2 uv = projCoords.xy;
     float layer = float(c);
-    float current = projCoords.z - bias;
+    float current = projCoords.z - bias * cascadePos[c].w;
     float lit = 0.0;
 #if LAYER_TAPS == 0
     for (int row = -LAYER_RADIUS; row <= LAYER_RADIUS; ++row) {

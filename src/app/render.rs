@@ -73,7 +73,8 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     if let (Some(path), Some((size, _))) = (&args.depth_out, &frame.depth_map) {
-        print_depth_out(path, &size.label(), frame.depth_perspective);
+        let linear = frame.depth_linear;
+        print_depth_out(path, &size.label(), frame.depth_perspective, linear);
     }
     if let Some(range) = frame.depth_view_range {
         let shown = match settings.show_depth_map {
@@ -180,8 +181,12 @@ fn write_images(args: &RenderArgs, frame: &Frame) -> Result<()> {
 }
 
 /// What the `--depth-out` image's greys mean.
-fn print_depth_out(path: &Path, size: &str, perspective: Option<(f32, f32)>) {
+fn print_depth_out(path: &Path, size: &str, perspective: Option<(f32, f32)>, linear: bool) {
     let shown = match perspective {
+        Some((near, far)) if linear => format!(
+            "a perspective light's depth as stored, linear in distance along its axis: black \
+             at its near plane ({near}), white at its far plane ({far})"
+        ),
         Some((near, far)) => format!(
             "a perspective light's depth, linearised to eye distance as the depth view \
              does: black at its near plane ({near}), white at its far plane ({far})"

@@ -29,6 +29,9 @@ pub struct Frame {
     pub depth_perspective: Option<(f32, f32)>,
     /// The greys of the depth view or inset the last frame drew, when it showed a 2D map.
     pub depth_view_range: Option<crate::renderer::DepthRange>,
+    /// Whether that perspective map stores linear depth (`perspective_depth = "linear"`):
+    /// shown as stored, not linearised.
+    pub depth_linear: bool,
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
     /// The camera position the G-buffer positions are relative to.
@@ -94,8 +97,8 @@ impl Frame {
             .iter()
             .map(|&d| {
                 let shown = match self.depth_perspective {
-                    Some((near, far)) => linear_depth(d, near, far),
-                    None => d,
+                    Some((near, far)) if !self.depth_linear => linear_depth(d, near, far),
+                    _ => d,
                 };
                 (shown.clamp(0.0, 1.0) * 255.0).round() as u8
             })
@@ -224,10 +227,11 @@ pub fn render_frames_with(
         }
         (size, depth)
     });
-    let depth_perspective = renderer
+    let view = renderer
         .shadow_view()
-        .filter(|v| v.perspective && depth_map.is_some())
-        .map(|v| (v.near, v.far));
+        .filter(|v| v.perspective && depth_map.is_some());
+    let depth_perspective = view.map(|v| (v.near, v.far));
+    let depth_linear = view.is_some_and(|v| v.linear_depth);
     crate::engine::check_gl(gl, "reading the frame back")?;
     Ok(Frame {
         width,
@@ -239,6 +243,7 @@ pub fn render_frames_with(
         depth_map,
         depth_perspective,
         depth_view_range: renderer.depth_view_range(),
+        depth_linear,
         frame_ms,
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),

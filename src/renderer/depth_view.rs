@@ -136,7 +136,9 @@ impl DepthView {
         p.bind();
         p.set_i32("depthMap", 0);
         if let Some(v) = view {
-            p.set_i32("linearize", i32::from(v.perspective && !cube));
+            // A map of linear depth is shown as stored, as an orthographic one.
+            let linearize = v.perspective && !v.linear_depth && !cube;
+            p.set_i32("linearize", i32::from(linearize));
             p.set_f32("nearPlane", v.near);
             p.set_f32("farPlane", v.far);
         }

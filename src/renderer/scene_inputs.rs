@@ -72,6 +72,9 @@ pub(super) struct LightUniforms {
     far: Vec<f32>,
     /// PCSS's (S.x, S.y, near, far) per light: see [`penumbra`].
     penumbra: Vec<Vec4>,
+    /// Each 2D map's (near, far, 0, 0), for a test biased in linear depth
+    /// (shaders/lib/linear_depth.glsl).
+    depth_range: Vec<Vec4>,
     /// World to the light's view (a point light: to the light's position), per map slot.
     pub light_from: Vec<DMat4>,
     /// Per map slot.
@@ -98,6 +101,7 @@ impl LightUniforms {
             cone_axis: vec![Vec3::Z; n],
             far: vec![1.0; n],
             penumbra: vec![Vec4::ZERO; n],
+            depth_range: vec![Vec4::ZERO; n],
             normal_offset: vec![0.0; mapped],
             projection: vec![Mat4::IDENTITY; mapped],
             light_from: vec![DMat4::IDENTITY; mapped],
@@ -125,6 +129,7 @@ impl LightUniforms {
                 continue;
             };
             u.penumbra[i] = penumbra(light, v);
+            u.depth_range[i] = Vec4::new(v.near, v.far, 0.0, 0.0);
             if let Some(s) = t.slot_transform(light, v, &inputs.plan.lights[i].settings) {
                 u.normal_offset[p] = s.normal_offset;
                 u.projection[p] = s.projection;
@@ -144,6 +149,7 @@ impl LightUniforms {
         p.set_vec3_array("lightConeAxis", &self.cone_axis);
         p.set_f32_array("lightFar", &self.far);
         p.set_vec4_array("lightPenumbra", &self.penumbra);
+        p.set_vec4_array("lightDepthRange", &self.depth_range);
         p.set_f32_array("normalOffset", &self.normal_offset);
         p.set_mat3_array("lightRotation", &self.rotation);
         p.set_mat3("viewToWorld", &Mat3::from_mat4(view).transpose());

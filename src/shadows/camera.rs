@@ -64,6 +64,7 @@ pub fn perspective_view(
         view64: view.as_dmat4(),
         projection: Mat4::perspective_rh_gl(fov.to_radians(), aspect, near, far),
         perspective: true,
+        linear_depth: false,
         near,
         far,
         texel_world: texel,

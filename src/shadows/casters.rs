@@ -19,6 +19,8 @@ use super::{DepthPass, ShadowView};
 pub struct DepthPrograms {
     /// Shared, so a pass can hold it while it hands its [`super::DepthPass`] on.
     flat: Option<Rc<ShaderProgram>>,
+    /// The same with `LINEAR_DEPTH`: a perspective map's linear depth.
+    linear: Option<Rc<ShaderProgram>>,
     /// A point light's program and whether it is the layered one.
     point: Option<(ShaderProgram, PointPass)>,
 }
@@ -26,15 +28,29 @@ pub struct DepthPrograms {
 impl DepthPrograms {
     /// The book's depth shaders (depth.vert / depth.frag): 2D maps and cascades.
     pub fn flat(&mut self, gl: &Gl) -> Result<Rc<ShaderProgram>> {
-        if self.flat.is_none() {
-            self.flat = Some(Rc::new(ShaderProgram::new(
+        Self::get(&mut self.flat, gl, &[])
+    }
+
+    /// The same shaders writing linear depth (`LINEAR_DEPTH`): a perspective 2D map that
+    /// [`super::map2d::stores_linear_depth`].
+    pub fn linear(&mut self, gl: &Gl) -> Result<Rc<ShaderProgram>> {
+        Self::get(&mut self.linear, gl, &[("LINEAR_DEPTH".into(), "1".into())])
+    }
+
+    fn get(
+        slot: &mut Option<Rc<ShaderProgram>>,
+        gl: &Gl,
+        defines: &[(String, String)],
+    ) -> Result<Rc<ShaderProgram>> {
+        if slot.is_none() {
+            *slot = Some(Rc::new(ShaderProgram::new(
                 gl,
                 &shaders::depth_vert(),
                 &shaders::depth_frag(),
-                &[],
+                defines,
             )?));
         }
-        match &self.flat {
+        match slot {
             Some(p) => Ok(Rc::clone(p)),
             None => Err(crate::Error::Invalid("the depth program is missing".into())),
         }

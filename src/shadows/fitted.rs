@@ -31,6 +31,7 @@ impl FittedBox {
             view64: self.view,
             projection,
             perspective: false,
+            linear_depth: false,
             near: near as f32,
             far: far as f32,
             texel_world: self.texel as f32,

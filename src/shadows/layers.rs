@@ -157,6 +157,7 @@ impl<L: Layout> Technique for Layered<L> {
             .collect();
         p.set_mat4_array("cascadeMatrix", &matrices);
         p.set_f32_array("cascadeNormalOffset", &offsets);
+        p.set_f32_array("cascadeBiasScale", &bias_scales(boxes));
         self.layout.set_uniforms(p);
     }
 
@@ -169,6 +170,21 @@ impl<L: Layout> Technique for Layered<L> {
             layers: self.array.layers(),
         }
     }
+}
+
+/// What each layer's depth bias is multiplied by (`cascadeBiasScale`): the deepest layer's
+/// depth range over its own, so a bias (a fraction of the deepest layer's range, where its
+/// world length is needed against acne on the coarsest texels) spans the same world
+/// distance in every layer, as the normal offset does per layer. On `large` with four
+/// cascades (85 to 452 units deep) the first layer's range as the measure left the far
+/// layers acne (docs/techniques/cascades.md).
+pub fn bias_scales(boxes: &[FittedBox]) -> Vec<f32> {
+    let depth = |b: &FittedBox| b.bounds[5] - b.bounds[4];
+    let deepest = boxes.iter().map(depth).fold(0.0, f64::max);
+    boxes
+        .iter()
+        .map(|b| (deepest / depth(b).max(f64::MIN_POSITIVE)) as f32)
+        .collect()
 }
 
 /// A layered technique's shader snippet: its file (which includes shadow_layers.glsl), its

@@ -159,6 +159,9 @@ pub struct ShadowView {
     pub projection: Mat4,
     /// Perspective projections need the divide by w (and linearising for display).
     pub perspective: bool,
+    /// A perspective 2D map that stores linear depth, near (0) to far (1), rather than its
+    /// projection's z / w ([`map2d::stores_linear_depth`]).
+    pub linear_depth: bool,
     pub near: f32,
     pub far: f32,
     /// The size of one shadow-map texel in world units, at the target for perspective maps.

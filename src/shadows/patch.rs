@@ -281,6 +281,7 @@ mod tests {
             view64: DMat4::IDENTITY,
             projection,
             perspective,
+            linear_depth: false,
             near: 1.0,
             far: 20.0,
             texel_world: 20.0 / 1024.0,

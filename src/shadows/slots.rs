@@ -14,6 +14,7 @@
 //! compiler inlines it and folds them, so a light's test costs what a hand-written one
 //! would.
 
+use super::map2d::MapDepth;
 use super::moments::MomentTest;
 use super::{cascades, cube, groups, layers, map2d, summed, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
@@ -52,6 +53,8 @@ pub struct ShadowTest {
     pub pcss_filter_taps: u32,
     /// PCSS: the light's map is a perspective one (its depth is not linear).
     pub pcss_perspective: bool,
+    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
+    pub map_depth: map2d::MapDepth,
     /// A moment filter's own constants.
     pub moments: Option<MomentTest>,
 }
@@ -75,6 +78,7 @@ impl ShadowTest {
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
+            map_depth: map2d::MapDepth::Projected,
         }
     }
 
@@ -89,6 +93,7 @@ impl ShadowTest {
         ShadowTest {
             pcss_perspective: perspective
                 && (settings.filter == Filter::Pcss || summed::reads_table(settings.filter)),
+            map_depth: map2d::map_depth(perspective, settings),
             ..ShadowTest::of(settings)
         }
     }
@@ -238,6 +243,10 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
         part.snippets.push("lib/bias.glsl");
     }
+    let projected = |t: ShadowTest| t.map_depth == map2d::MapDepth::Projected;
+    if slot.shadow == ShadowKind::Map && slot.test.is_some_and(|t| !projected(t)) {
+        part.snippets.push("lib/linear_depth.glsl");
+    }
     part.snippets.extend(glsl.snippets);
     part.lines = vec![
         format!("vec3 toLight{i} = toLightOf({i}, {positional});"),
@@ -302,11 +311,21 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
 /// (hardware comparisons, the playground's soft filters, PCSS).
 pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     let map = map2d::SAMPLERS[i];
-    let head = format!(
-        "{map}, mlightviewVertexPos[{p}], {}, {}",
-        test.bias_glsl(i),
-        test.texel_glsl()
-    );
+    let (position, bias) = match test.map_depth {
+        MapDepth::Projected => (format!("mlightviewVertexPos[{p}]"), test.bias_glsl(i)),
+        MapDepth::Linear => (
+            format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
+            test.bias_glsl(i),
+        ),
+        MapDepth::LinearBias => (
+            format!(
+                "projectedBiasedPosition(mlightviewVertexPos[{p}], {}, lightDepthRange[{i}])",
+                test.bias_glsl(i)
+            ),
+            "0.0".into(),
+        ),
+    };
+    let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
     let (r, far) = (test.pcf_radius, test.beyond_far_lit);
     let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
         _ if test.hardware => (
@@ -567,11 +586,16 @@ mod tests {
             MaskMode::Off,
         );
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
+        let mut linear = slot(ShadowKind::Map, with(Filter::Pcf3x3));
+        linear.test = linear.test.map(|t| ShadowTest {
+            map_depth: MapDepth::Linear,
+            ..t
+        });
         let others = snippets(
             &[
                 slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Map, with(Filter::Pcss)),
-                slot(ShadowKind::Map, with(Filter::Pcf3x3)),
+                linear,
                 slot(ShadowKind::Moments, with(Filter::Vssm)),
             ],
             MaskMode::Off,
@@ -628,6 +652,35 @@ mod tests {
                 "{filter:?}: {line}"
             );
         }
+        // A perspective map tested in linear depth: its position through the library's
+        // helper, the bias in it or in the call.
+        let depth = |map_depth| {
+            let slot = LightSlot {
+                shadow: Map,
+                positional: true,
+                cone: true,
+                test: Some(ShadowTest {
+                    map_depth,
+                    ..ShadowTest::of(&ShadowSettings::default())
+                }),
+            };
+            light_part(1, 0, &slot, MaskMode::Off)
+        };
+        let linear = depth(MapDepth::Linear);
+        assert!(linear.snippets.contains(&"lib/linear_depth.glsl"));
+        assert_eq!(
+            linear.lines[1],
+            "float lit1 = calcShadow(shadowMap1, linearDepthPosition(mlightviewVertexPos[0]), \
+             0.05, vec2(0.0009765625, 0.0009765625), 1, false);"
+        );
+        assert_eq!(
+            depth(MapDepth::LinearBias).lines[1],
+            "float lit1 = calcShadow(shadowMap1, projectedBiasedPosition(mlightviewVertexPos[0], \
+             0.05, lightDepthRange[1]), 0.0, vec2(0.0009765625, 0.0009765625), 1, false);"
+        );
+        assert!(!depth(MapDepth::Projected)
+            .snippets
+            .contains(&"lib/linear_depth.glsl"));
         // The grid's radius is the filter's.
         assert!(call(Map, Filter::Single).ends_with(", 0, false);"));
         assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false);"));

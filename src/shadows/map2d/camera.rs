@@ -44,6 +44,7 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
                 view64: view.as_dmat4(),
                 projection: l.projection_matrix(),
                 perspective: false,
+                linear_depth: false,
                 near: o.near,
                 far: o.far,
                 texel_world: ((o.right - o.left) / settings.map_size.width as f32)
@@ -55,10 +56,13 @@ fn own_camera(light: &Light, settings: &ShadowSettings) -> ShadowView {
         }
         (Light::Directional(l), LightProjection::Perspective) => {
             let eye = l.position();
-            // The ortho box may start behind the light (the book's near is -1); a
-            // perspective frustum needs a positive near, and at least 1 unit keeps its
-            // depth precision usable (LearnOpenGL's comparison uses near 1).
-            let near = l.ortho.near.max(1.0);
+            // A perspective frustum needs a positive near: a box that starts at or behind
+            // the light (the book's near is -1) gets 1 (LearnOpenGL's comparison uses 1).
+            let near = if l.ortho.near > 0.0 {
+                l.ortho.near
+            } else {
+                1.0
+            };
             let far = l.ortho.far.max(near * 2.0);
             let frustum = Perspective {
                 fov: settings.perspective_fov,

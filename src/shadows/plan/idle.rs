@@ -138,6 +138,14 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
             "only a directional light with a perspective projection uses it".into(),
         );
     }
+    if !linear_depth_can_apply(light, kind, s) {
+        push(
+            "perspective_depth",
+            "only a perspective depth map stores it (a spot light's, a directional light's \
+             perspective one), and not with pcss"
+                .into(),
+        );
+    }
     if !(directional && snapped(s)) || none.is_some() {
         push("snap", "the light's box is not fitted or cascaded".into());
     }
@@ -164,6 +172,17 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         push("show_volumes", "the light has no shadow volumes".into());
     }
     idle
+}
+
+/// Whether `perspective_depth` decides what light's map stores: a perspective depth map
+/// (not with PCSS: [`crate::shadows::map2d::stores_linear_depth`]).
+fn linear_depth_can_apply(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> bool {
+    let perspective = match light {
+        Light::Spot(_) => true,
+        Light::Directional(_) => s.light_projection == LightProjection::Perspective,
+        Light::Point(_) => false,
+    };
+    kind == ShadowKind::Map && perspective && s.filter != Filter::Pcss
 }
 
 /// The settings that do nothing for any of `lights` (planned as `plans`) under the scene's
@@ -220,6 +239,17 @@ pub(super) fn of_scene(
                 "no light's filter is pcss (--filter pcss); only PCSS takes its counts",
             ));
         }
+    }
+    let perspective_maps = lights
+        .iter()
+        .zip(plans)
+        .any(|(l, p)| linear_depth_can_apply(l, p.kind, &p.settings));
+    if !perspective_maps {
+        idle.push(Idle::new(
+            "perspective_depth",
+            "no light has a perspective depth map (a spot light, or --light-projection \
+             perspective) without pcss; it says what such a map stores",
+        ));
     }
     if !suns.iter().any(|s| snapped(s)) {
         idle.push(Idle::new(
