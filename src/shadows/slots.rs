@@ -218,7 +218,7 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         ShadowKind::Cascades => Some(layered_glsl(&cascades::SNIPPET, i, &test)),
         ShadowKind::Groups => Some(layered_glsl(&groups::SNIPPET, i, &test)),
         ShadowKind::Moments if summed::reads_table_mode(test.moments?.mode) => {
-            Some(summed::glsl(i, p, &test, &test.moments?))
+            Some(soft_moments_glsl(i, p, &test, &test.moments?))
         }
         ShadowKind::Moments => Some(moments_glsl(i, p, &test, &test.moments?)),
     });
@@ -254,6 +254,51 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         format!("addLight({i}, toLight{i}, {cone}, lit{i}, f);"),
     ];
     part
+}
+
+/// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
+/// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
+/// `usampler2D` read with `texelFetch`, with PCSS's light constants (`lightPenumbra`).
+fn soft_moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
+    let f = |bits: u32| glsl_float(f32::from_bits(bits));
+    let head = format!(
+        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}]",
+        map2d::SAMPLERS[i],
+        test.bias_glsl(i),
+        test.texel_glsl()
+    );
+    let tail = format!(
+        "{}, {}, {}",
+        test.pcss_perspective, moments.border_lit, test.beyond_far_lit
+    );
+    let call = match moments.mode {
+        summed::MODE_MSM_SOFT => {
+            let t = moments.msm_toward_bits.map(f);
+            format!(
+                "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
+                f(moments.msm_bias_bits),
+                t[0],
+                t[1],
+                t[2],
+                t[3]
+            )
+        }
+        _ => format!(
+            "vssm({head}, {}, {}, {tail})",
+            f(moments.min_variance_bits),
+            f(moments.bleed_reduction_bits)
+        ),
+    };
+    LightGlsl {
+        snippets: &[
+            "lib/soft_filters.glsl",
+            "lib/shadow_moments.glsl",
+            "lib/soft_moments.glsl",
+        ],
+        sampler_type: "usampler2D",
+        test: call,
+        defines: Vec::new(),
+    }
 }
 
 /// Every light's part, in the scene's order.
@@ -684,5 +729,31 @@ mod tests {
         // The grid's radius is the filter's.
         assert!(call(Map, Filter::Single).ends_with(", 0, false);"));
         assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false);"));
+    }
+
+    #[test]
+    fn each_soft_moment_filter_calls_its_function_with_its_constants() {
+        let vssm = ShadowSettings {
+            filter: Filter::Vssm,
+            ..ShadowSettings::default()
+        };
+        let test = ShadowTest::of(&vssm);
+        let m = test.moments.expect("vssm is a moment filter");
+        let g = soft_moments_glsl(1, 0, &test, &m);
+        assert_eq!(g.sampler_type, "usampler2D");
+        assert!(
+            g.test
+                .starts_with("vssm(shadowMap1, mlightviewVertexPos[0], "),
+            "{}",
+            g.test
+        );
+        assert!(g.test.contains(", lightPenumbra[1], "), "{}", g.test);
+        let msm = ShadowSettings {
+            filter: Filter::MsmSoft,
+            ..vssm
+        };
+        let test = ShadowTest::of(&msm);
+        let g = soft_moments_glsl(0, 0, &test, &test.moments.unwrap());
+        assert!(g.test.starts_with("msmSoft("), "{}", g.test);
     }
 }

@@ -11,13 +11,10 @@
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
 
-use super::moments::MomentTest;
-use super::slots::ShadowTest;
-use super::LightGlsl;
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
 use crate::error::Result;
-use crate::settings::{glsl_float, Filter, MapSize};
+use crate::settings::{Filter, MapSize};
 use crate::shaders;
 
 /// Whether `filter` reads a summed-area table ([`Filter::SOFT_MOMENTS`]).
@@ -72,51 +69,6 @@ impl Summed {
     }
 }
 
-/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
-/// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
-/// `usampler2D` read with `texelFetch`, with PCSS's light constants (`lightPenumbra`).
-pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
-    let f = |bits: u32| glsl_float(f32::from_bits(bits));
-    let head = format!(
-        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}]",
-        super::map2d::SAMPLERS[i],
-        test.bias_glsl(i),
-        test.texel_glsl()
-    );
-    let tail = format!(
-        "{}, {}, {}",
-        test.pcss_perspective, moments.border_lit, test.beyond_far_lit
-    );
-    let call = match moments.mode {
-        MODE_MSM_SOFT => {
-            let t = moments.msm_toward_bits.map(f);
-            format!(
-                "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
-                f(moments.msm_bias_bits),
-                t[0],
-                t[1],
-                t[2],
-                t[3]
-            )
-        }
-        _ => format!(
-            "vssm({head}, {}, {}, {tail})",
-            f(moments.min_variance_bits),
-            f(moments.bleed_reduction_bits)
-        ),
-    };
-    LightGlsl {
-        snippets: &[
-            "lib/soft_filters.glsl",
-            "lib/shadow_moments.glsl",
-            "lib/soft_moments.glsl",
-        ],
-        sampler_type: "usampler2D",
-        test: call,
-        defines: Vec::new(),
-    }
-}
-
 /// Whether a moment test's mode ([`super::moments::mode`]) reads a table.
 pub fn reads_table_mode(mode: u32) -> bool {
     mode == MODE_VSSM || mode == MODE_MSM_SOFT
@@ -131,7 +83,6 @@ pub const MODE_MSM_SOFT: u32 = 6;
 mod tests {
     use super::*;
     use crate::engine::summed_area::SAT_MAX_BOX;
-    use crate::settings::ShadowSettings;
 
     #[test]
     fn the_snippets_constants_are_the_tables() {
@@ -141,31 +92,5 @@ mod tests {
         // The widest box read: twice the largest half width and a texel each way.
         assert!(text.contains("const float SOFT_MAX_TEXELS = 64.0;"));
         assert_eq!(SAT_MAX_BOX, 2 * 64 + 2);
-    }
-
-    #[test]
-    fn each_filter_calls_its_function_with_its_constants() {
-        let vssm = ShadowSettings {
-            filter: Filter::Vssm,
-            ..ShadowSettings::default()
-        };
-        let test = ShadowTest::of(&vssm);
-        let m = test.moments.expect("vssm is a moment filter");
-        let g = glsl(1, 0, &test, &m);
-        assert_eq!(g.sampler_type, "usampler2D");
-        assert!(
-            g.test
-                .starts_with("vssm(shadowMap1, mlightviewVertexPos[0], "),
-            "{}",
-            g.test
-        );
-        assert!(g.test.contains(", lightPenumbra[1], "), "{}", g.test);
-        let msm = ShadowSettings {
-            filter: Filter::MsmSoft,
-            ..vssm
-        };
-        let test = ShadowTest::of(&msm);
-        let g = glsl(0, 0, &test, &test.moments.unwrap());
-        assert!(g.test.starts_with("msmSoft("), "{}", g.test);
     }
 }
