@@ -58,41 +58,8 @@ fn pcss_is_closer_to_the_area_light_than_hard_pcf_on_the_dummy_game() {
     assert!(pcss < pcf, "PCSS's MAE {pcss} is not below pcf3x3's {pcf}");
 }
 
-/// Two thin slabs over a floor, one 0.5 above it (left, x < 0) and one 3 above it (right),
-/// under a directional light of 6 degrees seen from above: the truth's penumbra is six
-/// times wider on the right (similar triangles).
-const CONTACT: &str = r#"
-name = "contact"
-size = [640, 360]
-[camera]
-position = [0.0, 9.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov = 60.0
-near = 0.1
-far = 50.0
-[light]
-angle = 80.0
-shadow_pos_mult = 10.0
-ortho = { left = -6.0, right = 6.0, bottom = -6.0, top = 6.0, near = -10.0, far = 20.0 }
-size = 6.0
-[shadow]
-map_size = 1024
-filter = "pcss"
-bias_mode = "constant"
-bias = 0.002
-[[item]]
-mesh = "plane"
-position = [0.0, 0.0, 0.0]
-scale = 8.0
-[[item]]
-mesh = "cube"
-position = [-2.5, 0.5, 0.0]
-scale = [1.0, 0.05, 1.0]
-[[item]]
-mesh = "cube"
-position = [2.5, 3.0, 0.0]
-scale = [1.0, 0.05, 1.0]
-"#;
+/// Two thin slabs over a floor, 0.5 and 3 above it, under a 6-degree sun (the file says more).
+const CONTACT: &str = include_str!("data/contact.toml");
 
 #[test]
 fn pcss_hardens_at_contact_as_the_area_light_does() {

@@ -199,38 +199,7 @@ fn on_the_wide_penumbra_scene_the_soft_moment_filters_beat_every_fixed_kernel() 
 
 /// Two thin slabs over a floor, 0.5 and 3 above it, under a 6-degree sun (as tests/soft.rs'
 /// contact scene): the truth's penumbra is six times wider under the high one.
-const CONTACT: &str = r#"
-name = "contact"
-size = [640, 360]
-[camera]
-position = [0.0, 9.0, 2.0]
-target = [0.0, 0.0, 0.0]
-fov = 60.0
-near = 0.1
-far = 50.0
-[light]
-angle = 80.0
-shadow_pos_mult = 10.0
-ortho = { left = -6.0, right = 6.0, bottom = -6.0, top = 6.0, near = -10.0, far = 20.0 }
-size = 6.0
-[shadow]
-map_size = 1024
-filter = "vssm"
-bias_mode = "constant"
-bias = 0.002
-[[item]]
-mesh = "plane"
-position = [0.0, 0.0, 0.0]
-scale = 8.0
-[[item]]
-mesh = "cube"
-position = [-2.5, 0.5, 0.0]
-scale = [1.0, 0.05, 1.0]
-[[item]]
-mesh = "cube"
-position = [2.5, 3.0, 0.0]
-scale = [1.0, 0.05, 1.0]
-"#;
+const CONTACT: &str = include_str!("data/contact.toml");
 
 #[test]
 fn the_penumbra_widens_with_the_blockers_height_as_the_truths() {
