@@ -6,8 +6,7 @@
 mod common;
 
 use common::{context, dummy};
-use shadowmap::compare::{compare, CompareOptions, Comparison, AREA_RAYS};
-use shadowmap::reference::penumbra_profiles;
+use shadowmap::compare::{CompareOptions, Comparison, AREA_RAYS};
 use shadowmap::settings::{BiasMode, Filter, ShadowSettings};
 use shadowmap::shadows::plan::{filter_refusal, ShadowPlan};
 use shadowmap::Scene;
@@ -36,8 +35,7 @@ fn with(settings: &ShadowSettings, filter: Filter) -> ShadowSettings {
 }
 
 fn run(scene: &Scene, settings: &ShadowSettings, o: &CompareOptions) -> Comparison {
-    let ctx = context();
-    compare(ctx.gl(), scene, settings, o).unwrap_or_else(|e| panic!("compare: {e}"))
+    common::compared(scene, settings, o)
 }
 
 #[test]
@@ -80,22 +78,7 @@ fn pcss_hardens_at_contact_as_the_area_light_does() {
             },
             &o,
         );
-        let truth = &c.reference.area.as_ref().expect("a sized light").pixels;
-        let vis = c.frame.visibility.as_deref().unwrap_or_default();
-        let profiles = penumbra_profiles(640, 360, vis, truth);
-        let side = |right: bool| {
-            let p: Vec<_> = profiles
-                .iter()
-                .filter(|p| (c.reference.world_position(p.y * 640 + p.x).x > 0.0) == right)
-                .collect();
-            assert!(p.len() > 40, "{} edges on one side", p.len());
-            let n = p.len() as f64;
-            (
-                p.iter().map(|p| p.truth_px).sum::<f64>() / n,
-                p.iter().map(|p| p.rendered_px).sum::<f64>() / n,
-            )
-        };
-        let (low, high) = (side(false), side(true));
+        let (low, high) = common::penumbra_widths_by_side(&c, 640, 360);
         eprintln!("{}: low {low:?}, high {high:?}", filter.name());
         (low, high)
     };

@@ -7,10 +7,9 @@
 mod common;
 
 use common::{context, dummy};
-use shadowmap::compare::{compare, CompareOptions, Comparison, AREA_RAYS};
+use shadowmap::compare::{CompareOptions, Comparison, AREA_RAYS};
 use shadowmap::engine::summed_area::{float_texture_from, SAT_SCALE};
 use shadowmap::engine::FullScreenTriangle;
-use shadowmap::reference::penumbra_profiles;
 use shadowmap::settings::{BiasMode, Filter, MapSize, ShadowSettings};
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::summed::Summed;
@@ -28,8 +27,7 @@ fn opts(width: u32, height: u32, band: usize) -> CompareOptions {
 }
 
 fn run(scene: &Scene, settings: &ShadowSettings, o: &CompareOptions) -> Comparison {
-    let ctx = context();
-    compare(ctx.gl(), scene, settings, o).unwrap_or_else(|e| panic!("compare: {e}"))
+    common::compared(scene, settings, o)
 }
 
 fn with(scene: &Scene, filter: Filter) -> ShadowSettings {
@@ -207,22 +205,7 @@ fn the_penumbra_widens_with_the_blockers_height_as_the_truths() {
     let o = opts(640, 360, 1);
     for filter in Filter::SOFT_MOMENTS {
         let c = run(&scene, &with(&scene, filter), &o);
-        let truth = &c.reference.area.as_ref().expect("a sized light").pixels;
-        let vis = c.frame.visibility.as_deref().unwrap_or_default();
-        let profiles = penumbra_profiles(640, 360, vis, truth);
-        let side = |right: bool| {
-            let p: Vec<_> = profiles
-                .iter()
-                .filter(|p| (c.reference.world_position(p.y * 640 + p.x).x > 0.0) == right)
-                .collect();
-            assert!(p.len() > 40, "{} edges on one side", p.len());
-            let n = p.len() as f64;
-            (
-                p.iter().map(|p| p.truth_px).sum::<f64>() / n,
-                p.iter().map(|p| p.rendered_px).sum::<f64>() / n,
-            )
-        };
-        let ((truth_low, low), (truth_high, high)) = (side(false), side(true));
+        let ((truth_low, low), (truth_high, high)) = common::penumbra_widths_by_side(&c, 640, 360);
         eprintln!(
             "{}: low {low:.2} px (truth {truth_low:.2}), high {high:.2} px (truth {truth_high:.2}), \
              MAE {:.4}",

@@ -259,3 +259,40 @@ pub fn png_claiming(width: u32, height: u32) -> Vec<u8> {
     png.extend(png_chunk(b"IEND", &[]));
     png
 }
+
+/// One frame of `scene` under `settings` scored against the exact reference.
+pub fn compared(
+    scene: &Scene,
+    settings: &ShadowSettings,
+    o: &shadowmap::compare::CompareOptions,
+) -> shadowmap::compare::Comparison {
+    let ctx = context();
+    shadowmap::compare::compare(ctx.gl(), scene, settings, o)
+        .unwrap_or_else(|e| panic!("compare: {e}"))
+}
+
+/// Mean penumbra widths in pixels, (truth, rendered), across the shadow edges left of x = 0
+/// and right of it (tests/data/contact.toml: the low slab, then the high one), from a
+/// `width` x `height` comparison under a sized light.
+pub fn penumbra_widths_by_side(
+    c: &shadowmap::compare::Comparison,
+    width: usize,
+    height: usize,
+) -> ((f64, f64), (f64, f64)) {
+    let truth = &c.reference.area.as_ref().expect("a sized light").pixels;
+    let vis = c.frame.visibility.as_deref().unwrap_or_default();
+    let profiles = shadowmap::reference::penumbra_profiles(width, height, vis, truth);
+    let side = |right: bool| {
+        let p: Vec<_> = profiles
+            .iter()
+            .filter(|p| (c.reference.world_position(p.y * width + p.x).x > 0.0) == right)
+            .collect();
+        assert!(p.len() > 40, "{} edges on one side", p.len());
+        let n = p.len() as f64;
+        (
+            p.iter().map(|p| p.truth_px).sum::<f64>() / n,
+            p.iter().map(|p| p.rendered_px).sum::<f64>() / n,
+        )
+    };
+    (side(false), side(true))
+}
