@@ -131,14 +131,16 @@ float pcss(sampler2D shadowMap, vec4 position, float bias, vec2 texel, vec4 ligh
         blockers += nearer;
         blockerDepth += nearer * d;
     }
-    float db = pcssDistance(blockerDepth / max(blockers, 1.0), light, perspective);
+    // No blocker found: lit, and the filter's lookups are skipped.
+    if (blockers == 0.0) {
+        return 1.0;
+    }
+    float db = pcssDistance(blockerDepth / blockers, light, perspective);
     vec2 radius = max(pcssPenumbra(dr, db, light, perspective), texel);
     float lit = 0.0;
     for (int k = 0; k < filterTaps; ++k) {
         vec2 offset = rotation * PCSS_DISK[k] * radius;
         lit += step(current + dot(slope, offset), texture(shadowMap, uv + offset).r);
     }
-    // No blocker found: lit (a select, not a branch per pixel).
-    lit = blockers > 0.0 ? lit / float(filterTaps) : 1.0;
-    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit;
+    return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit / float(filterTaps);
 }
