@@ -9,6 +9,26 @@ layout (location = 2) in vec3 vertexNormal;
 uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
 
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
+// from the instance buffer, instance instanceBase + gl_InstanceID, instanceStride texels
+// apart; the per-item uniforms serve the passes that still draw one item at a time.
+uniform bool instanced;
+uniform sampler2D instances;  // texel t at (t % INSTANCE_ROW, t / INSTANCE_ROW)
+const int INSTANCE_ROW = 1024;
+uniform int instanceStride;
+uniform int instanceBase;
+
+vec4 instanceTexel(int i)
+{
+    int t = (instanceBase + gl_InstanceID) * instanceStride + i;
+    return texelFetch(instances, ivec2(t % INSTANCE_ROW, t / INSTANCE_ROW), 0);
+}
+
+mat4 instanceMat4(int i)
+{
+    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
+}
+
 #ifdef LINEAR_DEPTH
 // A perspective map's linear depth (depth.frag): clip w is the distance along the light's
 // axis, so (w - near) / (far - near) runs from 0 to 1 and interpolates exactly.
@@ -18,7 +38,8 @@ out float lightDepth;
 
 void main()
 {
-    gl_Position = orthoProjectionMatrix * modelLightViewMatrix * vec4(position, 1.0);
+    mat4 modelLightView = instanced ? instanceMat4(0) : modelLightViewMatrix;
+    gl_Position = orthoProjectionMatrix * modelLightView * vec4(position, 1.0);
 #ifdef LINEAR_DEPTH
     lightDepth = (gl_Position.w - depthRange.x) / (depthRange.y - depthRange.x);
 #endif

@@ -9,11 +9,31 @@ layout (location = 2) in vec3 vertexNormal;
 uniform mat4 modelLightMatrix;  // model, then minus the light's position
 uniform mat4 faceProjection;    // 90-degree perspective x this face's view
 
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
+// from the instance buffer, instance instanceBase + gl_InstanceID, instanceStride texels
+// apart; the per-item uniforms serve the passes that still draw one item at a time.
+uniform bool instanced;
+uniform sampler2D instances;  // texel t at (t % INSTANCE_ROW, t / INSTANCE_ROW)
+const int INSTANCE_ROW = 1024;
+uniform int instanceStride;
+uniform int instanceBase;
+
+vec4 instanceTexel(int i)
+{
+    int t = (instanceBase + gl_InstanceID) * instanceStride + i;
+    return texelFetch(instances, ivec2(t % INSTANCE_ROW, t / INSTANCE_ROW), 0);
+}
+
+mat4 instanceMat4(int i)
+{
+    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
+}
+
 out vec3 lightToFragment;
 
 void main()
 {
-    vec4 p = modelLightMatrix * vec4(position, 1.0);
+    vec4 p = (instanced ? instanceMat4(0) : modelLightMatrix) * vec4(position, 1.0);
     lightToFragment = p.xyz;
     gl_Position = faceProjection * p;
 }

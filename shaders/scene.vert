@@ -43,6 +43,34 @@ flat out vec4 ambientColour;      // a: the reflectance (specular = diffuse x re
 flat out vec3 diffuseColour[LIGHT_COUNT];
 flat out vec3 lightVector[LIGHT_COUNT];
 
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
+// from the instance buffer, instance instanceBase + gl_InstanceID, instanceStride texels
+// apart, laid out by src/renderer/scene_pass.rs: modelViewMatrix (texels 0-3), normalMatrix
+// (4-6), modelOriginMatrix (7-10), worldNormalMatrix (11-13), material.ambient (14),
+// modelLightViewMatrix[p] (15 + 4p), material.diffuse[i] (15 + 4 MAP_SLOTS + i). The
+// uniforms serve the passes that still draw one item at a time (translucent items).
+uniform bool instanced;
+uniform sampler2D instances;  // texel t at (t % INSTANCE_ROW, t / INSTANCE_ROW)
+const int INSTANCE_ROW = 1024;
+uniform int instanceStride;
+uniform int instanceBase;
+
+vec4 instanceTexel(int i)
+{
+    int t = (instanceBase + gl_InstanceID) * instanceStride + i;
+    return texelFetch(instances, ivec2(t % INSTANCE_ROW, t / INSTANCE_ROW), 0);
+}
+
+mat4 instanceMat4(int i)
+{
+    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
+}
+
+mat3 instanceMat3(int i)
+{
+    return mat3(instanceTexel(i).xyz, instanceTexel(i + 1).xyz, instanceTexel(i + 2).xyz);
+}
+
 #ifdef USES_CASCADES
 // The cascaded light (one per scene): camera-relative world position to each cascade's
 // clip space, each cascade's normal offset in world units (its own texel size), and what
@@ -56,22 +84,24 @@ out vec4 cascadePos[CASCADES];
 
 void main()
 {
-    vec4 mvPos = modelViewMatrix * vec4(position, 1.0);
+    mat4 modelView = instanced ? instanceMat4(0) : modelViewMatrix;
+    vec4 mvPos = modelView * vec4(position, 1.0);
     gl_Position = projectionMatrix * mvPos;
     outTexCoord = texCoord;
     // The book transforms normals by modelViewMatrix, right for its uniform scales; the
     // inverse transpose keeps them right for any scale.
-    mvVertexNormal = normalize(normalMatrix * vertexNormal);
+    mvVertexNormal = normalize((instanced ? instanceMat3(4) : normalMatrix) * vertexNormal);
     mvVertexPos = mvPos.xyz;
     // The world normal, right under any scale; offsets along it are in world units.
-    vec3 worldNormal = normalize(worldNormalMatrix * vertexNormal);
-    ambientColour = material.ambient;
+    vec3 worldNormal = normalize((instanced ? instanceMat3(11) : worldNormalMatrix) * vertexNormal);
+    ambientColour = instanced ? instanceTexel(14) : material.ambient;
     for (int i = 0; i < LIGHT_COUNT; ++i) {
-        diffuseColour[i] = material.diffuse[i];
+        diffuseColour[i] = instanced ? instanceTexel(15 + 4 * MAP_SLOTS + i).rgb : material.diffuse[i];
         lightVector[i] = lightPositionOrDirection[i];
     }
     for (int p = 0; p < MAP_COUNT; ++p) {
-        vec4 lightViewPos = modelLightViewMatrix[p] * vec4(position, 1.0);
+        mat4 modelLightView = instanced ? instanceMat4(15 + 4 * p) : modelLightViewMatrix[p];
+        vec4 lightViewPos = modelLightView * vec4(position, 1.0);
 #ifdef NORMAL_OFFSET
         // Normal-offset bias: look the map up from a point pushed off the surface. The
         // light view is rigid, so the rotated unit normal keeps world lengths.
@@ -80,7 +110,8 @@ void main()
         mlightviewVertexPos[p] = orthoProjectionMatrix[p] * lightViewPos;
     }
 #ifdef USES_CASCADES
-    vec3 worldPos = (modelOriginMatrix * vec4(position, 1.0)).xyz;
+    mat4 modelOrigin = instanced ? instanceMat4(7) : modelOriginMatrix;
+    vec3 worldPos = (modelOrigin * vec4(position, 1.0)).xyz;
     for (int c = 0; c < CASCADES; ++c) {
 #ifdef NORMAL_OFFSET
         cascadePos[c] = cascadeMatrix[c] * vec4(worldPos + worldNormal * cascadeNormalOffset[c], 1.0);

@@ -66,6 +66,17 @@ impl GlContext {
         b.units[i] = Some((target, texture));
     }
 
+    /// [`Self::bind_texture_once`], and `unit` left active: a texture about to be written
+    /// through its binding.
+    pub(crate) fn bind_texture_active(&self, unit: u32, target: u32, texture: glow::Texture) {
+        self.bind_texture_once(unit, target, texture);
+        let mut b = self.bound.borrow_mut();
+        if b.active_unit != Some(unit) {
+            unsafe { glow::HasContext::active_texture(&self.gl, glow::TEXTURE0 + unit) };
+            b.active_unit = Some(unit);
+        }
+    }
+
     /// After binds made without the calls above: nothing is known bound any more.
     pub(crate) fn forget_bindings(&self) {
         *self.bound.borrow_mut() = Bound::default();

@@ -35,3 +35,17 @@ pub(crate) fn count(add: impl FnOnce(&mut Created)) {
         c.set(now);
     });
 }
+
+thread_local! {
+    static DRAWS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Draw calls of meshes sent so far on this thread (an instanced draw is one), so a test can
+/// hold a frame to its batches.
+pub fn draws() -> u64 {
+    DRAWS.with(Cell::get)
+}
+
+pub(crate) fn count_draw() {
+    DRAWS.with(|d| d.set(d.get() + 1));
+}

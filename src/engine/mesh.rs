@@ -54,6 +54,7 @@ impl Mesh {
                 .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
             self.gl.bind_vertex_array(None);
         }
+        super::counters::count_draw();
     }
 
     /// Draws the mesh once per item, calling `before_each` to set that item's uniforms
@@ -69,9 +70,27 @@ impl Mesh {
                 before_each(item);
                 self.gl
                     .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+                super::counters::count_draw();
             }
             self.gl.bind_vertex_array(None);
         }
+    }
+
+    /// Draws `count` instances of the mesh in one call (the per-instance values come from
+    /// [`super::instances::InstanceBuffer`]).
+    pub fn render_instanced(&self, count: usize) {
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.draw_elements_instanced(
+                glow::TRIANGLES,
+                self.index_count,
+                glow::UNSIGNED_INT,
+                0,
+                count as i32,
+            );
+            self.gl.bind_vertex_array(None);
+        }
+        super::counters::count_draw();
     }
 
     pub fn index_count(&self) -> usize {

@@ -157,6 +157,7 @@ impl Renderer {
                 settings: &settings,
                 boxes: schedule.boxes(),
                 casters: &mut self.casters,
+                instances: &self.gpu.instances,
             };
             *view = Some(match &step.patch {
                 Some(patch) => technique.render_depth_patch(&mut pass, scene, index, patch)?,

@@ -55,6 +55,7 @@ impl Renderer {
             meshes: &self.gpu.meshes,
             textures: &self.gpu.textures,
             white: &self.gpu.white,
+            instances: &self.gpu.instances,
             pass_light: -1,
             mask: match mode {
                 MaskMode::Read => self.mask.texture(),

@@ -3,7 +3,7 @@
 
 use glam::{DMat4, Mat3, Mat4, Vec3, Vec4};
 
-use crate::engine::{BoundSampler, Gl, Mesh, Samplers, ShaderProgram, Texture};
+use crate::engine::{BoundSampler, Gl, InstanceBuffer, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::image_data::ImageData;
 use crate::scene::{Light, Scene, Shading};
@@ -16,6 +16,8 @@ pub(super) struct SceneGpu {
     pub textures: Vec<Texture>,
     /// 1 x 1 white, for items without a texture.
     pub white: Texture,
+    /// The per-instance values of the instanced draws, every pass' in turn.
+    pub instances: InstanceBuffer,
 }
 
 impl SceneGpu {
@@ -39,6 +41,7 @@ impl SceneGpu {
             meshes,
             textures,
             white: Texture::from_image(gl, &white)?,
+            instances: InstanceBuffer::new(gl)?,
         })
     }
 }
@@ -53,6 +56,7 @@ pub struct Inputs<'a> {
     pub meshes: &'a [Mesh],
     pub textures: &'a [Texture],
     pub white: &'a Texture,
+    pub instances: &'a InstanceBuffer,
     /// With shadow volumes, the light this pass adds (-1: the ambient pass); unused
     /// otherwise.
     pub pass_light: i32,

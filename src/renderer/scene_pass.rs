@@ -1,15 +1,17 @@
 //! The scene pass (the book's `renderScene`): every item from the camera, with the lights'
 //! uniforms ([`super::scene_inputs`]) and each light's map on its texture unit; per item
 //! its matrices and colours ("Shadows": the scene shader gets `modelLightViewMatrix` and
-//! `orthoProjectionMatrix` besides the camera's, for `calcShadow`).
+//! `orthoProjectionMatrix` besides the camera's, for `calcShadow`). Where the book sets
+//! them and draws item by item, the items here are batched by mesh ([`draw_opaque`]).
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::DMat4;
 
 use super::scene_inputs::{bind_maps, normal_matrix, Inputs, LightUniforms};
 use super::translucent_pass;
+use crate::engine::instances::{self, Texels};
 use crate::engine::{Gl, Samplers};
 use crate::error::Result;
-use crate::scene::Scene;
+use crate::scene::{GameItem, Scene};
 use crate::shadows::slots::{MASK_UNIT, MATERIAL_UNIT};
 
 /// Draws every item with `inputs.program` (bound here) into the bound target.
@@ -40,42 +42,71 @@ pub fn draw(
     }
     // Each light's map and sampler on its unit, for the pass.
     let bound = bind_maps(inputs, samplers, gl, scene)?;
-    let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
-    let mut diffuse = vec![Vec3::ZERO; u.colour.len()];
-    // Only a target with world outputs reads these: no matrices per item for nothing.
-    let world_outputs = p.uses("modelOriginMatrix") || p.uses("worldNormalMatrix");
-    for (mesh_id, mesh) in inputs.meshes.iter().enumerate() {
-        let items = (scene.items.iter())
-            .filter(|i| i.mesh == mesh_id && !translucent_pass::drawn_later(inputs, i));
-        mesh.render_list(items, |item| {
-            let model = item.model_matrix64();
-            let model_view = (view64 * model).as_mat4();
-            p.set_mat4("modelViewMatrix", &model_view);
-            p.set_mat3("normalMatrix", &normal_matrix(&model_view));
-            if world_outputs {
-                p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
-                p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
-            }
-            for (m, from) in light_matrices.iter_mut().zip(&u.light_from) {
-                *m = (*from * model).as_mat4();
-            }
-            p.set_mat4_array("modelLightViewMatrix", &light_matrices);
-            let m = &item.material;
-            let colour = m.colour.truncate();
-            let ambient = (scene.ambient * colour).extend(m.reflectance);
-            p.set_vec4("material.ambient", ambient);
-            for (d, light) in diffuse.iter_mut().zip(&u.colour) {
-                *d = *light * colour;
-            }
-            p.set_vec3_array("material.diffuse", &diffuse);
-            m.texture
-                .and_then(|t| inputs.textures.get(t))
-                .unwrap_or(inputs.white)
-                .bind(MATERIAL_UNIT);
-        });
-    }
+    // The book's loop sets each item's matrices and draws it; here the items are batched by
+    // mesh and texture (`draw_opaque`), their values in the instance buffer.
+    draw_opaque(inputs, scene, &u, view64, origin);
     translucent_pass::draw(inputs, gl, scene, view64, origin, &u);
     p.unbind();
     drop(bound);
     Ok(())
+}
+
+/// The opaque items, one instanced draw per run of items sharing a mesh and a texture, in
+/// the book's order (mesh by mesh, items in scene order): each item's matrices and colours
+/// computed as the book's per-item uniforms (double precision, then f32) and uploaded at once.
+fn draw_opaque(inputs: &Inputs, scene: &Scene, u: &LightUniforms, view64: DMat4, origin: DMat4) {
+    let p = inputs.program;
+    let mut items: Vec<&GameItem> = (scene.items.iter())
+        .filter(|i| i.mesh < inputs.meshes.len() && !translucent_pass::drawn_later(inputs, i))
+        .collect();
+    items.sort_by_key(|i| i.mesh);
+    // Only a target with world outputs reads these: no matrices per item for nothing.
+    let world_outputs = p.uses("modelOriginMatrix") || p.uses("worldNormalMatrix");
+    let stride = 15 + 4 * u.light_from.len() + u.colour.len().max(1);
+    let _instanced = inputs.instances.fill(p, stride, |t| {
+        for item in &items {
+            push_instance(t, item, scene, u, view64, origin, world_outputs);
+        }
+    });
+    let texture = |i: &GameItem| i.material.texture.filter(|&t| t < inputs.textures.len());
+    for b in instances::batches(items.iter().map(|i| (i.mesh, texture(i)))) {
+        let (mesh, tex) = b.key;
+        tex.map_or(inputs.white, |t| &inputs.textures[t])
+            .bind(MATERIAL_UNIT);
+        instances::draw_batch(p, &inputs.meshes[mesh], &b);
+    }
+}
+
+/// One item's texels in scene.vert's layout: the values its uniforms had.
+fn push_instance(
+    t: &mut Texels,
+    item: &GameItem,
+    scene: &Scene,
+    u: &LightUniforms,
+    view64: DMat4,
+    origin: DMat4,
+    world_outputs: bool,
+) {
+    let model = item.model_matrix64();
+    let model_view = (view64 * model).as_mat4();
+    t.mat4(&model_view);
+    t.mat3(&normal_matrix(&model_view));
+    if world_outputs {
+        t.mat4(&(origin * model).as_mat4());
+        t.mat3(&normal_matrix(&model.as_mat4()));
+    } else {
+        t.zeros(7);
+    }
+    let m = &item.material;
+    let colour = m.colour.truncate();
+    t.vec4((scene.ambient * colour).extend(m.reflectance));
+    for from in &u.light_from {
+        t.mat4(&(*from * model).as_mat4());
+    }
+    for light in &u.colour {
+        t.vec4((*light * colour).extend(0.0));
+    }
+    if u.colour.is_empty() {
+        t.zeros(1);
+    }
 }

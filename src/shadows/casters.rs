@@ -4,11 +4,12 @@
 
 use std::rc::Rc;
 
-use glam::{DMat4, DVec3};
+use glam::{DMat4, DVec3, Vec4};
 
-use crate::engine::{DepthState, Gl, Mesh, ShaderProgram};
+use crate::engine::instances;
+use crate::engine::{DepthState, Gl, InstanceBuffer, Mesh, ShaderProgram};
 use crate::error::Result;
-use crate::scene::{Light, Scene};
+use crate::scene::{GameItem, Light, Scene};
 use crate::settings::{PointPass, ShadowSettings};
 use crate::shaders;
 
@@ -143,56 +144,53 @@ pub fn draw_map_casters(
     let keep = |k: usize| {
         only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
     };
-    let drawn = draw_casters(
-        pass.meshes,
-        scene,
-        program,
-        "modelLightViewMatrix",
-        view.view64,
-        keep,
-    );
+    let drawn = draw_casters(pass.gpu(), scene, program, view.view64, keep);
     pass.casters.drawn += drawn as u64;
     pass.casters.total += casters(scene);
     super::volumetric::draw_solid(pass, scene, program, view.view64);
 }
 
-/// Draws every shadow caster that `keep` (by item index) lets through, one mesh's items at a
-/// time, with `uniform` set to `light * model` (composed in double precision); returns how
-/// many it drew.
+/// Draws every shadow caster that `keep` (by item index) lets through with `light * model`
+/// (composed in double precision) as its matrix (`modelLightViewMatrix` or
+/// `modelLightMatrix`); returns how many it drew. The book draws them one at a time; here
+/// the pass' casters are instanced, one draw per mesh ([`draw_casters_with`]).
 pub fn draw_casters(
-    meshes: &[Mesh],
+    (meshes, instances): (&[Mesh], &InstanceBuffer),
     scene: &Scene,
     program: &ShaderProgram,
-    uniform: &'static str,
     light: DMat4,
     keep: impl Fn(usize) -> bool,
 ) -> usize {
-    draw_casters_with(meshes, scene, program, uniform, light, keep, |_| {})
+    draw_casters_with((meshes, instances), scene, program, light, keep, None)
 }
 
-/// [`draw_casters`], with `each` called before each drawn item (by index) for uniforms of
-/// its own (a cube map's faces to draw it into).
+/// [`draw_casters`], with `faces` giving each drawn item (by index) a texel of its own after
+/// its matrix (a cube map's faces to draw it into). The casters are gathered mesh by mesh in
+/// scene order (the book's order), their matrices uploaded at once, and each mesh's drawn
+/// with one instanced call.
 pub fn draw_casters_with(
-    meshes: &[Mesh],
+    (meshes, instances): (&[Mesh], &InstanceBuffer),
     scene: &Scene,
     program: &ShaderProgram,
-    uniform: &'static str,
     light: DMat4,
     keep: impl Fn(usize) -> bool,
-    mut each: impl FnMut(usize),
+    faces: Option<&dyn Fn(usize) -> Vec4>,
 ) -> usize {
-    let mut drawn = 0;
-    for (mesh_id, mesh) in meshes.iter().enumerate() {
-        let items = scene
-            .items
-            .iter()
-            .enumerate()
-            .filter(|(k, i)| i.mesh == mesh_id && i.casts_shadows && keep(*k));
-        mesh.render_list(items, |(k, item)| {
-            drawn += 1;
-            each(k);
-            program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
-        });
+    let mut kept: Vec<(usize, &GameItem)> = (scene.items.iter().enumerate())
+        .filter(|(k, i)| i.mesh < meshes.len() && i.casts_shadows && keep(*k))
+        .collect();
+    kept.sort_by_key(|(_, i)| i.mesh);
+    let stride = if faces.is_some() { 5 } else { 4 };
+    let _instanced = instances.fill(program, stride, |t| {
+        for (k, item) in &kept {
+            t.mat4(&(light * item.model_matrix64()).as_mat4());
+            if let Some(f) = faces {
+                t.vec4(f(*k));
+            }
+        }
+    });
+    for b in instances::batches(kept.iter().map(|(_, i)| i.mesh)) {
+        instances::draw_batch(program, &meshes[b.key], &b);
     }
-    drawn
+    kept.len()
 }

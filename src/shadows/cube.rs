@@ -3,7 +3,7 @@
 //! fragment's distance over the far plane; the test (`shaders/lib/shadow_cube.glsl`)
 //! compares distances in world units.
 
-use glam::{DMat4, DVec3, Mat4, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
 use super::camera::point_camera;
 use super::casters::{
@@ -83,12 +83,12 @@ impl Technique for Cube {
             )));
         };
         let point_pass = pass.settings.point_pass;
+        let gpu = pass.gpu();
         let program = pass.programs.point(pass.gl, point_pass)?;
         let projection = Mat4::perspective_rh_gl(90f32.to_radians(), 1.0, light.near, light.far);
         let to_light = from_light(light);
         let _state = DepthPassGuard::begin(pass.gl, depth_state(pass.settings), program);
         program.set_f32("farPlane", light.far);
-        let meshes = pass.meshes;
         // Per caster, the faces it can land in (bit f for face f): none beyond the light's
         // reach (`far`), and of the rest only the faces whose frustum its box may enter.
         let boxes = pass.boxes;
@@ -111,16 +111,8 @@ impl Technique for Cube {
                 state::clear_depth(pass.gl);
                 program.set_mat4_array("faceProjections", &faces);
                 let keep = |k: usize| masks[k] != 0;
-                let each = |k: usize| program.set_i32("faceMask", masks[k] as i32);
-                draw_casters_with(
-                    meshes,
-                    scene,
-                    program,
-                    "modelLightMatrix",
-                    to_light,
-                    keep,
-                    each,
-                );
+                let faces = |k: usize| Vec4::new(masks[k] as f32, 0.0, 0.0, 0.0);
+                draw_casters_with(gpu, scene, program, to_light, keep, Some(&faces));
             }
             PointPass::SixPasses => {
                 for (face, clip) in faces.iter().enumerate() {
@@ -128,7 +120,7 @@ impl Technique for Cube {
                     state::clear_depth(pass.gl);
                     program.set_mat4("faceProjection", clip);
                     let keep = |k: usize| masks[k] & (1 << face) != 0;
-                    draw_casters(meshes, scene, program, "modelLightMatrix", to_light, keep);
+                    draw_casters(gpu, scene, program, to_light, keep);
                 }
             }
         }

@@ -97,14 +97,7 @@ impl<L: Layout> Technique for Layered<L> {
             let projection = DMat4::orthographic_rh_gl(l, r, bottom, t, n, f).as_mat4();
             program.set_mat4("orthoProjectionMatrix", &projection);
             let keep = |i: usize| self.layout.keeps(layer, i, &pass.boxes[i]);
-            pass.casters.drawn += draw_casters(
-                pass.meshes,
-                scene,
-                &program,
-                "modelLightViewMatrix",
-                b.view,
-                keep,
-            ) as u64;
+            pass.casters.drawn += draw_casters(pass.gpu(), scene, &program, b.view, keep) as u64;
         }
         // The first layer stands for the light's camera (reports, the depth view's near
         // and far, the reference's rays).

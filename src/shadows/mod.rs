@@ -45,7 +45,7 @@ pub mod volumetric;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
-use crate::engine::{Gl, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
+use crate::engine::{Gl, InstanceBuffer, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
@@ -218,6 +218,15 @@ pub struct DepthPass<'a> {
     pub boxes: &'a [(DVec3, DVec3)],
     /// Casters drawn, and casters there were, over the passes so far.
     pub casters: &'a mut CasterCounts,
+    /// The per-instance values of the casters' instanced draws.
+    pub instances: &'a InstanceBuffer,
+}
+
+impl<'a> DepthPass<'a> {
+    /// What a caster draw reads beside its program: the meshes and the instance buffer.
+    pub fn gpu(&self) -> (&'a [Mesh], &'a InstanceBuffer) {
+        (self.meshes, self.instances)
+    }
 }
 
 /// Casters drawn into maps against casters offered (those outside a light's volume are
