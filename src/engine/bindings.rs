@@ -1,7 +1,8 @@
 //! The context with what it has bound: the program in use and the texture on each unit, so
 //! a bind that would change nothing is not sent (a scene pass binds the same white texture
 //! for every item without one). Every bind in this layer goes through here, or forgets what
-//! it knew when it binds behind its back (uploads, the HUD's saved state).
+//! it knew when it binds behind its back (uploads, the HUD's saved state). Capabilities
+//! likewise: glEnable / glDisable only when they change one.
 
 use std::cell::RefCell;
 use std::ops::Deref;
@@ -19,6 +20,8 @@ struct Bound {
     active_unit: Option<u32>,
     /// Per unit, the last texture bound there and its target.
     units: Vec<Option<(u32, glow::Texture)>>,
+    /// Capabilities known on or off (glEnable / glDisable), by name.
+    caps: Vec<(u32, bool)>,
 }
 
 impl Deref for GlContext {
@@ -74,6 +77,26 @@ impl GlContext {
         if b.active_unit != Some(unit) {
             unsafe { glow::HasContext::active_texture(&self.gl, glow::TEXTURE0 + unit) };
             b.active_unit = Some(unit);
+        }
+    }
+
+    /// `glEnable(cap)` or `glDisable(cap)`, unless `cap` is known to be so already: passes
+    /// put their state back when they end, so most of these would change nothing.
+    pub(crate) fn set_capability(&self, cap: u32, on: bool) {
+        let mut b = self.bound.borrow_mut();
+        let known = b.caps.iter_mut().find(|(c, _)| *c == cap);
+        if known.as_ref().is_some_and(|(_, now)| *now == on) {
+            return;
+        }
+        match known {
+            Some(k) => k.1 = on,
+            None => b.caps.push((cap, on)),
+        }
+        unsafe {
+            match on {
+                true => glow::HasContext::enable(&self.gl, cap),
+                false => glow::HasContext::disable(&self.gl, cap),
+            }
         }
     }
 

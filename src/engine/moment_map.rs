@@ -147,11 +147,11 @@ impl MomentMap {
                     .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[1 - from]);
                 match scissor {
                     Some(s) => {
-                        self.gl.enable(glow::SCISSOR_TEST);
+                        self.gl.set_capability(glow::SCISSOR_TEST, true);
                         self.gl
                             .scissor(s.x as i32, s.y as i32, s.width as i32, s.height as i32);
                     }
-                    None => self.gl.disable(glow::SCISSOR_TEST),
+                    None => self.gl.set_capability(glow::SCISSOR_TEST, false),
                 }
             }
             self.textures[from].bind(0);
@@ -160,7 +160,7 @@ impl MomentMap {
         }
         program.unbind();
         unsafe {
-            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.set_capability(glow::SCISSOR_TEST, false);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }

@@ -31,22 +31,22 @@ impl DepthPassGuard {
         unsafe {
             gl.depth_mask(true);
             if factor != 0.0 || units != 0.0 {
-                gl.enable(glow::POLYGON_OFFSET_FILL);
+                gl.set_capability(glow::POLYGON_OFFSET_FILL, true);
                 gl.polygon_offset(factor, units);
             }
             match state.cull {
-                Cull::None => gl.disable(glow::CULL_FACE),
+                Cull::None => gl.set_capability(glow::CULL_FACE, false),
                 Cull::Back => {
-                    gl.enable(glow::CULL_FACE);
+                    gl.set_capability(glow::CULL_FACE, true);
                     gl.cull_face(glow::BACK);
                 }
                 Cull::Front => {
-                    gl.enable(glow::CULL_FACE);
+                    gl.set_capability(glow::CULL_FACE, true);
                     gl.cull_face(glow::FRONT);
                 }
             }
             if let Some(r) = state.scissor {
-                gl.enable(glow::SCISSOR_TEST);
+                gl.set_capability(glow::SCISSOR_TEST, true);
                 gl.scissor(r.x as i32, r.y as i32, r.width as i32, r.height as i32);
             }
         }
@@ -59,9 +59,9 @@ impl Drop for DepthPassGuard {
     fn drop(&mut self) {
         unsafe {
             self.gl.use_program_once(None);
-            self.gl.disable(glow::CULL_FACE);
-            self.gl.disable(glow::POLYGON_OFFSET_FILL);
-            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.set_capability(glow::CULL_FACE, false);
+            self.gl.set_capability(glow::POLYGON_OFFSET_FILL, false);
+            self.gl.set_capability(glow::SCISSOR_TEST, false);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
@@ -75,7 +75,7 @@ pub fn clear_depth(gl: &Gl) {
 
 /// The resting state's depth test, set once when a renderer is made.
 pub fn enable_depth_test(gl: &Gl) {
-    unsafe { gl.enable(glow::DEPTH_TEST) };
+    gl.set_capability(glow::DEPTH_TEST, true);
 }
 
 /// Binds the window's framebuffer, sets the viewport to its size in pixels and clears it.
@@ -96,14 +96,14 @@ pub struct NoDepthTest {
 
 impl NoDepthTest {
     pub fn begin(gl: &Gl) -> NoDepthTest {
-        unsafe { gl.disable(glow::DEPTH_TEST) };
+        gl.set_capability(glow::DEPTH_TEST, false);
         NoDepthTest { gl: gl.clone() }
     }
 }
 
 impl Drop for NoDepthTest {
     fn drop(&mut self) {
-        unsafe { self.gl.enable(glow::DEPTH_TEST) };
+        self.gl.set_capability(glow::DEPTH_TEST, true);
     }
 }
 

@@ -108,7 +108,7 @@ impl SummedAreaTable {
         let size = self.size();
         let _no_depth = NoDepthTest::begin(&self.gl);
         unsafe {
-            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.set_capability(glow::SCISSOR_TEST, false);
             self.gl
                 .viewport(0, 0, size.width as i32, size.height as i32);
             self.gl.bind_sampler(0, None);

@@ -97,15 +97,15 @@ pub struct VolumePassGuard {
 impl VolumePassGuard {
     pub fn begin(gl: &Gl, draw: VolumeDraw) -> VolumePassGuard {
         unsafe {
-            gl.enable(glow::DEPTH_TEST);
+            gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LESS);
             gl.depth_mask(false);
-            gl.disable(glow::CULL_FACE);
-            gl.enable(glow::DEPTH_CLAMP);
+            gl.set_capability(glow::CULL_FACE, false);
+            gl.set_capability(glow::DEPTH_CLAMP, true);
             match draw {
                 VolumeDraw::Stencil => {
                     gl.color_mask(false, false, false, false);
-                    gl.enable(glow::STENCIL_TEST);
+                    gl.set_capability(glow::STENCIL_TEST, true);
                     gl.stencil_mask(0xff);
                     gl.stencil_func(glow::ALWAYS, 0, 0xff);
                     gl.stencil_op_separate(glow::BACK, glow::KEEP, glow::INCR_WRAP, glow::KEEP);
@@ -136,10 +136,10 @@ unsafe fn rest(gl: &Gl) {
     gl.depth_func(glow::LESS);
     gl.depth_mask(true);
     gl.color_mask(true, true, true, true);
-    gl.disable(glow::STENCIL_TEST);
+    gl.set_capability(glow::STENCIL_TEST, false);
     gl.stencil_op(glow::KEEP, glow::KEEP, glow::KEEP);
     gl.stencil_func(glow::ALWAYS, 0, 0xff);
-    gl.disable(glow::DEPTH_CLAMP);
+    gl.set_capability(glow::DEPTH_CLAMP, false);
     gl.disable(glow::BLEND);
     gl.blend_func(glow::ONE, glow::ZERO);
 }
@@ -164,7 +164,7 @@ pub struct LightPassGuard {
 impl LightPassGuard {
     pub fn begin(gl: &Gl, pass: LightPass) -> LightPassGuard {
         unsafe {
-            gl.enable(glow::DEPTH_TEST);
+            gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LEQUAL);
             gl.depth_mask(false);
             gl.enable_draw_buffer(glow::BLEND, 0);
@@ -175,7 +175,7 @@ impl LightPassGuard {
                 }
             }
             if pass.stencil_lit {
-                gl.enable(glow::STENCIL_TEST);
+                gl.set_capability(glow::STENCIL_TEST, true);
                 gl.stencil_func(glow::EQUAL, 0, 0xff);
                 gl.stencil_op(glow::KEEP, glow::KEEP, glow::KEEP);
             }
