@@ -11,6 +11,12 @@
 float calcShadow(sampler2D shadowMap, vec4 position, float bias, vec2 texel, int radius,
                  bool beyondFarLit)
 {
+    // A point behind a perspective map's light (w <= 0) is in no texel of the map: the
+    // division below would mirror it into the map, past the far plane. It is lit. (An
+    // orthographic map's w is 1.)
+    if (position.w <= 0.0) {
+        return 1.0;
+    }
     // Clip space to normalised device coordinates (w = 1 for an orthographic light), then
     // [-1, 1] to the map's [0, 1].
     vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
