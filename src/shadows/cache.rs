@@ -6,6 +6,7 @@
 //! changed one where only casters moved may redraw just the part they dirtied
 //! ([`super::patch`]).
 
+use std::cell::RefCell;
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
@@ -86,10 +87,38 @@ pub fn content_key(
 
 /// Hashes a light and its shadow settings, every field.
 pub fn hash_light(light: &Light, settings: &ShadowSettings, h: &mut impl Hasher) {
-    // Debug text hashes every field of the light and the settings, floats bit for bit
-    // (their `Debug` prints the shortest exact form), without a Hash impl on each type.
-    format!("{light:?}").hash(h);
-    format!("{settings:?}").hash(h);
+    light_hash(light, settings).hash(h);
+}
+
+/// How many (light, settings) pairs [`light_hash`] remembers.
+const REMEMBERED: usize = 16;
+
+thread_local! {
+    /// The pairs hashed lately and their hashes: a frame whose lights and settings are
+    /// unchanged compares them as values instead of formatting them again.
+    static HASHED: RefCell<Vec<(Light, ShadowSettings, u64)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The hash of a light and its settings: their `Debug` text (every field, floats bit for
+/// bit in their shortest exact form, without a Hash impl on each type), made once per pair;
+/// a pair equal to a remembered one (compared as values, so a NaN never is) reuses it.
+fn light_hash(light: &Light, settings: &ShadowSettings) -> u64 {
+    HASHED.with(|memo| {
+        let mut memo = memo.borrow_mut();
+        let same = |(l, s, _): &&(Light, ShadowSettings, u64)| l == light && s == settings;
+        if let Some((_, _, hash)) = memo.iter().find(same) {
+            return *hash;
+        }
+        let mut h = DefaultHasher::new();
+        format!("{light:?}").hash(&mut h);
+        format!("{settings:?}").hash(&mut h);
+        let hash = h.finish();
+        if memo.len() == REMEMBERED {
+            memo.remove(0);
+        }
+        memo.push((*light, *settings, hash));
+        hash
+    })
 }
 
 /// Hashes what an item is and where: its mesh, position, rotation and scale, bit for bit.
@@ -151,5 +180,42 @@ mod tests {
         assert_ne!(k2, key(&scene, &ShadowSettings { bias: 0.01, ..s }));
         scene.set_light_angle(60.0);
         assert_ne!(k2, key(&scene, &s));
+    }
+
+    #[test]
+    fn a_remembered_light_hash_follows_every_setting_change() {
+        let scene = Scene::load("dummy").unwrap();
+        let light = &scene.lights[0];
+        let s = scene.shadow;
+        let hash = |s: &ShadowSettings| light_hash(light, s);
+        let h0 = hash(&s);
+        assert_eq!(h0, hash(&s));
+        let changed = [
+            ShadowSettings {
+                bias: s.bias * 2.0,
+                ..s
+            },
+            ShadowSettings {
+                shadow_cache: !s.shadow_cache,
+                ..s
+            },
+            ShadowSettings {
+                cascades: s.cascades + 1,
+                ..s
+            },
+        ];
+        for c in &changed {
+            assert_ne!(h0, hash(c), "{c:?}");
+        }
+        // Back to the first settings after the memo has seen others: the first hash.
+        assert_eq!(h0, hash(&s));
+        // Past what it remembers, a pair is hashed again, to the same value.
+        for k in 0..2 * REMEMBERED {
+            hash(&ShadowSettings {
+                bias: k as f32,
+                ..s
+            });
+        }
+        assert_eq!(h0, hash(&s));
     }
 }
