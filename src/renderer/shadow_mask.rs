@@ -1,7 +1,7 @@
 //! The cached shadow mask (past the chapters, which test every light at every pixel every
 //! frame). With `shadow_cache` on, a frame whose camera, items, target size, programs and
 //! shadow maps are all as they were the frame before has the same tests at every pixel. The
-//! second such frame writes them into a float target, one light per component, with the
+//! second such frame (and the very first frame) writes them into a float target, one light per component, with the
 //! scene shader's own tests (`SHADOW_MASK_WRITE`); from then on the scene pass reads them
 //! back (`SHADOW_MASK_READ`: one fetch a pixel instead of each light's filter) until
 //! something changes. The mask holds the very floats the tests give, so a frame drawn from
@@ -47,19 +47,24 @@ pub struct ShadowMask {
     holds: Option<u64>,
     /// The key of the last frame drawn.
     last: Option<u64>,
+    /// Whether a frame has been planned yet.
+    started: bool,
     pub uses: MaskUses,
 }
 
 impl ShadowMask {
     /// What this frame, summed up by `key` (`None`: it cannot be cached), does with the
     /// mask. A frame that changes nothing twice in a row is worth writing down; one that
-    /// changes every frame never pays for the write.
+    /// changes every frame never pays for the write, but for the very first frame's: it
+    /// writes too, so a still scene's second frame reads the mask at once instead of
+    /// stalling on the write (a hitch after the first frame; the first one is set-up).
     pub fn plan(&mut self, key: Option<u64>) -> Plan {
         let previous = std::mem::replace(&mut self.last, key);
+        let first = !std::mem::replace(&mut self.started, true);
         let plan = match key {
             None => Plan::Test,
             Some(k) if self.holds == Some(k) => Plan::Read,
-            Some(k) if previous == Some(k) => Plan::Write(k),
+            Some(k) if previous == Some(k) || first => Plan::Write(k),
             Some(_) => Plan::Test,
         };
         if plan != Plan::Test {
@@ -234,5 +239,33 @@ impl Renderer {
         scene_pass::draw(&inputs, samplers, &self.gl, scene, (width, height))?;
         self.mask.written(key);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_frame_writes_the_mask_and_a_still_second_reads_it() {
+        let mut mask = ShadowMask::default();
+        // `written` stands for the write the renderer does on a Write plan.
+        let mut frame = |mask: &mut ShadowMask, key| {
+            let plan = mask.plan(key);
+            if let Plan::Write(k) = plan {
+                mask.written(k);
+            }
+            plan
+        };
+        assert_eq!(frame(&mut mask, Some(1)), Plan::Write(1));
+        assert_eq!(frame(&mut mask, Some(1)), Plan::Read);
+        // Changing every frame: tested, never written again.
+        assert_eq!(frame(&mut mask, Some(2)), Plan::Test);
+        assert_eq!(frame(&mut mask, Some(3)), Plan::Test);
+        // Still again: the second unchanged frame writes.
+        assert_eq!(frame(&mut mask, Some(3)), Plan::Write(3));
+        assert_eq!(frame(&mut mask, Some(3)), Plan::Read);
+        assert_eq!(frame(&mut mask, None), Plan::Test);
+        assert_eq!(mask.uses.written, 2);
     }
 }
