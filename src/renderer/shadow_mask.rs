@@ -250,7 +250,7 @@ mod tests {
     fn the_first_frame_writes_the_mask_and_a_still_second_reads_it() {
         let mut mask = ShadowMask::default();
         // `written` stands for the write the renderer does on a Write plan.
-        let mut frame = |mask: &mut ShadowMask, key| {
+        let frame = |mask: &mut ShadowMask, key| {
             let plan = mask.plan(key);
             if let Plan::Write(k) = plan {
                 mask.written(k);
