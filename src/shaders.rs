@@ -39,6 +39,8 @@ shader!(depth_point_layered_geom, "depth_point_layered.geom");
 shader!(volume_vert, "volume.vert");
 shader!(volume_geom, "volume.geom");
 shader!(volume_frag, "volume.frag");
+shader!(avsm_peel_frag, "avsm_peel.frag");
+shader!(avsm_build_frag, "avsm_build.frag");
 shader!(moments_depth_frag, "moments_depth.frag");
 shader!(moments_blur_frag, "moments_blur.frag");
 shader!(summed_area_frag, "summed_area.frag");
@@ -52,6 +54,7 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/lighting.glsl"),
     ),
     ("lib/bias.glsl", include_str!("../shaders/lib/bias.glsl")),
+    ("lib/avsm.glsl", include_str!("../shaders/lib/avsm.glsl")),
     (
         "lib/linear_depth.glsl",
         include_str!("../shaders/lib/linear_depth.glsl"),

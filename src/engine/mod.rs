@@ -8,6 +8,7 @@ pub mod bindings;
 pub mod blend;
 pub mod check;
 pub mod counters;
+pub mod depth_peel;
 pub mod headless;
 pub mod mesh;
 pub mod moment_map;
@@ -30,6 +31,7 @@ pub type Gl = Rc<bindings::GlContext>;
 
 pub use blend::TranslucentBlend;
 pub use check::{check_gl, gl_limits, GlLimits};
+pub use depth_peel::{DepthPeel, PeelPass};
 pub use headless::HeadlessContext;
 pub use mesh::{FullScreenTriangle, Mesh};
 pub use moment_map::MomentMap;

@@ -1,0 +1,22 @@
+#version 330 core
+// One layer of AVSM's depth peeling (src/engine/depth_peel.rs, src/shadows/avsm/): the
+// nearest translucent fragment behind the previous layer, as its fitted depth (the
+// translucent map's, shaders/translucent_map.vert) and its opacity. The depth is written
+// as the fragment's depth too, so the next layer compares like with like.
+
+in float fittedDepth;
+out vec2 crossing;
+
+uniform sampler2D previousDepth;
+uniform bool firstLayer;
+uniform float opticalDepth;  // -ln(1 - opacity), from the translucent map's draw
+
+void main()
+{
+    float depth = clamp(fittedDepth, 0.0, 1.0);
+    if (!firstLayer && depth <= texelFetch(previousDepth, ivec2(gl_FragCoord.xy), 0).r) {
+        discard;
+    }
+    gl_FragDepth = depth;
+    crossing = vec2(depth, 1.0 - exp(-opticalDepth));
+}
