@@ -333,6 +333,12 @@ pub enum Volumetric {
     Off,
     /// They cast as if opaque, into the depth map: the other wrong.
     Solid,
+    /// Opacity shadow maps (Kim and Neumann 2001): the optical depth of the crossings
+    /// summed into `osm_slices` slices of the light's depth (`crate::shadows::volumetric`).
+    Osm,
+    /// Fourier opacity maps (Jansen and Bavoil 2010): the optical depth's density as
+    /// `fom_coefficients` terms of a Fourier series along the light's depth.
+    Fom,
 }
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
@@ -818,9 +824,18 @@ shadow_settings! {
     }
     /// Translucent casters (items with `opacity` below 1).
     "Translucent casters" {
-        /// How a light casts its translucent items: `off` (not at all) or `solid` (as
-        /// opaque, in the depth map); a directional or spot light's 2D map only.
-        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid");
+        /// How a light casts its translucent items: `off` (not at all), `solid` (as
+        /// opaque, in the depth map), or a translucent map beside the depth map (`osm`
+        /// opacity slices, `fom` Fourier opacity); a directional or spot light's 2D map only.
+        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom");
+        /// `volumetric = "osm"`: slices between the nearest and farthest translucent
+        /// caster, four to a float target.
+        osm_slices: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::MAX_CHANNELS)),
+            arg(value_name = "K", allow_negative_numbers = true);
+        /// `volumetric = "fom"`: Fourier terms (cosine and sine each) besides the mean;
+        /// 1 + 2 N floats a texel.
+        fom_coefficients: u32 = 7, range(Range::from_to(1, crate::shadows::volumetric::MAX_FOURIER_TERMS)),
+            arg(value_name = "N", allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {
@@ -993,6 +1008,8 @@ impl ShadowSettings {
             {
                 return None
             }
+            "osm_slices" if self.volumetric != Volumetric::Osm => return None,
+            "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
             "light_projection" if perspective => {
                 format!("perspective light, fov {}", self.perspective_fov)
             }

@@ -46,6 +46,9 @@ shader!(moments_blur_frag, "moments_blur.frag");
 shader!(summed_area_frag, "summed_area.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
+shader!(translucent_map_vert, "translucent_map.vert");
+shader!(osm_map_frag, "osm_map.frag");
+shader!(fom_map_frag, "fom_map.frag");
 
 /// The snippets a shader may `#include`, by the name it includes them with.
 const LIBRARY: &[(&str, &str)] = &[
@@ -95,6 +98,12 @@ const LIBRARY: &[(&str, &str)] = &[
         "lib/soft_moments.glsl",
         include_str!("../shaders/lib/soft_moments.glsl"),
     ),
+    (
+        "lib/volumetric.glsl",
+        include_str!("../shaders/lib/volumetric.glsl"),
+    ),
+    ("lib/osm.glsl", include_str!("../shaders/lib/osm.glsl")),
+    ("lib/fom.glsl", include_str!("../shaders/lib/fom.glsl")),
     (
         "lib/outputs.glsl",
         include_str!("../shaders/lib/outputs.glsl"),

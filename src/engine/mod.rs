@@ -21,6 +21,7 @@ pub mod summed_area;
 pub mod text;
 pub mod texture;
 pub mod timer;
+pub mod translucent_map;
 pub mod volume;
 pub mod window_context;
 
@@ -43,6 +44,7 @@ pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
+pub use translucent_map::{AdditivePass, TranslucentMap};
 pub use volume::{
     AdjacencyMesh, LightPass, LightPassGuard, SamplesQuery, VolumeDraw, VolumePassGuard,
 };
