@@ -5,8 +5,8 @@
 // behind it scaled), and when over AVSM_NODES nodes drops the interior node whose removal
 // changes the area under the curve least. Nodes are (depth, transmittance) pairs, two to
 // an RGBA32F layer; unused ones hold depth AVSM_EMPTY. Compiled with:
-//   AVSM_NODES   nodes per texel (even)
-//   AVSM_LAYERS  AVSM_NODES / 2
+//   AVSM_NODES   nodes per texel
+//   AVSM_LAYERS  AVSM_NODES / 2, rounded up
 
 layout (location = 0) out vec4 nodesOut[AVSM_LAYERS];
 
@@ -16,6 +16,8 @@ uniform bool firstLayer;       // no previous build: start from an empty curve
 
 const float AVSM_EMPTY = 2.0;
 
+// One more than the curve keeps: room for the insertion before a compression, and an
+// odd count's unused half of the last layer.
 vec2 node[AVSM_NODES + 1];
 int count;
 
@@ -104,7 +106,7 @@ void main()
     if (crossing.y > 0.0) {
         insertCrossing(crossing.x, crossing.y);
     }
-    for (int i = count; i < AVSM_NODES; ++i) {
+    for (int i = count; i <= AVSM_NODES; ++i) {
         node[i] = vec2(AVSM_EMPTY, 1.0);
     }
     for (int l = 0; l < AVSM_LAYERS; ++l) {

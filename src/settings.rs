@@ -339,6 +339,9 @@ pub enum Volumetric {
     /// Fourier opacity maps (Jansen and Bavoil 2010): the optical depth's density as
     /// `fom_coefficients` terms of a Fourier series along the light's depth.
     Fom,
+    /// Adaptive volumetric shadow maps (Salvi et al. 2010): per texel a curve of
+    /// transmittance against depth, `avsm_nodes` nodes, from `peel_layers` peeled layers.
+    Avsm,
 }
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
@@ -826,8 +829,9 @@ shadow_settings! {
     "Translucent casters" {
         /// How a light casts its translucent items: `off` (not at all), `solid` (as
         /// opaque, in the depth map), or a translucent map beside the depth map (`osm`
-        /// opacity slices, `fom` Fourier opacity); a directional or spot light's 2D map only.
-        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom");
+        /// opacity slices, `fom` Fourier opacity, `avsm` adaptive volumetric shadow maps); a
+        /// directional or spot light's 2D map only.
+        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom|avsm");
         /// `volumetric = "osm"`: slices between the nearest and farthest translucent
         /// caster, four to a float target.
         osm_slices: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::MAX_CHANNELS)),
@@ -836,6 +840,14 @@ shadow_settings! {
         /// 1 + 2 N floats a texel.
         fom_coefficients: u32 = 7, range(Range::from_to(1, crate::shadows::volumetric::MAX_FOURIER_TERMS)),
             arg(value_name = "N", allow_negative_numbers = true);
+        /// `volumetric = "avsm"`: nodes of the curve a texel, two to a float target at
+        /// 32-bit; the first and the last are always kept.
+        avsm_nodes: u32 = 8, range(Range::from_to(2, crate::shadows::volumetric::avsm::MAX_NODES)),
+            arg(value_name = "N", allow_negative_numbers = true);
+        /// `volumetric = "avsm"`: the most layers of translucent fragments peeled from the
+        /// light (peeling stops sooner at an empty layer); crossings past them are lost.
+        peel_layers: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::avsm::MAX_PEEL_LAYERS)),
+            arg(value_name = "K", allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {
@@ -1010,6 +1022,7 @@ impl ShadowSettings {
             }
             "osm_slices" if self.volumetric != Volumetric::Osm => return None,
             "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
+            "avsm_nodes" | "peel_layers" if self.volumetric != Volumetric::Avsm => return None,
             "light_projection" if perspective => {
                 format!("perspective light, fov {}", self.perspective_fov)
             }

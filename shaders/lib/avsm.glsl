@@ -13,7 +13,7 @@ float avsmTexel(sampler2DArray map, ivec2 texel, float depth, int nodes)
 {
     float left = 1.0;
     vec2 a = vec2(-1.0, 1.0);
-    for (int l = 0; l < nodes / 2; ++l) {
+    for (int l = 0; l < (nodes + 1) / 2; ++l) {
         vec4 v = texelFetch(map, ivec3(texel, l), 0);
         for (int k = 0; k < 2; ++k) {
             vec2 b = k == 0 ? v.xy : v.zw;

@@ -24,7 +24,6 @@
 //! scene pass its uniforms. The renderer only asks; [`slots`] lays the lights out in the
 //! scene shader and [`program`] turns what the shader is compiled for into `#define`s.
 
-pub mod avsm;
 pub mod cache;
 pub mod camera;
 pub mod cascades;

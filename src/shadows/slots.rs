@@ -640,9 +640,21 @@ mod tests {
             bias_mode: BiasMode::Slope,
             ..with(Filter::Hardware2x2)
         };
+        // Translucent maps beside three of the 2D maps.
+        let beside = |technique, parameter| {
+            Some(VolumetricKey {
+                technique,
+                parameter,
+            })
+        };
+        let mut slope = slot(ShadowKind::Map, slope);
+        slope.test = slope.test.map(|t| ShadowTest {
+            volumetric: beside(crate::settings::Volumetric::Avsm, 8),
+            ..t
+        });
         let generated = snippets(
             &[
-                slot(ShadowKind::Map, slope),
+                slope,
                 slot(ShadowKind::Cube, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Cascades, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Moments, with(Filter::Vsm)),
@@ -651,13 +663,6 @@ mod tests {
         );
         let resolved = crate::shaders::scene_frag(&generated).unwrap();
         let mut linear = slot(ShadowKind::Map, with(Filter::Pcf3x3));
-        // Translucent maps beside two of the 2D maps.
-        let beside = |technique, parameter| {
-            Some(VolumetricKey {
-                technique,
-                parameter,
-            })
-        };
         linear.test = linear.test.map(|t| ShadowTest {
             map_depth: MapDepth::Linear,
             volumetric: beside(crate::settings::Volumetric::Osm, 16),

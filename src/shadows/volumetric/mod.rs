@@ -11,6 +11,7 @@
 //! the fragment in it). Each technique is a [`Method`] ([`osm`], [`fom`]) named by
 //! [`method`], the one match over them: its map, its lookup's snippet and call, its cost.
 
+pub mod avsm;
 pub mod fom;
 pub mod maps;
 pub mod osm;
@@ -88,6 +89,7 @@ pub fn method(volumetric: Volumetric) -> Option<&'static dyn Method> {
         Volumetric::Off | Volumetric::Solid => None,
         Volumetric::Osm => Some(&osm::Osm),
         Volumetric::Fom => Some(&fom::Fom),
+        Volumetric::Avsm => Some(&avsm::Avsm),
     }
 }
 

@@ -1,0 +1,227 @@
+//! Adaptive volumetric shadow maps (Salvi, Vidimce, Lauritzen and Lefohn, EGSR 2010; the
+//! slides' last "Advanced techniques" link): per texel a short curve of transmittance
+//! against the light's depth, `avsm_nodes` nodes, built from every translucent fragment the
+//! light sees and, when full, compressed by dropping the node whose removal changes the
+//! area under the curve least ([`curve`] on the CPU, `shaders/avsm_build.frag` on the GPU).
+//!
+//! GL 3.3 has no atomics or image stores to insert fragments as they come, so the light's
+//! translucent fragments are captured by depth peeling, up to `peel_layers` layers
+//! ([`DepthPeel`]; it stops at the first empty layer), and a full-screen pass per layer
+//! inserts that layer's crossing into every texel's curve: in depth order, as the paper
+//! asks. Nodes are (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
+//! [`TranslucentMap`], 8 bytes a node; two maps take turns as source and target.
+//! `shaders/lib/avsm.glsl` looks the curve up in the four texels around a receiver.
+
+pub mod curve;
+
+use super::{Draw, Method, VolumetricMap, SAMPLERS};
+use crate::engine::{DepthPeel, FullScreenTriangle, Gl, ShaderProgram, TranslucentMap};
+use crate::error::Result;
+use crate::settings::{MapSize, ShadowSettings};
+use crate::shaders;
+
+/// The technique (`volumetric = "avsm"`, `avsm_nodes` N, `peel_layers` K).
+pub struct Avsm;
+
+/// The unit the peel reads the previous layer's depth from, and the build its two inputs
+/// from (none of them the scene pass' units: these passes come before it).
+const PEEL_UNIT: u32 = 0;
+const BUILD_CURVE_UNIT: u32 = 0;
+const BUILD_LAYER_UNIT: u32 = 1;
+
+/// Bytes a node: a 32-bit depth and a 32-bit transmittance.
+pub const NODE_BYTES: u32 = 8;
+
+/// The most nodes: two to a layer, [`crate::engine::translucent_map::MAX_LAYERS`] layers.
+pub const MAX_NODES: u32 = 2 * crate::engine::translucent_map::MAX_LAYERS;
+
+/// The most layers peeled.
+pub const MAX_PEEL_LAYERS: u32 = 64;
+
+/// RGBA layers for `nodes`.
+fn layers(nodes: u32) -> u32 {
+    nodes.div_ceil(2)
+}
+
+impl Method for Avsm {
+    fn create(&self, gl: &Gl, settings: &ShadowSettings) -> Result<Box<dyn VolumetricMap>> {
+        let (nodes, layers) = (settings.avsm_nodes, settings.peel_layers);
+        Ok(Box::new(AvsmMap::new(
+            gl,
+            settings.map_size,
+            nodes,
+            layers,
+        )?))
+    }
+
+    fn parameter(&self, settings: &ShadowSettings) -> u32 {
+        settings.avsm_nodes
+    }
+
+    fn lookup(&self, i: usize, nodes: u32) -> (&'static str, String) {
+        (
+            "lib/avsm.glsl",
+            format!(
+                "avsmTransmittance({}, volumetricCoords({i}), {nodes})",
+                SAMPLERS[i]
+            ),
+        )
+    }
+
+    /// At most: a peel and a build per layer.
+    fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
+        (16 * layers(settings.avsm_nodes), 2 * settings.peel_layers)
+    }
+}
+
+/// A light's curves, its peeling and the two programs.
+pub struct AvsmMap {
+    /// Source and target of the builds, by turns; `current` holds the finished curve.
+    curves: [TranslucentMap; 2],
+    current: usize,
+    peel: DepthPeel,
+    peel_program: ShaderProgram,
+    build_program: ShaderProgram,
+    triangle: FullScreenTriangle,
+    nodes: u32,
+    max_layers: u32,
+    /// The layers the last render peeled that caught a crossing, and its passes.
+    peeled: u32,
+    passes: u32,
+}
+
+impl AvsmMap {
+    /// A `size` map of `nodes` nodes (2 to [`MAX_NODES`]) a texel, peeling at most
+    /// `max_layers`.
+    pub fn new(gl: &Gl, size: MapSize, nodes: u32, max_layers: u32) -> Result<AvsmMap> {
+        if !(2..=MAX_NODES).contains(&nodes) {
+            return Err(crate::Error::Invalid(format!(
+                "AVSM with {nodes} nodes: expected 2 to {MAX_NODES}"
+            )));
+        }
+        let layers = layers(nodes);
+        let defines = [
+            ("AVSM_NODES".to_string(), nodes.to_string()),
+            ("AVSM_LAYERS".to_string(), layers.to_string()),
+        ];
+        Ok(AvsmMap {
+            curves: [
+                TranslucentMap::new(gl, size, layers)?,
+                TranslucentMap::new(gl, size, layers)?,
+            ],
+            current: 0,
+            peel: DepthPeel::new(gl, size)?,
+            peel_program: ShaderProgram::new(
+                gl,
+                &shaders::translucent_map_vert(),
+                &shaders::avsm_peel_frag(),
+                &[],
+            )?,
+            build_program: ShaderProgram::new(
+                gl,
+                &shaders::depth_view_vert(),
+                &shaders::avsm_build_frag(),
+                &defines,
+            )?,
+            triangle: FullScreenTriangle::new(gl)?,
+            nodes,
+            max_layers: max_layers.max(1),
+            peeled: 0,
+            passes: 0,
+        })
+    }
+
+    /// Layers that caught a crossing in the last render (peeling stops at the first
+    /// empty one, or at the most it may peel).
+    pub fn peeled(&self) -> u32 {
+        self.peeled
+    }
+
+    /// Peels layer `k` of the translucent casters: whether it caught anything.
+    fn peel_layer(&self, draw: &Draw, k: u32) -> bool {
+        let pass = self.peel.begin(k, PEEL_UNIT);
+        let p = &self.peel_program;
+        p.bind();
+        p.set_i32("previousDepth", PEEL_UNIT as i32);
+        p.set_i32("firstLayer", i32::from(k == 0));
+        draw.casters(p);
+        pass.finish()
+    }
+
+    /// Inserts the last peeled layer into every texel's curve (from an empty one when
+    /// `first`): the current curves into the other map, which becomes current. The map
+    /// is cleared and the build added onto it (0 + x is x), as the translucent maps draw.
+    fn build(&mut self, first: bool) {
+        let target = 1 - self.current;
+        let _pass = self.curves[target].begin_additive();
+        let p = &self.build_program;
+        p.bind();
+        self.curves[self.current].bind(BUILD_CURVE_UNIT);
+        self.peel.bind_layer(BUILD_LAYER_UNIT);
+        p.set_i32("curve", BUILD_CURVE_UNIT as i32);
+        p.set_i32("layer", BUILD_LAYER_UNIT as i32);
+        p.set_i32("firstLayer", i32::from(first));
+        self.triangle.draw();
+        self.current = target;
+    }
+
+    /// The nodes read back, texel by texel (row 0 at the bottom), nearest first; unused
+    /// nodes left out.
+    pub fn read_nodes(&self) -> Vec<Vec<curve::Node>> {
+        let map = &self.curves[self.current];
+        let layers: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
+        (0..layers[0].len())
+            .map(|t| {
+                let pairs = layers
+                    .iter()
+                    .flat_map(|l| [[l[t][0], l[t][1]], [l[t][2], l[t][3]]]);
+                pairs
+                    .take_while(|[d, _]| *d < EMPTY_DEPTH)
+                    .map(|[depth, transmittance]| curve::Node {
+                        depth,
+                        transmittance,
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// The depth of an unused node (the fitted depths run 0 to 1).
+pub const EMPTY_DEPTH: f32 = 2.0;
+
+impl VolumetricMap for AvsmMap {
+    fn fits(&self, settings: &ShadowSettings) -> bool {
+        self.nodes == settings.avsm_nodes
+            && self.max_layers == settings.peel_layers.max(1)
+            && self.curves[0].size() == settings.map_size
+    }
+
+    /// Peels layer after layer, inserting each into the curves, until a layer is empty or
+    /// `peel_layers` are in; with nothing to peel, one build still empties the curves.
+    fn render(&mut self, draw: &Draw) -> Result<()> {
+        self.peeled = 0;
+        self.passes = 0;
+        for k in 0..self.max_layers {
+            let any = self.peel_layer(draw, k);
+            self.passes += 1;
+            if any || k == 0 {
+                self.build(k == 0);
+                self.passes += 1;
+            }
+            if !any {
+                break;
+            }
+            self.peeled += 1;
+        }
+        Ok(())
+    }
+
+    fn map(&self) -> &TranslucentMap {
+        &self.curves[self.current]
+    }
+
+    fn passes(&self) -> u32 {
+        self.passes
+    }
+}
