@@ -13,6 +13,8 @@ layout (location = 0) out vec4 nodesOut[AVSM_LAYERS];
 uniform sampler2DArray curve;  // the previous build's nodes
 uniform sampler2D layer;       // the peeled layer: (depth, opacity), opacity 0 = none
 uniform bool firstLayer;       // no previous build: start from an empty curve
+uniform bool rest;             // `layer` is the rest past the last layer: RGB what it lets
+                               // through, A its farthest depth
 
 const float AVSM_EMPTY = 2.0;
 
@@ -102,7 +104,8 @@ void main()
             count = i + 1;
         }
     }
-    vec2 crossing = texelFetch(layer, texel, 0).xy;
+    vec4 fetched = texelFetch(layer, texel, 0);
+    vec2 crossing = rest ? vec2(fetched.a, 1.0 - fetched.r) : fetched.xy;
     if (crossing.y > 0.0) {
         insertCrossing(crossing.x, crossing.y);
     }

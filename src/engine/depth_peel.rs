@@ -4,7 +4,8 @@
 //! k - 1: its program discards what is not behind the previous layer's depth (read from
 //! the other of two depth textures) and the depth test keeps the nearest of the rest. An
 //! `ANY_SAMPLES_PASSED` query says whether a layer caught anything, so peeling stops at
-//! the first empty one.
+//! the first empty one. Past the last layer allowed, one more pass folds whatever is left
+//! into a single crossing ([`DepthPeel::begin_rest`]), so nothing behind the medium is lost.
 
 use glow::HasContext;
 
@@ -22,6 +23,10 @@ pub struct DepthPeel {
     depth: [Texture; 2],
     layer: Texture,
     fbos: [Option<glow::Framebuffer>; 2],
+    /// The rest past the last layer: RGB the product of what they let through, A the
+    /// farthest depth; and its framebuffer.
+    rest: Texture,
+    rest_fbo: Option<glow::Framebuffer>,
     query: Option<glow::Query>,
 }
 
@@ -33,12 +38,15 @@ impl DepthPeel {
             Texture::depth(gl, w, h, DepthFormat::D32F)?,
         ];
         let layer = Texture::float_target(gl, w, h, 2)?;
+        let rest = Texture::float_target(gl, w, h, 4)?;
         // Owned before anything can fail, so a failure frees what was made.
         let mut peel = DepthPeel {
             gl: gl.clone(),
             depth,
             layer,
             fbos: [None, None],
+            rest,
+            rest_fbo: None,
             query: None,
         };
         unsafe {
@@ -69,8 +77,59 @@ impl DepthPeel {
                 gl.bind_framebuffer(glow::FRAMEBUFFER, None);
                 status?;
             }
+            let fbo = gl
+                .create_framebuffer()
+                .map_err(|e| Error::Create(format!("depth peel framebuffer: {e}")))?;
+            super::counters::count(|c| c.framebuffers += 1);
+            peel.rest_fbo = Some(fbo);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let id = Some(peel.rest.id());
+            gl.framebuffer_texture_2d(
+                glow::FRAMEBUFFER,
+                glow::COLOR_ATTACHMENT0,
+                glow::TEXTURE_2D,
+                id,
+                0,
+            );
+            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
+            let status = check_framebuffer(gl, &format!("depth peel {w}x{h} (rest)"));
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            status?;
         }
         Ok(peel)
+    }
+
+    /// Starts the rest after `k` layers: every fragment behind layer k - 1 (whose depth is
+    /// bound on `unit`), with no depth test, blended into the rest texture cleared to
+    /// (1, 1, 1, 0): RGB multiplied by the fragment's (what it lets through), A the larger
+    /// depth. Counted as a layer is.
+    pub fn begin_rest(&self, k: u32, unit: u32) -> PeelPass<'_> {
+        let gl = &self.gl;
+        self.depth[1 - (k % 2) as usize].bind(unit);
+        unsafe {
+            gl.bind_sampler(unit, None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.rest_fbo);
+            gl.viewport(0, 0, self.rest.width() as i32, self.rest.height() as i32);
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::CULL_FACE);
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 1.0, 1.0, 0.0]);
+            gl.enable(glow::BLEND);
+            gl.blend_equation_separate(glow::FUNC_ADD, glow::MAX);
+            gl.blend_func_separate(glow::ZERO, glow::SRC_COLOR, glow::ONE, glow::ONE);
+            if let Some(q) = self.query {
+                gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
+            }
+        }
+        PeelPass {
+            peel: self,
+            open: true,
+        }
+    }
+
+    /// Binds the rest on texture `unit` for `texelFetch`, with no sampler object.
+    pub fn bind_rest(&self, unit: u32) {
+        self.rest.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
     }
 
     /// Starts layer `k`: binds its framebuffer (depth texture k mod 2), clears the layer to
@@ -142,16 +201,16 @@ impl DepthPeel {
             .collect()
     }
 
-    /// Bytes allocated: two 4-byte depths and an 8-byte layer a texel.
+    /// Bytes allocated: two 4-byte depths, an 8-byte layer and a 16-byte rest a texel.
     pub fn bytes(&self) -> u64 {
-        u64::from(self.layer.width()) * u64::from(self.layer.height()) * 16
+        u64::from(self.layer.width()) * u64::from(self.layer.height()) * 32
     }
 }
 
 impl Drop for DepthPeel {
     fn drop(&mut self) {
         unsafe {
-            for fbo in self.fbos.iter().flatten() {
+            for fbo in self.fbos.iter().chain([&self.rest_fbo]).flatten() {
                 self.gl.delete_framebuffer(*fbo);
             }
             if let Some(q) = self.query {
@@ -188,6 +247,11 @@ impl PeelPass<'_> {
             if self.peel.query.is_some() {
                 gl.end_query(glow::ANY_SAMPLES_PASSED);
             }
+            // What the rest changed; the resting state for a layer's pass too.
+            gl.disable(glow::BLEND);
+            gl.blend_equation(glow::FUNC_ADD);
+            gl.blend_func(glow::ONE, glow::ZERO);
+            gl.enable(glow::DEPTH_TEST);
             gl.use_program_once(None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }

@@ -8,7 +8,9 @@
 //! translucent fragments are captured by depth peeling, up to `peel_layers` layers
 //! ([`DepthPeel`]; it stops at the first empty layer), and a full-screen pass per layer
 //! inserts that layer's crossing into every texel's curve: in depth order, as the paper
-//! asks. Nodes are (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
+//! asks. When the last layer allowed still caught something, one more pass folds all the
+//! fragments behind it into one crossing at the farthest of them (what they let through,
+//! multiplied by blending): the curve stays exact behind the medium, whatever its depth. Nodes are (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
 //! [`TranslucentMap`], 8 bytes a node; two maps take turns as source and target.
 //! `shaders/lib/avsm.glsl` looks the curve up in the four texels around a receiver.
 
@@ -68,9 +70,12 @@ impl Method for Avsm {
         )
     }
 
-    /// At most: a peel and a build per layer.
+    /// At most: a peel and a build per layer, and for the rest.
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
-        (16 * layers(settings.avsm_nodes), 2 * settings.peel_layers)
+        (
+            16 * layers(settings.avsm_nodes),
+            2 * settings.peel_layers + 2,
+        )
     }
 }
 
@@ -81,6 +86,8 @@ pub struct AvsmMap {
     current: usize,
     peel: DepthPeel,
     peel_program: ShaderProgram,
+    /// The peel compiled with `REMAINDER`: the rest past the last layer.
+    rest_program: ShaderProgram,
     build_program: ShaderProgram,
     triangle: FullScreenTriangle,
     nodes: u32,
@@ -117,6 +124,12 @@ impl AvsmMap {
                 &shaders::avsm_peel_frag(),
                 &[],
             )?,
+            rest_program: ShaderProgram::new(
+                gl,
+                &shaders::translucent_map_vert(),
+                &shaders::avsm_peel_frag(),
+                &[("REMAINDER".to_string(), "1".to_string())],
+            )?,
             build_program: ShaderProgram::new(
                 gl,
                 &shaders::depth_view_vert(),
@@ -137,10 +150,13 @@ impl AvsmMap {
         self.peeled
     }
 
-    /// Peels layer `k` of the translucent casters: whether it caught anything.
-    fn peel_layer(&self, draw: &Draw, k: u32) -> bool {
-        let pass = self.peel.begin(k, PEEL_UNIT);
-        let p = &self.peel_program;
+    /// Peels layer `k` of the translucent casters (with `rest`, all behind layer k - 1):
+    /// whether it caught anything.
+    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool) -> bool {
+        let (pass, p) = match rest {
+            false => (self.peel.begin(k, PEEL_UNIT), &self.peel_program),
+            true => (self.peel.begin_rest(k, PEEL_UNIT), &self.rest_program),
+        };
         p.bind();
         p.set_i32("previousDepth", PEEL_UNIT as i32);
         p.set_i32("firstLayer", i32::from(k == 0));
@@ -148,19 +164,24 @@ impl AvsmMap {
         pass.finish()
     }
 
-    /// Inserts the last peeled layer into every texel's curve (from an empty one when
-    /// `first`): the current curves into the other map, which becomes current. The map
-    /// is cleared and the build added onto it (0 + x is x), as the translucent maps draw.
-    fn build(&mut self, first: bool) {
+    /// Inserts the last peeled layer (with `rest`, the rest) into every texel's curve
+    /// (from an empty one when `first`): the current curves into the other map, which
+    /// becomes current. The map is cleared and the build added onto it (0 + x is x), as
+    /// the translucent maps draw.
+    fn build(&mut self, first: bool, rest: bool) {
         let target = 1 - self.current;
         let _pass = self.curves[target].begin_additive();
         let p = &self.build_program;
         p.bind();
         self.curves[self.current].bind(BUILD_CURVE_UNIT);
-        self.peel.bind_layer(BUILD_LAYER_UNIT);
+        match rest {
+            false => self.peel.bind_layer(BUILD_LAYER_UNIT),
+            true => self.peel.bind_rest(BUILD_LAYER_UNIT),
+        }
         p.set_i32("curve", BUILD_CURVE_UNIT as i32);
         p.set_i32("layer", BUILD_LAYER_UNIT as i32);
         p.set_i32("firstLayer", i32::from(first));
+        p.set_i32("rest", i32::from(rest));
         self.triangle.draw();
         self.current = target;
     }
@@ -198,21 +219,28 @@ impl VolumetricMap for AvsmMap {
     }
 
     /// Peels layer after layer, inserting each into the curves, until a layer is empty or
-    /// `peel_layers` are in; with nothing to peel, one build still empties the curves.
+    /// `peel_layers` are in, then folds in the rest if there may be one; with nothing to
+    /// peel, one build still empties the curves.
     fn render(&mut self, draw: &Draw) -> Result<()> {
         self.peeled = 0;
         self.passes = 0;
         for k in 0..self.max_layers {
-            let any = self.peel_layer(draw, k);
+            let any = self.peel_layer(draw, k, false);
             self.passes += 1;
             if any || k == 0 {
-                self.build(k == 0);
+                self.build(k == 0, false);
                 self.passes += 1;
             }
             if !any {
-                break;
+                return Ok(());
             }
             self.peeled += 1;
+        }
+        let any = self.peel_layer(draw, self.max_layers, true);
+        self.passes += 1;
+        if any {
+            self.build(false, true);
+            self.passes += 1;
         }
         Ok(())
     }
