@@ -447,6 +447,21 @@ pub const VOLUMETRIC_STEPS: &[Step] = &[
         same_picture: &[],
         apply: |s, _| s.volumetric = Volumetric::Solid,
     },
+    Step {
+        name: "volumetric-avsm",
+        change: "An adaptive volumetric shadow map beside the depth map: per texel a curve of \
+                 the light left against depth, eight nodes, from the translucent fragments \
+                 peeled layer by layer from the light.",
+        look_for: "The smoke's shadow grey, darkest under the thickest part of the column; \
+                   the glass's half as dark as the cube's.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| {
+            s.volumetric = Volumetric::Avsm;
+            s.avsm_nodes = 8;
+        },
+    },
 ];
 
 /// The steps of `scene`'s list (`[steps] list`).

@@ -19,9 +19,12 @@ use shadowmap::shadows::volumetric::{DepthFit, Draw, VolumetricMap};
 use shadowmap::shadows::{Rays, ShadowView};
 use shadowmap::Scene;
 
-/// (position, scale, rotation in degrees, opacity) of each translucent sheet: tilted and
-/// offset, so texels see 0 to 6 crossings at depths that vary across the map.
-const SHEETS: [([f32; 3], [f32; 3], [f32; 3], f32); 6] = [
+/// A translucent sheet: position, scale, rotation in degrees, opacity.
+type Sheet = ([f32; 3], [f32; 3], [f32; 3], f32);
+
+/// Sheets tilted and offset, so texels see 0 to 6 crossings at depths that vary across
+/// the map.
+const SHEETS: [Sheet; 6] = [
     ([0.0, 1.5, 0.0], [1.2, 1.0, 1.2], [0.0, 0.0, 10.0], 0.3),
     ([0.3, 1.0, -0.2], [1.0, 1.0, 1.0], [8.0, 0.0, 0.0], 0.5),
     ([-0.2, 0.5, 0.1], [1.4, 1.0, 0.8], [0.0, 0.0, -15.0], 0.2),
@@ -31,7 +34,7 @@ const SHEETS: [([f32; 3], [f32; 3], [f32; 3], f32); 6] = [
 ];
 
 /// A floor at y = -2 and `sheets` over it, lit from straight above.
-fn scene_of(sheets: &[([f32; 3], [f32; 3], [f32; 3], f32)]) -> Scene {
+fn scene_of(sheets: &[Sheet]) -> Scene {
     let mut text = String::from(
         "size = [320, 240]\n\
          [camera]\nposition = [0.0, 4.0, 4.0]\ntarget = [0.0, -1.0, 0.0]\n\
