@@ -344,6 +344,16 @@ pub enum Volumetric {
     Avsm,
 }
 
+impl Volumetric {
+    /// The next choice, after the last the first (the demo's T key).
+    pub fn next(self) -> Volumetric {
+        use clap::ValueEnum;
+        let all = Volumetric::value_variants();
+        let at = all.iter().position(|v| *v == self).unwrap_or(0);
+        all[(at + 1) % all.len()]
+    }
+}
+
 /// What a fragment beyond the light's far plane (z > 1) gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
 pub enum BeyondFar {
