@@ -214,9 +214,9 @@ fn k_layers_keep_the_k_nearest_crossings_and_peeling_stops_at_an_empty_layer() {
     let all = build(&scene, 8, 16);
     // Six layers catch something, the seventh nothing: seven peels, six builds.
     assert_eq!((all.peeled, all.passes), (6, 13));
-    // Nothing translucent: one empty peel and one build that empties the curves.
+    // Nothing translucent: no pass, empty curves.
     let none = build(&scene_of(&[]), 8, 16);
-    assert_eq!((none.peeled, none.passes), (0, 2));
+    assert_eq!((none.peeled, none.passes), (0, 0));
     assert!(none.nodes.iter().all(Vec::is_empty));
 }
 

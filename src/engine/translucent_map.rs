@@ -6,6 +6,7 @@
 use glow::HasContext;
 
 use super::check::check_framebuffer;
+use super::state::PixelRect;
 use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
@@ -85,6 +86,35 @@ impl TranslucentMap {
         AdditivePass { gl: gl.clone() }
     }
 
+    /// Clears every layer to `value`.
+    pub fn clear(&self, value: [f32; 4]) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            for l in 0..self.layers {
+                self.gl.clear_buffer_f32_slice(glow::COLOR, l, &value);
+            }
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+
+    /// Binds the framebuffer to overwrite the texels of `rect` alone (scissored), with no
+    /// blending, depth test or culling (an AVSM build); dropping the pass puts the resting
+    /// state back.
+    pub fn begin_write(&self, rect: PixelRect) -> WritePass {
+        let gl = &self.gl;
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            let size = self.size();
+            gl.viewport(0, 0, size.width as i32, size.height as i32);
+            gl.enable(glow::SCISSOR_TEST);
+            let (w, h) = (rect.width as i32, rect.height as i32);
+            gl.scissor(rect.x as i32, rect.y as i32, w, h);
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::CULL_FACE);
+        }
+        WritePass { gl: gl.clone() }
+    }
+
     /// Binds the layers on texture `unit` for a `sampler2DArray`, with no sampler object
     /// (the texture's own LINEAR, clamped sampling).
     pub fn bind(&self, unit: u32) {
@@ -141,6 +171,23 @@ impl Drop for TranslucentMap {
     fn drop(&mut self) {
         if let Some(fbo) = self.fbo {
             unsafe { self.gl.delete_framebuffer(fbo) };
+        }
+    }
+}
+
+/// A pass overwriting part of a [`TranslucentMap`]; dropping it restores the resting state
+/// (no scissor, depth test on, the default framebuffer, no program).
+pub struct WritePass {
+    gl: Gl,
+}
+
+impl Drop for WritePass {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.use_program_once(None);
+            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
 }

@@ -16,11 +16,14 @@
 
 pub mod curve;
 
-use super::{Draw, Method, VolumetricMap, SAMPLERS};
-use crate::engine::{DepthPeel, FullScreenTriangle, Gl, ShaderProgram, TranslucentMap};
+use glam::DVec2;
+
+use super::{translucent_casters, Draw, Method, VolumetricMap, SAMPLERS};
+use crate::engine::{DepthPeel, FullScreenTriangle, Gl, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::settings::{MapSize, ShadowSettings};
 use crate::shaders;
+use crate::shadows::fitted;
 
 /// The technique (`volumetric = "avsm"`, `avsm_nodes` N, `peel_layers` K).
 pub struct Avsm;
@@ -166,11 +169,10 @@ impl AvsmMap {
 
     /// Inserts the last peeled layer (with `rest`, the rest) into every texel's curve
     /// (from an empty one when `first`): the current curves into the other map, which
-    /// becomes current. The map is cleared and the build added onto it (0 + x is x), as
-    /// the translucent maps draw.
-    fn build(&mut self, first: bool, rest: bool) {
+    /// becomes current; within `rect` alone (outside it both maps hold empty curves).
+    fn build(&mut self, first: bool, rest: bool, rect: PixelRect) {
         let target = 1 - self.current;
-        let _pass = self.curves[target].begin_additive();
+        let _pass = self.curves[target].begin_write(rect);
         let p = &self.build_program;
         p.bind();
         self.curves[self.current].bind(BUILD_CURVE_UNIT);
@@ -208,6 +210,44 @@ impl AvsmMap {
     }
 }
 
+/// The texels of a `size` map the translucent casters' world boxes cover through the
+/// light's camera, grown by a texel; `None` when they cover none.
+fn footprint(draw: &Draw, size: MapSize) -> Option<PixelRect> {
+    let whole = PixelRect {
+        x: 0,
+        y: 0,
+        width: size.width,
+        height: size.height,
+    };
+    let boxes = fitted::item_world_boxes(draw.scene);
+    let clip = draw.view.projection.as_dmat4() * draw.view.view64;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for (k, _) in translucent_casters(draw.scene) {
+        let Some(&(a, b)) = boxes.get(k) else {
+            continue;
+        };
+        for c in fitted::corners(a, b) {
+            let p = clip * c.extend(1.0);
+            if p.w <= 0.0 {
+                // Behind a perspective light's eye: the whole map.
+                return Some(whole);
+            }
+            let ndc = DVec2::new(p.x, p.y) / p.w;
+            (lo, hi) = (lo.min(ndc), hi.max(ndc));
+        }
+    }
+    let side = DVec2::new(f64::from(size.width), f64::from(size.height));
+    let to_texel = |v: DVec2| (v * 0.5 + 0.5) * side;
+    let (a, b) = (to_texel(lo).floor() - 1.0, to_texel(hi).ceil() + 1.0);
+    let (a, b) = (a.max(DVec2::ZERO).min(side), b.max(DVec2::ZERO).min(side));
+    (b.x > a.x && b.y > a.y).then(|| PixelRect {
+        x: a.x as u32,
+        y: a.y as u32,
+        width: (b.x - a.x) as u32,
+        height: (b.y - a.y) as u32,
+    })
+}
+
 /// The depth of an unused node (the fitted depths run 0 to 1).
 pub const EMPTY_DEPTH: f32 = 2.0;
 
@@ -219,27 +259,32 @@ impl VolumetricMap for AvsmMap {
     }
 
     /// Peels layer after layer, inserting each into the curves, until a layer is empty or
-    /// `peel_layers` are in, then folds in the rest if there may be one; with nothing to
-    /// peel, one build still empties the curves.
+    /// `peel_layers` are in, then folds in the rest if there may be one. The builds run
+    /// over the texels the translucent casters can cover alone; the rest of both maps is
+    /// cleared to empty curves first.
     fn render(&mut self, draw: &Draw) -> Result<()> {
         self.peeled = 0;
         self.passes = 0;
+        for map in &self.curves {
+            map.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
+        }
+        let Some(rect) = footprint(draw, self.curves[0].size()) else {
+            return Ok(());
+        };
         for k in 0..self.max_layers {
             let any = self.peel_layer(draw, k, false);
             self.passes += 1;
-            if any || k == 0 {
-                self.build(k == 0, false);
-                self.passes += 1;
-            }
             if !any {
                 return Ok(());
             }
+            self.build(k == 0, false, rect);
+            self.passes += 1;
             self.peeled += 1;
         }
         let any = self.peel_layer(draw, self.max_layers, true);
         self.passes += 1;
         if any {
-            self.build(false, true);
+            self.build(false, true, rect);
             self.passes += 1;
         }
         Ok(())
