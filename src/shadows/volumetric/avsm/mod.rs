@@ -240,7 +240,7 @@ fn footprint(draw: &Draw, size: MapSize) -> Option<PixelRect> {
     let to_texel = |v: DVec2| (v * 0.5 + 0.5) * side;
     let (a, b) = (to_texel(lo).floor() - 1.0, to_texel(hi).ceil() + 1.0);
     let (a, b) = (a.max(DVec2::ZERO).min(side), b.max(DVec2::ZERO).min(side));
-    (b.x > a.x && b.y > a.y).then(|| PixelRect {
+    (b.x > a.x && b.y > a.y).then_some(PixelRect {
         x: a.x as u32,
         y: a.y as u32,
         width: (b.x - a.x) as u32,
