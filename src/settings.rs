@@ -333,6 +333,25 @@ pub enum Volumetric {
     Off,
     /// They cast as if opaque, into the depth map: the other wrong.
     Solid,
+    /// Opacity shadow maps (Kim and Neumann 2001): the optical depth of the crossings
+    /// summed into `osm_slices` slices of the light's depth (`crate::shadows::volumetric`).
+    Osm,
+    /// Fourier opacity maps (Jansen and Bavoil 2010): the optical depth's density as
+    /// `fom_coefficients` terms of a Fourier series along the light's depth.
+    Fom,
+    /// Adaptive volumetric shadow maps (Salvi et al. 2010): per texel a curve of
+    /// transmittance against depth, `avsm_nodes` nodes, from `peel_layers` peeled layers.
+    Avsm,
+}
+
+impl Volumetric {
+    /// The next choice, after the last the first (the demo's T key).
+    pub fn next(self) -> Volumetric {
+        use clap::ValueEnum;
+        let all = Volumetric::value_variants();
+        let at = all.iter().position(|v| *v == self).unwrap_or(0);
+        all[(at + 1) % all.len()]
+    }
 }
 
 /// What a fragment beyond the light's far plane (z > 1) gets.
@@ -818,9 +837,27 @@ shadow_settings! {
     }
     /// Translucent casters (items with `opacity` below 1).
     "Translucent casters" {
-        /// How a light casts its translucent items: `off` (not at all) or `solid` (as
-        /// opaque, in the depth map); a directional or spot light's 2D map only.
-        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid");
+        /// How a light casts its translucent items: `off` (not at all), `solid` (as
+        /// opaque, in the depth map), or a translucent map beside the depth map (`osm`
+        /// opacity slices, `fom` Fourier opacity, `avsm` adaptive volumetric shadow maps); a
+        /// directional or spot light's 2D map only.
+        volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom|avsm");
+        /// `volumetric = "osm"`: slices between the nearest and farthest translucent
+        /// caster, four to a float target.
+        osm_slices: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::MAX_CHANNELS)),
+            arg(value_name = "K", allow_negative_numbers = true);
+        /// `volumetric = "fom"`: Fourier terms (cosine and sine each) besides the mean;
+        /// 1 + 2 N floats a texel.
+        fom_coefficients: u32 = 7, range(Range::from_to(1, crate::shadows::volumetric::MAX_FOURIER_TERMS)),
+            arg(value_name = "N", allow_negative_numbers = true);
+        /// `volumetric = "avsm"`: nodes of the curve a texel, two to a float target at
+        /// 32-bit; the first and the last are always kept.
+        avsm_nodes: u32 = 8, range(Range::from_to(2, crate::shadows::volumetric::avsm::MAX_NODES)),
+            arg(value_name = "N", allow_negative_numbers = true);
+        /// `volumetric = "avsm"`: the most layers of translucent fragments peeled from the
+        /// light (peeling stops sooner at an empty layer); crossings past them are lost.
+        peel_layers: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::avsm::MAX_PEEL_LAYERS)),
+            arg(value_name = "K", allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {
@@ -993,6 +1030,9 @@ impl ShadowSettings {
             {
                 return None
             }
+            "osm_slices" if self.volumetric != Volumetric::Osm => return None,
+            "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
+            "avsm_nodes" | "peel_layers" if self.volumetric != Volumetric::Avsm => return None,
             "light_projection" if perspective => {
                 format!("perspective light, fov {}", self.perspective_fov)
             }

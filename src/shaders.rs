@@ -39,11 +39,16 @@ shader!(depth_point_layered_geom, "depth_point_layered.geom");
 shader!(volume_vert, "volume.vert");
 shader!(volume_geom, "volume.geom");
 shader!(volume_frag, "volume.frag");
+shader!(avsm_peel_frag, "avsm_peel.frag");
+shader!(avsm_build_frag, "avsm_build.frag");
 shader!(moments_depth_frag, "moments_depth.frag");
 shader!(moments_blur_frag, "moments_blur.frag");
 shader!(summed_area_frag, "summed_area.frag");
 shader!(text_vert, "text.vert");
 shader!(text_frag, "text.frag");
+shader!(translucent_map_vert, "translucent_map.vert");
+shader!(osm_map_frag, "osm_map.frag");
+shader!(fom_map_frag, "fom_map.frag");
 
 /// The snippets a shader may `#include`, by the name it includes them with.
 const LIBRARY: &[(&str, &str)] = &[
@@ -52,6 +57,7 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/lighting.glsl"),
     ),
     ("lib/bias.glsl", include_str!("../shaders/lib/bias.glsl")),
+    ("lib/avsm.glsl", include_str!("../shaders/lib/avsm.glsl")),
     (
         "lib/linear_depth.glsl",
         include_str!("../shaders/lib/linear_depth.glsl"),
@@ -92,6 +98,12 @@ const LIBRARY: &[(&str, &str)] = &[
         "lib/soft_moments.glsl",
         include_str!("../shaders/lib/soft_moments.glsl"),
     ),
+    (
+        "lib/volumetric.glsl",
+        include_str!("../shaders/lib/volumetric.glsl"),
+    ),
+    ("lib/osm.glsl", include_str!("../shaders/lib/osm.glsl")),
+    ("lib/fom.glsl", include_str!("../shaders/lib/fom.glsl")),
     (
         "lib/outputs.glsl",
         include_str!("../shaders/lib/outputs.glsl"),

@@ -447,6 +447,47 @@ pub const VOLUMETRIC_STEPS: &[Step] = &[
         same_picture: &[],
         apply: |s, _| s.volumetric = Volumetric::Solid,
     },
+    Step {
+        name: "volumetric-osm",
+        change: "A translucent map beside the depth map: opacity shadow maps, 16 slices \
+                 between the nearest and the farthest translucent caster, each crossing \
+                 adding -ln(1 - opacity) to its slice; a receiver takes exp(-(what lies \
+                 before it)).",
+        look_for: "Grey shadows: the glass's passes half the light, the smoke's darkens where \
+                   more puffs stack up; the cube's stays black.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| s.volumetric = Volumetric::Osm,
+    },
+    Step {
+        name: "volumetric-fom",
+        change: "Fourier opacity maps instead: the optical depth along the light as the mean \
+                 and 7 cosine and sine terms, damped against ringing, in the same 64 bytes \
+                 a texel.",
+        look_for: "Behind the smoke and the glass the same grey as the slices give (exact \
+                   behind every caster); within the smoke column the light falls off more \
+                   smoothly.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| s.volumetric = Volumetric::Fom,
+    },
+    Step {
+        name: "volumetric-avsm",
+        change: "Adaptive volumetric shadow maps instead: per texel a curve of the light left \
+                 against depth, 8 nodes in the same 64 bytes a texel, built from the \
+                 translucent fragments peeled layer by layer from the light.",
+        look_for: "The same greys behind the smoke and the glass (exact behind every caster); \
+                   the smoke's edges as sharp as the slices give them.",
+        cumulative: false,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| {
+            s.volumetric = Volumetric::Avsm;
+            s.avsm_nodes = 8;
+        },
+    },
 ];
 
 /// The steps of `scene`'s list (`[steps] list`).

@@ -149,3 +149,190 @@ fn the_smoke_scene_scores_both_wrongs_of_a_depth_map() {
     );
     assert!(off.mae_outside < 0.01, "{off:?}");
 }
+
+/// The receivers of `c` whose truth is `value` and whose four neighbours' is too (away
+/// from the shadow's edges, which the map's texels blur): (rendered, truth).
+fn interior(c: &Comparison, value: f32) -> Vec<(f32, f32)> {
+    let truth = c
+        .reference
+        .transmittance
+        .as_ref()
+        .expect("a transmittance truth");
+    let rendered = c.frame.visibility.as_ref().expect("a visibility output");
+    let width = c.frame.width as usize;
+    let at = |i: usize| {
+        truth
+            .get(i)
+            .filter(|r| r.receiver && (r.visibility - value).abs() < 1e-6)
+    };
+    (width..truth.len().saturating_sub(width))
+        .filter(|&i| {
+            [i, i - 1, i + 1, i - width, i + width]
+                .iter()
+                .all(|&k| at(k).is_some())
+        })
+        .map(|i| (rendered[i].expect("a rendered value"), truth[i].visibility))
+        .collect()
+}
+
+#[test]
+fn one_sheet_leaves_one_minus_its_opacity_in_each_translucent_map() {
+    let scene = sheets_scene(&[(0.0, 0.4)]);
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let c = run(&scene, volumetric);
+        let values = interior(&c, 0.6);
+        assert!(
+            values.len() > 2000,
+            "{volumetric:?}: {} receivers",
+            values.len()
+        );
+        let worst = values
+            .iter()
+            .map(|(r, t)| (r - t).abs())
+            .fold(0.0, f32::max);
+        assert!(worst < 0.01, "{volumetric:?}: off by {worst}");
+        let t = c.transmittance.expect("scored");
+        assert!(t.mae_in_shadow < 0.02, "{volumetric:?}: {t:?}");
+        assert!(t.mae_outside < 0.005, "{volumetric:?}: {t:?}");
+    }
+}
+
+#[test]
+fn behind_every_caster_each_translucent_map_gives_the_product_to_one_step_of_eight_bits() {
+    let scene = sheets_scene(&[(0.0, 0.5), (1.0, 0.25)]);
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let c = run(&scene, volumetric);
+        let values = interior(&c, 0.375);
+        assert!(
+            values.len() > 1000,
+            "{volumetric:?}: {} receivers",
+            values.len()
+        );
+        let worst = values
+            .iter()
+            .map(|(r, t)| (r - t).abs())
+            .fold(0.0, f32::max);
+        assert!(worst <= 1.0 / 255.0, "{volumetric:?}: off by {worst}");
+    }
+}
+
+/// Every layer of light 0's translucent map after one depth pass of `scene`.
+fn map_layers(scene: &Scene, settings: &ShadowSettings) -> Vec<Vec<[f32; 4]>> {
+    let ctx = context();
+    let mut renderer = shadowmap::Renderer::new(ctx.gl(), scene, settings).unwrap();
+    renderer.render_depth_map(scene).unwrap();
+    let map = renderer
+        .volumetric_maps()
+        .get(0)
+        .expect("a translucent map")
+        .map();
+    (0..map.layers()).map(|l| map.read_layer(l)).collect()
+}
+
+#[test]
+fn the_additive_maps_do_not_depend_on_the_order_the_casters_are_drawn_in() {
+    let scene = common::frozen("smoke");
+    let mut reversed = scene.clone();
+    reversed.items.reverse();
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let settings = ShadowSettings {
+            volumetric,
+            ..scene.shadow
+        };
+        let (a, b) = (
+            map_layers(&scene, &settings),
+            map_layers(&reversed, &settings),
+        );
+        assert_eq!(
+            a.len(),
+            4,
+            "{volumetric:?}: 16 slices or 15 coefficients in 4 layers"
+        );
+        let mut covered = 0;
+        for (la, lb) in a.iter().zip(&b) {
+            for (ta, tb) in la.iter().zip(lb) {
+                covered += usize::from(ta[0] != 0.0);
+                for c in 0..4 {
+                    let scale = ta[c].abs().max(1.0);
+                    assert!(
+                        (ta[c] - tb[c]).abs() <= 1e-5 * scale,
+                        "{volumetric:?}: {ta:?} {tb:?}"
+                    );
+                }
+            }
+        }
+        // The smoke's column and the glass cover texels of the map (osm's first slice or
+        // fom's mean).
+        assert!(covered > 1000, "{volumetric:?}: {covered} texels");
+    }
+}
+
+#[test]
+fn without_translucent_items_the_translucent_maps_change_no_pixel() {
+    let ctx = context();
+    let mut scene = common::frozen("dummy");
+    assert!(scene.items.iter().all(|i| !i.is_translucent()));
+    let frame = |scene: &mut Scene, volumetric| {
+        let settings = ShadowSettings {
+            volumetric,
+            ..scene.shadow
+        };
+        common::render(&ctx, scene, &settings, 320, 240)
+    };
+    let off = frame(&mut scene, Volumetric::Off);
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let with = frame(&mut scene, volumetric);
+        assert!(with.colour.rgba == off.colour.rgba, "{volumetric:?}");
+        assert_eq!(with.visibility, off.visibility, "{volumetric:?}");
+    }
+}
+
+#[test]
+fn the_translucent_maps_are_refused_by_name_where_they_cannot_cast() {
+    use shadowmap::settings::Filter;
+    use shadowmap::shadows::plan::ShadowPlan;
+    let point = Scene::load("point-shadows").unwrap();
+    let smoke = common::frozen("smoke");
+    let refusal = |scene: &Scene, settings: ShadowSettings| {
+        ShadowPlan::resolve(&scene.lights, &settings, None)
+            .map(|_| ())
+            .unwrap_err()
+            .to_string()
+    };
+    let osm = ShadowSettings {
+        volumetric: Volumetric::Osm,
+        ..point.shadow
+    };
+    assert_eq!(
+        refusal(&point, osm),
+        "shadow.volumetric = osm: light 0 cannot use it: a point light's cube map takes \
+         volumetric = \"off\" only"
+    );
+    let fom = ShadowSettings {
+        volumetric: Volumetric::Fom,
+        filter: Filter::Vsm,
+        ..smoke.shadow
+    };
+    assert_eq!(
+        refusal(&smoke, fom),
+        "shadow.volumetric = fom: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, \
+         msm) take volumetric = \"off\" only"
+    );
+    let cascaded = ShadowSettings {
+        volumetric: Volumetric::Osm,
+        cascades: 2,
+        ..smoke.shadow
+    };
+    assert!(refusal(&smoke, cascaded).starts_with(
+        "shadow.volumetric = osm: light 0 cannot use it: cascades and caster groups take"
+    ));
+    // The slice and term counts are range-checked like every setting.
+    let many = ShadowSettings {
+        osm_slices: 33,
+        ..smoke.shadow
+    };
+    assert_eq!(
+        many.validate_values().unwrap_err().to_string(),
+        "shadow.osm_slices = 33: expected 1 to 32"
+    );
+}

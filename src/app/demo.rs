@@ -804,6 +804,10 @@ impl ApplicationHandler for Demo {
                                 .change_settings(event_loop, |s| {
                                     s.caster_groups = s.caster_groups % MAX_CASCADES + 1
                                 }),
+                            KeyCode::KeyT if !event.repeat => self
+                                .change_settings(event_loop, |s| {
+                                    s.volumetric = s.volumetric.next()
+                                }),
                             _ if !event.repeat => {
                                 if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
                                     let name = steps::of(&self.scene).get(i).map(|s| s.name);

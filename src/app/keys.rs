@@ -20,6 +20,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("C", "tint the cascades"),
     ("K", "cascades: 1, 2, 3, 4, 1, ..."),
     ("G", "caster groups: 1, 2, 3, 4, 1, ..."),
+    ("T", "translucent casters: off, solid, osm, fom, off, ..."),
     ("I", "the shadow-map inset (bottom-right)"),
     ("H", "show / hide these keys"),
     (

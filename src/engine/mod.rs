@@ -8,6 +8,7 @@ pub mod bindings;
 pub mod blend;
 pub mod check;
 pub mod counters;
+pub mod depth_peel;
 pub mod headless;
 pub mod instances;
 pub mod mesh;
@@ -21,6 +22,7 @@ pub mod summed_area;
 pub mod text;
 pub mod texture;
 pub mod timer;
+pub mod translucent_map;
 pub mod volume;
 pub mod window_context;
 
@@ -31,6 +33,7 @@ pub type Gl = Rc<bindings::GlContext>;
 
 pub use blend::TranslucentBlend;
 pub use check::{check_gl, gl_limits, GlLimits};
+pub use depth_peel::{DepthPeel, PeelPass};
 pub use headless::HeadlessContext;
 pub use instances::{InstanceBuffer, Instanced};
 pub use mesh::{FullScreenTriangle, Mesh};
@@ -43,6 +46,7 @@ pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
+pub use translucent_map::{AdditivePass, TranslucentMap};
 pub use volume::{
     AdjacencyMesh, LightPass, LightPassGuard, SamplesQuery, VolumeDraw, VolumePassGuard,
 };

@@ -168,6 +168,35 @@ impl Texture {
         Ok(texture)
     }
 
+    /// An empty array of `layers` RGBA32F textures (a translucent map's layers, each a
+    /// colour attachment of one framebuffer): LINEAR, clamped; the lookups sum them, and
+    /// what they sum is linear in the crossings, so filtering them is exact.
+    pub fn float_array(gl: &Gl, width: u32, height: u32, layers: u32) -> Result<Texture> {
+        let texture = Texture::create(gl, glow::TEXTURE_2D_ARRAY, width, height, "float array")?;
+        unsafe {
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture.id));
+            gl.tex_image_3d(
+                glow::TEXTURE_2D_ARRAY,
+                0,
+                glow::RGBA32F as i32,
+                width as i32,
+                height as i32,
+                layers as i32,
+                0,
+                glow::RGBA,
+                glow::FLOAT,
+                glow::PixelUnpackData::Slice(None),
+            );
+            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, k, v as i32);
+            p(glow::TEXTURE_MIN_FILTER, glow::LINEAR);
+            p(glow::TEXTURE_MAG_FILTER, glow::LINEAR);
+            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
+            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
+        }
+        Ok(texture)
+    }
+
     /// An empty colour texture used as a render-target attachment.
     pub(crate) fn attachment(
         gl: &Gl,

@@ -105,13 +105,18 @@ impl Renderer {
             .sum()
     }
 
-    /// Shadow maps in use and the bytes they take.
+    /// Shadow maps in use and the bytes they take (translucent maps' bytes included).
     pub fn shadow_memory(&self) -> (usize, u64) {
         let techniques = self.shadows.iter().flatten();
         (
             techniques.clone().count(),
-            techniques.map(|t| t.bytes()).sum(),
+            techniques.map(|t| t.bytes()).sum::<u64>() + self.volumetric.bytes(),
         )
+    }
+
+    /// Each light's translucent map as the last frame drew it.
+    pub fn volumetric_maps(&self) -> &crate::shadows::volumetric::Maps {
+        &self.volumetric
     }
 
     /// Blocks until the GPU has finished (for wall-time measurements).

@@ -60,6 +60,8 @@ pub struct Renderer {
     depth_programs: DepthPrograms,
     /// Casters drawn into maps against casters offered, so far.
     casters: CasterCounts,
+    /// Each light's translucent map, for the lights whose plan keeps one.
+    volumetric: crate::shadows::volumetric::Maps,
     /// Scene programs by what they were compiled for, the last used first.
     scene_programs: Vec<(ProgramKey, ShaderProgram)>,
     samplers: Samplers,
@@ -100,6 +102,7 @@ impl Renderer {
             schedule: DepthSchedule::default(),
             depth_programs: DepthPrograms::default(),
             casters: CasterCounts::default(),
+            volumetric: Default::default(),
             scene_programs: Vec::new(),
             samplers: Samplers::default(),
             mask: shadow_mask::ShadowMask::default(),
@@ -165,6 +168,8 @@ impl Renderer {
             });
             schedule.drawn(index, step);
         }
+        let boxes = self.schedule.boxes();
+        (self.volumetric).render(&self.gl, &self.gpu.meshes, scene, &self.views, boxes)?;
         self.hook(Pass::Depth, false);
         check_gl(&self.gl, "the depth-map pass")
     }

@@ -57,6 +57,6 @@ impl Renderer {
                 self.schedule.forget(i);
             }
         }
-        Ok(())
+        self.volumetric.prepare(&self.gl, &self.plan)
     }
 }

@@ -51,6 +51,7 @@ impl Renderer {
             program: &self.scene_programs[0].1,
             shadows: &self.shadows,
             views: &self.views,
+            volumetric: &self.volumetric,
             plan: &self.plan,
             meshes: &self.gpu.meshes,
             textures: &self.gpu.textures,

@@ -51,6 +51,8 @@ pub struct Inputs<'a> {
     pub program: &'a ShaderProgram,
     pub shadows: &'a [Option<Box<dyn Technique>>],
     pub views: &'a [Option<ShadowView>],
+    /// Each light's translucent map, if it keeps one.
+    pub volumetric: &'a crate::shadows::volumetric::Maps,
     /// Each light's kind and settings.
     pub plan: &'a ShadowPlan,
     pub meshes: &'a [Mesh],
@@ -186,6 +188,9 @@ pub(super) fn bind_maps(
             t.texture().bind(unit);
             bound.push(samplers.get(gl, t.sampling(settings))?.bind(unit));
         }
+    }
+    if inputs.mask.is_none() {
+        (inputs.volumetric).bind(p, inputs.views, scene.camera.view_matrix64());
     }
     Ok(bound)
 }

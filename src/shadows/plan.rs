@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::scene::light::BOOK_ANGLES_MAX_X;
 use crate::scene::refusals::{self, layered_light};
 use crate::scene::Light;
-use crate::settings::{DirectionalLayers, ShadowSettings, ShadowTechnique};
+use crate::settings::{DirectionalLayers, ShadowSettings, ShadowTechnique, Volumetric};
 
 use super::ShadowKind;
 
@@ -27,6 +27,10 @@ pub struct LightPlan {
     pub settings: ShadowSettings,
     /// Settings that do nothing for this light, each with the reason.
     pub idle: Vec<Idle>,
+    /// The technique of its translucent map beside its depth map, if it keeps one
+    /// (`volumetric = "osm"` or `"fom"` on a light with one 2D depth map; the map's depth
+    /// is fitted to the translucent casters each frame: `shadows::volumetric::DepthFit`).
+    pub volumetric: Option<Volumetric>,
 }
 
 impl LightPlan {
@@ -128,6 +132,7 @@ impl ShadowPlan {
                 kind,
                 settings: *s,
                 idle: idle::of_light(light, kind, s),
+                volumetric: translucent_map(kind, s),
             })
             .collect();
         ShadowPlan {
@@ -185,6 +190,13 @@ fn kind_alone(light: &Light, settings: &ShadowSettings) -> ShadowKind {
         },
         Light::Spot(_) => one_map(settings),
     }
+}
+
+/// The technique of the translucent map a light of `kind` keeps under its `settings`, if
+/// any: one beside a 2D depth map (the refusals turn the others down by name).
+fn translucent_map(kind: ShadowKind, settings: &ShadowSettings) -> Option<Volumetric> {
+    let keeps = kind == ShadowKind::Map && super::volumetric::method(settings.volumetric).is_some();
+    keeps.then_some(settings.volumetric)
 }
 
 /// The kind of one 2D map under `settings`: a depth map, or with a moment filter a moment

@@ -5,6 +5,7 @@
 
 use super::plan::ShadowPlan;
 use super::slots::{self, LightSlot, MaskMode, ShadowTest};
+use super::volumetric::VolumetricKey;
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
 use crate::error::{Error, Result};
@@ -84,8 +85,12 @@ impl ProgramKey {
                 positional,
                 cone,
                 // Volumes have no test in the shader: the stencil decides.
-                test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume))
-                    .then(|| ShadowTest::for_light(light, own)),
+                test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume)).then(|| {
+                    ShadowTest {
+                        volumetric: planned.volumetric.and_then(|_| VolumetricKey::of(own)),
+                        ..ShadowTest::for_light(light, own)
+                    }
+                }),
             });
         }
         Ok(ProgramKey {

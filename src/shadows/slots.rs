@@ -16,6 +16,7 @@
 
 use super::map2d::MapDepth;
 use super::moments::MomentTest;
+use super::volumetric::{self, VolumetricKey};
 use super::{cascades, cube, groups, layers, map2d, summed, volumes, LightGlsl, ShadowKind};
 use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
@@ -32,6 +33,11 @@ pub const MASK_UNIT: u32 = 1 + crate::scene::MAX_LIGHTS as u32;
 /// The texture unit of light `index`'s shadow map.
 pub fn texture_unit(index: usize) -> u32 {
     1 + index as u32
+}
+
+/// The texture unit of light `index`'s translucent map (after the mask).
+pub fn volumetric_unit(index: usize) -> u32 {
+    MASK_UNIT + 1 + index as u32
 }
 
 /// The shadow test's settings, which the generated call passes as arguments.
@@ -57,6 +63,9 @@ pub struct ShadowTest {
     pub map_depth: map2d::MapDepth,
     /// A moment filter's own constants.
     pub moments: Option<MomentTest>,
+    /// The light's translucent map, whose transmittance multiplies the test
+    /// ([`crate::shadows::volumetric`]).
+    pub volumetric: Option<VolumetricKey>,
 }
 
 impl ShadowTest {
@@ -79,6 +88,7 @@ impl ShadowTest {
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
             map_depth: map2d::MapDepth::Projected,
+            volumetric: None,
         }
     }
 
@@ -253,6 +263,15 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         format!("float lit{i} = {};", glsl.test),
         format!("addLight({i}, toLight{i}, {cone}, lit{i}, f);"),
     ];
+    if let Some((file, call)) = slot.test.and_then(|t| t.volumetric?.lookup(i)) {
+        // The light that passes the opaque test times what the translucent casters let
+        // through.
+        part.snippets.extend(["lib/volumetric.glsl", file]);
+        let sampler = volumetric::SAMPLERS[i];
+        let declared = part.sampler.take().unwrap_or_default();
+        part.sampler = Some(format!("{declared}\nuniform sampler2DArray {sampler};"));
+        part.lines.insert(2, format!("lit{i} *= {call};"));
+    }
     part
 }
 
@@ -621,9 +640,21 @@ mod tests {
             bias_mode: BiasMode::Slope,
             ..with(Filter::Hardware2x2)
         };
+        // Translucent maps beside three of the 2D maps.
+        let beside = |technique, parameter| {
+            Some(VolumetricKey {
+                technique,
+                parameter,
+            })
+        };
+        let mut slope = slot(ShadowKind::Map, slope);
+        slope.test = slope.test.map(|t| ShadowTest {
+            volumetric: beside(crate::settings::Volumetric::Avsm, 8),
+            ..t
+        });
         let generated = snippets(
             &[
-                slot(ShadowKind::Map, slope),
+                slope,
                 slot(ShadowKind::Cube, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Cascades, with(Filter::Pcf3x3)),
                 slot(ShadowKind::Moments, with(Filter::Vsm)),
@@ -634,12 +665,18 @@ mod tests {
         let mut linear = slot(ShadowKind::Map, with(Filter::Pcf3x3));
         linear.test = linear.test.map(|t| ShadowTest {
             map_depth: MapDepth::Linear,
+            volumetric: beside(crate::settings::Volumetric::Osm, 16),
+            ..t
+        });
+        let mut pcss = slot(ShadowKind::Map, with(Filter::Pcss));
+        pcss.test = pcss.test.map(|t| ShadowTest {
+            volumetric: beside(crate::settings::Volumetric::Fom, 7),
             ..t
         });
         let others = snippets(
             &[
                 slot(ShadowKind::Groups, with(Filter::Pcf3x3)),
-                slot(ShadowKind::Map, with(Filter::Pcss)),
+                pcss,
                 linear,
                 slot(ShadowKind::Moments, with(Filter::Vssm)),
             ],

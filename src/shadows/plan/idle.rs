@@ -2,7 +2,7 @@
 //! light of a scene ([`of_scene`], what the commands warn about when a flag gives one).
 
 use crate::scene::Light;
-use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique};
+use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
 use crate::shadows::ShadowKind;
 
 use super::LightPlan;
@@ -171,8 +171,25 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
     if kind != ShadowKind::Volume {
         push("show_volumes", "the light has no shadow volumes".into());
     }
+    for (name, technique) in VOLUMETRIC_KNOBS {
+        if !(kind == ShadowKind::Map && s.volumetric == technique) {
+            let value = technique.name();
+            push(
+                name,
+                format!("only a 2D depth map with volumetric = \"{value}\" reads it"),
+            );
+        }
+    }
     idle
 }
+
+/// The translucent maps' counts, each with the technique that reads it.
+const VOLUMETRIC_KNOBS: [(&str, Volumetric); 4] = [
+    ("osm_slices", Volumetric::Osm),
+    ("fom_coefficients", Volumetric::Fom),
+    ("avsm_nodes", Volumetric::Avsm),
+    ("peel_layers", Volumetric::Avsm),
+];
 
 /// Whether `perspective_depth` decides what light's map stores: a perspective depth map
 /// (not with PCSS: [`crate::shadows::map2d::stores_linear_depth`]).
@@ -266,6 +283,16 @@ pub(super) fn of_scene(
             "no light has a 2D depth map read by the shader's own lookups (hardware and moment \
              filters, cube maps, cascades and caster groups filter on their own)",
         ));
+    }
+    for (name, technique) in VOLUMETRIC_KNOBS {
+        if !plans.iter().any(|p| p.volumetric == Some(technique)) {
+            let value = technique.name();
+            let why = format!(
+                "no light keeps a translucent map with volumetric = \"{value}\" (--volumetric \
+                 {value}, on a directional or spot light's 2D map)"
+            );
+            idle.push(Idle::new(name, why));
+        }
     }
     of_scene_maps(plans, &mut idle);
     idle

@@ -1,0 +1,265 @@
+//! `DepthPeel`: depth peeling of the light's translucent fragments (Everitt 2001), the
+//! capture AVSM needs on GL 3.3, which has no atomics or image stores
+//! (`crate::shadows::avsm`). Layer k keeps, per texel, the nearest fragment behind layer
+//! k - 1: its program discards what is not behind the previous layer's depth (read from
+//! the other of two depth textures) and the depth test keeps the nearest of the rest. An
+//! `ANY_SAMPLES_PASSED` query says whether a layer caught anything, so peeling stops at
+//! the first empty one. Past the last layer allowed, one more pass folds whatever is left
+//! into a single crossing ([`DepthPeel::begin_rest`]), so nothing behind the medium is lost.
+
+use glow::HasContext;
+
+use super::check::check_framebuffer;
+use super::texture::Texture;
+use super::Gl;
+use crate::error::{Error, Result};
+use crate::settings::{DepthFormat, MapSize};
+
+/// Owns the two depth textures (32-bit float, so a depth compares equal to itself when
+/// the next layer reads it), the layer's RG32F colour (depth, opacity), a framebuffer per
+/// depth texture and the query; all freed on drop.
+pub struct DepthPeel {
+    gl: Gl,
+    depth: [Texture; 2],
+    layer: Texture,
+    fbos: [Option<glow::Framebuffer>; 2],
+    /// The rest past the last layer: RGB the product of what they let through, A the
+    /// farthest depth; and its framebuffer.
+    rest: Texture,
+    rest_fbo: Option<glow::Framebuffer>,
+    query: Option<glow::Query>,
+}
+
+impl DepthPeel {
+    pub fn new(gl: &Gl, size: MapSize) -> Result<DepthPeel> {
+        let (w, h) = (size.width, size.height);
+        let depth = [
+            Texture::depth(gl, w, h, DepthFormat::D32F)?,
+            Texture::depth(gl, w, h, DepthFormat::D32F)?,
+        ];
+        let layer = Texture::float_target(gl, w, h, 2)?;
+        let rest = Texture::float_target(gl, w, h, 4)?;
+        // Owned before anything can fail, so a failure frees what was made.
+        let mut peel = DepthPeel {
+            gl: gl.clone(),
+            depth,
+            layer,
+            fbos: [None, None],
+            rest,
+            rest_fbo: None,
+            query: None,
+        };
+        unsafe {
+            let query = gl
+                .create_query()
+                .map_err(|e| Error::Create(format!("depth peel query: {e}")))?;
+            peel.query = Some(query);
+            for i in 0..2 {
+                let fbo = gl
+                    .create_framebuffer()
+                    .map_err(|e| Error::Create(format!("depth peel framebuffer: {e}")))?;
+                super::counters::count(|c| c.framebuffers += 1);
+                peel.fbos[i] = Some(fbo);
+                gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+                let attach = |point, texture: &Texture| {
+                    gl.framebuffer_texture_2d(
+                        glow::FRAMEBUFFER,
+                        point,
+                        glow::TEXTURE_2D,
+                        Some(texture.id()),
+                        0,
+                    )
+                };
+                attach(glow::COLOR_ATTACHMENT0, &peel.layer);
+                attach(glow::DEPTH_ATTACHMENT, &peel.depth[i]);
+                gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
+                let status = check_framebuffer(gl, &format!("depth peel {w}x{h} ({i})"));
+                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+                status?;
+            }
+            let fbo = gl
+                .create_framebuffer()
+                .map_err(|e| Error::Create(format!("depth peel framebuffer: {e}")))?;
+            super::counters::count(|c| c.framebuffers += 1);
+            peel.rest_fbo = Some(fbo);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let id = Some(peel.rest.id());
+            gl.framebuffer_texture_2d(
+                glow::FRAMEBUFFER,
+                glow::COLOR_ATTACHMENT0,
+                glow::TEXTURE_2D,
+                id,
+                0,
+            );
+            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
+            let status = check_framebuffer(gl, &format!("depth peel {w}x{h} (rest)"));
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            status?;
+        }
+        Ok(peel)
+    }
+
+    /// Starts the rest after `k` layers: every fragment behind layer k - 1 (whose depth is
+    /// bound on `unit`), with no depth test, blended into the rest texture cleared to
+    /// (1, 1, 1, 0): RGB multiplied by the fragment's (what it lets through), A the larger
+    /// depth. Counted as a layer is.
+    pub fn begin_rest(&self, k: u32, unit: u32) -> PeelPass<'_> {
+        let gl = &self.gl;
+        self.depth[1 - (k % 2) as usize].bind(unit);
+        unsafe {
+            gl.bind_sampler(unit, None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.rest_fbo);
+            gl.viewport(0, 0, self.rest.width() as i32, self.rest.height() as i32);
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::CULL_FACE);
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 1.0, 1.0, 0.0]);
+            gl.enable(glow::BLEND);
+            gl.blend_equation_separate(glow::FUNC_ADD, glow::MAX);
+            gl.blend_func_separate(glow::ZERO, glow::SRC_COLOR, glow::ONE, glow::ONE);
+            if let Some(q) = self.query {
+                gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
+            }
+        }
+        PeelPass {
+            peel: self,
+            open: true,
+        }
+    }
+
+    /// Binds the rest on texture `unit` for `texelFetch`, with no sampler object.
+    pub fn bind_rest(&self, unit: u32) {
+        self.rest.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
+    }
+
+    /// Starts layer `k`: binds its framebuffer (depth texture k mod 2), clears the layer to
+    /// (1, 0) (no crossing) and the depth to 1, binds the previous layer's depth texture on
+    /// `unit` (no sampler object: `texelFetch` reads it) and starts counting. Depth test
+    /// LESS, no culling (a closed mesh is crossed twice), no blending. The caller binds
+    /// the peel program and draws the casters, then calls [`PeelPass::finish`].
+    pub fn begin(&self, k: u32, unit: u32) -> PeelPass<'_> {
+        let gl = &self.gl;
+        let this = (k % 2) as usize;
+        self.depth[1 - this].bind(unit);
+        unsafe {
+            gl.bind_sampler(unit, None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbos[this]);
+            gl.viewport(0, 0, self.layer.width() as i32, self.layer.height() as i32);
+            gl.depth_mask(true);
+            gl.enable(glow::DEPTH_TEST);
+            gl.depth_func(glow::LESS);
+            gl.disable(glow::CULL_FACE);
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 0.0, 0.0, 0.0]);
+            gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
+            if let Some(q) = self.query {
+                gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
+            }
+        }
+        PeelPass {
+            peel: self,
+            open: true,
+        }
+    }
+
+    /// The last layer peeled: per texel its depth and opacity, (1, 0) where it caught
+    /// nothing.
+    pub fn layer(&self) -> &Texture {
+        &self.layer
+    }
+
+    /// Binds the last layer peeled on texture `unit` for `texelFetch`, with no sampler
+    /// object.
+    pub fn bind_layer(&self, unit: u32) {
+        self.layer.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
+    }
+
+    /// The last layer read back (row 0 at the bottom): (depth, opacity) per texel.
+    pub fn read_layer(&self, k: u32) -> Vec<[f32; 2]> {
+        let (w, h) = (self.layer.width(), self.layer.height());
+        let mut bytes = vec![0u8; (w * h * 8) as usize];
+        unsafe {
+            self.gl
+                .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[(k % 2) as usize]);
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
+            self.gl.read_pixels(
+                0,
+                0,
+                w as i32,
+                h as i32,
+                glow::RG,
+                glow::FLOAT,
+                glow::PixelPackData::Slice(Some(&mut bytes)),
+            );
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+        let float = |c: &[u8]| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]);
+        bytes
+            .chunks_exact(8)
+            .map(|t| [float(&t[0..4]), float(&t[4..8])])
+            .collect()
+    }
+
+    /// Bytes allocated: two 4-byte depths, an 8-byte layer and a 16-byte rest a texel.
+    pub fn bytes(&self) -> u64 {
+        u64::from(self.layer.width()) * u64::from(self.layer.height()) * 32
+    }
+}
+
+impl Drop for DepthPeel {
+    fn drop(&mut self) {
+        unsafe {
+            for fbo in self.fbos.iter().chain([&self.rest_fbo]).flatten() {
+                self.gl.delete_framebuffer(*fbo);
+            }
+            if let Some(q) = self.query {
+                self.gl.delete_query(q);
+            }
+        }
+    }
+}
+
+/// A layer being peeled; dropping it ends the query and puts the resting state back.
+pub struct PeelPass<'a> {
+    peel: &'a DepthPeel,
+    open: bool,
+}
+
+impl PeelPass<'_> {
+    /// Ends the layer: whether any fragment was kept (waits for the query).
+    pub fn finish(mut self) -> bool {
+        self.close();
+        let Some(q) = self.peel.query else {
+            return false;
+        };
+        let any = unsafe { self.peel.gl.get_query_parameter_u32(q, glow::QUERY_RESULT) };
+        any != 0
+    }
+
+    fn close(&mut self) {
+        if !self.open {
+            return;
+        }
+        self.open = false;
+        let gl = &self.peel.gl;
+        unsafe {
+            if self.peel.query.is_some() {
+                gl.end_query(glow::ANY_SAMPLES_PASSED);
+            }
+            // What the rest changed; the resting state for a layer's pass too.
+            gl.disable(glow::BLEND);
+            gl.blend_equation(glow::FUNC_ADD);
+            gl.blend_func(glow::ONE, glow::ZERO);
+            gl.enable(glow::DEPTH_TEST);
+            gl.use_program_once(None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+}
+
+impl Drop for PeelPass<'_> {
+    fn drop(&mut self) {
+        self.close();
+    }
+}

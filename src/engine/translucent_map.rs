@@ -1,0 +1,211 @@
+//! `TranslucentMap`: the storage of a translucent shadow map (`crate::shadows::volumetric`):
+//! an array of RGBA32F layers, each a colour attachment of one framebuffer, so one pass
+//! writes every layer (GL 3.3 guarantees eight draw buffers). The additive techniques sum
+//! each crossing's share into it; the sum does not depend on the order of the crossings.
+
+use glow::HasContext;
+
+use super::check::check_framebuffer;
+use super::state::PixelRect;
+use super::texture::Texture;
+use super::Gl;
+use crate::error::{Error, Result};
+use crate::settings::MapSize;
+
+/// The most layers one pass can write: GL 3.3's guaranteed draw buffers.
+pub const MAX_LAYERS: u32 = 8;
+
+/// Owns the layered texture and its framebuffer; both freed on drop.
+pub struct TranslucentMap {
+    gl: Gl,
+    fbo: Option<glow::Framebuffer>,
+    texture: Texture,
+    layers: u32,
+}
+
+impl TranslucentMap {
+    /// A `size` map of `layers` RGBA32F layers (1 to [`MAX_LAYERS`]).
+    pub fn new(gl: &Gl, size: MapSize, layers: u32) -> Result<TranslucentMap> {
+        if !(1..=MAX_LAYERS).contains(&layers) {
+            return Err(Error::Invalid(format!(
+                "translucent map with {layers} layers: expected 1 to {MAX_LAYERS}"
+            )));
+        }
+        let texture = Texture::float_array(gl, size.width, size.height, layers)?;
+        // Owned before anything can fail, so a failure frees what was made.
+        let mut map = TranslucentMap {
+            gl: gl.clone(),
+            fbo: None,
+            texture,
+            layers,
+        };
+        unsafe {
+            let fbo = gl
+                .create_framebuffer()
+                .map_err(|e| Error::Create(format!("translucent map framebuffer: {e}")))?;
+            super::counters::count(|c| c.framebuffers += 1);
+            map.fbo = Some(fbo);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let attachments: Vec<u32> = (0..layers).map(|l| glow::COLOR_ATTACHMENT0 + l).collect();
+            for (l, &attachment) in attachments.iter().enumerate() {
+                gl.framebuffer_texture_layer(
+                    glow::FRAMEBUFFER,
+                    attachment,
+                    Some(map.texture.id()),
+                    0,
+                    l as i32,
+                );
+            }
+            gl.draw_buffers(&attachments);
+            let what = format!("translucent map {}x{} ({layers})", size.width, size.height);
+            let status = check_framebuffer(gl, &what);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            status?;
+        }
+        Ok(map)
+    }
+
+    /// Binds the framebuffer, sets the viewport to the map and clears every layer to 0;
+    /// while the returned pass lives, fragments add into the layers (blending ONE, ONE),
+    /// with no depth test and no culling (every crossing counts, front face or back).
+    pub fn begin_additive(&self) -> AdditivePass {
+        let gl = &self.gl;
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            let size = self.size();
+            gl.viewport(0, 0, size.width as i32, size.height as i32);
+            for l in 0..self.layers {
+                gl.clear_buffer_f32_slice(glow::COLOR, l, &[0.0; 4]);
+            }
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::CULL_FACE);
+            gl.enable(glow::BLEND);
+            gl.blend_equation(glow::FUNC_ADD);
+            gl.blend_func(glow::ONE, glow::ONE);
+        }
+        AdditivePass { gl: gl.clone() }
+    }
+
+    /// Clears every layer to `value`.
+    pub fn clear(&self, value: [f32; 4]) {
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            for l in 0..self.layers {
+                self.gl.clear_buffer_f32_slice(glow::COLOR, l, &value);
+            }
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+
+    /// Binds the framebuffer to overwrite the texels of `rect` alone (scissored), with no
+    /// blending, depth test or culling (an AVSM build); dropping the pass puts the resting
+    /// state back.
+    pub fn begin_write(&self, rect: PixelRect) -> WritePass {
+        let gl = &self.gl;
+        unsafe {
+            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            let size = self.size();
+            gl.viewport(0, 0, size.width as i32, size.height as i32);
+            gl.enable(glow::SCISSOR_TEST);
+            let (w, h) = (rect.width as i32, rect.height as i32);
+            gl.scissor(rect.x as i32, rect.y as i32, w, h);
+            gl.disable(glow::DEPTH_TEST);
+            gl.disable(glow::CULL_FACE);
+        }
+        WritePass { gl: gl.clone() }
+    }
+
+    /// Binds the layers on texture `unit` for a `sampler2DArray`, with no sampler object
+    /// (the texture's own LINEAR, clamped sampling).
+    pub fn bind(&self, unit: u32) {
+        self.texture.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
+    }
+
+    /// Layer `layer` read back, texel by texel (row 0 at the bottom, as GL stores them).
+    pub fn read_layer(&self, layer: u32) -> Vec<[f32; 4]> {
+        let size = self.size();
+        let n = size.texels() as usize;
+        let mut bytes = vec![0u8; n * 16];
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0 + layer);
+            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
+            self.gl.read_pixels(
+                0,
+                0,
+                size.width as i32,
+                size.height as i32,
+                glow::RGBA,
+                glow::FLOAT,
+                glow::PixelPackData::Slice(Some(&mut bytes)),
+            );
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+        let float = |c: &[u8]| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]);
+        bytes
+            .chunks_exact(16)
+            .map(|t| [0, 4, 8, 12].map(|o| float(&t[o..o + 4])))
+            .collect()
+    }
+
+    pub fn size(&self) -> MapSize {
+        MapSize {
+            width: self.texture.width(),
+            height: self.texture.height(),
+        }
+    }
+
+    pub fn layers(&self) -> u32 {
+        self.layers
+    }
+
+    /// Bytes allocated: 16 a texel per layer.
+    pub fn bytes(&self) -> u64 {
+        self.size().texels() * 16 * u64::from(self.layers)
+    }
+}
+
+impl Drop for TranslucentMap {
+    fn drop(&mut self) {
+        if let Some(fbo) = self.fbo {
+            unsafe { self.gl.delete_framebuffer(fbo) };
+        }
+    }
+}
+
+/// A pass overwriting part of a [`TranslucentMap`]; dropping it restores the resting state
+/// (no scissor, depth test on, the default framebuffer, no program).
+pub struct WritePass {
+    gl: Gl,
+}
+
+impl Drop for WritePass {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.use_program_once(None);
+            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+}
+
+/// An additive pass into a [`TranslucentMap`] in progress; dropping it restores the
+/// resting state (depth test on, no blending, the default framebuffer, no program).
+pub struct AdditivePass {
+    gl: Gl,
+}
+
+impl Drop for AdditivePass {
+    fn drop(&mut self) {
+        unsafe {
+            self.gl.use_program_once(None);
+            self.gl.blend_func(glow::ONE, glow::ZERO);
+            self.gl.disable(glow::BLEND);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+    }
+}

@@ -1,0 +1,300 @@
+//! Adaptive volumetric shadow maps (Salvi, Vidimce, Lauritzen and Lefohn, EGSR 2010; the
+//! slides' last "Advanced techniques" link): per texel a short curve of transmittance
+//! against the light's depth, `avsm_nodes` nodes, built from every translucent fragment the
+//! light sees and, when full, compressed by dropping the node whose removal changes the
+//! area under the curve least ([`curve`] on the CPU, `shaders/avsm_build.frag` on the GPU).
+//!
+//! GL 3.3 has no atomics or image stores to insert fragments as they come, so the light's
+//! translucent fragments are captured by depth peeling, up to `peel_layers` layers
+//! ([`DepthPeel`]; it stops at the first empty layer), and a full-screen pass per layer
+//! inserts that layer's crossing into every texel's curve: in depth order, as the paper
+//! asks. When the last layer allowed still caught something, one more pass folds all the
+//! fragments behind it into one crossing at the farthest of them (what they let through,
+//! multiplied by blending): the curve stays exact behind the medium, whatever its depth. Nodes are (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
+//! [`TranslucentMap`], 8 bytes a node; two maps take turns as source and target.
+//! `shaders/lib/avsm.glsl` looks the curve up in the four texels around a receiver.
+
+pub mod curve;
+
+use glam::DVec2;
+
+use super::{translucent_casters, Draw, Method, VolumetricMap, SAMPLERS};
+use crate::engine::{DepthPeel, FullScreenTriangle, Gl, PixelRect, ShaderProgram, TranslucentMap};
+use crate::error::Result;
+use crate::settings::{MapSize, ShadowSettings};
+use crate::shaders;
+use crate::shadows::fitted;
+
+/// The technique (`volumetric = "avsm"`, `avsm_nodes` N, `peel_layers` K).
+pub struct Avsm;
+
+/// The unit the peel reads the previous layer's depth from, and the build its two inputs
+/// from (none of them the scene pass' units: these passes come before it).
+const PEEL_UNIT: u32 = 0;
+const BUILD_CURVE_UNIT: u32 = 0;
+const BUILD_LAYER_UNIT: u32 = 1;
+
+/// Bytes a node: a 32-bit depth and a 32-bit transmittance.
+pub const NODE_BYTES: u32 = 8;
+
+/// The most nodes: two to a layer, [`crate::engine::translucent_map::MAX_LAYERS`] layers.
+pub const MAX_NODES: u32 = 2 * crate::engine::translucent_map::MAX_LAYERS;
+
+/// The most layers peeled.
+pub const MAX_PEEL_LAYERS: u32 = 64;
+
+/// RGBA layers for `nodes`.
+fn layers(nodes: u32) -> u32 {
+    nodes.div_ceil(2)
+}
+
+impl Method for Avsm {
+    fn create(&self, gl: &Gl, settings: &ShadowSettings) -> Result<Box<dyn VolumetricMap>> {
+        let (nodes, layers) = (settings.avsm_nodes, settings.peel_layers);
+        Ok(Box::new(AvsmMap::new(
+            gl,
+            settings.map_size,
+            nodes,
+            layers,
+        )?))
+    }
+
+    fn parameter(&self, settings: &ShadowSettings) -> u32 {
+        settings.avsm_nodes
+    }
+
+    fn lookup(&self, i: usize, nodes: u32) -> (&'static str, String) {
+        (
+            "lib/avsm.glsl",
+            format!(
+                "avsmTransmittance({}, volumetricCoords({i}), {nodes})",
+                SAMPLERS[i]
+            ),
+        )
+    }
+
+    /// At most: a peel and a build per layer, and for the rest.
+    fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
+        (
+            16 * layers(settings.avsm_nodes),
+            2 * settings.peel_layers + 2,
+        )
+    }
+}
+
+/// A light's curves, its peeling and the two programs.
+pub struct AvsmMap {
+    /// Source and target of the builds, by turns; `current` holds the finished curve.
+    curves: [TranslucentMap; 2],
+    current: usize,
+    peel: DepthPeel,
+    peel_program: ShaderProgram,
+    /// The peel compiled with `REMAINDER`: the rest past the last layer.
+    rest_program: ShaderProgram,
+    build_program: ShaderProgram,
+    triangle: FullScreenTriangle,
+    nodes: u32,
+    max_layers: u32,
+    /// The layers the last render peeled that caught a crossing, and its passes.
+    peeled: u32,
+    passes: u32,
+}
+
+impl AvsmMap {
+    /// A `size` map of `nodes` nodes (2 to [`MAX_NODES`]) a texel, peeling at most
+    /// `max_layers`.
+    pub fn new(gl: &Gl, size: MapSize, nodes: u32, max_layers: u32) -> Result<AvsmMap> {
+        if !(2..=MAX_NODES).contains(&nodes) {
+            return Err(crate::Error::Invalid(format!(
+                "AVSM with {nodes} nodes: expected 2 to {MAX_NODES}"
+            )));
+        }
+        let layers = layers(nodes);
+        let defines = [
+            ("AVSM_NODES".to_string(), nodes.to_string()),
+            ("AVSM_LAYERS".to_string(), layers.to_string()),
+        ];
+        Ok(AvsmMap {
+            curves: [
+                TranslucentMap::new(gl, size, layers)?,
+                TranslucentMap::new(gl, size, layers)?,
+            ],
+            current: 0,
+            peel: DepthPeel::new(gl, size)?,
+            peel_program: ShaderProgram::new(
+                gl,
+                &shaders::translucent_map_vert(),
+                &shaders::avsm_peel_frag(),
+                &[],
+            )?,
+            rest_program: ShaderProgram::new(
+                gl,
+                &shaders::translucent_map_vert(),
+                &shaders::avsm_peel_frag(),
+                &[("REMAINDER".to_string(), "1".to_string())],
+            )?,
+            build_program: ShaderProgram::new(
+                gl,
+                &shaders::depth_view_vert(),
+                &shaders::avsm_build_frag(),
+                &defines,
+            )?,
+            triangle: FullScreenTriangle::new(gl)?,
+            nodes,
+            max_layers: max_layers.max(1),
+            peeled: 0,
+            passes: 0,
+        })
+    }
+
+    /// Layers that caught a crossing in the last render (peeling stops at the first
+    /// empty one, or at the most it may peel).
+    pub fn peeled(&self) -> u32 {
+        self.peeled
+    }
+
+    /// Peels layer `k` of the translucent casters (with `rest`, all behind layer k - 1):
+    /// whether it caught anything.
+    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool) -> bool {
+        let (pass, p) = match rest {
+            false => (self.peel.begin(k, PEEL_UNIT), &self.peel_program),
+            true => (self.peel.begin_rest(k, PEEL_UNIT), &self.rest_program),
+        };
+        p.bind();
+        p.set_i32("previousDepth", PEEL_UNIT as i32);
+        p.set_i32("firstLayer", i32::from(k == 0));
+        draw.casters(p);
+        pass.finish()
+    }
+
+    /// Inserts the last peeled layer (with `rest`, the rest) into every texel's curve
+    /// (from an empty one when `first`): the current curves into the other map, which
+    /// becomes current; within `rect` alone (outside it both maps hold empty curves).
+    fn build(&mut self, first: bool, rest: bool, rect: PixelRect) {
+        let target = 1 - self.current;
+        let _pass = self.curves[target].begin_write(rect);
+        let p = &self.build_program;
+        p.bind();
+        self.curves[self.current].bind(BUILD_CURVE_UNIT);
+        match rest {
+            false => self.peel.bind_layer(BUILD_LAYER_UNIT),
+            true => self.peel.bind_rest(BUILD_LAYER_UNIT),
+        }
+        p.set_i32("curve", BUILD_CURVE_UNIT as i32);
+        p.set_i32("layer", BUILD_LAYER_UNIT as i32);
+        p.set_i32("firstLayer", i32::from(first));
+        p.set_i32("rest", i32::from(rest));
+        self.triangle.draw();
+        self.current = target;
+    }
+
+    /// The nodes read back, texel by texel (row 0 at the bottom), nearest first; unused
+    /// nodes left out.
+    pub fn read_nodes(&self) -> Vec<Vec<curve::Node>> {
+        let map = &self.curves[self.current];
+        let layers: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
+        (0..layers[0].len())
+            .map(|t| {
+                let pairs = layers
+                    .iter()
+                    .flat_map(|l| [[l[t][0], l[t][1]], [l[t][2], l[t][3]]]);
+                pairs
+                    .take_while(|[d, _]| *d < EMPTY_DEPTH)
+                    .map(|[depth, transmittance]| curve::Node {
+                        depth,
+                        transmittance,
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// The texels of a `size` map the translucent casters' world boxes cover through the
+/// light's camera, grown by a texel; `None` when they cover none.
+fn footprint(draw: &Draw, size: MapSize) -> Option<PixelRect> {
+    let whole = PixelRect {
+        x: 0,
+        y: 0,
+        width: size.width,
+        height: size.height,
+    };
+    let boxes = fitted::item_world_boxes(draw.scene);
+    let clip = draw.view.projection.as_dmat4() * draw.view.view64;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for (k, _) in translucent_casters(draw.scene) {
+        let Some(&(a, b)) = boxes.get(k) else {
+            continue;
+        };
+        for c in fitted::corners(a, b) {
+            let p = clip * c.extend(1.0);
+            if p.w <= 0.0 {
+                // Behind a perspective light's eye: the whole map.
+                return Some(whole);
+            }
+            let ndc = DVec2::new(p.x, p.y) / p.w;
+            (lo, hi) = (lo.min(ndc), hi.max(ndc));
+        }
+    }
+    let side = DVec2::new(f64::from(size.width), f64::from(size.height));
+    let to_texel = |v: DVec2| (v * 0.5 + 0.5) * side;
+    let (a, b) = (to_texel(lo).floor() - 1.0, to_texel(hi).ceil() + 1.0);
+    let (a, b) = (a.max(DVec2::ZERO).min(side), b.max(DVec2::ZERO).min(side));
+    (b.x > a.x && b.y > a.y).then_some(PixelRect {
+        x: a.x as u32,
+        y: a.y as u32,
+        width: (b.x - a.x) as u32,
+        height: (b.y - a.y) as u32,
+    })
+}
+
+/// The depth of an unused node (the fitted depths run 0 to 1).
+pub const EMPTY_DEPTH: f32 = 2.0;
+
+impl VolumetricMap for AvsmMap {
+    fn fits(&self, settings: &ShadowSettings) -> bool {
+        self.nodes == settings.avsm_nodes
+            && self.max_layers == settings.peel_layers.max(1)
+            && self.curves[0].size() == settings.map_size
+    }
+
+    /// Peels layer after layer, inserting each into the curves, until a layer is empty or
+    /// `peel_layers` are in, then folds in the rest if there may be one. The builds run
+    /// over the texels the translucent casters can cover alone; the rest of both maps is
+    /// cleared to empty curves first.
+    fn render(&mut self, draw: &Draw) -> Result<()> {
+        self.peeled = 0;
+        self.passes = 0;
+        for map in &self.curves {
+            map.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
+        }
+        let Some(rect) = footprint(draw, self.curves[0].size()) else {
+            return Ok(());
+        };
+        for k in 0..self.max_layers {
+            let any = self.peel_layer(draw, k, false);
+            self.passes += 1;
+            if !any {
+                return Ok(());
+            }
+            self.build(k == 0, false, rect);
+            self.passes += 1;
+            self.peeled += 1;
+        }
+        let any = self.peel_layer(draw, self.max_layers, true);
+        self.passes += 1;
+        if any {
+            self.build(false, true, rect);
+            self.passes += 1;
+        }
+        Ok(())
+    }
+
+    fn map(&self) -> &TranslucentMap {
+        &self.curves[self.current]
+    }
+
+    fn passes(&self) -> u32 {
+        self.passes
+    }
+}
