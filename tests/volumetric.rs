@@ -336,3 +336,20 @@ fn the_translucent_maps_are_refused_by_name_where_they_cannot_cast() {
         "shadow.osm_slices = 33: expected 1 to 32"
     );
 }
+
+#[test]
+fn among_thin_strands_the_translucent_maps_come_within_a_fifth_of_off_s_error() {
+    let scene = Scene::load("tests/data/strands.toml").unwrap_or_else(|e| panic!("{e}"));
+    let off = run(&scene, Volumetric::Off).transmittance.expect("scored");
+    assert!(off.in_shadow > 5000, "{off:?}");
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let t = run(&scene, volumetric).transmittance.expect("scored");
+        // Two texels a strand: the maps' texels blur each strand's shadow, whatever they
+        // store along the light.
+        assert!(
+            t.mae_in_shadow < off.mae_in_shadow / 5.0,
+            "{volumetric:?}: {t:?}"
+        );
+        assert!(t.mae < 0.01, "{volumetric:?}: {t:?}");
+    }
+}
