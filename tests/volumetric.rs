@@ -390,3 +390,25 @@ fn a_spot_lights_perspective_translucent_map_leaves_the_product_behind_two_sheet
         }
     }
 }
+
+#[test]
+fn switching_technique_on_a_renderer_makes_the_new_techniques_map() {
+    let scene = sheets_scene(&[(0.0, 0.5), (1.0, 0.25)]);
+    let ctx = context();
+    let with = |volumetric| ShadowSettings {
+        volumetric,
+        ..scene.shadow
+    };
+    let fresh = map_layers(&scene, &with(Volumetric::Fom));
+    let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &with(Volumetric::Osm)).unwrap();
+    renderer.render_depth_map(&scene).unwrap();
+    renderer.set_settings(&with(Volumetric::Fom)).unwrap();
+    renderer.render_depth_map(&scene).unwrap();
+    let map = renderer
+        .volumetric_maps()
+        .get(0)
+        .expect("a translucent map")
+        .map();
+    let switched: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
+    assert!(switched == fresh, "the osm map kept for fom");
+}

@@ -7,14 +7,16 @@ use super::{method, DepthFit, Draw, VolumetricMap, SAMPLERS};
 use crate::engine::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
+use crate::settings::Volumetric;
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView};
 
-/// One per scene light, `None` for a light without one; with the depth range each was
-/// last drawn over.
+/// One per scene light, `None` for a light without one; with the technique each was
+/// made for and the depth range each was last drawn over.
 #[derive(Default)]
 pub struct Maps {
     maps: Vec<Option<Box<dyn VolumetricMap>>>,
+    techniques: Vec<Option<Volumetric>>,
     fits: Vec<DepthFit>,
 }
 
@@ -31,13 +33,17 @@ impl Maps {
                 far: 1.0,
             },
         );
-        for (own, map) in plan.lights.iter().zip(&mut self.maps) {
+        self.techniques.resize(n, None);
+        let slots = self.maps.iter_mut().zip(&mut self.techniques);
+        for (own, (map, technique)) in plan.lights.iter().zip(slots) {
             let Some(m) = own.volumetric.and_then(method) else {
-                *map = None;
+                (*map, *technique) = (None, None);
                 continue;
             };
-            if !map.as_ref().is_some_and(|t| t.fits(&own.settings)) {
+            let fits = map.as_ref().is_some_and(|t| t.fits(&own.settings));
+            if !fits || *technique != own.volumetric {
                 *map = Some(m.create(gl, &own.settings)?);
+                *technique = own.volumetric;
             }
         }
         Ok(())
