@@ -3,11 +3,12 @@
 
 use glam::{DMat4, DVec3, Mat4};
 
-use super::{method, DepthFit, Draw, VolumetricMap, SAMPLERS};
+use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS};
 use crate::engine::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::Volumetric;
+use crate::shadows::patch::{footprint, TexelRect};
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView};
 
@@ -18,6 +19,9 @@ pub struct Maps {
     maps: Vec<Option<Box<dyn VolumetricMap>>>,
     techniques: Vec<Option<Volumetric>>,
     fits: Vec<DepthFit>,
+    /// The texels each map's casters covered when it was last drawn (`None`: a new map,
+    /// all of it unknown).
+    drawn: Vec<Option<TexelRect>>,
 }
 
 impl Maps {
@@ -34,8 +38,9 @@ impl Maps {
             },
         );
         self.techniques.resize(n, None);
-        let slots = self.maps.iter_mut().zip(&mut self.techniques);
-        for (own, (map, technique)) in plan.lights.iter().zip(slots) {
+        self.drawn.resize(n, None);
+        let slots = (self.maps.iter_mut().zip(&mut self.techniques)).zip(&mut self.drawn);
+        for (own, ((map, technique), drawn)) in plan.lights.iter().zip(slots) {
             let Some(m) = own.volumetric.and_then(method) else {
                 (*map, *technique) = (None, None);
                 continue;
@@ -44,6 +49,7 @@ impl Maps {
             if !fits || *technique != own.volumetric {
                 *map = Some(m.create(gl, &own.settings)?);
                 *technique = own.volumetric;
+                *drawn = None;
             }
         }
         Ok(())
@@ -66,12 +72,22 @@ impl Maps {
             };
             let fit = DepthFit::of(scene, boxes, view.view64);
             self.fits[i] = fit;
+            // Only the texels the casters cover now or covered last time are cleared and
+            // drawn: the rest hold 0 from before.
+            let size = map.map().size();
+            let covered = translucent_casters(scene)
+                .filter_map(|(k, _)| boxes.get(k))
+                .map(|&(lo, hi)| footprint(view, size, lo, hi))
+                .fold(TexelRect::default(), TexelRect::union);
+            let before = self.drawn[i].unwrap_or(TexelRect::whole(size));
+            self.drawn[i] = Some(covered);
             let draw = Draw {
                 gl,
                 meshes,
                 scene,
                 view,
                 fit,
+                region: covered.union(before).pixels(),
             };
             map.render(&draw)?;
         }
