@@ -150,9 +150,10 @@ fn the_smoke_scene_scores_both_wrongs_of_a_depth_map() {
     assert!(off.mae_outside < 0.01, "{off:?}");
 }
 
-/// The receivers of `c` whose truth is `value` and whose four neighbours' is too (away
-/// from the shadow's edges, which the map's texels blur): (rendered, truth).
-fn interior(c: &Comparison, value: f32) -> Vec<(f32, f32)> {
+/// The receivers of `c` whose truth is `value` and whose neighbours up to `reach` pixels
+/// away across and down have it too (away from the shadow's edges, which the map's texels
+/// blur): (rendered, truth).
+fn interior(c: &Comparison, value: f32, reach: usize) -> Vec<(f32, f32)> {
     let truth = c
         .reference
         .transmittance
@@ -165,12 +166,16 @@ fn interior(c: &Comparison, value: f32) -> Vec<(f32, f32)> {
             .get(i)
             .filter(|r| r.receiver && (r.visibility - value).abs() < 1e-6)
     };
-    (width..truth.len().saturating_sub(width))
-        .filter(|&i| {
-            [i, i - 1, i + 1, i - width, i + width]
+    let reach = reach as isize;
+    let around = |i: usize| {
+        (-reach..=reach).all(|d| {
+            [d, d * width as isize]
                 .iter()
-                .all(|&k| at(k).is_some())
+                .all(|&o| i.checked_add_signed(o).and_then(at).is_some())
         })
+    };
+    (0..truth.len())
+        .filter(|&i| around(i))
         .map(|i| (rendered[i].expect("a rendered value"), truth[i].visibility))
         .collect()
 }
@@ -180,7 +185,7 @@ fn one_sheet_leaves_one_minus_its_opacity_in_each_translucent_map() {
     let scene = sheets_scene(&[(0.0, 0.4)]);
     for volumetric in [Volumetric::Osm, Volumetric::Fom] {
         let c = run(&scene, volumetric);
-        let values = interior(&c, 0.6);
+        let values = interior(&c, 0.6, 1);
         assert!(
             values.len() > 2000,
             "{volumetric:?}: {} receivers",
@@ -202,7 +207,7 @@ fn behind_every_caster_each_translucent_map_gives_the_product_to_one_step_of_eig
     let scene = sheets_scene(&[(0.0, 0.5), (1.0, 0.25)]);
     for volumetric in [Volumetric::Osm, Volumetric::Fom] {
         let c = run(&scene, volumetric);
-        let values = interior(&c, 0.375);
+        let values = interior(&c, 0.375, 1);
         assert!(
             values.len() > 1000,
             "{volumetric:?}: {} receivers",
@@ -335,4 +340,75 @@ fn the_translucent_maps_are_refused_by_name_where_they_cannot_cast() {
         many.validate_values().unwrap_err().to_string(),
         "shadow.osm_slices = 33: expected 1 to 32"
     );
+}
+
+#[test]
+fn among_thin_strands_the_translucent_maps_come_within_a_fifth_of_off_s_error() {
+    let scene = Scene::load("tests/data/strands.toml").unwrap_or_else(|e| panic!("{e}"));
+    let off = run(&scene, Volumetric::Off).transmittance.expect("scored");
+    assert!(off.in_shadow > 5000, "{off:?}");
+    for volumetric in [Volumetric::Osm, Volumetric::Fom] {
+        let t = run(&scene, volumetric).transmittance.expect("scored");
+        // Two texels a strand: the maps' texels blur each strand's shadow, whatever they
+        // store along the light.
+        assert!(
+            t.mae_in_shadow < off.mae_in_shadow / 5.0,
+            "{volumetric:?}: {t:?}"
+        );
+        assert!(t.mae < 0.01, "{volumetric:?}: {t:?}");
+    }
+}
+
+#[test]
+fn a_spot_lights_perspective_translucent_map_leaves_the_product_behind_two_sheets() {
+    let text = "size = [320, 240]\n\
+        [camera]\nposition = [0.0, 4.0, 3.0]\ntarget = [0.0, -1.0, 0.0]\n\
+        [light]\nkind = \"spot\"\nposition = [0.5, 5.0, 0.3]\ntarget = [0.0, -1.0, 0.0]\n\
+        fov = 70.0\nnear = 1.0\nfar = 20.0\n\
+        [shadow]\nbias = 0.005\n\
+        [[item]]\nmesh = \"plane\"\nposition = [0.0, -1.0, 0.0]\nscale = 3.0\n\
+        [[item]]\nmesh = \"plane\"\nopacity = 0.4\n\
+        [[item]]\nmesh = \"plane\"\nposition = [0.3, 1.0, 0.0]\nscale = 0.5\nopacity = 0.5\n";
+    let scene = parse(text, Path::new("spot.toml"), None).unwrap_or_else(|e| panic!("{e}"));
+    for volumetric in [Volumetric::Fom, Volumetric::Osm] {
+        let c = run(&scene, volumetric);
+        for value in [0.3, 0.6] {
+            let values = interior(&c, value, 4);
+            assert!(
+                values.len() > 500,
+                "{volumetric:?} {value}: {}",
+                values.len()
+            );
+            let worst = values
+                .iter()
+                .map(|(r, t)| (r - t).abs())
+                .fold(0.0, f32::max);
+            assert!(
+                worst <= 1.0 / 255.0,
+                "{volumetric:?} {value}: off by {worst}"
+            );
+        }
+    }
+}
+
+#[test]
+fn switching_technique_on_a_renderer_makes_the_new_techniques_map() {
+    let scene = sheets_scene(&[(0.0, 0.5), (1.0, 0.25)]);
+    let ctx = context();
+    let with = |volumetric| ShadowSettings {
+        volumetric,
+        ..scene.shadow
+    };
+    let fresh = map_layers(&scene, &with(Volumetric::Fom));
+    let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &with(Volumetric::Osm)).unwrap();
+    renderer.render_depth_map(&scene).unwrap();
+    renderer.set_settings(&with(Volumetric::Fom)).unwrap();
+    renderer.render_depth_map(&scene).unwrap();
+    let map = renderer
+        .volumetric_maps()
+        .get(0)
+        .expect("a translucent map")
+        .map();
+    let switched: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
+    assert!(switched == fresh, "the osm map kept for fom");
 }

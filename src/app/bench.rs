@@ -61,7 +61,19 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let reference = trace_reference(gl, &scene, &base, &opts)?;
     let rows = time_configs(gl, &scene, &configs, &reference, &opts)?;
 
-    let markdown = markdown(&rows);
+    let mut markdown = markdown(&rows);
+    let translucent = bench::volumetric::configs(&scene, &base);
+    if !translucent.is_empty() {
+        eprintln!("bench: each --volumetric choice on the scene's own settings");
+        let rows = time_configs(gl, &scene, &translucent, &reference, &opts)?;
+        markdown.push_str(
+            "
+translucent casters (--volumetric), on the scene's own settings:
+
+",
+        );
+        markdown.push_str(&bench::volumetric::to_markdown(&rows));
+    }
     let title = format!(
         "{}: shadow error against frame time ({width}x{height})",
         scene.name

@@ -65,15 +65,19 @@ impl TranslucentMap {
         Ok(map)
     }
 
-    /// Binds the framebuffer, sets the viewport to the map and clears every layer to 0;
-    /// while the returned pass lives, fragments add into the layers (blending ONE, ONE),
-    /// with no depth test and no culling (every crossing counts, front face or back).
-    pub fn begin_additive(&self) -> AdditivePass {
+    /// Binds the framebuffer, sets the viewport to the map and clears every layer to 0
+    /// within `region` (a scissor: the texels outside keep what they hold); while the
+    /// returned pass lives, fragments add into the layers there (blending ONE, ONE), with
+    /// no depth test and no culling (every crossing counts, front face or back).
+    pub fn begin_additive(&self, region: PixelRect) -> AdditivePass {
         let gl = &self.gl;
         unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             let size = self.size();
             gl.viewport(0, 0, size.width as i32, size.height as i32);
+            gl.enable(glow::SCISSOR_TEST);
+            let (x, y) = (region.x as i32, region.y as i32);
+            gl.scissor(x, y, region.width as i32, region.height as i32);
             for l in 0..self.layers {
                 gl.clear_buffer_f32_slice(glow::COLOR, l, &[0.0; 4]);
             }
@@ -202,6 +206,7 @@ impl Drop for AdditivePass {
     fn drop(&mut self) {
         unsafe {
             self.gl.use_program_once(None);
+            self.gl.disable(glow::SCISSOR_TEST);
             self.gl.blend_func(glow::ONE, glow::ZERO);
             self.gl.disable(glow::BLEND);
             self.gl.enable(glow::DEPTH_TEST);

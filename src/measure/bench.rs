@@ -9,10 +9,11 @@ use glam::Vec3;
 use serde::Serialize;
 
 mod csv_rows;
+pub mod volumetric;
 pub use csv_rows::{csv_text, to_csv, Fixed, Shown};
 
 use super::compare::{compute_reference, CompareOptions, Reference};
-use super::reference::{Metrics, SoftMetrics};
+use super::reference::{Metrics, SoftMetrics, TransmittanceMetrics};
 use super::timing::GpuPassTimes;
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
@@ -547,6 +548,8 @@ pub struct BenchRow {
     /// Against the area truth for a light with a size; for a point light against the hard
     /// reference (its truth: `rays` 0).
     pub soft: SoftMetrics,
+    /// Against the transmittance truth, for a scene with translucent casters.
+    pub transmittance: Option<TransmittanceMetrics>,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
 }
@@ -779,7 +782,8 @@ pub fn run(
         renderer.render(scene, Target::Offscreen(&scored))?;
         let visibility = scored.read_visibility()?;
         let metrics = reference.score(&visibility, opts.band);
-        let row = timed_row(config, &quieter, metrics, reference.score_soft(&visibility));
+        let mut row = timed_row(config, &quieter, metrics, reference.score_soft(&visibility));
+        row.transmittance = reference.score_transmittance(&visibility);
         progress(&row);
         rows[i] = Some(row);
     }
@@ -848,6 +852,7 @@ fn timed_row(
         volume_pixels: Stat::of(&quieter.volume_pixels).median.max(0.0) as u64,
         metrics,
         soft,
+        transmittance: None,
         pareto: false,
     }
 }
@@ -1130,6 +1135,7 @@ mod tests {
             pareto: false,
             volume_pixels: 0,
             soft: super::super::reference::compute_soft_metrics(0, 0, &[], &[], 0),
+            transmittance: None,
         }
     }
 

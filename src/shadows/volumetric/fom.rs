@@ -79,7 +79,7 @@ impl VolumetricMap for FomMap {
     }
 
     fn render(&mut self, draw: &Draw) -> Result<()> {
-        let _pass = self.map.begin_additive();
+        let _pass = self.map.begin_additive(draw.region);
         self.program.bind();
         draw.casters(&self.program);
         Ok(())

@@ -3,19 +3,25 @@
 
 use glam::{DMat4, DVec3, Mat4};
 
-use super::{method, DepthFit, Draw, VolumetricMap, SAMPLERS};
+use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS};
 use crate::engine::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
+use crate::settings::Volumetric;
+use crate::shadows::patch::{footprint, TexelRect};
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView};
 
-/// One per scene light, `None` for a light without one; with the depth range each was
-/// last drawn over.
+/// One per scene light, `None` for a light without one; with the technique each was
+/// made for and the depth range each was last drawn over.
 #[derive(Default)]
 pub struct Maps {
     maps: Vec<Option<Box<dyn VolumetricMap>>>,
+    techniques: Vec<Option<Volumetric>>,
     fits: Vec<DepthFit>,
+    /// The texels each map's casters covered when it was last drawn (`None`: a new map,
+    /// all of it unknown).
+    drawn: Vec<Option<TexelRect>>,
 }
 
 impl Maps {
@@ -31,13 +37,19 @@ impl Maps {
                 far: 1.0,
             },
         );
-        for (own, map) in plan.lights.iter().zip(&mut self.maps) {
+        self.techniques.resize(n, None);
+        self.drawn.resize(n, None);
+        let slots = (self.maps.iter_mut().zip(&mut self.techniques)).zip(&mut self.drawn);
+        for (own, ((map, technique), drawn)) in plan.lights.iter().zip(slots) {
             let Some(m) = own.volumetric.and_then(method) else {
-                *map = None;
+                (*map, *technique) = (None, None);
                 continue;
             };
-            if !map.as_ref().is_some_and(|t| t.fits(&own.settings)) {
+            let fits = map.as_ref().is_some_and(|t| t.fits(&own.settings));
+            if !fits || *technique != own.volumetric {
                 *map = Some(m.create(gl, &own.settings)?);
+                *technique = own.volumetric;
+                *drawn = None;
             }
         }
         Ok(())
@@ -60,12 +72,22 @@ impl Maps {
             };
             let fit = DepthFit::of(scene, boxes, view.view64);
             self.fits[i] = fit;
+            // Only the texels the casters cover now or covered last time are cleared and
+            // drawn: the rest hold 0 from before.
+            let size = map.map().size();
+            let covered = translucent_casters(scene)
+                .filter_map(|(k, _)| boxes.get(k))
+                .map(|&(lo, hi)| footprint(view, size, lo, hi))
+                .fold(TexelRect::default(), TexelRect::union);
+            let before = self.drawn[i].unwrap_or(TexelRect::whole(size));
+            self.drawn[i] = Some(covered);
             let draw = Draw {
                 gl,
                 meshes,
                 scene,
                 view,
                 fit,
+                region: covered.union(before).pixels(),
             };
             map.render(&draw)?;
         }

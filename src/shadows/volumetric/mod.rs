@@ -19,7 +19,7 @@ pub mod osm;
 use glam::{DMat4, DVec3, Mat4};
 
 use super::{DepthPass, ShadowView};
-use crate::engine::{Gl, Mesh, ShaderProgram, TranslucentMap};
+use crate::engine::{Gl, Mesh, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
 use crate::settings::{ShadowSettings, Volumetric};
@@ -137,6 +137,9 @@ pub struct Draw<'a> {
     pub scene: &'a Scene,
     pub view: &'a ShadowView,
     pub fit: DepthFit,
+    /// The texels to clear and draw: those the casters cover, and those they covered when
+    /// the map was last drawn.
+    pub region: PixelRect,
 }
 
 impl Draw<'_> {
