@@ -10,7 +10,7 @@ use std::path::Path;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 use shadowmap::compare::{compare, translucent_casters};
-use shadowmap::engine::Mesh;
+use shadowmap::engine::{Mesh, PixelRect};
 use shadowmap::scene::file::parse;
 use shadowmap::settings::{MapSize, ShadowSettings, Volumetric};
 use shadowmap::shadows::volumetric::avsm::curve::{Curve, Node};
@@ -96,6 +96,12 @@ fn build(scene: &Scene, nodes: u32, layers: u32) -> Built {
         scene,
         view: &view,
         fit: FIT,
+        region: PixelRect {
+            x: 0,
+            y: 0,
+            width: SIDE,
+            height: SIDE,
+        },
     };
     let size = MapSize {
         width: SIDE,
