@@ -606,6 +606,20 @@ fn poisson_taps() -> Range<u32> {
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
 
+/// The most floats a texel of a translucent map holds: four to a layer, eight layers
+/// (`crate::engine::translucent_map::MAX_LAYERS`).
+pub const MAX_TRANSLUCENT_CHANNELS: u32 = 32;
+
+/// The most Fourier opacity terms: the mean and a cosine and a sine per term fit in
+/// [`MAX_TRANSLUCENT_CHANNELS`].
+pub const MAX_FOURIER_TERMS: u32 = (MAX_TRANSLUCENT_CHANNELS - 1) / 2;
+
+/// The most AVSM nodes a texel: two to a layer of a translucent map.
+pub const MAX_AVSM_NODES: u32 = MAX_TRANSLUCENT_CHANNELS / 2;
+
+/// The most layers AVSM peels.
+pub const MAX_PEEL_LAYERS: u32 = 64;
+
 /// Declares every setting once: its group, its type, its default, its documentation, the
 /// numbers it takes ([`range::Range`]) and any flag options. From that one list come [`ShadowSettings`] (the scene file's
 /// `[shadow]` table), [`ShadowPatch`] (the same fields, each optional: a light's own
@@ -844,19 +858,19 @@ shadow_settings! {
         volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom|avsm");
         /// `volumetric = "osm"`: slices between the nearest and farthest translucent
         /// caster, four to a float target.
-        osm_slices: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::MAX_CHANNELS)),
+        osm_slices: u32 = 16, range(Range::from_to(1, MAX_TRANSLUCENT_CHANNELS)),
             arg(value_name = "K", allow_negative_numbers = true);
         /// `volumetric = "fom"`: Fourier terms (cosine and sine each) besides the mean;
         /// 1 + 2 N floats a texel.
-        fom_coefficients: u32 = 7, range(Range::from_to(1, crate::shadows::volumetric::MAX_FOURIER_TERMS)),
+        fom_coefficients: u32 = 7, range(Range::from_to(1, MAX_FOURIER_TERMS)),
             arg(value_name = "N", allow_negative_numbers = true);
         /// `volumetric = "avsm"`: nodes of the curve a texel, two to a float target at
         /// 32-bit; the first and the last are always kept.
-        avsm_nodes: u32 = 8, range(Range::from_to(2, crate::shadows::volumetric::avsm::MAX_NODES)),
+        avsm_nodes: u32 = 8, range(Range::from_to(2, MAX_AVSM_NODES)),
             arg(value_name = "N", allow_negative_numbers = true);
         /// `volumetric = "avsm"`: the most layers of translucent fragments peeled from the
         /// light (peeling stops sooner at an empty layer); crossings past them are lost.
-        peel_layers: u32 = 16, range(Range::from_to(1, crate::shadows::volumetric::avsm::MAX_PEEL_LAYERS)),
+        peel_layers: u32 = 16, range(Range::from_to(1, MAX_PEEL_LAYERS)),
             arg(value_name = "K", allow_negative_numbers = true);
     }
     /// Pictures instead of, or over, the scene.

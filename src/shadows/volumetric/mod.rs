@@ -26,11 +26,11 @@ use crate::settings::{ShadowSettings, Volumetric};
 
 pub use maps::Maps;
 
-/// The most floats a texel can hold: four to a layer, [`crate::engine::translucent_map::MAX_LAYERS`] layers.
-pub const MAX_CHANNELS: u32 = 32;
+/// The most floats a texel can hold: four to a layer of the translucent map.
+pub const MAX_CHANNELS: u32 = crate::settings::MAX_TRANSLUCENT_CHANNELS;
+const _: () = assert!(MAX_CHANNELS == 4 * crate::engine::translucent_map::MAX_LAYERS);
 
-/// The most Fourier terms: the mean and a cosine and a sine per term fit in [`MAX_CHANNELS`].
-pub const MAX_FOURIER_TERMS: u32 = (MAX_CHANNELS - 1) / 2;
+pub use crate::settings::MAX_FOURIER_TERMS;
 
 /// Each light's sampler of its translucent map in the scene shader.
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] = [

@@ -37,11 +37,11 @@ const BUILD_LAYER_UNIT: u32 = 1;
 /// Bytes a node: a 32-bit depth and a 32-bit transmittance.
 pub const NODE_BYTES: u32 = 8;
 
-/// The most nodes: two to a layer, [`crate::engine::translucent_map::MAX_LAYERS`] layers.
-pub const MAX_NODES: u32 = 2 * crate::engine::translucent_map::MAX_LAYERS;
+/// The most nodes: two to a layer of the translucent map.
+pub const MAX_NODES: u32 = crate::settings::MAX_AVSM_NODES;
+const _: () = assert!(MAX_NODES == 2 * crate::engine::translucent_map::MAX_LAYERS);
 
-/// The most layers peeled.
-pub const MAX_PEEL_LAYERS: u32 = 64;
+pub use crate::settings::MAX_PEEL_LAYERS;
 
 /// RGBA layers for `nodes`.
 fn layers(nodes: u32) -> u32 {
