@@ -11,6 +11,7 @@
 //! the fragment in it). Each technique is a [`Method`] ([`osm`], [`fom`]) named by
 //! [`method`], the one match over them: its map, its lookup's snippet and call, its cost.
 
+mod additive;
 pub mod avsm;
 pub mod fom;
 pub mod maps;
@@ -87,8 +88,8 @@ pub trait Method: Sync {
 pub fn method(volumetric: Volumetric) -> Option<&'static dyn Method> {
     match volumetric {
         Volumetric::Off | Volumetric::Solid => None,
-        Volumetric::Osm => Some(&osm::Osm),
-        Volumetric::Fom => Some(&fom::Fom),
+        Volumetric::Osm => Some(&osm::OSM),
+        Volumetric::Fom => Some(&fom::FOM),
         Volumetric::Avsm => Some(&avsm::Avsm),
     }
 }
