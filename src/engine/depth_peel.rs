@@ -110,8 +110,8 @@ impl DepthPeel {
             gl.bind_sampler(unit, None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.rest_fbo);
             gl.viewport(0, 0, self.rest.width() as i32, self.rest.height() as i32);
-            gl.disable(glow::DEPTH_TEST);
-            gl.disable(glow::CULL_FACE);
+            gl.set_capability(glow::DEPTH_TEST, false);
+            gl.set_capability(glow::CULL_FACE, false);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 1.0, 1.0, 0.0]);
             gl.enable(glow::BLEND);
             gl.blend_equation_separate(glow::FUNC_ADD, glow::MAX);
@@ -146,9 +146,9 @@ impl DepthPeel {
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbos[this]);
             gl.viewport(0, 0, self.layer.width() as i32, self.layer.height() as i32);
             gl.depth_mask(true);
-            gl.enable(glow::DEPTH_TEST);
+            gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LESS);
-            gl.disable(glow::CULL_FACE);
+            gl.set_capability(glow::CULL_FACE, false);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 0.0, 0.0, 0.0]);
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
             if let Some(q) = self.query {
@@ -251,7 +251,7 @@ impl PeelPass<'_> {
             gl.disable(glow::BLEND);
             gl.blend_equation(glow::FUNC_ADD);
             gl.blend_func(glow::ONE, glow::ZERO);
-            gl.enable(glow::DEPTH_TEST);
+            gl.set_capability(glow::DEPTH_TEST, true);
             gl.use_program_once(None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }

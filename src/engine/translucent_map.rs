@@ -75,14 +75,14 @@ impl TranslucentMap {
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             let size = self.size();
             gl.viewport(0, 0, size.width as i32, size.height as i32);
-            gl.enable(glow::SCISSOR_TEST);
+            gl.set_capability(glow::SCISSOR_TEST, true);
             let (x, y) = (region.x as i32, region.y as i32);
             gl.scissor(x, y, region.width as i32, region.height as i32);
             for l in 0..self.layers {
                 gl.clear_buffer_f32_slice(glow::COLOR, l, &[0.0; 4]);
             }
-            gl.disable(glow::DEPTH_TEST);
-            gl.disable(glow::CULL_FACE);
+            gl.set_capability(glow::DEPTH_TEST, false);
+            gl.set_capability(glow::CULL_FACE, false);
             gl.enable(glow::BLEND);
             gl.blend_equation(glow::FUNC_ADD);
             gl.blend_func(glow::ONE, glow::ONE);
@@ -110,11 +110,11 @@ impl TranslucentMap {
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             let size = self.size();
             gl.viewport(0, 0, size.width as i32, size.height as i32);
-            gl.enable(glow::SCISSOR_TEST);
+            gl.set_capability(glow::SCISSOR_TEST, true);
             let (w, h) = (rect.width as i32, rect.height as i32);
             gl.scissor(rect.x as i32, rect.y as i32, w, h);
-            gl.disable(glow::DEPTH_TEST);
-            gl.disable(glow::CULL_FACE);
+            gl.set_capability(glow::DEPTH_TEST, false);
+            gl.set_capability(glow::CULL_FACE, false);
         }
         WritePass { gl: gl.clone() }
     }
@@ -189,8 +189,8 @@ impl Drop for WritePass {
     fn drop(&mut self) {
         unsafe {
             self.gl.use_program_once(None);
-            self.gl.disable(glow::SCISSOR_TEST);
-            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.set_capability(glow::SCISSOR_TEST, false);
+            self.gl.set_capability(glow::DEPTH_TEST, true);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
@@ -206,10 +206,10 @@ impl Drop for AdditivePass {
     fn drop(&mut self) {
         unsafe {
             self.gl.use_program_once(None);
-            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.set_capability(glow::SCISSOR_TEST, false);
             self.gl.blend_func(glow::ONE, glow::ZERO);
             self.gl.disable(glow::BLEND);
-            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.set_capability(glow::DEPTH_TEST, true);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
     }
