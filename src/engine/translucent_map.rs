@@ -69,25 +69,37 @@ impl TranslucentMap {
     /// within `region` (a scissor: the texels outside keep what they hold); while the
     /// returned pass lives, fragments add into the layers there (blending ONE, ONE), with
     /// no depth test and no culling (every crossing counts, front face or back).
-    pub fn begin_additive(&self, region: PixelRect) -> AdditivePass {
+    pub fn begin_additive(&self, region: PixelRect) -> MapPass {
+        let pass = self.begin(region, true);
+        unsafe {
+            for l in 0..self.layers {
+                self.gl.clear_buffer_f32_slice(glow::COLOR, l, &[0.0; 4]);
+            }
+            self.gl.enable(glow::BLEND);
+            self.gl.blend_equation(glow::FUNC_ADD);
+            self.gl.blend_func(glow::ONE, glow::ONE);
+        }
+        pass
+    }
+
+    /// Binds the framebuffer to draw into `rect` alone (scissored) with no depth test or
+    /// culling; the pass restores the resting state (and blending, if `additive`) on drop.
+    fn begin(&self, rect: PixelRect, additive: bool) -> MapPass {
         let gl = &self.gl;
         unsafe {
             gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             let size = self.size();
             gl.viewport(0, 0, size.width as i32, size.height as i32);
             gl.set_capability(glow::SCISSOR_TEST, true);
-            let (x, y) = (region.x as i32, region.y as i32);
-            gl.scissor(x, y, region.width as i32, region.height as i32);
-            for l in 0..self.layers {
-                gl.clear_buffer_f32_slice(glow::COLOR, l, &[0.0; 4]);
-            }
+            let (w, h) = (rect.width as i32, rect.height as i32);
+            gl.scissor(rect.x as i32, rect.y as i32, w, h);
             gl.set_capability(glow::DEPTH_TEST, false);
             gl.set_capability(glow::CULL_FACE, false);
-            gl.enable(glow::BLEND);
-            gl.blend_equation(glow::FUNC_ADD);
-            gl.blend_func(glow::ONE, glow::ONE);
         }
-        AdditivePass { gl: gl.clone() }
+        MapPass {
+            gl: gl.clone(),
+            additive,
+        }
     }
 
     /// Clears every layer to `value`.
@@ -104,19 +116,8 @@ impl TranslucentMap {
     /// Binds the framebuffer to overwrite the texels of `rect` alone (scissored), with no
     /// blending, depth test or culling (an AVSM build); dropping the pass puts the resting
     /// state back.
-    pub fn begin_write(&self, rect: PixelRect) -> WritePass {
-        let gl = &self.gl;
-        unsafe {
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
-            let size = self.size();
-            gl.viewport(0, 0, size.width as i32, size.height as i32);
-            gl.set_capability(glow::SCISSOR_TEST, true);
-            let (w, h) = (rect.width as i32, rect.height as i32);
-            gl.scissor(rect.x as i32, rect.y as i32, w, h);
-            gl.set_capability(glow::DEPTH_TEST, false);
-            gl.set_capability(glow::CULL_FACE, false);
-        }
-        WritePass { gl: gl.clone() }
+    pub fn begin_write(&self, rect: PixelRect) -> MapPass {
+        self.begin(rect, false)
     }
 
     /// Binds the layers on texture `unit` for a `sampler2DArray`, with no sampler object
@@ -179,36 +180,22 @@ impl Drop for TranslucentMap {
     }
 }
 
-/// A pass overwriting part of a [`TranslucentMap`]; dropping it restores the resting state
-/// (no scissor, depth test on, the default framebuffer, no program).
-pub struct WritePass {
+/// A pass into a [`TranslucentMap`] in progress; dropping it restores the resting state
+/// (no scissor, depth test on, no blending, the default framebuffer, no program).
+pub struct MapPass {
     gl: Gl,
+    additive: bool,
 }
 
-impl Drop for WritePass {
+impl Drop for MapPass {
     fn drop(&mut self) {
         unsafe {
             self.gl.use_program_once(None);
             self.gl.set_capability(glow::SCISSOR_TEST, false);
-            self.gl.set_capability(glow::DEPTH_TEST, true);
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
-    }
-}
-
-/// An additive pass into a [`TranslucentMap`] in progress; dropping it restores the
-/// resting state (depth test on, no blending, the default framebuffer, no program).
-pub struct AdditivePass {
-    gl: Gl,
-}
-
-impl Drop for AdditivePass {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.use_program_once(None);
-            self.gl.set_capability(glow::SCISSOR_TEST, false);
-            self.gl.blend_func(glow::ONE, glow::ZERO);
-            self.gl.disable(glow::BLEND);
+            if self.additive {
+                self.gl.blend_func(glow::ONE, glow::ZERO);
+                self.gl.disable(glow::BLEND);
+            }
             self.gl.set_capability(glow::DEPTH_TEST, true);
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }
