@@ -180,21 +180,27 @@ fn interior(c: &Comparison, value: f32, reach: usize) -> Vec<(f32, f32)> {
         .collect()
 }
 
+/// The largest difference between the rendered and the true transmittance over the
+/// receivers [`interior`] finds, after checking there are more than `at_least` of them.
+fn worst_interior(c: &Comparison, value: f32, reach: usize, at_least: usize, what: &str) -> f32 {
+    let values = interior(c, value, reach);
+    assert!(
+        values.len() > at_least,
+        "{what}: {} receivers",
+        values.len()
+    );
+    values
+        .iter()
+        .map(|(r, t)| (r - t).abs())
+        .fold(0.0, f32::max)
+}
+
 #[test]
 fn one_sheet_leaves_one_minus_its_opacity_in_each_translucent_map() {
     let scene = sheets_scene(&[(0.0, 0.4)]);
     for volumetric in [Volumetric::Osm, Volumetric::Fom] {
         let c = run(&scene, volumetric);
-        let values = interior(&c, 0.6, 1);
-        assert!(
-            values.len() > 2000,
-            "{volumetric:?}: {} receivers",
-            values.len()
-        );
-        let worst = values
-            .iter()
-            .map(|(r, t)| (r - t).abs())
-            .fold(0.0, f32::max);
+        let worst = worst_interior(&c, 0.6, 1, 2000, &format!("{volumetric:?}"));
         assert!(worst < 0.01, "{volumetric:?}: off by {worst}");
         let t = c.transmittance.expect("scored");
         assert!(t.mae_in_shadow < 0.02, "{volumetric:?}: {t:?}");
@@ -207,16 +213,7 @@ fn behind_every_caster_each_translucent_map_gives_the_product_to_one_step_of_eig
     let scene = sheets_scene(&[(0.0, 0.5), (1.0, 0.25)]);
     for volumetric in [Volumetric::Osm, Volumetric::Fom] {
         let c = run(&scene, volumetric);
-        let values = interior(&c, 0.375, 1);
-        assert!(
-            values.len() > 1000,
-            "{volumetric:?}: {} receivers",
-            values.len()
-        );
-        let worst = values
-            .iter()
-            .map(|(r, t)| (r - t).abs())
-            .fold(0.0, f32::max);
+        let worst = worst_interior(&c, 0.375, 1, 1000, &format!("{volumetric:?}"));
         assert!(worst <= 1.0 / 255.0, "{volumetric:?}: off by {worst}");
     }
 }
@@ -373,16 +370,8 @@ fn a_spot_lights_perspective_translucent_map_leaves_the_product_behind_two_sheet
     for volumetric in [Volumetric::Fom, Volumetric::Osm] {
         let c = run(&scene, volumetric);
         for value in [0.3, 0.6] {
-            let values = interior(&c, value, 4);
-            assert!(
-                values.len() > 500,
-                "{volumetric:?} {value}: {}",
-                values.len()
-            );
-            let worst = values
-                .iter()
-                .map(|(r, t)| (r - t).abs())
-                .fold(0.0, f32::max);
+            let what = format!("{volumetric:?} {value}");
+            let worst = worst_interior(&c, value, 4, 500, &what);
             assert!(
                 worst <= 1.0 / 255.0,
                 "{volumetric:?} {value}: off by {worst}"
