@@ -10,18 +10,21 @@ uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
 
 // Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
-// from the instance buffer, instance instanceBase + gl_InstanceID, instanceStride texels
-// apart; the per-item uniforms serve the passes that still draw one item at a time.
+// from the instance buffer (a uniform block), instance gl_InstanceID's at instanceBase +
+// gl_InstanceID x instanceStride; the per-item uniforms serve the passes that still draw
+// one item at a time.
 uniform bool instanced;
-uniform sampler2D instances;  // texel t at (t % INSTANCE_ROW, t / INSTANCE_ROW)
-const int INSTANCE_ROW = 1024;
+const int INSTANCE_VEC4S = 1024;  // 16 KiB: GL 3.3's smallest block size
+layout(std140) uniform Instances
+{
+    vec4 instanceData[INSTANCE_VEC4S];
+};
 uniform int instanceStride;
 uniform int instanceBase;
 
 vec4 instanceTexel(int i)
 {
-    int t = (instanceBase + gl_InstanceID) * instanceStride + i;
-    return texelFetch(instances, ivec2(t % INSTANCE_ROW, t / INSTANCE_ROW), 0);
+    return instanceData[instanceBase + gl_InstanceID * instanceStride + i];
 }
 
 mat4 instanceMat4(int i)

@@ -44,21 +44,24 @@ flat out vec3 diffuseColour[LIGHT_COUNT];
 flat out vec3 lightVector[LIGHT_COUNT];
 
 // Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
-// from the instance buffer, instance instanceBase + gl_InstanceID, instanceStride texels
-// apart, laid out by src/renderer/scene_pass.rs: modelViewMatrix (texels 0-3), normalMatrix
-// (4-6), modelOriginMatrix (7-10), worldNormalMatrix (11-13), material.ambient (14),
-// modelLightViewMatrix[p] (15 + 4p), material.diffuse[i] (15 + 4 MAP_SLOTS + i). The
-// uniforms serve the passes that still draw one item at a time (translucent items).
+// from the instance buffer (a uniform block), instance gl_InstanceID's at instanceBase +
+// gl_InstanceID x instanceStride, laid out by src/renderer/scene_pass.rs: modelViewMatrix
+// (vec4s 0-3), normalMatrix (4-6), modelOriginMatrix (7-10), worldNormalMatrix (11-13),
+// material.ambient (14), modelLightViewMatrix[p] (15 + 4p), material.diffuse[i]
+// (15 + 4 MAP_SLOTS + i). The uniforms serve the passes that still draw one item at a time
+// (translucent items).
 uniform bool instanced;
-uniform sampler2D instances;  // texel t at (t % INSTANCE_ROW, t / INSTANCE_ROW)
-const int INSTANCE_ROW = 1024;
+const int INSTANCE_VEC4S = 1024;  // 16 KiB: GL 3.3's smallest block size
+layout(std140) uniform Instances
+{
+    vec4 instanceData[INSTANCE_VEC4S];
+};
 uniform int instanceStride;
 uniform int instanceBase;
 
 vec4 instanceTexel(int i)
 {
-    int t = (instanceBase + gl_InstanceID) * instanceStride + i;
-    return texelFetch(instances, ivec2(t % INSTANCE_ROW, t / INSTANCE_ROW), 0);
+    return instanceData[instanceBase + gl_InstanceID * instanceStride + i];
 }
 
 mat4 instanceMat4(int i)

@@ -50,3 +50,33 @@ fn a_cube_map_takes_a_draw_per_mesh_in_either_point_pass() {
     assert!(six <= 7 * meshes, "{six} draws, {meshes} meshes");
     assert!(items as u64 > 2 * meshes, "{items} items, {meshes} meshes");
 }
+
+#[test]
+fn runs_longer_than_the_instance_block_draw_every_instance() {
+    // 900 cubes: more than one window of the 16 KiB block in the depth pass (256 instances)
+    // and in the scene pass (64), so every window's instances must land where they belong.
+    let scene = Scene::load("tests/data/crowd.toml").unwrap();
+    assert!(scene.items.len() > 900, "{} items", scene.items.len());
+    let c = common::compared(&scene, &scene.shadow, &common::frame_options(320, 180));
+    let m = &c.metrics;
+    assert!(m.receivers > 20_000, "{} receivers", m.receivers);
+    // The truth is traced from the rendered G-buffer's positions: a cube drawn with another
+    // instance's matrix moves the receivers themselves, so check the crowd is where it
+    // stands (its shadows cover much of the floor) as well as the shadow test.
+    let shadowed = (c.reference.hard.iter())
+        .filter(|p| p.receiver && p.visibility < 0.5)
+        .count();
+    let share = shadowed as f64 / m.receivers as f64;
+    assert!(
+        share > 0.1,
+        "{:.1}% of the receivers in shadow",
+        100.0 * share
+    );
+    assert!(
+        m.misclassified_rate < 0.01,
+        "{:.3}% misclassified ({} false shadow, {} false light)",
+        100.0 * m.misclassified_rate,
+        m.false_shadow,
+        m.false_light
+    );
+}

@@ -69,17 +69,6 @@ impl GlContext {
         b.units[i] = Some((target, texture));
     }
 
-    /// [`Self::bind_texture_once`], and `unit` left active: a texture about to be written
-    /// through its binding.
-    pub(crate) fn bind_texture_active(&self, unit: u32, target: u32, texture: glow::Texture) {
-        self.bind_texture_once(unit, target, texture);
-        let mut b = self.bound.borrow_mut();
-        if b.active_unit != Some(unit) {
-            unsafe { glow::HasContext::active_texture(&self.gl, glow::TEXTURE0 + unit) };
-            b.active_unit = Some(unit);
-        }
-    }
-
     /// `glEnable(cap)` or `glDisable(cap)`, unless `cap` is known to be so already: passes
     /// put their state back when they end, so most of these would change nothing.
     pub(crate) fn set_capability(&self, cap: u32, on: bool) {

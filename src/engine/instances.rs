@@ -1,11 +1,12 @@
-//! Per-instance data for instanced draws: one RGBA32F texture read with `texelFetch` by
-//! `gl_InstanceID`, filled once per pass with one upload. A vertex shader reads instance
-//! `instanceBase + gl_InstanceID`'s texels at `instanceStride` apart, texel t at
-//! (t % [`ROW`], t / [`ROW`]) (glow has no `glTexBuffer`, so a 2D texture stands in for a
-//! buffer texture). The values are computed on the CPU exactly as the per-item uniforms
-//! were, so the shader's float math and the pictures stay the same.
+//! Per-instance data for instanced draws: one uniform buffer, filled once per pass with one
+//! upload and read by the vertex shaders as the `Instances` block, an array of vec4s:
+//! instance `gl_InstanceID`'s values start at `instanceBase + gl_InstanceID *
+//! instanceStride`. The block is [`BLOCK_VEC4S`] vec4s (16 KiB, what GL 3.3 guarantees), so a
+//! run of instances is bound a window at a time, each draw as many instances as fit. The
+//! values are computed on the CPU exactly as the per-item uniforms were, so the shader's
+//! float math and the pictures stay the same.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 
 use glam::{Mat3, Mat4, Vec4};
 use glow::HasContext;
@@ -13,124 +14,160 @@ use glow::HasContext;
 use super::{Gl, Mesh, ShaderProgram};
 use crate::error::{Error, Result};
 
-/// The texture unit the instance data is bound on, above every unit a pass samples.
-pub const INSTANCE_UNIT: u32 = 31;
+/// The uniform buffer binding point of the `Instances` block (every program that declares it
+/// is pointed here when it is linked).
+pub const INSTANCE_BINDING: u32 = 0;
 
-/// Texels per row of the texture (the shaders' `INSTANCE_ROW`; GL 3.3 guarantees 1024).
-pub const ROW: usize = 1024;
+/// The block's length in vec4s (the shaders' `INSTANCE_VEC4S`): 16 KiB, GL 3.3's minimum
+/// `GL_MAX_UNIFORM_BLOCK_SIZE`.
+pub const BLOCK_VEC4S: usize = 1024;
 
-/// The texture; deleted on drop.
+/// The uniform buffer; deleted on drop.
 pub struct InstanceBuffer {
     gl: Gl,
-    texture: glow::Texture,
-    /// Rows allocated so far: it grows, never shrinks.
-    rows: std::cell::Cell<usize>,
-    /// The texels being gathered for the next upload (kept to reuse its allocation).
-    texels: RefCell<Vec<Vec4>>,
+    buffer: glow::Buffer,
+    /// Bytes allocated so far: it grows, never shrinks.
+    bytes: Cell<usize>,
+    /// `GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT`: where a bound window may start.
+    align: usize,
+    /// The values being gathered for the next upload (kept to reuse its allocation).
+    values: RefCell<Vec<Vec4>>,
 }
 
 impl InstanceBuffer {
     pub fn new(gl: &Gl) -> Result<InstanceBuffer> {
         unsafe {
-            let texture = gl
-                .create_texture()
-                .map_err(|e| Error::Create(format!("instance texture: {e}")))?;
-            super::counters::count(|c| c.textures += 1);
-            gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
-            gl.bind_texture(glow::TEXTURE_2D, None);
-            gl.forget_bindings();
+            let buffer = gl
+                .create_buffer()
+                .map_err(|e| Error::Create(format!("instance buffer: {e}")))?;
+            super::counters::count(|c| c.buffers += 1);
+            let align = gl.get_parameter_i32(glow::UNIFORM_BUFFER_OFFSET_ALIGNMENT);
             Ok(InstanceBuffer {
                 gl: gl.clone(),
-                texture,
-                rows: std::cell::Cell::new(0),
-                texels: RefCell::new(Vec::new()),
+                buffer,
+                bytes: Cell::new(0),
+                align: usize::try_from(align).unwrap_or(256).max(16),
+                values: RefCell::new(Vec::new()),
             })
         }
     }
 
-    /// Gathers the pass' texels with `fill` (every instance `stride` texels), uploads them
-    /// in one call, binds the buffer on [`INSTANCE_UNIT`] and points `program` at it; the
-    /// program reads its per-item uniforms again when the returned guard drops.
+    /// Gathers the pass' values with `fill` (every instance `stride` vec4s) and uploads them
+    /// in one call; `program` reads its per-item values from them until the returned guard,
+    /// which draws the runs, drops.
     pub fn fill<'p>(
-        &self,
+        &'p self,
         program: &'p ShaderProgram,
         stride: usize,
-        fill: impl FnOnce(&mut Texels),
+        fill: impl FnOnce(&mut Values),
     ) -> Instanced<'p> {
-        let mut texels = self.texels.borrow_mut();
-        texels.clear();
-        fill(&mut Texels(&mut texels));
-        debug_assert_eq!(texels.len() % stride.max(1), 0);
+        let mut values = self.values.borrow_mut();
+        values.clear();
+        fill(&mut Values(&mut values));
+        debug_assert_eq!(values.len() % stride.max(1), 0);
+        assert!(stride <= BLOCK_VEC4S, "an instance larger than the block");
         program.set_i32("instanced", 1);
-        let guard = Instanced(program);
-        if texels.is_empty() {
+        program.set_i32("instanceStride", stride as i32);
+        let guard = Instanced {
+            program,
+            buffer: self,
+            stride,
+        };
+        if values.is_empty() {
             return guard;
         }
-        let rows = texels.len().div_ceil(ROW);
-        texels.resize(rows * ROW, Vec4::ZERO);
-        self.gl
-            .bind_texture_active(INSTANCE_UNIT, glow::TEXTURE_2D, self.texture);
-        let data = glow::PixelUnpackData::Slice(Some(bytemuck::cast_slice(texels.as_slice())));
+        // A window may start up to an alignment before an instance and always spans the
+        // whole block: room for it past the last value.
+        let needed = values.len() * 16 + BLOCK_VEC4S * 16 + self.align;
+        let data: &[u8] = bytemuck::cast_slice(values.as_slice());
         unsafe {
-            if rows > self.rows.get() {
+            self.gl.bind_buffer(glow::UNIFORM_BUFFER, Some(self.buffer));
+            if needed > self.bytes.get() {
                 // Grown (the first pass, or more instances than ever): a new allocation.
-                self.rows.set(rows);
-                self.gl.tex_image_2d(
-                    glow::TEXTURE_2D,
-                    0,
-                    glow::RGBA32F as i32,
-                    ROW as i32,
-                    rows as i32,
-                    0,
-                    glow::RGBA,
-                    glow::FLOAT,
-                    data,
-                );
-            } else {
-                let (w, h) = (ROW as i32, rows as i32);
-                self.gl.tex_sub_image_2d(
-                    glow::TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    w,
-                    h,
-                    glow::RGBA,
-                    glow::FLOAT,
-                    data,
-                );
+                let bytes = needed.next_power_of_two();
+                self.bytes.set(bytes);
+                self.gl
+                    .buffer_data_size(glow::UNIFORM_BUFFER, bytes as i32, glow::STREAM_DRAW);
             }
+            self.gl
+                .buffer_sub_data_u8_slice(glow::UNIFORM_BUFFER, 0, data);
+            self.gl.bind_buffer(glow::UNIFORM_BUFFER, None);
         }
-        program.set_i32("instances", INSTANCE_UNIT as i32);
-        program.set_i32("instanceStride", stride as i32);
         guard
     }
 }
 
-/// While alive, `program` reads its per-item values from the instance buffer; on drop it
-/// reads its uniforms again (the passes that stay per item: translucent, volumetric).
-pub struct Instanced<'p>(&'p ShaderProgram);
+/// While alive, `program` reads its per-item values from the instance buffer, and draws runs
+/// of them; on drop it reads its uniforms again (the passes that stay per item: translucent,
+/// volumetric).
+pub struct Instanced<'p> {
+    program: &'p ShaderProgram,
+    buffer: &'p InstanceBuffer,
+    stride: usize,
+}
+
+impl Instanced<'_> {
+    /// Draws `batch` of `mesh`: one instanced call per window of the block it needs (one for
+    /// a run of up to 1024 / stride instances).
+    pub fn draw<K>(&self, mesh: &Mesh, batch: &Batch<K>) {
+        let b = self.buffer;
+        for w in windows(batch.first, batch.count, self.stride, b.align) {
+            unsafe {
+                b.gl.bind_buffer_range(
+                    glow::UNIFORM_BUFFER,
+                    INSTANCE_BINDING,
+                    Some(b.buffer),
+                    w.start as i32,
+                    (BLOCK_VEC4S * 16) as i32,
+                );
+            }
+            self.program.set_i32("instanceBase", w.base as i32);
+            mesh.render_instanced(w.count);
+        }
+    }
+}
+
+/// One bound range of the buffer: from byte `start` (a multiple of the alignment), `count`
+/// instances whose values begin `base` vec4s in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Window {
+    start: usize,
+    base: usize,
+    count: usize,
+}
+
+/// The windows that draw instances `first..first + count` of `stride` vec4s each, every
+/// instance's values inside its window's [`BLOCK_VEC4S`].
+fn windows(first: usize, count: usize, stride: usize, align: usize) -> Vec<Window> {
+    let (mut first, mut left) = (first, count);
+    let mut out = Vec::new();
+    while left > 0 {
+        let byte = first * stride * 16;
+        let start = byte / align * align;
+        let base = (byte - start) / 16;
+        let count = ((BLOCK_VEC4S - base) / stride).clamp(1, left);
+        out.push(Window { start, base, count });
+        first += count;
+        left -= count;
+    }
+    out
+}
 
 impl Drop for Instanced<'_> {
     fn drop(&mut self) {
-        self.0.set_i32("instanced", 0);
+        self.program.set_i32("instanced", 0);
     }
 }
 
 impl Drop for InstanceBuffer {
     fn drop(&mut self) {
-        self.gl.forget_texture(self.texture);
-        unsafe { self.gl.delete_texture(self.texture) };
+        unsafe { self.gl.delete_buffer(self.buffer) };
     }
 }
+/// The values of one pass (vec4s: the block's elements), pushed instance by instance.
+pub struct Values<'a>(&'a mut Vec<Vec4>);
 
-/// The texels of one pass, pushed instance by instance.
-pub struct Texels<'a>(&'a mut Vec<Vec4>);
-
-impl Texels<'_> {
+impl Values<'_> {
     /// A matrix as its four columns.
     pub fn mat4(&mut self, m: &Mat4) {
         self.0
@@ -147,7 +184,7 @@ impl Texels<'_> {
         self.0.push(v);
     }
 
-    /// `n` texels of zeros: slots the program does not read.
+    /// `n` zeros: slots the program does not read.
     pub fn zeros(&mut self, n: usize) {
         self.0.extend(std::iter::repeat_n(Vec4::ZERO, n));
     }
@@ -178,15 +215,25 @@ pub fn batches<K: PartialEq + Copy>(keys: impl IntoIterator<Item = K>) -> Vec<Ba
     out
 }
 
-/// Draws `batch` of `mesh` with `program` reading the uploaded instances.
-pub fn draw_batch<K>(program: &ShaderProgram, mesh: &Mesh, batch: &Batch<K>) {
-    program.set_i32("instanceBase", batch.first as i32);
-    mesh.render_instanced(batch.count);
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn windows_cover_each_instance_once_inside_the_block() {
+        for (stride, align) in [(4, 16), (5, 16), (16, 256), (35, 256), (5, 64)] {
+            let (first, count) = (37, 900);
+            let mut next = first;
+            for w in windows(first, count, stride, align) {
+                assert_eq!(w.start % align, 0, "stride {stride} align {align}");
+                assert!(w.base + w.count * stride <= BLOCK_VEC4S, "{w:?}");
+                assert_eq!(w.start / 16 + w.base, next * stride, "{w:?}");
+                next += w.count;
+            }
+            assert_eq!(next, first + count);
+        }
+        assert!(windows(3, 0, 4, 16).is_empty());
+    }
 
     #[test]
     fn batches_join_only_neighbours() {

@@ -199,6 +199,10 @@ impl ShaderProgram {
                     file,
                 });
             }
+            // Instanced draws read their values from one uniform buffer binding.
+            if let Some(block) = gl.get_uniform_block_index(program, "Instances") {
+                gl.uniform_block_binding(program, block, super::instances::INSTANCE_BINDING);
+            }
         }
         Ok(this)
     }

@@ -8,7 +8,7 @@ use glam::DMat4;
 
 use super::scene_inputs::{bind_maps, normal_matrix, Inputs, LightUniforms};
 use super::translucent_pass;
-use crate::engine::instances::{self, Texels};
+use crate::engine::instances::{self, Values};
 use crate::engine::{Gl, Samplers};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
@@ -63,7 +63,7 @@ fn draw_opaque(inputs: &Inputs, scene: &Scene, u: &LightUniforms, view64: DMat4,
     // Only a target with world outputs reads these: no matrices per item for nothing.
     let world_outputs = p.uses("modelOriginMatrix") || p.uses("worldNormalMatrix");
     let stride = 15 + 4 * u.light_from.len() + u.colour.len().max(1);
-    let _instanced = inputs.instances.fill(p, stride, |t| {
+    let instanced = inputs.instances.fill(p, stride, |t| {
         for item in &items {
             push_instance(t, item, scene, u, view64, origin, world_outputs);
         }
@@ -73,13 +73,13 @@ fn draw_opaque(inputs: &Inputs, scene: &Scene, u: &LightUniforms, view64: DMat4,
         let (mesh, tex) = b.key;
         tex.map_or(inputs.white, |t| &inputs.textures[t])
             .bind(MATERIAL_UNIT);
-        instances::draw_batch(p, &inputs.meshes[mesh], &b);
+        instanced.draw(&inputs.meshes[mesh], &b);
     }
 }
 
 /// One item's texels in scene.vert's layout: the values its uniforms had.
 fn push_instance(
-    t: &mut Texels,
+    t: &mut Values,
     item: &GameItem,
     scene: &Scene,
     u: &LightUniforms,

@@ -181,7 +181,7 @@ pub fn draw_casters_with(
         .collect();
     kept.sort_by_key(|(_, i)| i.mesh);
     let stride = if faces.is_some() { 5 } else { 4 };
-    let _instanced = instances.fill(program, stride, |t| {
+    let instanced = instances.fill(program, stride, |t| {
         for (k, item) in &kept {
             t.mat4(&(light * item.model_matrix64()).as_mat4());
             if let Some(f) = faces {
@@ -190,7 +190,7 @@ pub fn draw_casters_with(
         }
     });
     for b in instances::batches(kept.iter().map(|(_, i)| i.mesh)) {
-        instances::draw_batch(program, &meshes[b.key], &b);
+        instanced.draw(&meshes[b.key], &b);
     }
     kept.len()
 }
