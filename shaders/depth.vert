@@ -9,28 +9,11 @@ layout (location = 2) in vec3 vertexNormal;
 uniform mat4 modelLightViewMatrix;
 uniform mat4 orthoProjectionMatrix;
 
-// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
-// from the instance buffer (a uniform block), instance gl_InstanceID's at instanceBase +
-// gl_InstanceID x instanceStride; the per-item uniforms serve the passes that still draw
-// one item at a time.
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values are
+// per-instance vertex attributes (divisor 1) from the instance buffer; the per-item uniforms
+// serve the passes that still draw one item at a time.
 uniform bool instanced;
-const int INSTANCE_VEC4S = 1024;  // 16 KiB: GL 3.3's smallest block size
-layout(std140) uniform Instances
-{
-    vec4 instanceData[INSTANCE_VEC4S];
-};
-uniform int instanceStride;
-uniform int instanceBase;
-
-vec4 instanceTexel(int i)
-{
-    return instanceData[instanceBase + gl_InstanceID * instanceStride + i];
-}
-
-mat4 instanceMat4(int i)
-{
-    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
-}
+layout (location = 3) in mat4 instanceMatrix;  // locations 3 to 6
 
 #ifdef LINEAR_DEPTH
 // A perspective map's linear depth (depth.frag): clip w is the distance along the light's
@@ -41,7 +24,7 @@ out float lightDepth;
 
 void main()
 {
-    mat4 modelLightView = instanced ? instanceMat4(0) : modelLightViewMatrix;
+    mat4 modelLightView = instanced ? instanceMatrix : modelLightViewMatrix;
     gl_Position = orthoProjectionMatrix * modelLightView * vec4(position, 1.0);
 #ifdef LINEAR_DEPTH
     lightDepth = (gl_Position.w - depthRange.x) / (depthRange.y - depthRange.x);

@@ -9,34 +9,17 @@ layout (location = 2) in vec3 vertexNormal;
 uniform mat4 modelLightMatrix;  // model, then minus the light's position
 uniform mat4 faceProjection;    // 90-degree perspective x this face's view
 
-// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
-// from the instance buffer (a uniform block), instance gl_InstanceID's at instanceBase +
-// gl_InstanceID x instanceStride; the per-item uniforms serve the passes that still draw
-// one item at a time.
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values are
+// per-instance vertex attributes (divisor 1) from the instance buffer; the per-item uniforms
+// serve the passes that still draw one item at a time.
 uniform bool instanced;
-const int INSTANCE_VEC4S = 1024;  // 16 KiB: GL 3.3's smallest block size
-layout(std140) uniform Instances
-{
-    vec4 instanceData[INSTANCE_VEC4S];
-};
-uniform int instanceStride;
-uniform int instanceBase;
-
-vec4 instanceTexel(int i)
-{
-    return instanceData[instanceBase + gl_InstanceID * instanceStride + i];
-}
-
-mat4 instanceMat4(int i)
-{
-    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
-}
+layout (location = 3) in mat4 instanceMatrix;  // locations 3 to 6
 
 out vec3 lightToFragment;
 
 void main()
 {
-    vec4 p = (instanced ? instanceMat4(0) : modelLightMatrix) * vec4(position, 1.0);
+    vec4 p = (instanced ? instanceMatrix : modelLightMatrix) * vec4(position, 1.0);
     lightToFragment = p.xyz;
     gl_Position = faceProjection * p;
 }

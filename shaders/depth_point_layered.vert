@@ -12,32 +12,16 @@ uniform mat4 modelLightMatrix;  // model, then minus the light's position
 uniform int faceMask;           // drawn one item at a time: its faces
 flat out int casterFaces;
 
-// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values come
-// from the instance buffer (a uniform block), instance gl_InstanceID's at instanceBase +
-// gl_InstanceID x instanceStride; the per-item uniforms serve the passes that still draw
-// one item at a time.
+// Instanced draws (src/engine/instances.rs): with `instanced` set, the per-item values are
+// per-instance vertex attributes (divisor 1) from the instance buffer; the per-item uniforms
+// serve the passes that still draw one item at a time.
 uniform bool instanced;
-const int INSTANCE_VEC4S = 1024;  // 16 KiB: GL 3.3's smallest block size
-layout(std140) uniform Instances
-{
-    vec4 instanceData[INSTANCE_VEC4S];
-};
-uniform int instanceStride;
-uniform int instanceBase;
-
-vec4 instanceTexel(int i)
-{
-    return instanceData[instanceBase + gl_InstanceID * instanceStride + i];
-}
-
-mat4 instanceMat4(int i)
-{
-    return mat4(instanceTexel(i), instanceTexel(i + 1), instanceTexel(i + 2), instanceTexel(i + 3));
-}
+layout (location = 3) in mat4 instanceMatrix;  // locations 3 to 6
+layout (location = 7) in vec4 instanceFaces;  // x: the caster's faces as a float
 
 void main()
 {
-    gl_Position = (instanced ? instanceMat4(0) : modelLightMatrix) * vec4(position, 1.0);
-    // The caster's faces (its texel 4 holds them as a float), for the geometry shader.
-    casterFaces = instanced ? int(instanceTexel(4).x) : faceMask;
+    gl_Position = (instanced ? instanceMatrix : modelLightMatrix) * vec4(position, 1.0);
+    // The caster's faces, for the geometry shader.
+    casterFaces = instanced ? int(instanceFaces.x) : faceMask;
 }

@@ -111,6 +111,11 @@ impl Instanced<'_> {
     /// a run of up to 1024 / stride instances).
     pub fn draw<K>(&self, mesh: &Mesh, batch: &Batch<K>) {
         let b = self.buffer;
+        if self.program.reads_instance_attributes() {
+            let offset = batch.first * self.stride * 16;
+            mesh.render_instanced_attributes(b.buffer, offset, self.stride, batch.count);
+            return;
+        }
         for w in windows(batch.first, batch.count, self.stride, b.align) {
             unsafe {
                 b.gl.bind_buffer_range(

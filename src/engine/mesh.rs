@@ -1,12 +1,15 @@
 //! `Mesh`: a VAO with its vertex and index buffers (the book's `Mesh` class), uploaded from
 //! CPU-side [`MeshData`]. Attribute locations match the book: 0 position, 1 texture
-//! coordinate, 2 normal.
+//! coordinate, 2 normal; instanced depth passes add per-instance values from 3 on.
 
 use glow::HasContext;
 
 use super::Gl;
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
+
+/// The first location of per-instance vertex attributes (after the three per-vertex ones).
+pub const INSTANCE_LOCATION: u32 = 3;
 
 /// An uploaded mesh; its VAO and buffers are deleted on drop.
 pub struct Mesh {
@@ -88,6 +91,44 @@ impl Mesh {
                 0,
                 count as i32,
             );
+            self.gl.bind_vertex_array(None);
+        }
+        super::counters::count_draw();
+    }
+
+    /// Draws `count` instances whose values are per-instance vertex attributes: `stride`
+    /// vec4s an instance from byte `offset` of `buffer`, on locations 3, 4, ... (a mat4
+    /// takes four). The attributes are switched off again after the draw, so the mesh's
+    /// other draws read nothing from the buffer.
+    pub fn render_instanced_attributes(
+        &self,
+        buffer: glow::Buffer,
+        offset: usize,
+        stride: usize,
+        count: usize,
+    ) {
+        let locations = (0..stride as u32).map(|k| INSTANCE_LOCATION + k);
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
+            for (k, location) in locations.clone().enumerate() {
+                self.gl.enable_vertex_attrib_array(location);
+                let at = (offset + 16 * k) as i32;
+                let bytes = (16 * stride) as i32;
+                (self.gl).vertex_attrib_pointer_f32(location, 4, glow::FLOAT, false, bytes, at);
+                self.gl.vertex_attrib_divisor(location, 1);
+            }
+            self.gl.bind_buffer(glow::ARRAY_BUFFER, None);
+            self.gl.draw_elements_instanced(
+                glow::TRIANGLES,
+                self.index_count,
+                glow::UNSIGNED_INT,
+                0,
+                count as i32,
+            );
+            for location in locations {
+                self.gl.disable_vertex_attrib_array(location);
+            }
             self.gl.bind_vertex_array(None);
         }
         super::counters::count_draw();

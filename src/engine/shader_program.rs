@@ -135,6 +135,9 @@ pub struct ShaderProgram {
     gl: Gl,
     program: glow::Program,
     uniforms: RefCell<Uniforms>,
+    /// Reads instanced values as per-instance vertex attributes (`instanceMatrix`), not
+    /// from the `Instances` block.
+    instance_attributes: bool,
 }
 
 impl ShaderProgram {
@@ -164,10 +167,11 @@ impl ShaderProgram {
         let program =
             unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
         super::counters::count(|c| c.programs += 1);
-        let this = ShaderProgram {
+        let mut this = ShaderProgram {
             gl: gl.clone(),
             program,
             uniforms: RefCell::new(Uniforms::default()),
+            instance_attributes: false,
         };
         let mut shaders = Vec::with_capacity(stages.len());
         for (kind, source) in stages {
@@ -204,7 +208,14 @@ impl ShaderProgram {
                 gl.uniform_block_binding(program, block, super::instances::INSTANCE_BINDING);
             }
         }
+        this.instance_attributes =
+            unsafe { gl.get_attrib_location(program, "instanceMatrix") }.is_some();
         Ok(this)
+    }
+
+    /// Whether instanced draws hand this program its values as vertex attributes.
+    pub fn reads_instance_attributes(&self) -> bool {
+        self.instance_attributes
     }
 
     pub fn bind(&self) {
