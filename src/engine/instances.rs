@@ -158,6 +158,19 @@ fn windows(first: usize, count: usize, stride: usize, align: usize) -> Vec<Windo
     out
 }
 
+impl Instanced<'_> {
+    /// Draws one item of `mesh` through the program's per-item uniforms, which `set` sets:
+    /// a run of one gains nothing from instancing, and on a software rasteriser its vertices
+    /// would each fetch the instance's values where a uniform is one broadcast load (the
+    /// terrain's thousands of vertices, say).
+    pub fn draw_one(&self, mesh: &Mesh, set: impl FnOnce(&ShaderProgram)) {
+        self.program.set_i32("instanced", 0);
+        set(self.program);
+        mesh.render();
+        self.program.set_i32("instanced", 1);
+    }
+}
+
 impl Drop for Instanced<'_> {
     fn drop(&mut self) {
         self.program.set_i32("instanced", 0);

@@ -3,9 +3,9 @@
 //! the lights and shadow tests of the opaque items, so they receive shadows too; the frame's
 //! measurement outputs keep the opaque receivers under them.
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::DMat4;
 
-use super::scene_inputs::{normal_matrix, Inputs, LightUniforms};
+use super::scene_inputs::{Inputs, LightUniforms};
 use crate::engine::{Gl, TranslucentBlend};
 use crate::scene::{GameItem, Scene};
 use crate::shadows::slots::MATERIAL_UNIT;
@@ -47,29 +47,9 @@ pub(super) fn draw(
     }
     let p = inputs.program;
     let blend = TranslucentBlend::begin(gl);
-    let mut light_matrices = vec![Mat4::IDENTITY; u.light_from.len()];
-    let mut diffuse = vec![Vec3::ZERO; u.colour.len()];
     for item in items {
-        let model = item.model_matrix64();
-        let model_view = (view64 * model).as_mat4();
-        p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
-        p.set_mat4("modelViewMatrix", &model_view);
-        p.set_mat3("normalMatrix", &normal_matrix(&model_view));
-        p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
-        for (m, from) in light_matrices.iter_mut().zip(&u.light_from) {
-            *m = (*from * model).as_mat4();
-        }
-        p.set_mat4_array("modelLightViewMatrix", &light_matrices);
+        super::scene_pass::set_item_uniforms(p, item, scene, u, view64, origin);
         let m = &item.material;
-        let colour = m.colour.truncate();
-        p.set_vec4(
-            "material.ambient",
-            (scene.ambient * colour).extend(m.reflectance),
-        );
-        for (d, light) in diffuse.iter_mut().zip(&u.colour) {
-            *d = *light * colour;
-        }
-        p.set_vec3_array("material.diffuse", &diffuse);
         m.texture
             .and_then(|t| inputs.textures.get(t))
             .unwrap_or(inputs.white)

@@ -189,8 +189,23 @@ pub fn draw_casters_with(
             }
         }
     });
+    // The per-item uniforms of the depth programs, for runs of one.
+    let uniform = match program.uses("modelLightViewMatrix") {
+        true => "modelLightViewMatrix",
+        false => "modelLightMatrix",
+    };
     for b in instances::batches(kept.iter().map(|(_, i)| i.mesh)) {
-        instanced.draw(&meshes[b.key], &b);
+        if b.count > 1 {
+            instanced.draw(&meshes[b.key], &b);
+            continue;
+        }
+        let (k, item) = kept[b.first];
+        instanced.draw_one(&meshes[b.key], |p| {
+            p.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
+            if let Some(f) = faces {
+                p.set_i32("faceMask", f(k).x as i32);
+            }
+        });
     }
     kept.len()
 }
