@@ -12,6 +12,7 @@
 use glow::HasContext;
 
 use super::check::check_framebuffer;
+use super::state::PixelRect;
 use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
@@ -106,14 +107,11 @@ impl DepthPeel {
     /// Starts the rest after `k` layers: every fragment behind layer k - 1 (whose depth is
     /// bound on `unit`), with no depth test, blended into the rest texture cleared to
     /// (1, 1, 1, 0): RGB multiplied by the fragment's (what it lets through), A the larger
-    /// depth. Counted as a layer is.
-    pub fn begin_rest(&self, k: u32, unit: u32) -> PeelPass<'_> {
+    /// depth. Counted as a layer is; within `rect` alone, as a layer is.
+    pub fn begin_rest(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
         let gl = &self.gl;
-        self.depth[1 - (k % 2) as usize].bind(unit);
+        self.bind_target(k, unit, self.rest_fbo, rect);
         unsafe {
-            gl.bind_sampler(unit, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.rest_fbo);
-            gl.viewport(0, 0, self.rest.width() as i32, self.rest.height() as i32);
             gl.set_capability(glow::DEPTH_TEST, false);
             gl.set_capability(glow::CULL_FACE, false);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 1.0, 1.0, 0.0]);
@@ -136,6 +134,22 @@ impl DepthPeel {
         unsafe { self.gl.bind_sampler(unit, None) };
     }
 
+    /// Binds layer k - 1's depth on `unit` (no sampler object: `texelFetch` reads it)
+    /// and `fbo` over the whole map, scissored to `rect`.
+    fn bind_target(&self, k: u32, unit: u32, fbo: Option<glow::Framebuffer>, rect: PixelRect) {
+        let gl = &self.gl;
+        self.depth[1 - (k % 2) as usize].bind(unit);
+        let (w, h) = (self.layers.width() as i32, self.layers.height() as i32);
+        unsafe {
+            gl.bind_sampler(unit, None);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, fbo);
+            gl.viewport(0, 0, w, h);
+            gl.set_capability(glow::SCISSOR_TEST, true);
+            let (rw, rh) = (rect.width as i32, rect.height as i32);
+            gl.scissor(rect.x as i32, rect.y as i32, rw, rh);
+        }
+    }
+
     /// The most layers it peels.
     pub fn count(&self) -> u32 {
         self.count
@@ -145,23 +159,16 @@ impl DepthPeel {
     /// mod 2) with layer k of the array as its colour, clears that to [`NO_CROSSING`] and
     /// the depth to 1, binds the previous layer's depth texture on
     /// `unit` (no sampler object: `texelFetch` reads it) and starts counting. Depth test
-    /// LESS, no culling (a closed mesh is crossed twice), no blending. The caller binds
-    /// the peel program and draws the casters, then calls [`PeelPass::finish`].
-    pub fn begin(&self, k: u32, unit: u32) -> PeelPass<'_> {
+    /// LESS, no culling (a closed mesh is crossed twice), no blending. Everything is
+    /// cleared and drawn within `rect` alone (a scissor: the texels the casters can cover;
+    /// outside it the layers hold anything). The caller binds the peel program and draws
+    /// the casters, then calls [`PeelPass::finish`].
+    pub fn begin(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
         let gl = &self.gl;
-        let this = (k % 2) as usize;
-        self.depth[1 - this].bind(unit);
+        self.bind_target(k, unit, self.fbos[(k % 2) as usize], rect);
         unsafe {
-            gl.bind_sampler(unit, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbos[this]);
             let (id, layer) = (Some(self.layers.id()), k.min(self.count - 1) as i32);
             gl.framebuffer_texture_layer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, id, 0, layer);
-            gl.viewport(
-                0,
-                0,
-                self.layers.width() as i32,
-                self.layers.height() as i32,
-            );
             gl.depth_mask(true);
             gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LESS);
@@ -238,6 +245,7 @@ impl PeelPass<'_> {
             gl.blend_equation(glow::FUNC_ADD);
             gl.blend_func(glow::ONE, glow::ZERO);
             gl.set_capability(glow::DEPTH_TEST, true);
+            gl.set_capability(glow::SCISSOR_TEST, false);
             gl.use_program_once(None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }

@@ -110,8 +110,10 @@ impl AvsmMap {
             ("AVSM_NODES".to_string(), nodes.to_string()),
             ("AVSM_LAYERS".to_string(), layers.to_string()),
         ];
+        let curves = TranslucentMap::new(gl, size, layers)?;
+        curves.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
         Ok(AvsmMap {
-            curves: TranslucentMap::new(gl, size, layers)?,
+            curves,
             peel: DepthPeel::new(gl, size, max_layers)?,
             peel_program: ShaderProgram::new(
                 gl,
@@ -146,10 +148,10 @@ impl AvsmMap {
 
     /// Peels layer `k` of the translucent casters (with `rest`, all behind layer k - 1):
     /// whether it caught anything.
-    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool) -> bool {
+    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool, rect: PixelRect) -> bool {
         let (pass, p) = match rest {
-            false => (self.peel.begin(k, PEEL_UNIT), &self.peel_program),
-            true => (self.peel.begin_rest(k, PEEL_UNIT), &self.rest_program),
+            false => (self.peel.begin(k, PEEL_UNIT, rect), &self.peel_program),
+            true => (self.peel.begin_rest(k, PEEL_UNIT, rect), &self.rest_program),
         };
         p.bind();
         p.set_i32("previousDepth", PEEL_UNIT as i32);
@@ -233,6 +235,14 @@ fn footprint(draw: &Draw, size: MapSize) -> Option<PixelRect> {
     })
 }
 
+/// Whether `outer` holds every texel of `inner`.
+fn within(inner: PixelRect, outer: PixelRect) -> bool {
+    inner.x >= outer.x
+        && inner.y >= outer.y
+        && inner.x + inner.width <= outer.x + outer.width
+        && inner.y + inner.height <= outer.y + outer.height
+}
+
 /// The depth of an unused node (the fitted depths run 0 to 1).
 pub const EMPTY_DEPTH: f32 = 2.0;
 
@@ -245,18 +255,24 @@ impl VolumetricMap for AvsmMap {
 
     /// Peels layer after layer until a layer is empty or `peel_layers` are in, then the
     /// rest if there may be one, and builds the curves in one pass over the texels the
-    /// translucent casters can cover; the rest of the map is cleared to empty curves.
+    /// translucent casters can cover. Outside them the curves are empty: set when the map
+    /// is made, and again within `draw.region` (what the casters covered before).
     fn render(&mut self, draw: &Draw) -> Result<()> {
         self.peeled = 0;
         self.passes = 0;
-        self.curves.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
-        let Some(rect) = footprint(draw, self.curves.size()) else {
+        let footprint = footprint(draw, self.curves.size());
+        // The texels the casters covered before and cover no longer: emptied.
+        let region = draw.region;
+        if region.width > 0 && region.height > 0 && !footprint.is_some_and(|r| within(region, r)) {
+            self.build(0, false, region);
+        }
+        let Some(rect) = footprint else {
             return Ok(());
         };
         let most = self.peel.count();
         let mut rest = false;
         for k in 0..=most {
-            let any = self.peel_layer(draw, k, k == most);
+            let any = self.peel_layer(draw, k, k == most, rect);
             self.passes += 1;
             if !any {
                 break;
