@@ -53,7 +53,7 @@ impl Method for Avsm {
         let (nodes, layers) = (settings.avsm_nodes, settings.peel_layers);
         Ok(Box::new(AvsmMap::new(
             gl,
-            settings.map_size,
+            settings.volumetric_size,
             nodes,
             layers,
         )?))
@@ -255,7 +255,7 @@ impl VolumetricMap for AvsmMap {
     fn fits(&self, settings: &ShadowSettings) -> bool {
         self.nodes == settings.avsm_nodes
             && self.max_layers == settings.peel_layers.max(1)
-            && self.curves[0].size() == settings.map_size
+            && self.curves[0].size() == settings.volumetric_size
     }
 
     /// Peels layer after layer, inserting each into the curves, until a layer is empty or
