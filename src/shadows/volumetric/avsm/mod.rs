@@ -55,7 +55,7 @@ impl Method for Avsm {
         let (nodes, layers) = (settings.avsm_nodes, settings.peel_layers);
         Ok(Box::new(AvsmMap::new(
             gl,
-            settings.map_size,
+            settings.volumetric_size,
             nodes,
             layers,
         )?))
@@ -250,7 +250,7 @@ impl VolumetricMap for AvsmMap {
     fn fits(&self, settings: &ShadowSettings) -> bool {
         self.nodes == settings.avsm_nodes
             && self.peel.count() == settings.peel_layers.max(1)
-            && self.curves.size() == settings.map_size
+            && self.curves.size() == settings.volumetric_size
     }
 
     /// Peels layer after layer until a layer is empty or `peel_layers` are in, then the
