@@ -1,20 +1,20 @@
 #version 330 core
-// AVSM's per-texel build (Salvi et al. 2010, section 3; src/shadows/avsm/curve.rs is the
-// same on the CPU, in the same float operations): the texel's curve, read from the
-// previous build, takes the peeled layer's crossing (inserted in depth order, every node
-// behind it scaled), and when over AVSM_NODES nodes drops the interior node whose removal
-// changes the area under the curve least. Nodes are (depth, transmittance) pairs, two to
-// an RGBA32F layer; unused ones hold depth AVSM_EMPTY. Compiled with:
+// AVSM's build (Salvi et al. 2010, section 3; src/shadows/avsm/curve.rs is the same on the
+// CPU, in the same float operations), one pass over the texels: the texel's curve, held in
+// locals, takes the peeled layers' crossings nearest first (each inserted in depth order,
+// every node behind it scaled; when over AVSM_NODES nodes, the interior node whose removal
+// changes the area under the curve least goes), then the rest past the last layer, and is
+// written once. Nodes are (depth, transmittance) pairs, two to an RGBA32F layer; unused
+// ones hold depth AVSM_EMPTY. Compiled with:
 //   AVSM_NODES   nodes per texel
 //   AVSM_LAYERS  AVSM_NODES / 2, rounded up
 
 layout (location = 0) out vec4 nodesOut[AVSM_LAYERS];
 
-uniform sampler2DArray curve;  // the previous build's nodes
-uniform sampler2D layer;       // the peeled layer: (depth, opacity), opacity 0 = none
-uniform bool firstLayer;       // no previous build: start from an empty curve
-uniform bool rest;             // `layer` is the rest past the last layer: RGB what it lets
-                               // through, A its farthest depth
+uniform sampler2DArray layers;  // the peeled layers: (depth, opacity), depth 2 = none
+uniform int layerCount;         // how many were peeled
+uniform sampler2D rest;         // the rest past the last layer: RGB what it lets through,
+uniform bool hasRest;           // A its farthest depth; only when `hasRest`
 
 const float AVSM_EMPTY = 2.0;
 
@@ -92,22 +92,24 @@ void main()
 {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     count = 0;
-    for (int l = 0; l < AVSM_LAYERS; ++l) {
-        vec4 v = firstLayer ? vec4(AVSM_EMPTY, 1.0, AVSM_EMPTY, 1.0)
-                            : texelFetch(curve, ivec3(texel, l), 0);
-        node[2 * l] = v.xy;
-        node[2 * l + 1] = v.zw;
+    for (int i = 0; i <= AVSM_NODES; ++i) {
+        node[i] = vec2(AVSM_EMPTY, 1.0);
     }
-    node[AVSM_NODES] = vec2(AVSM_EMPTY, 1.0);
-    for (int i = 0; i < AVSM_NODES; ++i) {
-        if (node[i].x < AVSM_EMPTY) {
-            count = i + 1;
+    // A texel a layer missed is missed by every layer behind it, and by the rest.
+    bool covered = true;
+    for (int l = 0; l < layerCount && covered; ++l) {
+        vec2 crossing = texelFetch(layers, ivec3(texel, l), 0).xy;
+        covered = crossing.x < AVSM_EMPTY;
+        if (crossing.y > 0.0) {
+            insertCrossing(crossing.x, crossing.y);
         }
     }
-    vec4 fetched = texelFetch(layer, texel, 0);
-    vec2 crossing = rest ? vec2(fetched.a, 1.0 - fetched.r) : fetched.xy;
-    if (crossing.y > 0.0) {
-        insertCrossing(crossing.x, crossing.y);
+    if (hasRest && covered) {
+        vec4 fetched = texelFetch(rest, texel, 0);
+        vec2 crossing = vec2(fetched.a, 1.0 - fetched.r);
+        if (crossing.y > 0.0) {
+            insertCrossing(crossing.x, crossing.y);
+        }
     }
     for (int i = count; i <= AVSM_NODES; ++i) {
         node[i] = vec2(AVSM_EMPTY, 1.0);

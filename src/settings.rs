@@ -856,6 +856,10 @@ shadow_settings! {
         /// opacity slices, `fom` Fourier opacity, `avsm` adaptive volumetric shadow maps); a
         /// directional or spot light's 2D map only.
         volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom|avsm");
+        /// The translucent map's size in texels, N or WxH like `map_size` (its texels cover
+        /// the depth map's box): translucent shadows are soft, so it can be smaller.
+        volumetric_size: MapSize = MapSize::square(1024),
+            arg(value_name = "SIZE", value_parser = parse_map_size, allow_negative_numbers = true);
         /// `volumetric = "osm"`: slices between the nearest and farthest translucent
         /// caster, four to a float target.
         osm_slices: u32 = 16, range(Range::from_to(1, MAX_TRANSLUCENT_CHANNELS)),
@@ -889,6 +893,18 @@ shadow_settings! {
         show_cascades: bool = false,
             arg(value_name = "BOOL", num_args = 0..=1, default_missing_value = "true", value_parser = clap::builder::BoolishValueParser::new());
     }
+}
+
+/// Checks a map's size (setting `name`) against the driver's maximum texture size.
+fn check_size(name: &str, size: MapSize, max_texture_size: u32) -> crate::Result<()> {
+    let sides = [size.width, size.height];
+    if sides.iter().all(|&n| n > 0 && n <= max_texture_size) {
+        return Ok(());
+    }
+    let each = if size.is_square() { "" } else { "each side " };
+    Err(crate::Error::Invalid(format!(
+        "shadow.{name} = {size}: expected {each}1 to {max_texture_size} (the driver's maximum texture size)"
+    )))
 }
 
 /// Parses a finite number (NaN and infinities would reach the shaders as garbage).
@@ -1047,6 +1063,10 @@ impl ShadowSettings {
             "osm_slices" if self.volumetric != Volumetric::Osm => return None,
             "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
             "avsm_nodes" | "peel_layers" if self.volumetric != Volumetric::Avsm => return None,
+            "volumetric_size" if matches!(self.volumetric, Volumetric::Off | Volumetric::Solid) => {
+                return None
+            }
+            "volumetric_size" => format!("translucent map {}", self.volumetric_size),
             "light_projection" if perspective => {
                 format!("perspective light, fov {}", self.perspective_fov)
             }
@@ -1067,18 +1087,8 @@ impl ShadowSettings {
 
     /// Checks values against each other and the driver's maximum texture size.
     pub fn validate(&self, max_texture_size: u32) -> crate::Result<()> {
-        let sides = [self.map_size.width, self.map_size.height];
-        if sides.iter().any(|&n| n == 0 || n > max_texture_size) {
-            let each = if self.map_size.is_square() {
-                ""
-            } else {
-                "each side "
-            };
-            return Err(crate::Error::Invalid(format!(
-                "shadow.map_size = {}: expected {each}1 to {max_texture_size} (the driver's maximum texture size)",
-                self.map_size
-            )));
-        }
+        check_size("map_size", self.map_size, max_texture_size)?;
+        check_size("volumetric_size", self.volumetric_size, max_texture_size)?;
         self.validate_values()
     }
 

@@ -10,7 +10,7 @@ use std::path::Path;
 use common::context;
 use shadowmap::compare::{compare, Comparison};
 use shadowmap::scene::file::parse;
-use shadowmap::settings::{ShadowSettings, Volumetric};
+use shadowmap::settings::{MapSize, ShadowSettings, Volumetric};
 use shadowmap::Scene;
 
 /// A floor (y = -1, 6 x 6) lit from nearly overhead, with `sheets`: (height, opacity) of a
@@ -400,4 +400,71 @@ fn switching_technique_on_a_renderer_makes_the_new_techniques_map() {
         .map();
     let switched: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
     assert!(switched == fresh, "the osm map kept for fom");
+}
+
+#[test]
+fn the_translucent_maps_take_their_own_size_and_refuse_a_bad_one() {
+    let scene = sheets_scene(&[(0.0, 0.4)]);
+    let ctx = context();
+    for volumetric in [Volumetric::Osm, Volumetric::Fom, Volumetric::Avsm] {
+        let settings = ShadowSettings {
+            volumetric,
+            volumetric_size: MapSize {
+                width: 200,
+                height: 100,
+            },
+            ..scene.shadow
+        };
+        let layers = map_layers(&scene, &settings);
+        assert!(
+            layers.iter().all(|l| l.len() == 200 * 100),
+            "{volumetric:?}: {:?}",
+            layers.iter().map(Vec::len).collect::<Vec<_>>()
+        );
+        let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &settings).unwrap();
+        renderer.render_depth_map(&scene).unwrap();
+        let map = renderer
+            .volumetric_maps()
+            .get(0)
+            .expect("a translucent map");
+        assert_eq!(
+            map.map().size(),
+            MapSize {
+                width: 200,
+                height: 100
+            }
+        );
+        // The depth map keeps its own.
+        assert_eq!(settings.map_size, MapSize::square(1024));
+        // A new size makes a new map.
+        let smaller = ShadowSettings {
+            volumetric_size: MapSize::square(64),
+            ..settings
+        };
+        renderer.set_settings(&smaller).unwrap();
+        renderer.render_depth_map(&scene).unwrap();
+        let map = renderer
+            .volumetric_maps()
+            .get(0)
+            .expect("a translucent map");
+        assert_eq!(map.map().size(), MapSize::square(64), "{volumetric:?}");
+    }
+    let bad = ShadowSettings {
+        volumetric: Volumetric::Osm,
+        volumetric_size: MapSize::square(0),
+        ..scene.shadow
+    };
+    let e = shadowmap::Renderer::new(ctx.gl(), &scene, &bad)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(
+        e.starts_with("shadow.volumetric_size = 0: expected 1 to ")
+            && e.ends_with(" (the driver's maximum texture size)"),
+        "{e}"
+    );
+    let read = |t: &str| toml::from_str::<ShadowSettings>(t).map(|s| s.volumetric_size);
+    assert_eq!(read("volumetric_size = 256").unwrap(), MapSize::square(256));
+    let e = read("volumetric_size = \"big\"").unwrap_err().to_string();
+    assert!(e.contains("a side in texels"), "{e}");
 }

@@ -84,31 +84,38 @@ struct Built {
 }
 
 fn build(scene: &Scene, nodes: u32, layers: u32) -> Built {
+    build_frames(&[scene], nodes, layers)
+}
+
+/// What one map holds after drawing `scenes` in turn (each over the whole map's region).
+fn build_frames(scenes: &[&Scene], nodes: u32, layers: u32) -> Built {
     let ctx = common::context();
     let gl = ctx.gl();
-    let meshes: Vec<Mesh> = (scene.meshes.iter())
-        .map(|m| Mesh::new(gl, m).unwrap_or_else(|e| panic!("{e}")))
-        .collect();
-    let view = light_view();
-    let draw = Draw {
-        gl,
-        meshes: &meshes,
-        scene,
-        view: &view,
-        fit: FIT,
-        region: PixelRect {
-            x: 0,
-            y: 0,
-            width: SIDE,
-            height: SIDE,
-        },
-    };
     let size = MapSize {
         width: SIDE,
         height: SIDE,
     };
     let mut map = AvsmMap::new(gl, size, nodes, layers).unwrap_or_else(|e| panic!("{e}"));
-    map.render(&draw).unwrap_or_else(|e| panic!("{e}"));
+    let view = light_view();
+    for scene in scenes {
+        let meshes: Vec<Mesh> = (scene.meshes.iter())
+            .map(|m| Mesh::new(gl, m).unwrap_or_else(|e| panic!("{e}")))
+            .collect();
+        let draw = Draw {
+            gl,
+            meshes: &meshes,
+            scene,
+            view: &view,
+            fit: FIT,
+            region: PixelRect {
+                x: 0,
+                y: 0,
+                width: SIDE,
+                height: SIDE,
+            },
+        };
+        map.render(&draw).unwrap_or_else(|e| panic!("{e}"));
+    }
     Built {
         nodes: map.read_nodes(),
         peeled: map.peeled(),
@@ -207,8 +214,8 @@ fn k_layers_keep_the_k_nearest_crossings_and_peeling_stops_at_an_empty_layer() {
     let scene = scene_of(&SHEETS);
     let truth = truth_crossings(&scene);
     let three = build(&scene, 8, 3);
-    // Three layers, the rest, and a build after each.
-    assert_eq!((three.peeled, three.passes), (3, 8));
+    // Three layers, the rest, and one build.
+    assert_eq!((three.peeled, three.passes), (3, 5));
     // Every texel holds exactly its three nearest crossings, and the rest as one.
     assert!(against_cpu(&three, &truth, 8, 3) < 1e-5);
     for (gpu, crossings) in three.nodes.iter().zip(&truth) {
@@ -218,12 +225,23 @@ fn k_layers_keep_the_k_nearest_crossings_and_peeling_stops_at_an_empty_layer() {
         assert_eq!(gpu.len(), crossings.len().min(4));
     }
     let all = build(&scene, 8, 16);
-    // Six layers catch something, the seventh nothing: seven peels, six builds.
-    assert_eq!((all.peeled, all.passes), (6, 13));
+    // Six layers catch something, the seventh nothing: seven peels, one build.
+    assert_eq!((all.peeled, all.passes), (6, 8));
     // Nothing translucent: no pass, empty curves.
     let none = build(&scene_of(&[]), 8, 16);
     assert_eq!((none.peeled, none.passes), (0, 0));
     assert!(none.nodes.iter().all(Vec::is_empty));
+}
+
+#[test]
+fn curves_the_casters_left_are_emptied() {
+    let (sheets, moved) = (scene_of(&SHEETS), scene_of(&SHEETS[..1]));
+    let direct = build(&moved, 8, 16);
+    let after = build_frames(&[&sheets, &moved], 8, 16);
+    assert!(after.nodes.iter().filter(|n| n.len() == 1).count() > 1000);
+    assert_eq!(after.nodes, direct.nodes);
+    let gone = build_frames(&[&sheets, &scene_of(&[])], 8, 16);
+    assert!(gone.nodes.iter().all(Vec::is_empty));
 }
 
 #[test]

@@ -4,24 +4,32 @@
 //! k - 1: its program discards what is not behind the previous layer's depth (read from
 //! the other of two depth textures) and the depth test keeps the nearest of the rest. An
 //! `ANY_SAMPLES_PASSED` query says whether a layer caught anything, so peeling stops at
-//! the first empty one. Past the last layer allowed, one more pass folds whatever is left
-//! into a single crossing ([`DepthPeel::begin_rest`]), so nothing behind the medium is lost.
+//! the first empty one. Each layer goes to its own layer of one texture array, so a single
+//! pass can read them all afterwards. Past the last layer allowed, one more pass folds
+//! whatever is left into a single crossing ([`DepthPeel::begin_rest`]), so nothing behind
+//! the medium is lost.
 
 use glow::HasContext;
 
 use super::check::check_framebuffer;
+use super::state::PixelRect;
 use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
 use crate::settings::{DepthFormat, MapSize};
 
+/// The colour of a layer's texel that caught nothing: past every fitted depth (0 to 1),
+/// no opacity.
+pub const NO_CROSSING: [f32; 4] = [2.0, 0.0, 0.0, 0.0];
+
 /// Owns the two depth textures (32-bit float, so a depth compares equal to itself when
-/// the next layer reads it), the layer's RG32F colour (depth, opacity), a framebuffer per
+/// the next layer reads it), the layers' RG32F array (depth, opacity), a framebuffer per
 /// depth texture and the query; all freed on drop.
 pub struct DepthPeel {
     gl: Gl,
     depth: [Texture; 2],
-    layer: Texture,
+    layers: Texture,
+    count: u32,
     fbos: [Option<glow::Framebuffer>; 2],
     /// The rest past the last layer: RGB the product of what they let through, A the
     /// farthest depth; and its framebuffer.
@@ -31,19 +39,22 @@ pub struct DepthPeel {
 }
 
 impl DepthPeel {
-    pub fn new(gl: &Gl, size: MapSize) -> Result<DepthPeel> {
+    /// A `size` peel of at most `layers` layers (at least 1).
+    pub fn new(gl: &Gl, size: MapSize, layers: u32) -> Result<DepthPeel> {
         let (w, h) = (size.width, size.height);
+        let count = layers.max(1);
         let depth = [
             Texture::depth(gl, w, h, DepthFormat::D32F)?,
             Texture::depth(gl, w, h, DepthFormat::D32F)?,
         ];
-        let layer = Texture::float_target(gl, w, h, 2)?;
+        let layers = Texture::float_rg_array(gl, w, h, count)?;
         let rest = Texture::float_target(gl, w, h, 4)?;
         // Owned before anything can fail, so a failure frees what was made.
         let mut peel = DepthPeel {
             gl: gl.clone(),
             depth,
-            layer,
+            layers,
+            count,
             fbos: [None, None],
             rest,
             rest_fbo: None,
@@ -61,17 +72,11 @@ impl DepthPeel {
                 super::counters::count(|c| c.framebuffers += 1);
                 peel.fbos[i] = Some(fbo);
                 gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-                let attach = |point, texture: &Texture| {
-                    gl.framebuffer_texture_2d(
-                        glow::FRAMEBUFFER,
-                        point,
-                        glow::TEXTURE_2D,
-                        Some(texture.id()),
-                        0,
-                    )
-                };
-                attach(glow::COLOR_ATTACHMENT0, &peel.layer);
-                attach(glow::DEPTH_ATTACHMENT, &peel.depth[i]);
+                let id = Some(peel.layers.id());
+                gl.framebuffer_texture_layer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, id, 0, 0);
+                let depth = Some(peel.depth[i].id());
+                let (target, point) = (glow::TEXTURE_2D, glow::DEPTH_ATTACHMENT);
+                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, point, target, depth, 0);
                 gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
                 let status = check_framebuffer(gl, &format!("depth peel {w}x{h} ({i})"));
                 gl.bind_framebuffer(glow::FRAMEBUFFER, None);
@@ -102,14 +107,11 @@ impl DepthPeel {
     /// Starts the rest after `k` layers: every fragment behind layer k - 1 (whose depth is
     /// bound on `unit`), with no depth test, blended into the rest texture cleared to
     /// (1, 1, 1, 0): RGB multiplied by the fragment's (what it lets through), A the larger
-    /// depth. Counted as a layer is.
-    pub fn begin_rest(&self, k: u32, unit: u32) -> PeelPass<'_> {
+    /// depth. Counted as a layer is; within `rect` alone, as a layer is.
+    pub fn begin_rest(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
         let gl = &self.gl;
-        self.depth[1 - (k % 2) as usize].bind(unit);
+        self.bind_target(k, unit, self.rest_fbo, rect);
         unsafe {
-            gl.bind_sampler(unit, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.rest_fbo);
-            gl.viewport(0, 0, self.rest.width() as i32, self.rest.height() as i32);
             gl.set_capability(glow::DEPTH_TEST, false);
             gl.set_capability(glow::CULL_FACE, false);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 1.0, 1.0, 0.0]);
@@ -132,24 +134,46 @@ impl DepthPeel {
         unsafe { self.gl.bind_sampler(unit, None) };
     }
 
-    /// Starts layer `k`: binds its framebuffer (depth texture k mod 2), clears the layer to
-    /// (1, 0) (no crossing) and the depth to 1, binds the previous layer's depth texture on
-    /// `unit` (no sampler object: `texelFetch` reads it) and starts counting. Depth test
-    /// LESS, no culling (a closed mesh is crossed twice), no blending. The caller binds
-    /// the peel program and draws the casters, then calls [`PeelPass::finish`].
-    pub fn begin(&self, k: u32, unit: u32) -> PeelPass<'_> {
+    /// Binds layer k - 1's depth on `unit` (no sampler object: `texelFetch` reads it)
+    /// and `fbo` over the whole map, scissored to `rect`.
+    fn bind_target(&self, k: u32, unit: u32, fbo: Option<glow::Framebuffer>, rect: PixelRect) {
         let gl = &self.gl;
-        let this = (k % 2) as usize;
-        self.depth[1 - this].bind(unit);
+        self.depth[1 - (k % 2) as usize].bind(unit);
+        let (w, h) = (self.layers.width() as i32, self.layers.height() as i32);
         unsafe {
             gl.bind_sampler(unit, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbos[this]);
-            gl.viewport(0, 0, self.layer.width() as i32, self.layer.height() as i32);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, fbo);
+            gl.viewport(0, 0, w, h);
+            gl.set_capability(glow::SCISSOR_TEST, true);
+            let (rw, rh) = (rect.width as i32, rect.height as i32);
+            gl.scissor(rect.x as i32, rect.y as i32, rw, rh);
+        }
+    }
+
+    /// The most layers it peels.
+    pub fn count(&self) -> u32 {
+        self.count
+    }
+
+    /// Starts layer `k` (below [`Self::count`]): binds its framebuffer (depth texture k
+    /// mod 2) with layer k of the array as its colour, clears that to [`NO_CROSSING`] and
+    /// the depth to 1, binds the previous layer's depth texture on
+    /// `unit` (no sampler object: `texelFetch` reads it) and starts counting. Depth test
+    /// LESS, no culling (a closed mesh is crossed twice), no blending. Everything is
+    /// cleared and drawn within `rect` alone (a scissor: the texels the casters can cover;
+    /// outside it the layers hold anything). The caller binds the peel program and draws
+    /// the casters, then calls [`PeelPass::finish`].
+    pub fn begin(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
+        let gl = &self.gl;
+        self.bind_target(k, unit, self.fbos[(k % 2) as usize], rect);
+        unsafe {
+            let (id, layer) = (Some(self.layers.id()), k.min(self.count - 1) as i32);
+            gl.framebuffer_texture_layer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, id, 0, layer);
             gl.depth_mask(true);
             gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LESS);
             gl.set_capability(glow::CULL_FACE, false);
-            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0, 0.0, 0.0, 0.0]);
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &NO_CROSSING);
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
             if let Some(q) = self.query {
                 gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
@@ -161,49 +185,18 @@ impl DepthPeel {
         }
     }
 
-    /// The last layer peeled: per texel its depth and opacity, (1, 0) where it caught
-    /// nothing.
-    pub fn layer(&self) -> &Texture {
-        &self.layer
-    }
-
-    /// Binds the last layer peeled on texture `unit` for `texelFetch`, with no sampler
-    /// object.
-    pub fn bind_layer(&self, unit: u32) {
-        self.layer.bind(unit);
+    /// Binds the layers on texture `unit` for `texelFetch` (a `sampler2DArray`), with no
+    /// sampler object: per texel and layer its depth and opacity, [`NO_CROSSING`] where the
+    /// layer caught nothing.
+    pub fn bind_layers(&self, unit: u32) {
+        self.layers.bind(unit);
         unsafe { self.gl.bind_sampler(unit, None) };
     }
 
-    /// The last layer read back (row 0 at the bottom): (depth, opacity) per texel.
-    pub fn read_layer(&self, k: u32) -> Vec<[f32; 2]> {
-        let (w, h) = (self.layer.width(), self.layer.height());
-        let mut bytes = vec![0u8; (w * h * 8) as usize];
-        unsafe {
-            self.gl
-                .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[(k % 2) as usize]);
-            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
-            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
-            self.gl.read_pixels(
-                0,
-                0,
-                w as i32,
-                h as i32,
-                glow::RG,
-                glow::FLOAT,
-                glow::PixelPackData::Slice(Some(&mut bytes)),
-            );
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-        }
-        let float = |c: &[u8]| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]);
-        bytes
-            .chunks_exact(8)
-            .map(|t| [float(&t[0..4]), float(&t[4..8])])
-            .collect()
-    }
-
-    /// Bytes allocated: two 4-byte depths, an 8-byte layer and a 16-byte rest a texel.
+    /// Bytes allocated: two 4-byte depths, 8 bytes a layer and a 16-byte rest a texel.
     pub fn bytes(&self) -> u64 {
-        u64::from(self.layer.width()) * u64::from(self.layer.height()) * 32
+        let texels = u64::from(self.layers.width()) * u64::from(self.layers.height());
+        texels * (8 + 8 * u64::from(self.count) + 16)
     }
 }
 
@@ -252,6 +245,7 @@ impl PeelPass<'_> {
             gl.blend_equation(glow::FUNC_ADD);
             gl.blend_func(glow::ONE, glow::ZERO);
             gl.set_capability(glow::DEPTH_TEST, true);
+            gl.set_capability(glow::SCISSOR_TEST, false);
             gl.use_program_once(None);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
         }

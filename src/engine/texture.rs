@@ -172,26 +172,54 @@ impl Texture {
     /// colour attachment of one framebuffer): LINEAR, clamped; the lookups sum them, and
     /// what they sum is linear in the crossings, so filtering them is exact.
     pub fn float_array(gl: &Gl, width: u32, height: u32, layers: u32) -> Result<Texture> {
-        let texture = Texture::create(gl, glow::TEXTURE_2D_ARRAY, width, height, "float array")?;
+        let texture = Texture::float_layers(gl, width, height, layers, glow::RGBA32F)?;
         unsafe {
             gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture.id));
-            gl.tex_image_3d(
-                glow::TEXTURE_2D_ARRAY,
-                0,
-                glow::RGBA32F as i32,
-                width as i32,
-                height as i32,
-                layers as i32,
-                0,
-                glow::RGBA,
-                glow::FLOAT,
-                glow::PixelUnpackData::Slice(None),
-            );
             let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, k, v as i32);
             p(glow::TEXTURE_MIN_FILTER, glow::LINEAR);
             p(glow::TEXTURE_MAG_FILTER, glow::LINEAR);
             p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
             p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
+        }
+        Ok(texture)
+    }
+
+    /// An empty array of `layers` RG32F textures (depth peeling's layers, one a pass, read
+    /// back with `texelFetch`): NEAREST, clamped.
+    pub fn float_rg_array(gl: &Gl, width: u32, height: u32, layers: u32) -> Result<Texture> {
+        let texture = Texture::float_layers(gl, width, height, layers, glow::RG32F)?;
+        texture.nearest_clamped();
+        Ok(texture)
+    }
+
+    /// An empty 2D array of `layers` float textures of `internal` (RG32F or RGBA32F).
+    fn float_layers(
+        gl: &Gl,
+        width: u32,
+        height: u32,
+        layers: u32,
+        internal: u32,
+    ) -> Result<Texture> {
+        let texture = Texture::create(gl, glow::TEXTURE_2D_ARRAY, width, height, "float array")?;
+        let format = match internal {
+            glow::RG32F => glow::RG,
+            _ => glow::RGBA,
+        };
+        unsafe {
+            gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture.id));
+            gl.tex_image_3d(
+                glow::TEXTURE_2D_ARRAY,
+                0,
+                internal as i32,
+                width as i32,
+                height as i32,
+                layers as i32,
+                0,
+                format,
+                glow::FLOAT,
+                glow::PixelUnpackData::Slice(None),
+            );
             gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
         }
         Ok(texture)

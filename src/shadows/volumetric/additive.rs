@@ -34,7 +34,7 @@ impl Method for Additive {
             (self.define.to_string(), count.to_string()),
         ];
         Ok(Box::new(AdditiveMap {
-            map: TranslucentMap::new(gl, settings.map_size, layers)?,
+            map: TranslucentMap::new(gl, settings.volumetric_size, layers)?,
             program: ShaderProgram::new(
                 gl,
                 &shaders::translucent_map_vert(),
@@ -74,7 +74,7 @@ struct AdditiveMap {
 
 impl VolumetricMap for AdditiveMap {
     fn fits(&self, settings: &ShadowSettings) -> bool {
-        self.count == (self.technique)(settings) && self.map.size() == settings.map_size
+        self.count == (self.technique)(settings) && self.map.size() == settings.volumetric_size
     }
 
     fn render(&mut self, draw: &Draw) -> Result<()> {

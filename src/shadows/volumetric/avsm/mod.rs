@@ -6,13 +6,15 @@
 //!
 //! GL 3.3 has no atomics or image stores to insert fragments as they come, so the light's
 //! translucent fragments are captured by depth peeling, up to `peel_layers` layers
-//! ([`DepthPeel`]; it stops at the first empty layer), and a full-screen pass per layer
-//! inserts that layer's crossing into every texel's curve: in depth order, as the paper
-//! asks. When the last layer allowed still caught something, one more pass folds all the
+//! ([`DepthPeel`]; it stops at the first empty layer), each into its own layer of an array.
+//! When the last layer allowed still caught something, one more pass folds all the
 //! fragments behind it into one crossing at the farthest of them (what they let through,
-//! multiplied by blending): the curve stays exact behind the medium, whatever its depth. Nodes are (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
-//! [`TranslucentMap`], 8 bytes a node; two maps take turns as source and target.
-//! `shaders/lib/avsm.glsl` looks the curve up in the four texels around a receiver.
+//! multiplied by blending): the curve stays exact behind the medium, whatever its depth.
+//! Then one full-screen pass builds every texel's curve in locals, inserting the layers'
+//! crossings nearest first (depth order, as the paper asks), and writes its nodes once:
+//! (depth, transmittance) pairs at 32-bit, two to an RGBA32F layer of a
+//! [`TranslucentMap`], 8 bytes a node. `shaders/lib/avsm.glsl` looks the curve up in the
+//! four texels around a receiver.
 
 pub mod curve;
 
@@ -31,8 +33,8 @@ pub struct Avsm;
 /// The unit the peel reads the previous layer's depth from, and the build its two inputs
 /// from (none of them the scene pass' units: these passes come before it).
 const PEEL_UNIT: u32 = 0;
-const BUILD_CURVE_UNIT: u32 = 0;
-const BUILD_LAYER_UNIT: u32 = 1;
+const BUILD_LAYERS_UNIT: u32 = 0;
+const BUILD_REST_UNIT: u32 = 1;
 
 /// Bytes a node: a 32-bit depth and a 32-bit transmittance.
 pub const NODE_BYTES: u32 = 8;
@@ -53,7 +55,7 @@ impl Method for Avsm {
         let (nodes, layers) = (settings.avsm_nodes, settings.peel_layers);
         Ok(Box::new(AvsmMap::new(
             gl,
-            settings.map_size,
+            settings.volumetric_size,
             nodes,
             layers,
         )?))
@@ -73,20 +75,15 @@ impl Method for Avsm {
         )
     }
 
-    /// At most: a peel and a build per layer, and for the rest.
+    /// At most: a peel per layer and for the rest, and one build.
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
-        (
-            16 * layers(settings.avsm_nodes),
-            2 * settings.peel_layers + 2,
-        )
+        (16 * layers(settings.avsm_nodes), settings.peel_layers + 2)
     }
 }
 
-/// A light's curves, its peeling and the two programs.
+/// A light's curves, its peeling and the programs.
 pub struct AvsmMap {
-    /// Source and target of the builds, by turns; `current` holds the finished curve.
-    curves: [TranslucentMap; 2],
-    current: usize,
+    curves: TranslucentMap,
     peel: DepthPeel,
     peel_program: ShaderProgram,
     /// The peel compiled with `REMAINDER`: the rest past the last layer.
@@ -94,7 +91,6 @@ pub struct AvsmMap {
     build_program: ShaderProgram,
     triangle: FullScreenTriangle,
     nodes: u32,
-    max_layers: u32,
     /// The layers the last render peeled that caught a crossing, and its passes.
     peeled: u32,
     passes: u32,
@@ -114,13 +110,11 @@ impl AvsmMap {
             ("AVSM_NODES".to_string(), nodes.to_string()),
             ("AVSM_LAYERS".to_string(), layers.to_string()),
         ];
+        let curves = TranslucentMap::new(gl, size, layers)?;
+        curves.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
         Ok(AvsmMap {
-            curves: [
-                TranslucentMap::new(gl, size, layers)?,
-                TranslucentMap::new(gl, size, layers)?,
-            ],
-            current: 0,
-            peel: DepthPeel::new(gl, size)?,
+            curves,
+            peel: DepthPeel::new(gl, size, max_layers)?,
             peel_program: ShaderProgram::new(
                 gl,
                 &shaders::translucent_map_vert(),
@@ -141,7 +135,6 @@ impl AvsmMap {
             )?,
             triangle: FullScreenTriangle::new(gl)?,
             nodes,
-            max_layers: max_layers.max(1),
             peeled: 0,
             passes: 0,
         })
@@ -155,10 +148,10 @@ impl AvsmMap {
 
     /// Peels layer `k` of the translucent casters (with `rest`, all behind layer k - 1):
     /// whether it caught anything.
-    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool) -> bool {
+    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool, rect: PixelRect) -> bool {
         let (pass, p) = match rest {
-            false => (self.peel.begin(k, PEEL_UNIT), &self.peel_program),
-            true => (self.peel.begin_rest(k, PEEL_UNIT), &self.rest_program),
+            false => (self.peel.begin(k, PEEL_UNIT, rect), &self.peel_program),
+            true => (self.peel.begin_rest(k, PEEL_UNIT, rect), &self.rest_program),
         };
         p.bind();
         p.set_i32("previousDepth", PEEL_UNIT as i32);
@@ -167,31 +160,25 @@ impl AvsmMap {
         pass.finish()
     }
 
-    /// Inserts the last peeled layer (with `rest`, the rest) into every texel's curve
-    /// (from an empty one when `first`): the current curves into the other map, which
-    /// becomes current; within `rect` alone (outside it both maps hold empty curves).
-    fn build(&mut self, first: bool, rest: bool, rect: PixelRect) {
-        let target = 1 - self.current;
-        let _pass = self.curves[target].begin_write(rect);
+    /// Builds every texel's curve within `rect` (outside it the map holds empty curves)
+    /// from the first `count` peeled layers, then the rest if `rest`.
+    fn build(&self, count: u32, rest: bool, rect: PixelRect) {
+        let _pass = self.curves.begin_write(rect);
         let p = &self.build_program;
         p.bind();
-        self.curves[self.current].bind(BUILD_CURVE_UNIT);
-        match rest {
-            false => self.peel.bind_layer(BUILD_LAYER_UNIT),
-            true => self.peel.bind_rest(BUILD_LAYER_UNIT),
-        }
-        p.set_i32("curve", BUILD_CURVE_UNIT as i32);
-        p.set_i32("layer", BUILD_LAYER_UNIT as i32);
-        p.set_i32("firstLayer", i32::from(first));
-        p.set_i32("rest", i32::from(rest));
+        self.peel.bind_layers(BUILD_LAYERS_UNIT);
+        self.peel.bind_rest(BUILD_REST_UNIT);
+        p.set_i32("layers", BUILD_LAYERS_UNIT as i32);
+        p.set_i32("rest", BUILD_REST_UNIT as i32);
+        p.set_i32("layerCount", count as i32);
+        p.set_i32("hasRest", i32::from(rest));
         self.triangle.draw();
-        self.current = target;
     }
 
     /// The nodes read back, texel by texel (row 0 at the bottom), nearest first; unused
     /// nodes left out.
     pub fn read_nodes(&self) -> Vec<Vec<curve::Node>> {
-        let map = &self.curves[self.current];
+        let map = &self.curves;
         let layers: Vec<Vec<[f32; 4]>> = (0..map.layers()).map(|l| map.read_layer(l)).collect();
         (0..layers[0].len())
             .map(|t| {
@@ -248,50 +235,63 @@ fn footprint(draw: &Draw, size: MapSize) -> Option<PixelRect> {
     })
 }
 
+/// Whether `outer` holds every texel of `inner`.
+fn within(inner: PixelRect, outer: PixelRect) -> bool {
+    inner.x >= outer.x
+        && inner.y >= outer.y
+        && inner.x + inner.width <= outer.x + outer.width
+        && inner.y + inner.height <= outer.y + outer.height
+}
+
 /// The depth of an unused node (the fitted depths run 0 to 1).
 pub const EMPTY_DEPTH: f32 = 2.0;
 
 impl VolumetricMap for AvsmMap {
     fn fits(&self, settings: &ShadowSettings) -> bool {
         self.nodes == settings.avsm_nodes
-            && self.max_layers == settings.peel_layers.max(1)
-            && self.curves[0].size() == settings.map_size
+            && self.peel.count() == settings.peel_layers.max(1)
+            && self.curves.size() == settings.volumetric_size
     }
 
-    /// Peels layer after layer, inserting each into the curves, until a layer is empty or
-    /// `peel_layers` are in, then folds in the rest if there may be one. The builds run
-    /// over the texels the translucent casters can cover alone; the rest of both maps is
-    /// cleared to empty curves first.
+    /// Peels layer after layer until a layer is empty or `peel_layers` are in, then the
+    /// rest if there may be one, and builds the curves in one pass over the texels the
+    /// translucent casters can cover. Outside them the curves are empty: set when the map
+    /// is made, and again within `draw.region` (what the casters covered before).
     fn render(&mut self, draw: &Draw) -> Result<()> {
         self.peeled = 0;
         self.passes = 0;
-        for map in &self.curves {
-            map.clear([EMPTY_DEPTH, 1.0, EMPTY_DEPTH, 1.0]);
+        let footprint = footprint(draw, self.curves.size());
+        // The texels the casters covered before and cover no longer: emptied.
+        let region = draw.region;
+        if region.width > 0 && region.height > 0 && !footprint.is_some_and(|r| within(region, r)) {
+            self.build(0, false, region);
         }
-        let Some(rect) = footprint(draw, self.curves[0].size()) else {
+        let Some(rect) = footprint else {
             return Ok(());
         };
-        for k in 0..self.max_layers {
-            let any = self.peel_layer(draw, k, false);
+        let most = self.peel.count();
+        let mut rest = false;
+        for k in 0..=most {
+            let any = self.peel_layer(draw, k, k == most, rect);
             self.passes += 1;
             if !any {
-                return Ok(());
+                break;
             }
-            self.build(k == 0, false, rect);
-            self.passes += 1;
-            self.peeled += 1;
+            if k == most {
+                rest = true;
+            } else {
+                self.peeled += 1;
+            }
         }
-        let any = self.peel_layer(draw, self.max_layers, true);
-        self.passes += 1;
-        if any {
-            self.build(false, true, rect);
+        if self.peeled > 0 {
+            self.build(self.peeled, rest, rect);
             self.passes += 1;
         }
         Ok(())
     }
 
     fn map(&self) -> &TranslucentMap {
-        &self.curves[self.current]
+        &self.curves
     }
 
     fn passes(&self) -> u32 {
