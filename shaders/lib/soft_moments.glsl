@@ -11,6 +11,9 @@ const float SOFT_MIN_TEXELS = 1.5;
 const float SOFT_MAX_TEXELS = 64.0;
 // Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
 const float SAT_SCALE_F = 131072.0;
+// The least variance of a search cell for msm-soft's search, whose settings hold none
+// (vssm's is its min_variance).
+const float SOFT_SEARCH_VARIANCE = 1e-6;
 
 // The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
 // (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
@@ -73,14 +76,69 @@ vec2 softHalf(vec2 halfUv, vec2 size)
     return clamp(halfUv * size, vec2(SOFT_MIN_TEXELS), vec2(SOFT_MAX_TEXELS));
 }
 
-// The blockers' mean depth from a box's mean depth `mean` and the fraction `unoccluded`
-// of it at the receiver's depth t or beyond (the moments' bound): the box is a mix of
-// blockers and a planar receiver at t, mean = unoccluded t + (1 - unoccluded) blockers
-// (Yang et al. 2010). Unstable as the blockers' share nears 0; t then.
-float softBlockerDepth(float mean, float unoccluded, float t)
+// The receiver's depth as a plane in the map, its slope (depth per uv) from the screen-space
+// derivatives of (uv, z), as PCSS's receiver-plane bias (soft_filters.glsl): none where the
+// 2 x 2 solve is singular, at most PCSS_MAX_SLOPE.
+vec2 softReceiverSlope(vec3 projCoords)
 {
-    float share = 1.0 - unoccluded;
-    return share > 1e-3 ? clamp((mean - unoccluded * t) / share, 0.0, t) : t;
+    vec3 ddx = dFdx(projCoords);
+    vec3 ddy = dFdy(projCoords);
+    float det = ddx.x * ddy.y - ddx.y * ddy.x;
+    vec2 slope = abs(det) > 1e-14
+        ? vec2(ddx.z * ddy.y - ddx.y * ddy.z, ddx.x * ddy.z - ddy.x * ddx.z) / det
+        : vec2(0.0);
+    return clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
+}
+
+// A table's index for the corner before texel `x` of the map (whole texels, within it).
+int satCorner(float x, float size)
+{
+    return int(clamp(floor(x + 0.5), 1.0, size - 1.0)) - 1;
+}
+
+// The blocker search at a fixed cost: the search box split in 4 x 4 cells of whole texels
+// (a 5 x 5 lattice of the table's corners, 25 reads, whatever the box's width), each
+// cell's (z, z^2) tested by Chebyshev's bound against the receiver plane at the cell's
+// centre, `t + slope . offset`, so that a tilted or curved receiver is not taken for a
+// blocker (one planar box over the whole region did, and drew penumbrae too wide). A cell
+// of blockers over a planar receiver has mean = p t + (1 - p) blockers (Yang et al. 2010);
+// the blockers' mean depth is the cells' blocker sums over their shares. t where no cell
+// holds blockers.
+float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t,
+                        vec2 slope, float minVariance)
+{
+    int xs[5];
+    int ys[5];
+    for (int k = 0; k < 5; ++k) {
+        vec2 at = centre - reach + reach * (0.5 * float(k));
+        xs[k] = satCorner(at.x, size.x);
+        ys[k] = satCorner(at.y, size.y);
+    }
+    uvec2 corner[25];
+    for (int j = 0; j < 5; ++j) {
+        for (int i = 0; i < 5; ++i) {
+            corner[j * 5 + i] = texelFetch(table, ivec2(xs[i], ys[j]), 0).xy;
+        }
+    }
+    float share = 0.0;
+    float blockers = 0.0;
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            float area = float((xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
+            if (area == 0.0) {
+                continue;
+            }
+            uvec2 sum = corner[(j + 1) * 5 + i + 1] - corner[(j + 1) * 5 + i]
+                      - corner[j * 5 + i + 1] + corner[j * 5 + i];
+            vec2 m = vec2(sum) / (SAT_SCALE_F * area);
+            vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], ys[j] + ys[j + 1]) + 1.0 - centre;
+            float ti = t + dot(slope, offset / size);
+            float unoccluded = chebyshevUpperBound(m, ti, minVariance);
+            share += area * (1.0 - unoccluded);
+            blockers += area * max(m.x - unoccluded * ti, 0.0);
+        }
+    }
+    return share > 1e-3 ? clamp(blockers / share, 0.0, t) : t;
 }
 
 // The filter's half width in texels, from the blocker search: the penumbra of blockers at
@@ -111,9 +169,8 @@ float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
-    vec2 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size).xy;
-    float unoccluded = chebyshevUpperBound(search, t, minVariance);
-    float zb = softBlockerDepth(search.x, unoccluded, t);
+    float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
+                                 size, t, softReceiverSlope(projCoords), minVariance);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
     vec2 m = satBoxMean(table, centre, reach, size).xy;
     float lit = reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
@@ -129,9 +186,8 @@ float msmSoft(usampler2D table, vec4 position, float bias, vec2 texel, vec4 ligh
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
-    vec4 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size);
-    float unoccluded = momentVisibility(search, t, alpha, toward);
-    float zb = softBlockerDepth(search.x, unoccluded, t);
+    float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
+                                 size, t, softReceiverSlope(projCoords), SOFT_SEARCH_VARIANCE);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
     vec4 m = satBoxMean(table, centre, reach, size);
     float lit = momentVisibility(m, t, alpha, toward);
