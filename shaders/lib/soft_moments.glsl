@@ -14,6 +14,12 @@ const float SAT_SCALE_F = 131072.0;
 // The least variance of a search cell for msm-soft's search, whose settings hold none
 // (vssm's is its min_variance).
 const float SOFT_SEARCH_VARIANCE = 1e-6;
+// A disc light's penumbra across a straight edge is the share of the disc past a line,
+// whose spread along the edge's normal has variance R^2 / 4 for a disc of radius R; a box
+// of half width a has a^2 / 3. The box of the same spread: a = R sqrt(3) / 2.
+const float SOFT_BOX_OF_DISC = 0.8660254;
+// From this half width on (texels) the filter box is split in cells.
+const float SOFT_CELL_TEXELS = 4.0;
 
 // The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
 // (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
@@ -96,8 +102,38 @@ int satCorner(float x, float size)
     return int(clamp(floor(x + 0.5), 1.0, size - 1.0)) - 1;
 }
 
-// The blocker search at a fixed cost: the search box split in 4 x 4 cells of whole texels
-// (a 5 x 5 lattice of the table's corners, 25 reads, whatever the box's width), each
+// The box centre +- reach split in 4 x 4 cells of whole texels: a 5 x 5 lattice of the
+// table's corners, 25 reads whatever the box's width. Each cell's mean (z, z^2) and its
+// (offset of its centre from `centre` in texels, area in texels; 0 for a cell of no texel).
+void satCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, out vec4 means[16],
+              out vec3 cells[16])
+{
+    int xs[5];
+    int ys[5];
+    for (int k = 0; k < 5; ++k) {
+        vec2 at = centre - reach + reach * (0.5 * float(k));
+        xs[k] = satCorner(at.x, size.x);
+        ys[k] = satCorner(at.y, size.y);
+    }
+    uvec4 corner[25];
+    for (int j = 0; j < 5; ++j) {
+        for (int i = 0; i < 5; ++i) {
+            corner[j * 5 + i] = texelFetch(table, ivec2(xs[i], ys[j]), 0);
+        }
+    }
+    for (int j = 0; j < 4; ++j) {
+        for (int i = 0; i < 4; ++i) {
+            float area = float((xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
+            uvec4 sum = corner[(j + 1) * 5 + i + 1] - corner[(j + 1) * 5 + i]
+                      - corner[j * 5 + i + 1] + corner[j * 5 + i];
+            means[j * 4 + i] = vec4(sum) / (SAT_SCALE_F * max(area, 1.0));
+            vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], ys[j] + ys[j + 1]) + 1.0 - centre;
+            cells[j * 4 + i] = vec3(offset, area);
+        }
+    }
+}
+
+// The blocker search at a fixed cost: the search box's 4 x 4 cells (satCells), each
 // cell's (z, z^2) tested by Chebyshev's bound against the receiver plane at the cell's
 // centre, `t + slope . offset`, so that a tilted or curved receiver is not taken for a
 // blocker (one planar box over the whole region did, and drew penumbrae too wide). A cell
@@ -107,47 +143,75 @@ int satCorner(float x, float size)
 float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t,
                         vec2 slope, float minVariance)
 {
-    int xs[5];
-    int ys[5];
-    for (int k = 0; k < 5; ++k) {
-        vec2 at = centre - reach + reach * (0.5 * float(k));
-        xs[k] = satCorner(at.x, size.x);
-        ys[k] = satCorner(at.y, size.y);
-    }
-    uvec2 corner[25];
-    for (int j = 0; j < 5; ++j) {
-        for (int i = 0; i < 5; ++i) {
-            corner[j * 5 + i] = texelFetch(table, ivec2(xs[i], ys[j]), 0).xy;
-        }
-    }
+    vec4 means[16];
+    vec3 cells[16];
+    satCells(table, centre, reach, size, means, cells);
     float share = 0.0;
     float blockers = 0.0;
-    for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
-            float area = float((xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
-            if (area == 0.0) {
-                continue;
-            }
-            uvec2 sum = corner[(j + 1) * 5 + i + 1] - corner[(j + 1) * 5 + i]
-                      - corner[j * 5 + i + 1] + corner[j * 5 + i];
-            vec2 m = vec2(sum) / (SAT_SCALE_F * area);
-            vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], ys[j] + ys[j + 1]) + 1.0 - centre;
-            float ti = t + dot(slope, offset / size);
-            float unoccluded = chebyshevUpperBound(m, ti, minVariance);
-            share += area * (1.0 - unoccluded);
-            blockers += area * max(m.x - unoccluded * ti, 0.0);
-        }
+    for (int k = 0; k < 16; ++k) {
+        float ti = t + dot(slope, cells[k].xy / size);
+        float unoccluded = chebyshevUpperBound(means[k].xy, ti, minVariance);
+        share += cells[k].z * (1.0 - unoccluded);
+        blockers += cells[k].z * max(means[k].x - unoccluded * ti, 0.0);
     }
     return share > 1e-3 ? clamp(blockers / share, 0.0, t) : t;
 }
 
+// vssm's filter: Chebyshev's bound over the box with the light-bleeding reduction. From
+// SOFT_CELL_TEXELS on, over its 4 x 4 cells (satCells), each cell's bound against the
+// receiver plane at its centre, weighted by its area: VSSM's subdivision of a non-planar
+// receiver, here always, with the receiver's plane (one box over a tilted floor mixes its
+// depths into the variance and reads lit where it is not). Below, one box, whose
+// fractional corners keep a narrow kernel smooth.
+float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+                 float minVariance, float bleedReduction)
+{
+    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
+        vec2 m = satBoxMean(table, centre, reach, size).xy;
+        return reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+    }
+    vec4 means[16];
+    vec3 cells[16];
+    satCells(table, centre, reach, size, means, cells);
+    float lit = 0.0;
+    float area = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        float ti = t + dot(slope, cells[k].xy / size);
+        float bound = chebyshevUpperBound(means[k].xy, ti, minVariance);
+        lit += cells[k].z * reduceLightBleeding(bound, bleedReduction);
+        area += cells[k].z;
+    }
+    return lit / max(area, 1.0);
+}
+
+// msm-soft's filter: the same with the 4MSM reconstruction (moment bias `alpha` toward
+// `toward`) for each cell.
+float msmSoftFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+                    float alpha, vec4 toward)
+{
+    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
+        return momentVisibility(satBoxMean(table, centre, reach, size), t, alpha, toward);
+    }
+    vec4 means[16];
+    vec3 cells[16];
+    satCells(table, centre, reach, size, means, cells);
+    float lit = 0.0;
+    float area = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        float ti = t + dot(slope, cells[k].xy / size);
+        lit += cells[k].z * momentVisibility(means[k], ti, alpha, toward);
+        area += cells[k].z;
+    }
+    return lit / max(area, 1.0);
+}
+
 // The filter's half width in texels, from the blocker search: the penumbra of blockers at
-// depth zb for a receiver at z (pcssPenumbra), within the bounds.
+// depth zb for a receiver at z (pcssPenumbra), times SOFT_BOX_OF_DISC, within the bounds.
 vec2 softFilterHalf(float z, float zb, vec4 light, bool perspective, vec2 size)
 {
     float dr = pcssDistance(z, light, perspective);
     float db = pcssDistance(zb, light, perspective);
-    return softHalf(pcssPenumbra(dr, db, light, perspective), size);
+    return softHalf(SOFT_BOX_OF_DISC * pcssPenumbra(dr, db, light, perspective), size);
 }
 
 // The search region's half width in texels: the light's disc seen from the receiver
@@ -169,11 +233,11 @@ float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
+    vec2 slope = softReceiverSlope(projCoords);
     float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
-                                 size, t, softReceiverSlope(projCoords), minVariance);
+                                 size, t, slope, minVariance);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
-    vec2 m = satBoxMean(table, centre, reach, size).xy;
-    float lit = reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+    float lit = vssmFilter(table, centre, reach, size, t, slope, minVariance, bleedReduction);
     return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }
 
@@ -186,10 +250,10 @@ float msmSoft(usampler2D table, vec4 position, float bias, vec2 texel, vec4 ligh
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
+    vec2 slope = softReceiverSlope(projCoords);
     float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
-                                 size, t, softReceiverSlope(projCoords), SOFT_SEARCH_VARIANCE);
+                                 size, t, slope, SOFT_SEARCH_VARIANCE);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
-    vec4 m = satBoxMean(table, centre, reach, size);
-    float lit = momentVisibility(m, t, alpha, toward);
+    float lit = msmSoftFilter(table, centre, reach, size, t, slope, alpha, toward);
     return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }
