@@ -102,66 +102,85 @@ int satCorner(float x, float size)
     return int(clamp(floor(x + 0.5), 1.0, size - 1.0)) - 1;
 }
 
-// The box centre +- reach split in 4 x 4 cells of whole texels: a 5 x 5 lattice of the
-// table's corners, 25 reads whatever the box's width. Each cell's mean (z, z^2) and its
-// (offset of its centre from `centre` in texels, area in texels; 0 for a cell of no texel).
-void satCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, out vec4 means[16],
-              out vec3 cells[16])
+// What softCells sums over a box's cells: the blockers (share, depth sum), vssm's bound
+// or msm-soft's 4MSM visibility.
+const int SOFT_SEARCH = 0;
+const int SOFT_VSSM = 1;
+const int SOFT_MSM = 2;
+
+// One cell's part, `kind` as softCells', for the cell's mean moments `m` and the receiver
+// plane's depth `ti` at its centre. A cell of blockers over a planar receiver has
+// mean = p t + (1 - p) blockers (Yang et al. 2010): the search's part is (1 - p, blockers
+// (1 - p)). `settings`: vssm's (min variance, bleed reduction); msm-soft's (alpha, toward).
+vec2 softCell(int kind, vec4 m, float ti, float minVariance, vec2 settings, vec4 toward)
 {
-    int xs[5];
-    int ys[5];
-    for (int k = 0; k < 5; ++k) {
-        vec2 at = centre - reach + reach * (0.5 * float(k));
-        xs[k] = satCorner(at.x, size.x);
-        ys[k] = satCorner(at.y, size.y);
+    if (kind == SOFT_SEARCH) {
+        float unoccluded = chebyshevUpperBound(m.xy, ti, minVariance);
+        return vec2(1.0 - unoccluded, max(m.x - unoccluded * ti, 0.0));
     }
-    uvec4 corner[25];
-    for (int j = 0; j < 5; ++j) {
-        for (int i = 0; i < 5; ++i) {
-            corner[j * 5 + i] = texelFetch(table, ivec2(xs[i], ys[j]), 0);
-        }
+    if (kind == SOFT_VSSM) {
+        float bound = chebyshevUpperBound(m.xy, ti, settings.x);
+        return vec2(reduceLightBleeding(bound, settings.y), 0.0);
     }
-    for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
-            float area = float((xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
-            uvec4 sum = corner[(j + 1) * 5 + i + 1] - corner[(j + 1) * 5 + i]
-                      - corner[j * 5 + i + 1] + corner[j * 5 + i];
-            means[j * 4 + i] = vec4(sum) / (SAT_SCALE_F * max(area, 1.0));
-            vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], ys[j] + ys[j + 1]) + 1.0 - centre;
-            cells[j * 4 + i] = vec3(offset, area);
-        }
-    }
+    return vec2(momentVisibility(m, ti, settings.x, toward), 0.0);
 }
 
-// The blocker search at a fixed cost: the search box's 4 x 4 cells (satCells), each
-// cell's (z, z^2) tested by Chebyshev's bound against the receiver plane at the cell's
-// centre, `t + slope . offset`, so that a tilted or curved receiver is not taken for a
-// blocker (one planar box over the whole region did, and drew penumbrae too wide). A cell
-// of blockers over a planar receiver has mean = p t + (1 - p) blockers (Yang et al. 2010);
-// the blockers' mean depth is the cells' blocker sums over their shares. t where no cell
-// holds blockers.
+// The box centre +- reach split in 4 x 4 cells of whole texels, a 5 x 5 lattice of the
+// table's corners: 25 reads whatever the box's width. Each cell's mean moments are tested
+// against the receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver
+// mixed into one box's variance reads lit where it is not, and passes for a blocker:
+// VSSM's subdivision of a non-planar receiver, here always, with the receiver's plane);
+// returns the cells' parts (softCell) weighted by their areas, over the box's area. Read
+// row by row, so that no array is indexed by a loop the compiler may keep.
+vec2 softCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+               int kind, float minVariance, vec2 settings, vec4 toward)
+{
+    int xs[5];
+    for (int i = 0; i < 5; ++i) {
+        xs[i] = satCorner(centre.x - reach.x + reach.x * (0.5 * float(i)), size.x);
+    }
+    vec2 sum = vec2(0.0);
+    uvec4 above[5];
+    int yAbove = 0;
+    int yFirst = 0;
+    for (int j = 0; j < 5; ++j) {
+        int y = satCorner(centre.y - reach.y + reach.y * (0.5 * float(j)), size.y);
+        uvec4 row[5];
+        for (int i = 0; i < 5; ++i) {
+            row[i] = texelFetch(table, ivec2(xs[i], y), 0);
+        }
+        if (j > 0) {
+            for (int i = 0; i < 4; ++i) {
+                float area = float((xs[i + 1] - xs[i]) * (y - yAbove));
+                uvec4 cell = row[i + 1] - row[i] - above[i + 1] + above[i];
+                vec4 m = vec4(cell) / (SAT_SCALE_F * max(area, 1.0));
+                vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], y + yAbove) + 1.0 - centre;
+                float ti = t + dot(slope, offset / size);
+                sum += area * softCell(kind, m, ti, minVariance, settings, toward);
+            }
+        } else {
+            yFirst = y;
+        }
+        above = row;
+        yAbove = y;
+    }
+    return sum / max(float((xs[4] - xs[0]) * (yAbove - yFirst)), 1.0);
+}
+
+// The blocker search at a fixed cost: the search box's cells (softCells) by Chebyshev's
+// bound, each against the receiver plane (one planar box over the whole region took the
+// tilted floor for blockers, and drew penumbrae too wide); the blockers' mean depth is the
+// cells' blocker sums over their shares. t where no cell holds blockers.
 float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t,
                         vec2 slope, float minVariance)
 {
-    vec4 means[16];
-    vec3 cells[16];
-    satCells(table, centre, reach, size, means, cells);
-    float share = 0.0;
-    float blockers = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        float ti = t + dot(slope, cells[k].xy / size);
-        float unoccluded = chebyshevUpperBound(means[k].xy, ti, minVariance);
-        share += cells[k].z * (1.0 - unoccluded);
-        blockers += cells[k].z * max(means[k].x - unoccluded * ti, 0.0);
-    }
-    return share > 1e-3 ? clamp(blockers / share, 0.0, t) : t;
+    vec2 found = softCells(table, centre, reach, size, t, slope, SOFT_SEARCH, minVariance,
+                           vec2(0.0), vec4(0.0));
+    return found.x > 1e-5 ? clamp(found.y / found.x, 0.0, t) : t;
 }
 
-// vssm's filter: Chebyshev's bound over the box with the light-bleeding reduction. From
-// SOFT_CELL_TEXELS on, over its 4 x 4 cells (satCells), each cell's bound against the
-// receiver plane at its centre, weighted by its area: VSSM's subdivision of a non-planar
-// receiver, here always, with the receiver's plane (one box over a tilted floor mixes its
-// depths into the variance and reads lit where it is not). Below, one box, whose
+// vssm's filter: Chebyshev's bound with the light-bleeding reduction, from
+// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over one box, whose
 // fractional corners keep a narrow kernel smooth.
 float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                  float minVariance, float bleedReduction)
@@ -170,39 +189,20 @@ float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, 
         vec2 m = satBoxMean(table, centre, reach, size).xy;
         return reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
     }
-    vec4 means[16];
-    vec3 cells[16];
-    satCells(table, centre, reach, size, means, cells);
-    float lit = 0.0;
-    float area = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        float ti = t + dot(slope, cells[k].xy / size);
-        float bound = chebyshevUpperBound(means[k].xy, ti, minVariance);
-        lit += cells[k].z * reduceLightBleeding(bound, bleedReduction);
-        area += cells[k].z;
-    }
-    return lit / max(area, 1.0);
+    return softCells(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
+                     vec2(minVariance, bleedReduction), vec4(0.0)).x;
 }
 
 // msm-soft's filter: the same with the 4MSM reconstruction (moment bias `alpha` toward
-// `toward`) for each cell.
+// `toward`).
 float msmSoftFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                     float alpha, vec4 toward)
 {
     if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
         return momentVisibility(satBoxMean(table, centre, reach, size), t, alpha, toward);
     }
-    vec4 means[16];
-    vec3 cells[16];
-    satCells(table, centre, reach, size, means, cells);
-    float lit = 0.0;
-    float area = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        float ti = t + dot(slope, cells[k].xy / size);
-        lit += cells[k].z * momentVisibility(means[k], ti, alpha, toward);
-        area += cells[k].z;
-    }
-    return lit / max(area, 1.0);
+    return softCells(table, centre, reach, size, t, slope, SOFT_MSM, 0.0, vec2(alpha, 0.0),
+                     toward).x;
 }
 
 // The filter's half width in texels, from the blocker search: the penumbra of blockers at
