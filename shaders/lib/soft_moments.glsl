@@ -2,8 +2,9 @@
 // shadow maps (Yang et al. 2010, on Lauritzen's summed-area variance shadow maps, GPU Gems 3
 // ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
 // whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
-// filter as wide as the penumbra; but each stage is one box of the table, whatever its
-// width: 16 integer reads, the same cost at 2 texels as at 64.
+// filter as wide as the penumbra; but each stage reads the table a fixed number of times
+// whatever its width (25 integer reads for 4 x 4 cells, 16 for one box), the same cost at
+// 2 texels as at 64.
 
 // The box's half width in texels: at least 1.5 (a kernel that vanishes at contact brings
 // back acne), at most 64 (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
