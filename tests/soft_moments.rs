@@ -180,15 +180,16 @@ fn on_the_wide_penumbra_scene_the_soft_moment_filters_beat_every_fixed_kernel() 
         let mae = area_mae(&scene, filter, &o);
         for (f, fixed_mae) in fixed {
             assert!(
-                mae < 0.6 * fixed_mae,
+                mae < 0.3 * fixed_mae,
                 "{}: {mae} against {}'s {fixed_mae}",
                 filter.name(),
                 f.name()
             );
         }
-        // Measured: msm-soft 1.6 x PCSS's, vssm 1.8 x (their light bleeding under the low plate).
+        // Measured: vssm 0.80 x PCSS's, msm-soft 0.85 x (with one box for the blocker search,
+        // 1.8 x and 1.6 x: the light bleeding under the low plate).
         assert!(
-            mae < 2.0 * pcss,
+            mae < 1.1 * pcss,
             "{}: {mae} against PCSS's {pcss}",
             filter.name()
         );
@@ -284,8 +285,9 @@ fn on_a_step_and_under_overlapping_casters_the_error_is_reported_and_bounded() {
             filter.name(),
             a.mae
         );
+        // Measured: vssm 0.79 x PCSS's, msm-soft 0.52 x.
         assert!(
-            a.mae < 2.0 * pcss,
+            a.mae < pcss,
             "{}: {} against PCSS's {pcss}",
             filter.name(),
             a.mae

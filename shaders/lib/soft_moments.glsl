@@ -2,8 +2,9 @@
 // shadow maps (Yang et al. 2010, on Lauritzen's summed-area variance shadow maps, GPU Gems 3
 // ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
 // whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
-// filter as wide as the penumbra; but each stage is one box of the table, whatever its
-// width: 16 integer reads, the same cost at 2 texels as at 64.
+// filter as wide as the penumbra; but each stage reads the table a fixed number of times
+// whatever its width (25 integer reads for 4 x 4 cells, 16 for one box), the same cost at
+// 2 texels as at 64.
 
 // The box's half width in texels: at least 1.5 (a kernel that vanishes at contact brings
 // back acne), at most 64 (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
@@ -11,6 +12,15 @@ const float SOFT_MIN_TEXELS = 1.5;
 const float SOFT_MAX_TEXELS = 64.0;
 // Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
 const float SAT_SCALE_F = 131072.0;
+// The least variance of a search cell for msm-soft's search, whose settings hold none
+// (vssm's is its min_variance).
+const float SOFT_SEARCH_VARIANCE = 1e-6;
+// A disc light's penumbra across a straight edge is the share of the disc past a line,
+// whose spread along the edge's normal has variance R^2 / 4 for a disc of radius R; a box
+// of half width a has a^2 / 3. The box of the same spread: a = R sqrt(3) / 2.
+const float SOFT_BOX_OF_DISC = 0.8660254;
+// From this half width on (texels) the filter box is split in cells.
+const float SOFT_CELL_TEXELS = 4.0;
 
 // The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
 // (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
@@ -73,23 +83,136 @@ vec2 softHalf(vec2 halfUv, vec2 size)
     return clamp(halfUv * size, vec2(SOFT_MIN_TEXELS), vec2(SOFT_MAX_TEXELS));
 }
 
-// The blockers' mean depth from a box's mean depth `mean` and the fraction `unoccluded`
-// of it at the receiver's depth t or beyond (the moments' bound): the box is a mix of
-// blockers and a planar receiver at t, mean = unoccluded t + (1 - unoccluded) blockers
-// (Yang et al. 2010). Unstable as the blockers' share nears 0; t then.
-float softBlockerDepth(float mean, float unoccluded, float t)
+// The receiver's depth as a plane in the map, its slope (depth per uv) from the screen-space
+// derivatives of (uv, z), as PCSS's receiver-plane bias (soft_filters.glsl): none where the
+// 2 x 2 solve is singular, at most PCSS_MAX_SLOPE.
+vec2 softReceiverSlope(vec3 projCoords)
 {
-    float share = 1.0 - unoccluded;
-    return share > 1e-3 ? clamp((mean - unoccluded * t) / share, 0.0, t) : t;
+    vec3 ddx = dFdx(projCoords);
+    vec3 ddy = dFdy(projCoords);
+    float det = ddx.x * ddy.y - ddx.y * ddy.x;
+    vec2 slope = abs(det) > 1e-14
+        ? vec2(ddx.z * ddy.y - ddx.y * ddy.z, ddx.x * ddy.z - ddy.x * ddx.z) / det
+        : vec2(0.0);
+    return clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
+}
+
+// A table's index for the corner before texel `x` of the map (whole texels, within it).
+int satCorner(float x, float size)
+{
+    return int(clamp(floor(x + 0.5), 1.0, size - 1.0)) - 1;
+}
+
+// What softCells sums over a box's cells: the blockers (share, depth sum), vssm's bound
+// or msm-soft's 4MSM visibility.
+const int SOFT_SEARCH = 0;
+const int SOFT_VSSM = 1;
+const int SOFT_MSM = 2;
+
+// One cell's part, `kind` as softCells', for the cell's mean moments `m` and the receiver
+// plane's depth `ti` at its centre. A cell of blockers over a planar receiver has
+// mean = p t + (1 - p) blockers (Yang et al. 2010): the search's part is (1 - p, blockers
+// (1 - p)). `settings`: vssm's (min variance, bleed reduction); msm-soft's (alpha, toward).
+vec2 softCell(int kind, vec4 m, float ti, float minVariance, vec2 settings, vec4 toward)
+{
+    if (kind == SOFT_SEARCH) {
+        float unoccluded = chebyshevUpperBound(m.xy, ti, minVariance);
+        return vec2(1.0 - unoccluded, max(m.x - unoccluded * ti, 0.0));
+    }
+    if (kind == SOFT_VSSM) {
+        float bound = chebyshevUpperBound(m.xy, ti, settings.x);
+        return vec2(reduceLightBleeding(bound, settings.y), 0.0);
+    }
+    return vec2(momentVisibility(m, ti, settings.x, toward), 0.0);
+}
+
+// The box centre +- reach split in 4 x 4 cells of whole texels, a 5 x 5 lattice of the
+// table's corners: 25 reads whatever the box's width. Each cell's mean moments are tested
+// against the receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver
+// mixed into one box's variance reads lit where it is not, and passes for a blocker:
+// VSSM's subdivision of a non-planar receiver, here always, with the receiver's plane);
+// returns the cells' parts (softCell) weighted by their areas, over the box's area. Read
+// row by row, so that no array is indexed by a loop the compiler may keep.
+vec2 softCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+               int kind, float minVariance, vec2 settings, vec4 toward)
+{
+    int xs[5];
+    for (int i = 0; i < 5; ++i) {
+        xs[i] = satCorner(centre.x - reach.x + reach.x * (0.5 * float(i)), size.x);
+    }
+    vec2 sum = vec2(0.0);
+    uvec4 above[5];
+    int yAbove = 0;
+    int yFirst = 0;
+    for (int j = 0; j < 5; ++j) {
+        int y = satCorner(centre.y - reach.y + reach.y * (0.5 * float(j)), size.y);
+        uvec4 row[5];
+        for (int i = 0; i < 5; ++i) {
+            row[i] = texelFetch(table, ivec2(xs[i], y), 0);
+        }
+        if (j > 0) {
+            for (int i = 0; i < 4; ++i) {
+                float area = float((xs[i + 1] - xs[i]) * (y - yAbove));
+                uvec4 cell = row[i + 1] - row[i] - above[i + 1] + above[i];
+                vec4 m = vec4(cell) / (SAT_SCALE_F * max(area, 1.0));
+                vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], y + yAbove) + 1.0 - centre;
+                float ti = t + dot(slope, offset / size);
+                sum += area * softCell(kind, m, ti, minVariance, settings, toward);
+            }
+        } else {
+            yFirst = y;
+        }
+        above = row;
+        yAbove = y;
+    }
+    return sum / max(float((xs[4] - xs[0]) * (yAbove - yFirst)), 1.0);
+}
+
+// The blocker search at a fixed cost: the search box's cells (softCells) by Chebyshev's
+// bound, each against the receiver plane (one planar box over the whole region took the
+// tilted floor for blockers, and drew penumbrae too wide); the blockers' mean depth is the
+// cells' blocker sums over their shares. t where no cell holds blockers.
+float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t,
+                        vec2 slope, float minVariance)
+{
+    vec2 found = softCells(table, centre, reach, size, t, slope, SOFT_SEARCH, minVariance,
+                           vec2(0.0), vec4(0.0));
+    return found.x > 1e-5 ? clamp(found.y / found.x, 0.0, t) : t;
+}
+
+// vssm's filter: Chebyshev's bound with the light-bleeding reduction, from
+// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over one box, whose
+// fractional corners keep a narrow kernel smooth.
+float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+                 float minVariance, float bleedReduction)
+{
+    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
+        vec2 m = satBoxMean(table, centre, reach, size).xy;
+        return reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+    }
+    return softCells(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
+                     vec2(minVariance, bleedReduction), vec4(0.0)).x;
+}
+
+// msm-soft's filter: the same with the 4MSM reconstruction (moment bias `alpha` toward
+// `toward`).
+float msmSoftFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+                    float alpha, vec4 toward)
+{
+    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
+        return momentVisibility(satBoxMean(table, centre, reach, size), t, alpha, toward);
+    }
+    return softCells(table, centre, reach, size, t, slope, SOFT_MSM, 0.0, vec2(alpha, 0.0),
+                     toward).x;
 }
 
 // The filter's half width in texels, from the blocker search: the penumbra of blockers at
-// depth zb for a receiver at z (pcssPenumbra), within the bounds.
+// depth zb for a receiver at z (pcssPenumbra), times SOFT_BOX_OF_DISC, within the bounds.
 vec2 softFilterHalf(float z, float zb, vec4 light, bool perspective, vec2 size)
 {
     float dr = pcssDistance(z, light, perspective);
     float db = pcssDistance(zb, light, perspective);
-    return softHalf(pcssPenumbra(dr, db, light, perspective), size);
+    return softHalf(SOFT_BOX_OF_DISC * pcssPenumbra(dr, db, light, perspective), size);
 }
 
 // The search region's half width in texels: the light's disc seen from the receiver
@@ -111,12 +234,11 @@ float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
-    vec2 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size).xy;
-    float unoccluded = chebyshevUpperBound(search, t, minVariance);
-    float zb = softBlockerDepth(search.x, unoccluded, t);
+    vec2 slope = softReceiverSlope(projCoords);
+    float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
+                                 size, t, slope, minVariance);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
-    vec2 m = satBoxMean(table, centre, reach, size).xy;
-    float lit = reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+    float lit = vssmFilter(table, centre, reach, size, t, slope, minVariance, bleedReduction);
     return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }
 
@@ -129,11 +251,10 @@ float msmSoft(usampler2D table, vec4 position, float bias, vec2 texel, vec4 ligh
     vec2 size = 1.0 / texel;
     vec2 centre = projCoords.xy * size;
     float t = projCoords.z - bias;
-    vec4 search = satBoxMean(table, centre, softSearchHalf(t, light, perspective, size), size);
-    float unoccluded = momentVisibility(search, t, alpha, toward);
-    float zb = softBlockerDepth(search.x, unoccluded, t);
+    vec2 slope = softReceiverSlope(projCoords);
+    float zb = softBlockerSearch(table, centre, softSearchHalf(t, light, perspective, size),
+                                 size, t, slope, SOFT_SEARCH_VARIANCE);
     vec2 reach = softFilterHalf(t, zb, light, perspective, size);
-    vec4 m = satBoxMean(table, centre, reach, size);
-    float lit = momentVisibility(m, t, alpha, toward);
+    float lit = msmSoftFilter(table, centre, reach, size, t, slope, alpha, toward);
     return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }
