@@ -857,7 +857,7 @@ shadow_settings! {
         /// directional or spot light's 2D map only.
         volumetric: Volumetric = Volumetric::Off, arg(value_name = "off|solid|osm|fom|avsm");
         /// The translucent map's size in texels, N or WxH like `map_size` (its texels cover
-        /// the depth map's box): translucent shadows are soft, so it can be smaller.
+        /// the depth map's box): smaller costs less and blurs the translucent shadows' edges.
         volumetric_size: MapSize = MapSize::square(1024),
             arg(value_name = "SIZE", value_parser = parse_map_size, allow_negative_numbers = true);
         /// `volumetric = "osm"`: slices between the nearest and farthest translucent

@@ -468,3 +468,92 @@ fn the_translucent_maps_take_their_own_size_and_refuse_a_bad_one() {
     let e = read("volumetric_size = \"big\"").unwrap_err().to_string();
     assert!(e.contains("a side in texels"), "{e}");
 }
+
+/// The largest difference between the rendered and the true transmittance over the
+/// receivers with no step of the truth (a difference over 0.02) within `band` pixels
+/// across or down: away from every shadow edge, opaque or translucent, which the maps'
+/// texels blur as they blur a hard shadow's. With the count of such receivers.
+fn max_off_edges(c: &Comparison, band: usize) -> (f32, usize) {
+    let truth = c
+        .reference
+        .transmittance
+        .as_ref()
+        .expect("a transmittance truth");
+    let rendered = c.frame.visibility.as_ref().expect("a visibility output");
+    let (width, height) = (c.frame.width as usize, c.frame.height as usize);
+    let value = |x: usize, y: usize| Some(&truth[y * width + x]).filter(|r| r.receiver);
+    let near_a_step = |x: usize, y: usize, t: f32| {
+        let (x0, y0) = (x.saturating_sub(band), y.saturating_sub(band));
+        let (x1, y1) = ((x + band).min(width - 1), (y + band).min(height - 1));
+        (y0..=y1).any(|y| {
+            (x0..=x1).any(|x| value(x, y).is_some_and(|r| (r.visibility - t).abs() > 0.02))
+        })
+    };
+    let mut worst = (0.0f32, 0);
+    for y in 0..height {
+        for x in 0..width {
+            let Some(r) = value(x, y) else { continue };
+            if near_a_step(x, y, r.visibility) {
+                continue;
+            }
+            let v = rendered[y * width + x].expect("a rendered value");
+            worst = (worst.0.max((v - r.visibility).abs()), worst.1 + 1);
+        }
+    }
+    worst
+}
+
+#[test]
+fn on_sharp_cards_the_translucent_maps_err_at_the_edges_alone() {
+    let scene = Scene::load("tests/data/cards.toml").unwrap_or_else(|e| panic!("{e}"));
+    let off = run(&scene, Volumetric::Off).transmittance.expect("scored");
+    assert!(off.in_shadow > 5000, "{off:?}");
+    for (volumetric, off_edges) in [
+        (Volumetric::Osm, 1.5 / 255.0),
+        (Volumetric::Fom, 1.5 / 255.0),
+        (Volumetric::Avsm, 2.5 / 255.0),
+    ] {
+        let c = run(&scene, volumetric);
+        let t = c.transmittance.expect("scored");
+        let (worst, receivers) = max_off_edges(&c, 2);
+        eprintln!(
+            "cards, {volumetric:?}: MAE {:.4}, within {:.4}, outside {:.4}, max {:.4}; \
+             max away from 2 px of the edges {worst:.4} over {receivers} receivers",
+            t.mae, t.mae_in_shadow, t.mae_outside, t.max_error
+        );
+        assert!(receivers > 60_000, "{volumetric:?}: {receivers}");
+        // The edges: a card's shadow blurred across a texel or two of the map.
+        assert!(t.max_error > 0.3, "{volumetric:?}: {t:?}");
+        assert!(
+            worst <= off_edges,
+            "{volumetric:?}: {worst} away from the edges"
+        );
+        assert!(t.mae_in_shadow < 0.02, "{volumetric:?}: {t:?}");
+    }
+}
+
+#[test]
+fn in_the_smoke_the_largest_errors_are_at_the_edges_and_avsm_s_within_0_02_away_from_them() {
+    let scene = common::frozen("smoke");
+    for (volumetric, off_edges) in [
+        (Volumetric::Osm, 0.07),
+        (Volumetric::Fom, 0.07),
+        (Volumetric::Avsm, 0.02),
+    ] {
+        let c = run(&scene, volumetric);
+        let t = c.transmittance.expect("scored");
+        let (worst, receivers) = max_off_edges(&c, 2);
+        eprintln!(
+            "smoke, {volumetric:?}: max {:.4}; max away from 2 px of the edges {worst:.4} over \
+             {receivers} receivers",
+            t.max_error
+        );
+        assert!(receivers > 300_000, "{volumetric:?}: {receivers}");
+        // The largest, 0.7765: the cube's hard shadow edge as PCF 3 x 3 softens it (7 / 9).
+        assert!(t.max_error > 0.7, "{volumetric:?}: {t:?}");
+        assert!(
+            worst <= off_edges,
+            "{volumetric:?}: {worst} away from the edges"
+        );
+    }
+}

@@ -1,13 +1,13 @@
 //! Every light's translucent map, beside the lights' depth maps: made to match the plan,
 //! drawn after the depth pass (before the scene pass) and bound for the scene pass.
 
-use glam::{DMat4, DVec3, Mat4};
+use glam::{DMat4, DVec3, Mat4, Vec4};
 
 use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS};
 use crate::engine::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::Volumetric;
+use crate::settings::{MapSize, Volumetric};
 use crate::shadows::patch::{footprint, TexelRect};
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView};
@@ -101,16 +101,20 @@ impl Maps {
             return;
         }
         let mut matrices = vec![Mat4::IDENTITY; self.maps.len()];
+        let mut footprints = vec![Vec4::ZERO; self.maps.len()];
         for (i, map) in self.maps.iter().enumerate() {
             let (Some(map), Some(Some(view))) = (map, views.get(i)) else {
                 continue;
             };
             matrices[i] = super::lookup_matrix(view, self.fits[i], camera_view);
+            let drawn = self.drawn[i].unwrap_or(TexelRect::whole(map.map().size()));
+            footprints[i] = lookup_footprint(drawn, map.map().size());
             let unit = slots::volumetric_unit(i);
             program.set_i32(SAMPLERS[i], unit as i32);
             map.map().bind(unit);
         }
         program.set_mat4_array("volumetricMatrix", &matrices);
+        program.set_vec4_array("volumetricFootprint", &footprints);
     }
 
     /// Light `index`'s map, if it has one.
@@ -126,5 +130,46 @@ impl Maps {
     /// Bytes of GPU memory the maps hold.
     pub fn bytes(&self) -> u64 {
         self.maps.iter().flatten().map(|m| m.map().bytes()).sum()
+    }
+}
+
+/// The lookup's footprint (shaders/lib/volumetric.glsl's `volumetricFootprint`): the texels
+/// `drawn` covers in a `size` map, a texel wider each side, as the map's xy (0 to 1). Past
+/// it a lookup's bilinear reads (and AVSM's four texels) meet only texels no caster
+/// reached: it skips them, reading 1.
+pub fn lookup_footprint(drawn: TexelRect, size: MapSize) -> Vec4 {
+    let (w, h) = (size.width as f32, size.height as f32);
+    let side = |t: u32, grow: f32, n: f32| (t as f32 + grow) / n;
+    Vec4::new(
+        side(drawn.x0, -1.0, w),
+        side(drawn.y0, -1.0, h),
+        side(drawn.x1, 1.0, w),
+        side(drawn.y1, 1.0, h),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lookup_footprint_is_the_drawn_texels_a_texel_wider_each_side() {
+        let drawn = TexelRect {
+            x0: 10,
+            y0: 20,
+            x1: 30,
+            y1: 40,
+        };
+        let size = MapSize {
+            width: 100,
+            height: 200,
+        };
+        let f = lookup_footprint(drawn, size);
+        let expected = Vec4::new(9.0 / 100.0, 19.0 / 200.0, 31.0 / 100.0, 41.0 / 200.0);
+        assert!((f - expected).abs().max_element() < 1e-7, "{f}");
+        // A bilinear read just inside it reaches texel 9, which no caster covered; texel 10
+        // (the first drawn) is read from x > 9.5 texels on, well inside.
+        let whole = lookup_footprint(TexelRect::whole(size), size);
+        assert_eq!(whole, Vec4::new(-0.01, -0.005, 1.01, 1.005));
     }
 }
