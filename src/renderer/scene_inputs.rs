@@ -6,7 +6,7 @@ use glam::{DMat4, Mat3, Mat4, Vec3, Vec4};
 use crate::engine::{BoundSampler, Gl, InstanceBuffer, Mesh, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::image_data::ImageData;
-use crate::scene::{Light, Scene, Shading};
+use crate::scene::{GameItem, Light, Scene, Shading};
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{slots, ShadowView, Technique};
 
@@ -215,4 +215,34 @@ fn penumbra(light: &Light, view: &ShadowView) -> Vec4 {
 /// stay perpendicular under non-uniform scale.
 pub(super) fn normal_matrix(m: &Mat4) -> Mat3 {
     Mat3::from_mat4(*m).inverse().transpose()
+}
+
+/// One item's per-item uniforms (the book's loop: "set the model matrix, draw"), for the
+/// items drawn one at a time: translucent ones, and a run of one.
+pub(super) fn set_item_uniforms(
+    p: &ShaderProgram,
+    item: &GameItem,
+    scene: &Scene,
+    u: &LightUniforms,
+    view64: DMat4,
+    origin: DMat4,
+) {
+    let model = item.model_matrix64();
+    let model_view = (view64 * model).as_mat4();
+    p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
+    p.set_mat4("modelViewMatrix", &model_view);
+    p.set_mat3("normalMatrix", &normal_matrix(&model_view));
+    p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
+    let light_matrices: Vec<Mat4> = (u.light_from.iter())
+        .map(|from| (*from * model).as_mat4())
+        .collect();
+    p.set_mat4_array("modelLightViewMatrix", &light_matrices);
+    let m = &item.material;
+    let colour = m.colour.truncate();
+    p.set_vec4(
+        "material.ambient",
+        (scene.ambient * colour).extend(m.reflectance),
+    );
+    let diffuse: Vec<Vec3> = u.colour.iter().map(|light| *light * colour).collect();
+    p.set_vec3_array("material.diffuse", &diffuse);
 }

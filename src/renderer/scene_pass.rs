@@ -4,12 +4,12 @@
 //! `orthoProjectionMatrix` besides the camera's, for `calcShadow`). Where the book sets
 //! them and draws item by item, the items here are batched by mesh ([`draw_opaque`]).
 
-use glam::{DMat4, Mat4, Vec3};
+use glam::DMat4;
 
-use super::scene_inputs::{bind_maps, normal_matrix, Inputs, LightUniforms};
+use super::scene_inputs::{bind_maps, normal_matrix, set_item_uniforms, Inputs, LightUniforms};
 use super::translucent_pass;
 use crate::engine::instances::{self, Values};
-use crate::engine::{Gl, Samplers, ShaderProgram};
+use crate::engine::{Gl, Samplers};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
 use crate::shadows::slots::{MASK_UNIT, MATERIAL_UNIT};
@@ -80,36 +80,6 @@ fn draw_opaque(inputs: &Inputs, scene: &Scene, u: &LightUniforms, view64: DMat4,
             _ => instanced.draw(&inputs.meshes[mesh], &b),
         }
     }
-}
-
-/// One item's per-item uniforms (the book's loop: "set the model matrix, draw"), for the
-/// items drawn one at a time: translucent ones, and a run of one.
-pub(super) fn set_item_uniforms(
-    p: &ShaderProgram,
-    item: &GameItem,
-    scene: &Scene,
-    u: &LightUniforms,
-    view64: DMat4,
-    origin: DMat4,
-) {
-    let model = item.model_matrix64();
-    let model_view = (view64 * model).as_mat4();
-    p.set_mat4("modelOriginMatrix", &(origin * model).as_mat4());
-    p.set_mat4("modelViewMatrix", &model_view);
-    p.set_mat3("normalMatrix", &normal_matrix(&model_view));
-    p.set_mat3("worldNormalMatrix", &normal_matrix(&model.as_mat4()));
-    let light_matrices: Vec<Mat4> = (u.light_from.iter())
-        .map(|from| (*from * model).as_mat4())
-        .collect();
-    p.set_mat4_array("modelLightViewMatrix", &light_matrices);
-    let m = &item.material;
-    let colour = m.colour.truncate();
-    p.set_vec4(
-        "material.ambient",
-        (scene.ambient * colour).extend(m.reflectance),
-    );
-    let diffuse: Vec<Vec3> = u.colour.iter().map(|light| *light * colour).collect();
-    p.set_vec3_array("material.diffuse", &diffuse);
 }
 
 /// One item's values in scene.vert's layout: the values its uniforms had.

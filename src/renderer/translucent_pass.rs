@@ -48,7 +48,7 @@ pub(super) fn draw(
     let p = inputs.program;
     let blend = TranslucentBlend::begin(gl);
     for item in items {
-        super::scene_pass::set_item_uniforms(p, item, scene, u, view64, origin);
+        super::scene_inputs::set_item_uniforms(p, item, scene, u, view64, origin);
         let m = &item.material;
         m.texture
             .and_then(|t| inputs.textures.get(t))
