@@ -9,6 +9,7 @@ use std::path::Path;
 
 use common::context;
 use shadowmap::compare::{compare, Comparison};
+use shadowmap::reference::RefPixel;
 use shadowmap::scene::file::parse;
 use shadowmap::settings::{MapSize, ShadowSettings, Volumetric};
 use shadowmap::Scene;
@@ -150,16 +151,22 @@ fn the_smoke_scene_scores_both_wrongs_of_a_depth_map() {
     assert!(off.mae_outside < 0.01, "{off:?}");
 }
 
+/// A comparison's transmittance truth and rendered visibility, pixel by pixel.
+fn truth_and_rendered(c: &Comparison) -> (&[RefPixel], &[Option<f32>]) {
+    let truth = c
+        .reference
+        .transmittance
+        .as_deref()
+        .expect("a transmittance truth");
+    let rendered = c.frame.visibility.as_deref().expect("a visibility output");
+    (truth, rendered)
+}
+
 /// The receivers of `c` whose truth is `value` and whose neighbours up to `reach` pixels
 /// away across and down have it too (away from the shadow's edges, which the map's texels
 /// blur): (rendered, truth).
 fn interior(c: &Comparison, value: f32, reach: usize) -> Vec<(f32, f32)> {
-    let truth = c
-        .reference
-        .transmittance
-        .as_ref()
-        .expect("a transmittance truth");
-    let rendered = c.frame.visibility.as_ref().expect("a visibility output");
+    let (truth, rendered) = truth_and_rendered(c);
     let width = c.frame.width as usize;
     let at = |i: usize| {
         truth
@@ -474,12 +481,7 @@ fn the_translucent_maps_take_their_own_size_and_refuse_a_bad_one() {
 /// across or down: away from every shadow edge, opaque or translucent, which the maps'
 /// texels blur as they blur a hard shadow's. With the count of such receivers.
 fn max_off_edges(c: &Comparison, band: usize) -> (f32, usize) {
-    let truth = c
-        .reference
-        .transmittance
-        .as_ref()
-        .expect("a transmittance truth");
-    let rendered = c.frame.visibility.as_ref().expect("a visibility output");
+    let (truth, rendered) = truth_and_rendered(c);
     let (width, height) = (c.frame.width as usize, c.frame.height as usize);
     let value = |x: usize, y: usize| Some(&truth[y * width + x]).filter(|r| r.receiver);
     let near_a_step = |x: usize, y: usize, t: f32| {

@@ -173,15 +173,7 @@ impl Texture {
     /// what they sum is linear in the crossings, so filtering them is exact.
     pub fn float_array(gl: &Gl, width: u32, height: u32, layers: u32) -> Result<Texture> {
         let texture = Texture::float_layers(gl, width, height, layers, glow::RGBA32F)?;
-        unsafe {
-            gl.bind_texture(glow::TEXTURE_2D_ARRAY, Some(texture.id));
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D_ARRAY, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::LINEAR);
-            p(glow::TEXTURE_MAG_FILTER, glow::LINEAR);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            gl.bind_texture(glow::TEXTURE_2D_ARRAY, None);
-        }
+        texture.sampling(glow::LINEAR, glow::CLAMP_TO_EDGE);
         Ok(texture)
     }
 
@@ -259,17 +251,22 @@ impl Texture {
 
     /// A depth texture's sampling: NEAREST (the book's), clamped on every axis.
     fn nearest_clamped(&self) {
+        self.sampling(glow::NEAREST, glow::CLAMP_TO_EDGE);
+    }
+
+    /// `filter` for minifying and magnifying, `wrap` on every axis.
+    fn sampling(&self, filter: u32, wrap: u32) {
         unsafe {
             self.gl.bind_texture(self.target, Some(self.id));
             let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
+            p(glow::TEXTURE_MIN_FILTER, filter);
+            p(glow::TEXTURE_MAG_FILTER, filter);
             for axis in [
                 glow::TEXTURE_WRAP_S,
                 glow::TEXTURE_WRAP_T,
                 glow::TEXTURE_WRAP_R,
             ] {
-                p(axis, glow::CLAMP_TO_EDGE);
+                p(axis, wrap);
             }
             self.gl.bind_texture(self.target, None);
         }
