@@ -1,5 +1,7 @@
-//! Per-instance data for instanced draws: one uniform buffer, filled once per pass with one
-//! upload and read by the vertex shaders as the `Instances` block, an array of vec4s:
+//! Per-instance data for instanced draws: one buffer, filled once per pass with one upload.
+//! The depth programs read it as per-instance vertex attributes (`instanceMatrix`, divisor
+//! 1; [`Mesh::render_instanced_attributes`]); the scene program, whose values do not fit in
+//! GL 3.3's 16 attributes, reads it as the `Instances` uniform block, an array of vec4s:
 //! instance `gl_InstanceID`'s values start at `instanceBase + gl_InstanceID *
 //! instanceStride`. The block is [`BLOCK_VEC4S`] vec4s (16 KiB, what GL 3.3 guarantees), so a
 //! run of instances is bound a window at a time, each draw as many instances as fit. The
@@ -65,7 +67,11 @@ impl InstanceBuffer {
         values.clear();
         fill(&mut Values(&mut values));
         debug_assert_eq!(values.len() % stride.max(1), 0);
-        assert!(stride <= BLOCK_VEC4S, "an instance larger than the block");
+        // A window starts up to an alignment before its first instance.
+        assert!(
+            stride + self.align / 16 <= BLOCK_VEC4S,
+            "an instance larger than the block"
+        );
         program.set_i32("instanced", 1);
         program.set_i32("instanceStride", stride as i32);
         let guard = Instanced {
@@ -107,8 +113,8 @@ pub struct Instanced<'p> {
 }
 
 impl Instanced<'_> {
-    /// Draws `batch` of `mesh`: one instanced call per window of the block it needs (one for
-    /// a run of up to 1024 / stride instances).
+    /// Draws `batch` of `mesh`: one instanced call where the program takes attributes, else
+    /// one per window of the block the run needs (one for up to 1024 / stride instances).
     pub fn draw<K>(&self, mesh: &Mesh, batch: &Batch<K>) {
         let b = self.buffer;
         if self.program.reads_instance_attributes() {
@@ -129,6 +135,17 @@ impl Instanced<'_> {
             self.program.set_i32("instanceBase", w.base as i32);
             mesh.render_instanced(w.count);
         }
+    }
+
+    /// Draws one item of `mesh` through the program's per-item uniforms, which `set` sets:
+    /// a run of one gains nothing from instancing, and on a software rasteriser its vertices
+    /// would each fetch the instance's values where a uniform is one broadcast load (the
+    /// terrain's thousands of vertices, say).
+    pub fn draw_one(&self, mesh: &Mesh, set: impl FnOnce(&ShaderProgram)) {
+        self.program.set_i32("instanced", 0);
+        set(self.program);
+        mesh.render();
+        self.program.set_i32("instanced", 1);
     }
 }
 
@@ -156,19 +173,6 @@ fn windows(first: usize, count: usize, stride: usize, align: usize) -> Vec<Windo
         left -= count;
     }
     out
-}
-
-impl Instanced<'_> {
-    /// Draws one item of `mesh` through the program's per-item uniforms, which `set` sets:
-    /// a run of one gains nothing from instancing, and on a software rasteriser its vertices
-    /// would each fetch the instance's values where a uniform is one broadcast load (the
-    /// terrain's thousands of vertices, say).
-    pub fn draw_one(&self, mesh: &Mesh, set: impl FnOnce(&ShaderProgram)) {
-        self.program.set_i32("instanced", 0);
-        set(self.program);
-        mesh.render();
-        self.program.set_i32("instanced", 1);
-    }
 }
 
 impl Drop for Instanced<'_> {
