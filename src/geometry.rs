@@ -55,6 +55,26 @@ impl MeshData {
         Ok(())
     }
 
+    /// The positions alone, each distinct one once (equal bit for bit), and the indices
+    /// into them: what a depth pass reads. A cube's 24 vertices (split for their normals and
+    /// texture coordinates) are 8 corners, so a pass that reads only positions shades a
+    /// third of the vertices; the triangles, their order and winding are the same.
+    pub fn welded_positions(&self) -> (Vec<[f32; 3]>, Vec<u32>) {
+        let mut first = std::collections::HashMap::with_capacity(self.positions.len());
+        let mut positions = Vec::new();
+        let remap: Vec<u32> = (self.positions.iter())
+            .map(|p| {
+                let bits = p.map(f32::to_bits);
+                *first.entry(bits).or_insert_with(|| {
+                    positions.push(*p);
+                    positions.len() as u32 - 1
+                })
+            })
+            .collect();
+        let indices = self.indices.iter().map(|&i| remap[i as usize]).collect();
+        (positions, indices)
+    }
+
     /// The triangles as position triples, in model space.
     pub fn triangles(&self) -> impl Iterator<Item = [Vec3; 3]> + '_ {
         self.indices.chunks_exact(3).map(|t| {
@@ -526,5 +546,18 @@ mod tests {
         // Relative indices that stay in range are fine.
         let m = MeshData::parse_obj(Path::new("m.obj"), &format!("{tri}f -3 -2 -1\n")).unwrap();
         assert_eq!(m.indices.len(), 3);
+    }
+
+    #[test]
+    fn welded_positions_keep_every_triangle_with_each_corner_once() {
+        let cube = MeshData::cube();
+        let (positions, indices) = cube.welded_positions();
+        assert_eq!((cube.positions.len(), positions.len()), (24, 8));
+        assert_eq!(indices.len(), cube.indices.len());
+        for (&w, &i) in indices.iter().zip(&cube.indices) {
+            assert_eq!(positions[w as usize], cube.positions[i as usize]);
+        }
+        let plane = MeshData::plane(1.0);
+        assert_eq!(plane.welded_positions().0.len(), plane.positions.len());
     }
 }

@@ -98,3 +98,26 @@ fn a_light_the_scene_lacks_is_refused() {
         "error: --light 1: the scene <built-in dummy> has 1 light(s), numbered from 0\n"
     );
 }
+
+#[test]
+fn the_depth_pass_reads_positions_alone_and_the_scene_pass_does_not() {
+    let ctx = common::context();
+    let depth = ShaderProgram::new(
+        ctx.gl(),
+        &shadowmap::shaders::depth_vert(),
+        &shadowmap::shaders::depth_frag(),
+        &[],
+    )
+    .unwrap();
+    assert!(depth.reads_positions_only());
+    let dummy = Scene::load("dummy").unwrap();
+    let [vertex, fragment] = compiled(&dummy, &dummy.shadow);
+    let scene = ShaderProgram::new(
+        ctx.gl(),
+        &ShaderSource::new("scene.vert", vertex),
+        &ShaderSource::new("scene.frag", fragment),
+        &[],
+    )
+    .unwrap();
+    assert!(!scene.reads_positions_only());
+}

@@ -119,7 +119,13 @@ impl Instanced<'_> {
         let b = self.buffer;
         if self.program.reads_instance_attributes() {
             let offset = batch.first * self.stride * 16;
-            mesh.render_instanced_attributes(b.buffer, offset, self.stride, batch.count);
+            let positions_only = self.program.reads_positions_only();
+            mesh.render_instanced_attributes(
+                b.buffer,
+                (offset, self.stride),
+                batch.count,
+                positions_only,
+            );
             return;
         }
         for w in windows(batch.first, batch.count, self.stride, b.align) {
@@ -144,7 +150,7 @@ impl Instanced<'_> {
     pub fn draw_one(&self, mesh: &Mesh, set: impl FnOnce(&ShaderProgram)) {
         self.program.set_i32("instanced", 0);
         set(self.program);
-        mesh.render();
+        mesh.render_from(self.program.reads_positions_only());
         self.program.set_i32("instanced", 1);
     }
 }

@@ -1,6 +1,9 @@
 //! `Mesh`: a VAO with its vertex and index buffers (the book's `Mesh` class), uploaded from
 //! CPU-side [`MeshData`]. Attribute locations match the book: 0 position, 1 texture
-//! coordinate, 2 normal; instanced depth passes add per-instance values from 3 on.
+//! coordinate, 2 normal; instanced depth passes add per-instance values from 3 on. A second
+//! vertex array holds the positions alone, welded ([`MeshData::welded_positions`]), for the
+//! programs that read nothing else (the depth passes): fewer vertices to shade, the same
+//! triangles, so the same depth map bit for bit.
 
 use glow::HasContext;
 
@@ -11,12 +14,14 @@ use crate::geometry::MeshData;
 /// The first location of per-instance vertex attributes (after the three per-vertex ones).
 pub const INSTANCE_LOCATION: u32 = 3;
 
-/// An uploaded mesh; its VAO and buffers are deleted on drop.
+/// An uploaded mesh; its VAOs and buffers are deleted on drop.
 pub struct Mesh {
     gl: Gl,
     vao: glow::VertexArray,
     vbo: glow::Buffer,
     ebo: glow::Buffer,
+    /// The welded positions' vertex array and its two buffers.
+    positions: (glow::VertexArray, glow::Buffer, glow::Buffer),
     index_count: i32,
 }
 
@@ -40,19 +45,48 @@ impl Mesh {
             &[(0, 3), (1, 2), (2, 3)],
             &data.indices,
         )?;
+        let (welded, indices) = data.welded_positions();
+        let positions = match upload(gl, as_bytes(&welded), &[(0, 3)], &indices) {
+            Ok(p) => p,
+            Err(e) => {
+                unsafe {
+                    gl.delete_vertex_array(vao);
+                    gl.delete_buffer(vbo);
+                    gl.delete_buffer(ebo);
+                }
+                return Err(e);
+            }
+        };
         Ok(Mesh {
             gl: gl.clone(),
             vao,
             vbo,
             ebo,
+            positions,
             index_count,
         })
     }
 
+    /// The vertex array a program reads: the welded positions for one that reads nothing
+    /// else ([`super::ShaderProgram::reads_positions_only`]).
+    fn vertices(&self, positions_only: bool) -> glow::VertexArray {
+        if positions_only {
+            self.positions.0
+        } else {
+            self.vao
+        }
+    }
+
     /// Draws the mesh once with whatever program and uniforms are bound.
     pub fn render(&self) {
+        self.render_from(false);
+    }
+
+    /// Draws the mesh once, from its welded positions when `positions_only`.
+    pub fn render_from(&self, positions_only: bool) {
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl
+                .bind_vertex_array(Some(self.vertices(positions_only)));
             self.gl
                 .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
             self.gl.bind_vertex_array(None);
@@ -98,18 +132,20 @@ impl Mesh {
 
     /// Draws `count` instances whose values are per-instance vertex attributes: `stride`
     /// vec4s an instance from byte `offset` of `buffer`, on locations 3, 4, ... (a mat4
-    /// takes four). The attributes are switched off again after the draw, so the mesh's
-    /// other draws read nothing from the buffer.
+    /// takes four), from the welded positions when `positions_only`. The attributes are
+    /// switched off again after the draw, so the mesh's other draws read nothing from the
+    /// buffer.
     pub fn render_instanced_attributes(
         &self,
         buffer: glow::Buffer,
-        offset: usize,
-        stride: usize,
+        (offset, stride): (usize, usize),
         count: usize,
+        positions_only: bool,
     ) {
         let locations = (0..stride as u32).map(|k| INSTANCE_LOCATION + k);
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl
+                .bind_vertex_array(Some(self.vertices(positions_only)));
             self.gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
             for (k, location) in locations.clone().enumerate() {
                 self.gl.enable_vertex_attrib_array(location);
@@ -145,6 +181,10 @@ impl Drop for Mesh {
             self.gl.delete_vertex_array(self.vao);
             self.gl.delete_buffer(self.vbo);
             self.gl.delete_buffer(self.ebo);
+            let (vao, vbo, ebo) = self.positions;
+            self.gl.delete_vertex_array(vao);
+            self.gl.delete_buffer(vbo);
+            self.gl.delete_buffer(ebo);
         }
     }
 }

@@ -138,6 +138,9 @@ pub struct ShaderProgram {
     /// Reads instanced values as per-instance vertex attributes (`instanceMatrix`), not
     /// from the `Instances` block.
     instance_attributes: bool,
+    /// Reads no per-vertex attribute but the position (and instanced ones): a depth pass,
+    /// which can draw a mesh's welded positions.
+    positions_only: bool,
 }
 
 impl ShaderProgram {
@@ -172,6 +175,7 @@ impl ShaderProgram {
             program,
             uniforms: RefCell::new(Uniforms::default()),
             instance_attributes: false,
+            positions_only: false,
         };
         let mut shaders = Vec::with_capacity(stages.len());
         for (kind, source) in stages {
@@ -210,12 +214,19 @@ impl ShaderProgram {
         }
         this.instance_attributes =
             unsafe { gl.get_attrib_location(program, "instanceMatrix") }.is_some();
+        this.positions_only = reads_positions_only(gl, program);
         Ok(this)
     }
 
     /// Whether instanced draws hand this program its values as vertex attributes.
     pub fn reads_instance_attributes(&self) -> bool {
         self.instance_attributes
+    }
+
+    /// Whether the program's only per-vertex input is the position (location 0), so a
+    /// mesh's welded positions serve it ([`super::Mesh::render_from`]).
+    pub fn reads_positions_only(&self) -> bool {
+        self.positions_only
     }
 
     pub fn bind(&self) {
@@ -371,6 +382,20 @@ impl Drop for ShaderProgram {
     fn drop(&mut self) {
         self.gl.forget_program(self.program);
         unsafe { self.gl.delete_program(self.program) };
+    }
+}
+
+/// Whether every active attribute of `program` is the position (location 0) or a
+/// per-instance one (locations [`super::mesh::INSTANCE_LOCATION`] on). The compiler drops
+/// inputs a program never reads from its active attributes.
+fn reads_positions_only(gl: &Gl, program: glow::Program) -> bool {
+    unsafe {
+        (0..gl.get_active_attributes(program)).all(|k| {
+            let location = gl
+                .get_active_attribute(program, k)
+                .and_then(|a| gl.get_attrib_location(program, &a.name));
+            matches!(location, Some(l) if l == 0 || l >= super::mesh::INSTANCE_LOCATION)
+        })
     }
 }
 
