@@ -53,6 +53,7 @@ impl ShadowMap {
             );
         }
         map.fbo.finish(&format!("shadow map {width}x{height}"))?;
+        map.fbo.warm_scissored_clear();
         Ok(map)
     }
 

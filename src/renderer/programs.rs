@@ -73,6 +73,13 @@ impl Renderer {
         plan: Plan,
         samplers: &mut Samplers,
     ) -> Result<()> {
+        if matches!(plan, Plan::Write(_)) && self.mask.uses.written == 0 {
+            // The first mask written (the first frame): draw the frame with every light
+            // tested too, as the next frame will if anything moves. llvmpipe compiles a
+            // program's shaders for the pipeline's state at its first draw; this puts that
+            // in the first frame, not the second.
+            self.draw_scene(scene, target, Plan::Test, samplers)?;
+        }
         let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
         self.use_program(scene, target.outputs(), mode)?;
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());

@@ -42,6 +42,20 @@ impl DepthFbo {
         status
     }
 
+    /// Clears one texel's depth under a scissor. Mesa clears part of a buffer by drawing a
+    /// quad with shaders of its own, compiled at their first use: here, when the map is made,
+    /// rather than in the first frame that patches a map (a scissored clear).
+    pub(super) fn warm_scissored_clear(&self) {
+        self.bind();
+        self.gl.set_capability(glow::SCISSOR_TEST, true);
+        unsafe {
+            self.gl.scissor(0, 0, 1, 1);
+            self.gl.clear(glow::DEPTH_BUFFER_BIT);
+        }
+        self.gl.set_capability(glow::SCISSOR_TEST, false);
+        unsafe { self.gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
+    }
+
     /// Reads the attached depth of `size` back (row 0 at the bottom, as GL stores them).
     pub(super) fn read_depth(&self, size: MapSize) -> Vec<f32> {
         let n = size.texels() as usize;
