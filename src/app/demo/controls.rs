@@ -1,0 +1,176 @@
+//! The demo's controls: the chapter steps and settings its keys pick, and the book's fixed
+//! update (the held keys turn the light and move the camera).
+
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+use shadowmap::shadows::plan::ShadowPlan;
+use shadowmap::{steps, ShadowSettings};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::KeyCode;
+
+use super::Demo;
+
+/// Camera step per update (DummyGame's CAMERA_POS_STEP).
+const CAMERA_POS_STEP: f32 = 0.05;
+/// Degrees of camera rotation per pixel of mouse drag (DummyGame's MOUSE_SENSITIVITY).
+const MOUSE_SENSITIVITY: f32 = 0.2;
+/// Light-angle acceleration per update while a key is held (DummyGame: +-0.05).
+const ANGLE_STEP: f32 = 0.05;
+
+impl Demo {
+    /// Switches to a chapter step (or back to the scene's settings with `None`).
+    pub(super) fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
+        if let Some((camera, lights, items)) = self.before_stage.take() {
+            (self.scene.camera, self.scene.lights, self.scene.items) = (camera, lights, items);
+        }
+        // Steps are shown from the scene's steps camera (where its own does not show what
+        // they change); back to the scene's camera with its own settings.
+        if self.scene.steps.camera.is_some() {
+            match (step, self.camera_before_steps) {
+                (Some(_), None) => {
+                    self.camera_before_steps = Some(self.scene.camera);
+                    self.scene.camera = self.scene.steps_camera();
+                }
+                (None, Some(camera)) => {
+                    self.scene.camera = camera;
+                    self.camera_before_steps = None;
+                }
+                _ => {}
+            }
+        }
+        // And with the lights' size its steps ask for (`[steps] light_size`), if any.
+        if self.scene.steps.light_size.is_some() {
+            match (step, self.sizes_before_steps.take()) {
+                (Some(_), None) => {
+                    let sizes = self.scene.lights.iter().map(|l| l.size()).collect();
+                    self.sizes_before_steps = Some(sizes);
+                    self.scene.use_steps_light_size();
+                }
+                (None, Some(sizes)) => {
+                    for (l, size) in self.scene.lights.iter_mut().zip(sizes) {
+                        l.set_size(size);
+                    }
+                }
+                (_, kept) => self.sizes_before_steps = kept,
+            }
+        }
+        // The step's own view of the scene, where it has one (undone by the next pick).
+        if let Some(staged) = step.and_then(|name| steps::get(&self.scene, name)) {
+            if staged.stage(&self.scene).is_some() {
+                let s = &self.scene;
+                self.before_stage = Some((s.camera, s.lights.clone(), s.items.clone()));
+                if let Err(e) = staged.set_stage(&mut self.scene, false) {
+                    return self.fail(event_loop, e);
+                }
+            }
+        }
+        let settings = match step {
+            Some(name) => steps::settings_for(&self.scene, name),
+            None => self.args.settings.apply(&mut self.scene),
+        };
+        let result = settings.and_then(|s| {
+            if let Some(r) = &mut self.running {
+                r.renderer.set_settings(&s)?;
+            }
+            self.settings = s;
+            Ok(())
+        });
+        match result {
+            Ok(()) => {
+                self.step = step;
+                self.last_title = Instant::now() - Duration::from_secs(1);
+            }
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    /// Applies a change to the settings (rebuilding what it touches), or stops on an error.
+    pub(super) fn change_settings(
+        &mut self,
+        event_loop: &ActiveEventLoop,
+        change: impl Fn(&mut ShadowSettings),
+    ) {
+        let mut s = self.settings;
+        change(&mut s);
+        // What a light cannot be drawn with (cascades with PCSS, a non-square map) is
+        // said, and the key does nothing, rather than ending the demo.
+        if let Err(e) = ShadowPlan::resolve(&self.scene.lights, &s, None) {
+            eprintln!("note: {e}; the settings stay as they were");
+            return;
+        }
+        if let Some(r) = &mut self.running {
+            if let Err(e) = r.renderer.set_settings(&s) {
+                return self.fail(event_loop, e);
+            }
+        }
+        self.settings = s;
+        self.last_title = Instant::now() - Duration::from_secs(1);
+    }
+
+    /// M: the first casting light's shadow map instead of the scene, then the next light's,
+    /// and after the last, the scene again.
+    pub(super) fn next_depth_view(&mut self, event_loop: &ActiveEventLoop) {
+        let casting: Vec<usize> = (0..self.scene.lights.len())
+            .filter(|&i| self.scene.lights[i].casts_shadows())
+            .collect();
+        let next = match self.settings.show_depth_map {
+            false => casting.first().copied(),
+            true => casting.iter().copied().find(|&i| i > self.depth_light),
+        };
+        if let Some(i) = next {
+            self.depth_light = i;
+            if let Some(r) = &mut self.running {
+                r.renderer.set_depth_view_light(i);
+            }
+        }
+        self.change_settings(event_loop, |s| s.show_depth_map = next.is_some());
+    }
+
+    /// The angle keys on a spot or point light: said once, on the terminal and in the HUD.
+    pub(super) fn angle_keys_idle(&mut self) {
+        if !std::mem::replace(&mut self.angle_keys_idle, true) {
+            println!(
+                "note: the arrow keys turn a directional light's angle; the {} scene's first \
+                 light is a {}, so they do nothing here",
+                self.scene.name,
+                self.scene.light().describe()
+            );
+        }
+    }
+
+    /// One fixed update: the book's `input` and `update`.
+    pub(super) fn update(&mut self) {
+        let held = |k| self.keys.contains(&k);
+        // The book's code: LEFT/RIGHT accelerate the angle; the text says UP/DOWN.
+        if held(KeyCode::ArrowLeft) || held(KeyCode::ArrowDown) {
+            self.angle_inc -= ANGLE_STEP;
+        } else if held(KeyCode::ArrowRight) || held(KeyCode::ArrowUp) {
+            self.angle_inc += ANGLE_STEP;
+        } else {
+            self.angle_inc = 0.0;
+        }
+        // The book's `lightAngle += angleInc`, clamped to 0..180, about the light's azimuth.
+        if let (true, Some(azimuth), Some(light)) = (
+            self.angle_inc != 0.0,
+            self.azimuth,
+            self.scene.light().as_directional(),
+        ) {
+            let angle = light.angle_about(azimuth) + self.angle_inc;
+            self.scene.set_light_angle_about(azimuth, angle);
+        }
+        let mut step = Vec3::ZERO;
+        let axis = |neg, pos| f32::from(u8::from(held(pos))) - f32::from(u8::from(held(neg)));
+        step.z = axis(KeyCode::KeyW, KeyCode::KeyS);
+        step.x = axis(KeyCode::KeyA, KeyCode::KeyD);
+        step.y = axis(KeyCode::KeyZ, KeyCode::KeyX);
+        self.scene.camera.move_position(step * CAMERA_POS_STEP);
+        let (dx, dy) = std::mem::take(&mut self.mouse_delta);
+        self.scene.camera.move_rotation(Vec3::new(
+            dy as f32 * MOUSE_SENSITIVITY,
+            dx as f32 * MOUSE_SENSITIVITY,
+            0.0,
+        ));
+        self.scene.update();
+    }
+}
