@@ -450,7 +450,10 @@ fn smoke_side_by_side(
             ..scene.shadow
         };
         let renderer = Renderer::new(ctx.gl(), &scene, &s).unwrap();
-        (renderer, RenderTarget::new(ctx.gl(), 240, 160, OUTPUTS).unwrap())
+        (
+            renderer,
+            RenderTarget::new(ctx.gl(), 240, 160, OUTPUTS).unwrap(),
+        )
     });
     for (i, m) in moves.iter().enumerate() {
         match m {
@@ -471,11 +474,19 @@ fn smoke_side_by_side(
         );
     }
     let [cached, fresh] = renderers.each_ref().map(|(renderer, _)| {
-        let map = renderer.volumetric_maps().get(0).expect("a translucent map");
+        let map = renderer
+            .volumetric_maps()
+            .get(0)
+            .expect("a translucent map");
         let map = map.map();
-        (0..map.layers()).map(|l| map.read_layer(l)).collect::<Vec<_>>()
+        (0..map.layers())
+            .map(|l| map.read_layer(l))
+            .collect::<Vec<_>>()
     });
-    assert!(cached == fresh, "{volumetric:?}: the kept translucent map differs");
+    assert!(
+        cached == fresh,
+        "{volumetric:?}: the kept translucent map differs"
+    );
     let fresh_draws = renderers[1].0.volumetric_maps().draws();
     assert_eq!(
         (fresh_draws.drawn, fresh_draws.kept),

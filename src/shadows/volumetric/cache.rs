@@ -38,7 +38,10 @@ pub fn content_key(scene: &Scene, view: &ShadowView, settings: u64, fit: DepthFi
     let mut h = DefaultHasher::new();
     settings.hash(&mut h);
     view.view64.to_cols_array().map(f64::to_bits).hash(&mut h);
-    view.projection.to_cols_array().map(f32::to_bits).hash(&mut h);
+    view.projection
+        .to_cols_array()
+        .map(f32::to_bits)
+        .hash(&mut h);
     for (k, item) in translucent_casters(scene) {
         k.hash(&mut h);
         hash_placement(item, &mut h);
@@ -92,7 +95,10 @@ mod tests {
         assert_ne!(k0, key(&scene, &turned, &s));
         for other in [
             ShadowSettings { avsm_nodes: 4, ..s },
-            ShadowSettings { peel_layers: 8, ..s },
+            ShadowSettings {
+                peel_layers: 8,
+                ..s
+            },
             ShadowSettings {
                 volumetric: Volumetric::Osm,
                 ..s

@@ -61,7 +61,10 @@ impl Maps {
                 *technique = own.volumetric;
                 (self.drawn[i], self.keys[i]) = (None, None);
             }
-            let made_for = (cache::settings_key(&own.settings), own.settings.shadow_cache);
+            let made_for = (
+                cache::settings_key(&own.settings),
+                own.settings.shadow_cache,
+            );
             if self.made_for[i] != made_for {
                 (self.made_for[i], self.keys[i]) = (made_for, None);
             }
