@@ -537,7 +537,7 @@ impl SettingsArgs {
     pub fn warnings(&self, scene: &Scene, settings: &ShadowSettings) -> Vec<String> {
         let given = self.patch.given();
         ShadowPlan::decide(&scene.lights, settings)
-            .idle
+            .idle_in(scene)
             .into_iter()
             .filter(|idle| given.contains(&idle.setting))
             .map(|idle| {

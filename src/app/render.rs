@@ -242,6 +242,15 @@ fn print_frame_stats(frame: &Frame, settings: &ShadowSettings) {
         frame.casters.drawn,
         frame.casters.total
     );
+    let v = frame.volumetric_draws;
+    if v.drawn + v.kept > 0 {
+        println!(
+            "translucent maps over {} frames: {} drawn, {} kept unchanged",
+            frame.frame_ms.len(),
+            v.drawn,
+            v.kept
+        );
+    }
     let m = frame.mask_uses;
     if m.written + m.read > 0 {
         println!(

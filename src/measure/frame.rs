@@ -40,6 +40,8 @@ pub struct Frame {
     pub depth_passes: DepthPasses,
     /// Frames that wrote and read the cached shadow mask.
     pub mask_uses: crate::renderer::MaskUses,
+    /// Translucent maps drawn and kept over the frames.
+    pub volumetric_draws: crate::shadows::volumetric::cache::MapDraws,
     /// Casters drawn into maps against casters offered, over the frames.
     pub casters: crate::shadows::CasterCounts,
     /// Shadow-volume pixels that passed the depth test in the last frame (0 without
@@ -248,6 +250,7 @@ pub fn render_frames_with(
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),
         mask_uses: renderer.mask_uses(),
+        volumetric_draws: renderer.volumetric_maps().draws(),
         casters: renderer.caster_counts(),
         volume_pixels: renderer.volume_pixels(),
     })

@@ -62,6 +62,7 @@ impl Renderer {
                 MaskMode::Read => self.mask.texture(),
                 _ => None,
             },
+            translucent: self.translucent_program(mode),
         }
     }
 
@@ -81,6 +82,7 @@ impl Renderer {
             self.draw_scene(scene, target, Plan::Test, samplers)?;
         }
         let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
+        self.keep_tests_program(scene, target.outputs(), mode)?;
         self.use_program(scene, target.outputs(), mode)?;
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         if self.uses_volumes() {

@@ -64,6 +64,10 @@ pub struct Inputs<'a> {
     pub pass_light: i32,
     /// The cached shadow mask, for a program that reads it.
     pub mask: Option<&'a Texture>,
+    /// The program the translucent items are drawn with: `program`, or beside a program
+    /// that reads the mask, the one that tests ([`super::translucent_pass`]); `None`
+    /// while the mask is written (it holds the opaque receivers' tests alone).
+    pub translucent: Option<&'a ShaderProgram>,
 }
 
 /// The per-light uniform arrays of the scene pass (view space), and the per-slot ones of

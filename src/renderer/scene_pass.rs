@@ -45,10 +45,11 @@ pub fn draw(
     // The book's loop sets each item's matrices and draws it; here the items are batched by
     // mesh and texture (`draw_opaque`), their values in the instance buffer.
     draw_opaque(inputs, scene, &u, view64, origin);
-    translucent_pass::draw(inputs, gl, scene, view64, origin, &u);
+    let camera = (view64, origin, projection);
+    let translucent = translucent_pass::draw(inputs, samplers, gl, scene, &u, camera);
     p.unbind();
     drop(bound);
-    Ok(())
+    translucent
 }
 
 /// The opaque items, one instanced draw per run of items sharing a mesh and a texture, in

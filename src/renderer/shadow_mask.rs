@@ -11,7 +11,7 @@ use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
 use super::{scene_pass, Renderer};
-use crate::engine::{Gl, Outputs, RenderTarget, Samplers, Texture};
+use crate::engine::{Gl, Outputs, RenderTarget, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::shadows::program::ProgramKey;
@@ -120,19 +120,18 @@ impl ShadowMask {
 }
 
 /// A number that changes whenever a pixel's shadow tests could: the camera, the target's
-/// size, every item's mesh and placement (receivers as well as casters: they decide which
-/// surface a pixel shows), the scene program, and what each light's map holds (`maps`, the
-/// shadow cache's keys; `None` when a map is drawn every frame: then nothing is cached).
+/// size, every item's mesh, placement and opacity (receivers as well as casters: they decide
+/// which surface a pixel shows), the scene program, and what each light's maps hold (`maps`,
+/// the shadow cache's keys, the translucent maps' among them; `None` when a map is drawn
+/// every frame: then nothing is cached). Translucent items do not keep a frame from it: the
+/// mask holds the opaque surfaces' tests, and they take their own
+/// ([`super::translucent_pass`]).
 pub fn frame_key(
     scene: &Scene,
     size: (u32, u32),
     program: &ProgramKey,
     maps: &[Option<u64>],
 ) -> Option<u64> {
-    // A translucent item's shading is drawn over the receiver's tests the mask would hold.
-    if scene.items.iter().any(|i| i.is_translucent()) {
-        return None;
-    }
     let mut h = DefaultHasher::new();
     for key in maps {
         key.ok_or(()).ok()?.hash(&mut h);
@@ -142,6 +141,7 @@ pub fn frame_key(
     program.hash(&mut h);
     for item in &scene.items {
         crate::shadows::cache::hash_placement(item, &mut h);
+        item.opacity.to_bits().hash(&mut h);
     }
     Some(h.finish())
 }
@@ -162,7 +162,7 @@ impl Renderer {
     /// off), or a program the mask cannot serve.
     fn mask_key(&self, scene: &Scene, size: (u32, u32)) -> Result<Option<u64>> {
         let program = self.program_key(scene, Outputs::default())?;
-        let maps: Vec<Option<u64>> = self
+        let mut maps: Vec<Option<u64>> = self
             .shadows
             .iter()
             .zip(self.schedule.keys())
@@ -172,7 +172,44 @@ impl Renderer {
         if maps.is_empty() || !program.maskable() {
             return Ok(None);
         }
+        let translucent = &self.volumetric;
+        maps.extend(
+            (translucent.keys().iter().enumerate())
+                .filter(|(i, _)| translucent.get(*i).is_some())
+                .map(|(_, key)| *key),
+        );
         Ok(frame_key(scene, size, &program, &maps))
+    }
+
+    /// The program `mode`'s scene program draws the translucent items with: itself when it
+    /// tests, none when it writes the mask, the testing one beside a program that reads it
+    /// ([`Renderer::keep_tests_program`] keeps that one compiled).
+    pub(super) fn translucent_program(&self, mode: MaskMode) -> Option<&ShaderProgram> {
+        let (front, program) = self.scene_programs.first()?;
+        match mode {
+            MaskMode::Off => Some(program),
+            MaskMode::Write => None,
+            MaskMode::Read => {
+                let tests = front.with_mask(MaskMode::Off);
+                let found = self.scene_programs.iter().find(|(k, _)| *k == tests);
+                found.map(|(_, p)| p)
+            }
+        }
+    }
+
+    /// With `mode` reading the mask and translucent items to draw, makes sure the program
+    /// that tests for `outputs` is compiled, for them; the caller then puts `mode`'s in
+    /// front.
+    pub(super) fn keep_tests_program(
+        &mut self,
+        scene: &Scene,
+        outputs: Outputs,
+        mode: MaskMode,
+    ) -> Result<()> {
+        if mode == MaskMode::Read && scene.items.iter().any(|i| i.is_translucent()) {
+            self.use_program(scene, outputs, MaskMode::Off)?;
+        }
+        Ok(())
     }
 
     /// One channel per light up to the last with a map.

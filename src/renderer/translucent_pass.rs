@@ -2,11 +2,17 @@
 //! to front, each blended over the frame by its opacity ([`TranslucentBlend`]). They take
 //! the lights and shadow tests of the opaque items, so they receive shadows too; the frame's
 //! measurement outputs keep the opaque receivers under them.
+//!
+//! The cached shadow mask holds, per pixel, the tests of the opaque surface there (each
+//! light's test times the light the translucent casters let through), which is not where a
+//! translucent item's fragment is: these items are left out of the mask and, in a frame
+//! that reads it, drawn with the program that tests every light (its maps bound here).
 
-use glam::DMat4;
+use glam::{DMat4, Mat4};
 
-use super::scene_inputs::{Inputs, LightUniforms};
-use crate::engine::{Gl, TranslucentBlend};
+use super::scene_inputs::{bind_maps, Inputs, LightUniforms};
+use crate::engine::{BoundSampler, Gl, Samplers, ShaderProgram, TranslucentBlend};
+use crate::error::Result;
 use crate::scene::{GameItem, Scene};
 use crate::shadows::slots::MATERIAL_UNIT;
 use crate::shadows::ShadowKind;
@@ -30,22 +36,29 @@ fn back_to_front<'a>(inputs: &Inputs, scene: &'a Scene, view: DMat4) -> Vec<&'a 
     items.into_iter().map(|(_, i)| i).collect()
 }
 
-/// Draws the translucent items with the bound scene program, whose per-frame uniforms and
-/// maps the scene pass has set (`u`: its light uniforms; `origin`: the camera's translation
-/// out of world space).
+/// Draws the translucent items with `inputs.translucent` (none while the mask is written).
+/// The scene pass has set the bound program's per-frame uniforms and maps; a program of its
+/// own gets them here (`u`: the light uniforms; `camera`: its view, the translation out of
+/// world space and the projection).
 pub(super) fn draw(
     inputs: &Inputs,
+    samplers: &mut Samplers,
     gl: &Gl,
     scene: &Scene,
-    view64: DMat4,
-    origin: DMat4,
     u: &LightUniforms,
-) {
+    (view64, origin, projection): (DMat4, DMat4, Mat4),
+) -> Result<()> {
+    let Some(p) = inputs.translucent else {
+        return Ok(());
+    };
     let items = back_to_front(inputs, scene, view64);
     if items.is_empty() {
-        return;
+        return Ok(());
     }
-    let p = inputs.program;
+    let _bound = match std::ptr::eq(p, inputs.program) {
+        true => Vec::new(),
+        false => own_program(inputs, p, samplers, gl, scene, u, (view64, projection))?,
+    };
     let blend = TranslucentBlend::begin(gl);
     for item in items {
         super::scene_inputs::set_item_uniforms(p, item, scene, u, view64, origin);
@@ -57,4 +70,30 @@ pub(super) fn draw(
         blend.set_opacity(item.opacity);
         inputs.meshes[item.mesh].render_list([()], |_| {});
     }
+    Ok(())
+}
+
+/// Binds `p` (the program that tests every light) and sets what the scene pass set on its
+/// own program: the projection, the light uniforms, the units, each light's map.
+fn own_program(
+    inputs: &Inputs,
+    p: &ShaderProgram,
+    samplers: &mut Samplers,
+    gl: &Gl,
+    scene: &Scene,
+    u: &LightUniforms,
+    (view64, projection): (DMat4, Mat4),
+) -> Result<Vec<BoundSampler>> {
+    p.bind();
+    p.set_mat4("projectionMatrix", &projection);
+    u.set(p, view64.as_mat4());
+    p.set_i32("textureSampler", MATERIAL_UNIT as i32);
+    p.set_i32("passLight", inputs.pass_light);
+    p.set_i32("instanced", 0);
+    let tests = Inputs {
+        program: p,
+        mask: None,
+        ..*inputs
+    };
+    bind_maps(&tests, samplers, gl, scene)
 }

@@ -3,6 +3,7 @@
 
 use crate::scene::Light;
 use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
+use crate::shadows::volumetric::method;
 use crate::shadows::ShadowKind;
 
 use super::LightPlan;
@@ -171,6 +172,14 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
     if kind != ShadowKind::Volume {
         push("show_volumes", "the light has no shadow volumes".into());
     }
+    if !(kind == ShadowKind::Map && method(s.volumetric).is_some()) {
+        push(
+            "volumetric_size",
+            "only a 2D depth map with volumetric = \"osm\", \"fom\" or \"avsm\" keeps a \
+             translucent map"
+                .into(),
+        );
+    }
     for (name, technique) in VOLUMETRIC_KNOBS {
         if !(kind == ShadowKind::Map && s.volumetric == technique) {
             let value = technique.name();
@@ -294,8 +303,44 @@ pub(super) fn of_scene(
             idle.push(Idle::new(name, why));
         }
     }
+    if !plans.iter().any(|p| p.volumetric.is_some()) {
+        idle.push(Idle::new("volumetric_size", no_translucent_map(settings)));
+    }
     of_scene_maps(plans, &mut idle);
     idle
+}
+
+/// Why no light keeps a translucent map under the scene's `settings`.
+fn no_translucent_map(settings: &ShadowSettings) -> String {
+    match method(settings.volumetric) {
+        None => format!(
+            "volumetric = \"{}\" keeps no translucent map to size (--volumetric osm, fom or \
+             avsm keep one)",
+            settings.volumetric.name()
+        ),
+        Some(_) => "no light keeps a translucent map (one beside a directional or spot light's \
+                    2D map)"
+            .to_string(),
+    }
+}
+
+/// Why `volumetric_size` does nothing in a scene with no translucent caster.
+pub const NO_TRANSLUCENT_CASTER: &str =
+    "the scene has no translucent caster (an item with opacity below 1): the translucent map \
+     stays empty";
+
+impl super::ShadowPlan {
+    /// The scene's idle settings ([`super::ShadowPlan::idle`]) and those its items make
+    /// idle: `volumetric_size` without a translucent caster (the plan sees the lights
+    /// alone).
+    pub fn idle_in(&self, scene: &crate::scene::Scene) -> Vec<Idle> {
+        let mut idle = self.idle.clone();
+        let casters = crate::shadows::volumetric::translucent_casters(scene).next();
+        if casters.is_none() && !idle.iter().any(|i| i.setting == "volumetric_size") {
+            idle.push(Idle::new("volumetric_size", NO_TRANSLUCENT_CASTER));
+        }
+        idle
+    }
 }
 
 /// Why a directional light's layers (`what`: cascades, caster groups) are not drawn under
@@ -379,4 +424,77 @@ pub(super) fn defaults_for(settings: &ShadowSettings, idle: &[Idle]) -> ShadowSe
         }
     }
     serde_json::from_value(serde_json::Value::Object(used)).unwrap_or(*settings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+    use crate::shadows::plan::ShadowPlan;
+
+    fn why(idle: &[Idle], setting: &str) -> Option<String> {
+        idle.iter()
+            .find(|i| i.setting == setting)
+            .map(|i| i.why.clone())
+    }
+
+    #[test]
+    fn volumetric_size_is_idle_without_a_translucent_map_or_caster() {
+        let smoke = Scene::load("smoke").unwrap();
+        let with = |v: Volumetric| ShadowSettings {
+            volumetric: v,
+            ..smoke.shadow
+        };
+        // The smoke's own `off`, and `solid`: no translucent map.
+        for v in [Volumetric::Off, Volumetric::Solid] {
+            let plan = ShadowPlan::decide(&smoke.lights, &with(v));
+            let expected = format!(
+                "volumetric = \"{}\" keeps no translucent map to size (--volumetric osm, fom \
+                 or avsm keep one)",
+                v.name()
+            );
+            assert_eq!(
+                why(&plan.idle_in(&smoke), "volumetric_size"),
+                Some(expected)
+            );
+            assert_eq!(
+                why(&plan.lights[0].idle, "volumetric_size").as_deref(),
+                Some(
+                    "only a 2D depth map with volumetric = \"osm\", \"fom\" or \"avsm\" \
+                     keeps a translucent map"
+                )
+            );
+        }
+        // A map over translucent casters: it acts.
+        for v in [Volumetric::Osm, Volumetric::Fom, Volumetric::Avsm] {
+            let plan = ShadowPlan::decide(&smoke.lights, &with(v));
+            assert_eq!(why(&plan.idle_in(&smoke), "volumetric_size"), None, "{v:?}");
+            assert_eq!(why(&plan.lights[0].idle, "volumetric_size"), None, "{v:?}");
+        }
+        // A map with nothing translucent to cast: the DummyGame.
+        let dummy = Scene::load("dummy").unwrap();
+        let osm = ShadowSettings {
+            volumetric: Volumetric::Osm,
+            ..dummy.shadow
+        };
+        let plan = ShadowPlan::decide(&dummy.lights, &osm);
+        assert_eq!(why(&plan.idle, "volumetric_size"), None);
+        assert_eq!(
+            why(&plan.idle_in(&dummy), "volumetric_size").as_deref(),
+            Some(
+                "the scene has no translucent caster (an item with opacity below 1): the \
+                 translucent map stays empty"
+            )
+        );
+        // Shadows off: no map at all.
+        let off = ShadowSettings {
+            shadows: false,
+            ..osm
+        };
+        let plan = ShadowPlan::decide(&smoke.lights, &off);
+        assert_eq!(
+            why(&plan.idle, "volumetric_size").as_deref(),
+            Some("no light keeps a translucent map (one beside a directional or spot light's 2D map)")
+        );
+    }
 }

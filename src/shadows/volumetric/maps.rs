@@ -1,8 +1,10 @@
 //! Every light's translucent map, beside the lights' depth maps: made to match the plan,
-//! drawn after the depth pass (before the scene pass) and bound for the scene pass.
+//! drawn after the depth pass (before the scene pass) when what it holds changed
+//! ([`super::cache`]), and bound for the scene pass.
 
 use glam::{DMat4, DVec3, Mat4, Vec4};
 
+use super::cache::{self, MapDraws};
 use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS};
 use crate::engine::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
@@ -22,6 +24,11 @@ pub struct Maps {
     /// The texels each map's casters covered when it was last drawn (`None`: a new map,
     /// all of it unknown).
     drawn: Vec<Option<TexelRect>>,
+    /// What each map is made for ([`cache::settings_key`]), and with `shadow_cache` on.
+    made_for: Vec<(u64, bool)>,
+    /// What each map holds ([`cache::content_key`]); `None`: draw it again.
+    keys: Vec<Option<u64>>,
+    draws: MapDraws,
 }
 
 impl Maps {
@@ -39,25 +46,35 @@ impl Maps {
         );
         self.techniques.resize(n, None);
         self.drawn.resize(n, None);
-        let slots = (self.maps.iter_mut().zip(&mut self.techniques)).zip(&mut self.drawn);
-        for (own, ((map, technique), drawn)) in plan.lights.iter().zip(slots) {
+        self.made_for.resize(n, (0, false));
+        self.keys.resize(n, None);
+        for (i, own) in plan.lights.iter().enumerate() {
+            let (map, technique) = (&mut self.maps[i], &mut self.techniques[i]);
             let Some(m) = own.volumetric.and_then(method) else {
                 (*map, *technique) = (None, None);
+                self.keys[i] = None;
                 continue;
             };
             let fits = map.as_ref().is_some_and(|t| t.fits(&own.settings));
             if !fits || *technique != own.volumetric {
                 *map = Some(m.create(gl, &own.settings)?);
                 *technique = own.volumetric;
-                *drawn = None;
+                (self.drawn[i], self.keys[i]) = (None, None);
+            }
+            let made_for = (
+                cache::settings_key(&own.settings),
+                own.settings.shadow_cache,
+            );
+            if self.made_for[i] != made_for {
+                (self.made_for[i], self.keys[i]) = (made_for, None);
             }
         }
         Ok(())
     }
 
     /// Draws each light's map through its camera in `views` (the depth pass' light
-    /// cameras); `boxes`: every item's world box. Every frame: the translucent casters
-    /// are few and the depth map's cache does not follow them.
+    /// cameras); `boxes`: every item's world box. With `shadow_cache` a map whose
+    /// [`cache::content_key`] is the one it was drawn with is kept; without, every frame.
     pub fn render(
         &mut self,
         gl: &Gl,
@@ -71,6 +88,14 @@ impl Maps {
                 continue;
             };
             let fit = DepthFit::of(scene, boxes, view.view64);
+            let (settings, cached) = self.made_for[i];
+            let key = cached.then(|| cache::content_key(scene, view, settings, fit));
+            if key.is_some() && key == self.keys[i] {
+                self.draws.kept += 1;
+                continue;
+            }
+            // Forgotten first: a draw that fails leaves the map to be drawn again.
+            self.keys[i] = None;
             self.fits[i] = fit;
             // Only the texels the casters cover now or covered last time are cleared and
             // drawn: the rest hold 0 from before.
@@ -90,8 +115,21 @@ impl Maps {
                 region: covered.union(before).pixels(),
             };
             map.render(&draw)?;
+            self.keys[i] = key;
+            self.draws.drawn += 1;
         }
         Ok(())
+    }
+
+    /// What each light's map holds ([`cache::content_key`]), `None` where it has none or is
+    /// drawn every frame (`shadow_cache` off).
+    pub fn keys(&self) -> &[Option<u64>] {
+        &self.keys
+    }
+
+    /// Maps drawn and kept so far.
+    pub fn draws(&self) -> MapDraws {
+        self.draws
     }
 
     /// Binds each light's map on its unit for `program` and sets the matrices that find a

@@ -13,6 +13,7 @@
 
 mod additive;
 pub mod avsm;
+pub mod cache;
 pub mod fom;
 pub mod maps;
 pub mod osm;
