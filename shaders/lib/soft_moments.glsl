@@ -6,9 +6,10 @@
 // whatever its width (25 integer reads for 4 x 4 cells, 16 for one box), the same cost at
 // 2 texels as at 64.
 
-// The box's half width in texels: at least 1.5 (a kernel that vanishes at contact brings
-// back acne), at most 64 (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
-const float SOFT_MIN_TEXELS = 1.5;
+// The box's half width in texels: at least 1, two texels wide, three read (a kernel that
+// vanishes at contact brings back acne; PCSS's least disc is a texel's radius), at most 64
+// (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
+const float SOFT_MIN_TEXELS = 1.0;
 const float SOFT_MAX_TEXELS = 64.0;
 // Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
 const float SAT_SCALE_F = 131072.0;
