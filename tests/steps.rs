@@ -340,9 +340,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     let names: Vec<&str> = steps::of(&scene).iter().map(|s| s.name).collect();
     assert_eq!(
         names,
-        [
-            "basic", "pcf", "soft-pcf", "variance", "moment", "pcss", "vssm", "msm-soft"
-        ]
+        ["basic", "pcf", "soft-pcf", "variance", "moment", "pcss", "vssm", "msm-soft"]
     );
     let at = |name| steps::settings_for(&scene, name).unwrap();
     let basic = at("basic");

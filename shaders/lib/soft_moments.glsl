@@ -3,8 +3,8 @@
 // ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
 // whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
 // filter as wide as the penumbra; but each stage reads the table a fixed number of times
-// whatever its width (25 integer reads for 4 x 4 cells, 16 for one box), the same cost at
-// 2 texels as at 64.
+// whatever its width (25 integer reads, the corners of 4 x 4 cells), the same cost at 2
+// texels as at 64.
 
 // The box's half width in texels: at least 1, two texels wide, three read (a kernel that
 // vanishes at contact brings back acne; PCSS's least disc is a texel's radius), at most 64
@@ -13,70 +13,16 @@ const float SOFT_MIN_TEXELS = 1.0;
 const float SOFT_MAX_TEXELS = 64.0;
 // Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
 const float SAT_SCALE_F = 131072.0;
-// The least variance of a search cell for msm-soft's search, whose settings hold none
+// The least variance of msm-soft's search cells and single texels, whose settings hold none
 // (vssm's is its min_variance).
 const float SOFT_SEARCH_VARIANCE = 1e-6;
 // A disc light's penumbra across a straight edge is the share of the disc past a line,
 // whose spread along the edge's normal has variance R^2 / 4 for a disc of radius R; a box
 // of half width a has a^2 / 3. The box of the same spread: a = R sqrt(3) / 2.
 const float SOFT_BOX_OF_DISC = 0.8660254;
-// From this half width on (texels) the filter box is split in cells.
+// From this half width on (texels) the filter box is split in cells snapped to whole
+// texels; below, its texels are read one by one (softNarrow).
 const float SOFT_CELL_TEXELS = 4.0;
-
-// The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
-// (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
-void satDiffs(uvec4 v[4], out uvec4 d[3])
-{
-    d[0] = v[2] - v[0];
-    d[1] = v[3] - v[2];
-    d[2] = v[1] - v[0];
-}
-
-// The mean of the map over the box centre +- reach (texels of the map, continuous): the
-// prefix sum at a fractional corner is the table's two neighbours interpolated, so the box
-// sum is 9 boxes of whole texels (each a difference of four unsigned corners, exact, then
-// a float) weighted by the corners' fractions. Clamped to the map, a texel wide at least.
-vec4 satBoxMean(usampler2D table, vec2 centre, vec2 reach, vec2 size)
-{
-    vec2 lo = clamp(centre - reach, vec2(1.0), size - 2.0) - 1.0;
-    vec2 hi = clamp(centre + reach, lo + 2.0, size - 1.0) - 1.0;
-    ivec2 i0 = ivec2(floor(lo));
-    ivec2 i1 = ivec2(floor(hi));
-    vec2 f0 = lo - vec2(i0);
-    vec2 f1 = hi - vec2(i1);
-    int xs[4] = int[](i0.x, i0.x + 1, i1.x, i1.x + 1);
-    int ys[4] = int[](i0.y, i0.y + 1, i1.y, i1.y + 1);
-    // Differences across, row by row (three columns of four rows), then down: boxes of
-    // whole texels.
-    uvec4 wide[4];
-    uvec4 right[4];
-    uvec4 left[4];
-    for (int r = 0; r < 4; ++r) {
-        uvec4 row[4];
-        for (int c = 0; c < 4; ++c) {
-            row[c] = texelFetch(table, ivec2(xs[c], ys[r]), 0);
-        }
-        uvec4 d[3];
-        satDiffs(row, d);
-        wide[r] = d[0];
-        right[r] = d[1];
-        left[r] = d[2];
-    }
-    vec3 wx = vec3(1.0, f1.x, -f0.x);
-    vec3 wy = vec3(1.0, f1.y, -f0.y);
-    uvec4 dw[3];
-    uvec4 dr[3];
-    uvec4 dl[3];
-    satDiffs(wide, dw);
-    satDiffs(right, dr);
-    satDiffs(left, dl);
-    vec4 sum = vec4(0.0);
-    for (int j = 0; j < 3; ++j) {
-        sum += wy[j] * (wx.x * vec4(dw[j]) + wx.y * vec4(dr[j]) + wx.z * vec4(dl[j]));
-    }
-    vec2 extent = hi - lo;
-    return sum / (SAT_SCALE_F * extent.x * extent.y);
-}
 
 // A box's half width in texels for a penumbra's half width in uv, within the bounds.
 vec2 softHalf(vec2 halfUv, vec2 size)
@@ -114,6 +60,8 @@ const int SOFT_MSM = 2;
 // plane's depth `ti` at its centre. A cell of blockers over a planar receiver has
 // mean = p t + (1 - p) blockers (Yang et al. 2010): the search's part is (1 - p, blockers
 // (1 - p)). `settings`: vssm's (min variance, bleed reduction); msm-soft's (alpha, toward).
+// A `single` texel's moments are one depth: msm-soft compares it by Chebyshev's bound with
+// the least variance, a hard test (the moment bias would blur a depth known exactly).
 vec2 softCell(int kind, vec4 m, float ti, bool single, float minVariance, vec2 settings,
               vec4 toward)
 {
@@ -230,8 +178,8 @@ float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, fl
 }
 
 // vssm's filter: Chebyshev's bound with the light-bleeding reduction, from
-// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over one box, whose
-// fractional corners keep a narrow kernel smooth.
+// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over its texels
+// (softNarrow), weighted by the box's fractional corners so a narrow kernel moves smoothly.
 float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                  float minVariance, float bleedReduction)
 {
