@@ -314,7 +314,8 @@ const OUTSIDE_THE_BOX: &[Stage] = &[
 ];
 
 /// The shadow-playground's demo pages in its order (basic, PCF, soft PCF; its variance and
-/// moment pages are filters of their own), then PCSS, which the engines add.
+/// moment pages are filters of their own), then PCSS, which the engines add, and its two
+/// stages on summed-area tables of the moments (docs/techniques/soft-moments.md).
 pub const PLAYGROUND_STEPS: &[Step] = &[
     Step {
         name: "basic",
@@ -417,6 +418,40 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
             s.filter = Filter::Pcss;
             s.bias_mode = BiasMode::Constant;
             s.depth_lookup = DepthLookup::Nearest;
+        },
+    },
+    Step {
+        name: "vssm",
+        change: "PCSS's two stages at a constant cost (variance soft shadow maps): summed-area \
+                 tables of (z, z^2); the blocker search and a filter as wide as the penumbra \
+                 each read 4 x 4 cells of texels, whatever the width, and test each cell \
+                 against the receiver's plane by Chebyshev's bound. Like the variance page, no \
+                 epsilon: the plane and the least variance keep acne away, and PCF's epsilon \
+                 would move the receiver toward its blockers.",
+        look_for: "Shadows sharp where the cube touches the slab and wider away from it, as \
+                   PCSS's, with smooth penumbrae in place of its fine noise.",
+        cumulative: true,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| {
+            s.filter = Filter::Vssm;
+            s.bias_mode = BiasMode::None;
+        },
+    },
+    Step {
+        name: "msm-soft",
+        change: "The same on four moments (moment soft shadow maps), each cell by the \
+                 Hamburger reconstruction, with the moment bias for [0, 1] depth (3e-5 toward \
+                 0.5) in place of the moment page's 9e-4: a cell of a few texels needs \
+                 little, and more lights the penumbra's dark side.",
+        look_for: "The vssm step's penumbrae within a few levels, from four moments.",
+        cumulative: true,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| {
+            s.filter = Filter::MsmSoft;
+            s.msm_bias = 3e-5;
+            s.msm_toward = MsmToward::Half;
         },
     },
 ];

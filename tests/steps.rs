@@ -340,7 +340,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     let names: Vec<&str> = steps::of(&scene).iter().map(|s| s.name).collect();
     assert_eq!(
         names,
-        ["basic", "pcf", "soft-pcf", "variance", "moment", "pcss"]
+        ["basic", "pcf", "soft-pcf", "variance", "moment", "pcss", "vssm", "msm-soft"]
     );
     let at = |name| steps::settings_for(&scene, name).unwrap();
     let basic = at("basic");
@@ -379,7 +379,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     assert_eq!(
         e,
         "unknown step 'cull-front' for the playground scene (its [steps] list is \"playground\"): \
-         expected one of basic, pcf, soft-pcf, variance, moment, pcss"
+         expected one of basic, pcf, soft-pcf, variance, moment, pcss, vssm, msm-soft"
     );
     let dummy = Scene::load("dummy").unwrap();
     let e = steps::settings_for(&dummy, "soft-pcf")
@@ -505,7 +505,7 @@ fn the_steps_page_shows_each_step_with_consistent_figures() {
 fn the_playgrounds_moment_pages_carry_no_bias_and_its_pcf_pages_read_depth_linear() {
     use shadowmap::settings::DepthLookup;
     let scene = Scene::load("playground").unwrap();
-    for name in ["variance", "moment"] {
+    for name in ["variance", "moment", "vssm"] {
         let s = step(&scene, name);
         assert_eq!(s.bias_mode, BiasMode::None, "{name}");
         assert!(s.summary().contains("no bias"), "{name}: {}", s.summary());

@@ -3,79 +3,26 @@
 // ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
 // whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
 // filter as wide as the penumbra; but each stage reads the table a fixed number of times
-// whatever its width (25 integer reads for 4 x 4 cells, 16 for one box), the same cost at
-// 2 texels as at 64.
+// whatever its width (25 integer reads, the corners of 4 x 4 cells), the same cost at 2
+// texels as at 64.
 
-// The box's half width in texels: at least 1.5 (a kernel that vanishes at contact brings
-// back acne), at most 64 (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
-const float SOFT_MIN_TEXELS = 1.5;
+// The box's half width in texels: at least 1, two texels wide, three read (a kernel that
+// vanishes at contact brings back acne; PCSS's least disc is a texel's radius), at most 64
+// (src/engine/summed_area.rs: SAT_MAX_BOX = 2 x 64 + 2).
+const float SOFT_MIN_TEXELS = 1.0;
 const float SOFT_MAX_TEXELS = 64.0;
 // Fixed-point units per unit of a moment (src/engine/summed_area.rs: SAT_SCALE).
 const float SAT_SCALE_F = 131072.0;
-// The least variance of a search cell for msm-soft's search, whose settings hold none
+// The least variance of msm-soft's search cells and single texels, whose settings hold none
 // (vssm's is its min_variance).
 const float SOFT_SEARCH_VARIANCE = 1e-6;
 // A disc light's penumbra across a straight edge is the share of the disc past a line,
 // whose spread along the edge's normal has variance R^2 / 4 for a disc of radius R; a box
 // of half width a has a^2 / 3. The box of the same spread: a = R sqrt(3) / 2.
 const float SOFT_BOX_OF_DISC = 0.8660254;
-// From this half width on (texels) the filter box is split in cells.
+// From this half width on (texels) the filter box is split in cells snapped to whole
+// texels; below, its texels are read one by one (softNarrow).
 const float SOFT_CELL_TEXELS = 4.0;
-
-// The three differences along one axis of a table's values at i0, i0 + 1, i1, i1 + 1:
-// (i1 - i0, i1 + 1 - i1, i0 + 1 - i0). Unsigned: a difference of wrapped sums is right.
-void satDiffs(uvec4 v[4], out uvec4 d[3])
-{
-    d[0] = v[2] - v[0];
-    d[1] = v[3] - v[2];
-    d[2] = v[1] - v[0];
-}
-
-// The mean of the map over the box centre +- reach (texels of the map, continuous): the
-// prefix sum at a fractional corner is the table's two neighbours interpolated, so the box
-// sum is 9 boxes of whole texels (each a difference of four unsigned corners, exact, then
-// a float) weighted by the corners' fractions. Clamped to the map, a texel wide at least.
-vec4 satBoxMean(usampler2D table, vec2 centre, vec2 reach, vec2 size)
-{
-    vec2 lo = clamp(centre - reach, vec2(1.0), size - 2.0) - 1.0;
-    vec2 hi = clamp(centre + reach, lo + 2.0, size - 1.0) - 1.0;
-    ivec2 i0 = ivec2(floor(lo));
-    ivec2 i1 = ivec2(floor(hi));
-    vec2 f0 = lo - vec2(i0);
-    vec2 f1 = hi - vec2(i1);
-    int xs[4] = int[](i0.x, i0.x + 1, i1.x, i1.x + 1);
-    int ys[4] = int[](i0.y, i0.y + 1, i1.y, i1.y + 1);
-    // Differences across, row by row (three columns of four rows), then down: boxes of
-    // whole texels.
-    uvec4 wide[4];
-    uvec4 right[4];
-    uvec4 left[4];
-    for (int r = 0; r < 4; ++r) {
-        uvec4 row[4];
-        for (int c = 0; c < 4; ++c) {
-            row[c] = texelFetch(table, ivec2(xs[c], ys[r]), 0);
-        }
-        uvec4 d[3];
-        satDiffs(row, d);
-        wide[r] = d[0];
-        right[r] = d[1];
-        left[r] = d[2];
-    }
-    vec3 wx = vec3(1.0, f1.x, -f0.x);
-    vec3 wy = vec3(1.0, f1.y, -f0.y);
-    uvec4 dw[3];
-    uvec4 dr[3];
-    uvec4 dl[3];
-    satDiffs(wide, dw);
-    satDiffs(right, dr);
-    satDiffs(left, dl);
-    vec4 sum = vec4(0.0);
-    for (int j = 0; j < 3; ++j) {
-        sum += wy[j] * (wx.x * vec4(dw[j]) + wx.y * vec4(dr[j]) + wx.z * vec4(dl[j]));
-    }
-    vec2 extent = hi - lo;
-    return sum / (SAT_SCALE_F * extent.x * extent.y);
-}
 
 // A box's half width in texels for a penumbra's half width in uv, within the bounds.
 vec2 softHalf(vec2 halfUv, vec2 size)
@@ -113,7 +60,10 @@ const int SOFT_MSM = 2;
 // plane's depth `ti` at its centre. A cell of blockers over a planar receiver has
 // mean = p t + (1 - p) blockers (Yang et al. 2010): the search's part is (1 - p, blockers
 // (1 - p)). `settings`: vssm's (min variance, bleed reduction); msm-soft's (alpha, toward).
-vec2 softCell(int kind, vec4 m, float ti, float minVariance, vec2 settings, vec4 toward)
+// A `single` texel's moments are one depth: msm-soft compares it by Chebyshev's bound with
+// the least variance, a hard test (the moment bias would blur a depth known exactly).
+vec2 softCell(int kind, vec4 m, float ti, bool single, float minVariance, vec2 settings,
+              vec4 toward)
 {
     if (kind == SOFT_SEARCH) {
         float unoccluded = chebyshevUpperBound(m.xy, ti, minVariance);
@@ -123,49 +73,96 @@ vec2 softCell(int kind, vec4 m, float ti, float minVariance, vec2 settings, vec4
         float bound = chebyshevUpperBound(m.xy, ti, settings.x);
         return vec2(reduceLightBleeding(bound, settings.y), 0.0);
     }
+    if (single) {
+        return vec2(chebyshevUpperBound(m.xy, ti, SOFT_SEARCH_VARIANCE), 0.0);
+    }
     return vec2(momentVisibility(m, ti, settings.x, toward), 0.0);
 }
 
-// The box centre +- reach split in 4 x 4 cells of whole texels, a 5 x 5 lattice of the
-// table's corners: 25 reads whatever the box's width. Each cell's mean moments are tested
-// against the receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver
-// mixed into one box's variance reads lit where it is not, and passes for a blocker:
-// VSSM's subdivision of a non-planar receiver, here always, with the receiver's plane);
-// returns the cells' parts (softCell) weighted by their areas, over the box's area. Read
-// row by row, so that no array is indexed by a loop the compiler may keep.
+// The cells of a 5 x 5 lattice of the table's corners (`xs`, `ys`: table indices, the
+// corner after texel xs[i]), 25 reads: each cell's mean moments are tested against the
+// receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver mixed into
+// one box's variance reads lit where it is not, and passes for a blocker: VSSM's
+// subdivision of a non-planar receiver, here always, with the receiver's plane); returns
+// the cells' parts (softCell) weighted by the share of each cell inside the box lo..hi
+// (texels of the map), over the box's area. Read row by row, so that no array is indexed
+// by a loop the compiler may keep.
+vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 centre,
+                 vec2 size, float t, vec2 slope, int kind, float minVariance, vec2 settings,
+                 vec4 toward)
+{
+    float wx[4];
+    for (int i = 0; i < 4; ++i) {
+        wx[i] = max(min(hi.x, float(xs[i + 1] + 1)) - max(lo.x, float(xs[i] + 1)), 0.0);
+    }
+    vec2 sum = vec2(0.0);
+    float total = 0.0;
+    uvec4 above[5];
+    for (int j = 0; j < 5; ++j) {
+        uvec4 row[5];
+        for (int i = 0; i < 5; ++i) {
+            row[i] = texelFetch(table, ivec2(xs[i], ys[j]), 0);
+        }
+        if (j > 0) {
+            float wy = max(min(hi.y, float(ys[j] + 1)) - max(lo.y, float(ys[j - 1] + 1)), 0.0);
+            for (int i = 0; i < 4; ++i) {
+                float area = float((xs[i + 1] - xs[i]) * (ys[j] - ys[j - 1]));
+                uvec4 cell = row[i + 1] - row[i] - above[i + 1] + above[i];
+                vec4 m = vec4(cell) / (SAT_SCALE_F * max(area, 1.0));
+                vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], ys[j] + ys[j - 1]) + 1.0 - centre;
+                float ti = t + dot(slope, offset / size);
+                float w = area > 0.0 ? wx[i] * wy : 0.0;
+                sum += w * softCell(kind, m, ti, area == 1.0, minVariance, settings,
+                                    toward);
+                total += w;
+            }
+        }
+        above = row;
+    }
+    return sum / max(total, 1e-6);
+}
+
+// The box centre +- reach split in 4 x 4 cells of whole texels (softLattice), the box's
+// corners snapped to the texels': for a wide box, where a texel is a small part of it.
 vec2 softCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                int kind, float minVariance, vec2 settings, vec4 toward)
 {
     int xs[5];
+    int ys[5];
     for (int i = 0; i < 5; ++i) {
         xs[i] = satCorner(centre.x - reach.x + reach.x * (0.5 * float(i)), size.x);
+        ys[i] = satCorner(centre.y - reach.y + reach.y * (0.5 * float(i)), size.y);
     }
-    vec2 sum = vec2(0.0);
-    uvec4 above[5];
-    int yAbove = 0;
-    int yFirst = 0;
-    for (int j = 0; j < 5; ++j) {
-        int y = satCorner(centre.y - reach.y + reach.y * (0.5 * float(j)), size.y);
-        uvec4 row[5];
-        for (int i = 0; i < 5; ++i) {
-            row[i] = texelFetch(table, ivec2(xs[i], y), 0);
-        }
-        if (j > 0) {
-            for (int i = 0; i < 4; ++i) {
-                float area = float((xs[i + 1] - xs[i]) * (y - yAbove));
-                uvec4 cell = row[i + 1] - row[i] - above[i + 1] + above[i];
-                vec4 m = vec4(cell) / (SAT_SCALE_F * max(area, 1.0));
-                vec2 offset = 0.5 * vec2(xs[i] + xs[i + 1], y + yAbove) + 1.0 - centre;
-                float ti = t + dot(slope, offset / size);
-                sum += area * softCell(kind, m, ti, minVariance, settings, toward);
-            }
-        } else {
-            yFirst = y;
-        }
-        above = row;
-        yAbove = y;
+    vec2 lo = vec2(xs[0], ys[0]) + 1.0;
+    vec2 hi = vec2(xs[4], ys[4]) + 1.0;
+    return softLattice(table, xs, ys, lo, hi, centre, size, t, slope, kind, minVariance,
+                       settings, toward);
+}
+
+// A narrow box (under SOFT_CELL_TEXELS either side) over the 4 x 4 blocks of whole texels
+// from its first texel, each block a texel (a box up to 3 texels wide) or a few: each
+// block's own moments, exact to the table's unit, against the receiver's plane, weighted
+// by the part of the box it covers. A single texel's variance is nothing but the least
+// one, so the test is PCF's comparison, texel by texel, at the box's width: one box's
+// bound over caster and receiver together leaks light. Clamped to the map (its edge
+// texels read past it, as a clamped texture's), two texels wide at least.
+vec2 softNarrow(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
+                int kind, float minVariance, vec2 settings, vec4 toward)
+{
+    vec2 lo = clamp(centre - reach, vec2(1.0), size - 3.0);
+    vec2 hi = clamp(centre + reach, lo + 2.0, size - 1.0);
+    vec2 first = floor(lo);
+    vec2 count = floor(hi) - first + 1.0;
+    vec2 block = max(ceil(count / 4.0), 1.0);
+    int xs[5];
+    int ys[5];
+    for (int i = 0; i < 5; ++i) {
+        vec2 corner = first + block * float(i);
+        xs[i] = int(clamp(corner.x, 1.0, size.x - 1.0)) - 1;
+        ys[i] = int(clamp(corner.y, 1.0, size.y - 1.0)) - 1;
     }
-    return sum / max(float((xs[4] - xs[0]) * (yAbove - yFirst)), 1.0);
+    return softLattice(table, xs, ys, lo, hi, centre, size, t, slope, kind, minVariance,
+                       settings, toward);
 }
 
 // The blocker search at a fixed cost: the search box's cells (softCells) by Chebyshev's
@@ -181,14 +178,14 @@ float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, fl
 }
 
 // vssm's filter: Chebyshev's bound with the light-bleeding reduction, from
-// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over one box, whose
-// fractional corners keep a narrow kernel smooth.
+// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over its texels
+// (softNarrow), weighted by the box's fractional corners so a narrow kernel moves smoothly.
 float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                  float minVariance, float bleedReduction)
 {
     if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
-        vec2 m = satBoxMean(table, centre, reach, size).xy;
-        return reduceLightBleeding(chebyshevUpperBound(m, t, minVariance), bleedReduction);
+        return softNarrow(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
+                          vec2(minVariance, bleedReduction), vec4(0.0)).x;
     }
     return softCells(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
                      vec2(minVariance, bleedReduction), vec4(0.0)).x;
@@ -200,7 +197,8 @@ float msmSoftFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float 
                     float alpha, vec4 toward)
 {
     if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
-        return momentVisibility(satBoxMean(table, centre, reach, size), t, alpha, toward);
+        return softNarrow(table, centre, reach, size, t, slope, SOFT_MSM, 0.0,
+                          vec2(alpha, 0.0), toward).x;
     }
     return softCells(table, centre, reach, size, t, slope, SOFT_MSM, 0.0, vec2(alpha, 0.0),
                      toward).x;
