@@ -320,8 +320,8 @@ fn a_bench_with_a_sized_light_has_the_soft_filters_as_a_series_scored_against_it
         ("pcf4x4-weighted", "16"),
         ("soft-pcf", "16"),
         ("pcss", "32"),
-        ("vssm", "32"),
-        ("msm-soft", "32"),
+        ("vssm", "50"),
+        ("msm-soft", "50"),
     ] {
         // (Shadow volumes read no map: their row states 0. Caster groups read every layer.)
         for r in rows

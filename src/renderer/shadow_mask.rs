@@ -136,7 +136,7 @@ pub fn frame_key(
     for key in maps {
         key.ok_or(()).ok()?.hash(&mut h);
     }
-    format!("{:?}", scene.camera).hash(&mut h);
+    scene.camera.hash_bits(&mut h);
     size.hash(&mut h);
     program.hash(&mut h);
     for item in &scene.items {

@@ -33,6 +33,22 @@ impl Default for Camera {
 }
 
 impl Camera {
+    /// Hashes every field bit for bit (a cache's key: no formatting per frame).
+    pub fn hash_bits(&self, h: &mut impl std::hash::Hasher) {
+        use std::hash::Hash;
+        let Camera {
+            position,
+            rotation,
+            fov,
+            near,
+            far,
+        } = self;
+        let (p, r) = (position.to_array(), rotation.to_array());
+        [p, r, [*fov, *near, *far]]
+            .map(|v| v.map(f32::to_bits))
+            .hash(h);
+    }
+
     /// Moves relative to the yaw, as the book's `movePosition`: z forward/back, x sideways,
     /// y straight up.
     pub fn move_position(&mut self, offset: Vec3) {

@@ -84,7 +84,8 @@ pub enum Filter {
     Msm,
     // Soft shadows on summed-area tables of the moments (src/shadows/summed.rs).
     /// Variance soft shadow maps: a blocker search and a filter as wide as the penumbra,
-    /// each one box of (z, z^2) read from a summed-area table.
+    /// each 4 x 4 cells of (z, z^2) read from a summed-area table (texel by texel where
+    /// the box is narrow).
     Vssm,
     /// Moment soft shadow maps: the same on four moments, with the 4MSM reconstruction.
     #[value(name = "msm-soft")]
@@ -147,8 +148,8 @@ impl Filter {
             Filter::Pcss => settings.pcss_blocker_taps + settings.pcss_filter_taps,
             // One filtered lookup: the blur did the averaging.
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 1,
-            // Two boxes (blocker search, filter), each 4 x 4 texels of the table.
-            Filter::Vssm | Filter::MsmSoft => 32,
+            // The blocker search and the filter, each a 5 x 5 lattice of the table's corners.
+            Filter::Vssm | Filter::MsmSoft => 50,
             _ => (2 * self.radius() + 1).pow(2),
         }
     }

@@ -79,7 +79,7 @@ pub fn content_key(
         }
     }
     if facts.camera.is_none() {
-        format!("{:?}", scene.fitting_camera()).hash(&mut h);
+        scene.fitting_camera().hash_bits(&mut h);
         scene.size.hash(&mut h);
     }
     h.finish()
