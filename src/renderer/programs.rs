@@ -75,10 +75,10 @@ impl Renderer {
         samplers: &mut Samplers,
     ) -> Result<()> {
         if matches!(plan, Plan::Write(_)) && self.mask.uses.written == 0 {
-            // The first mask written (the first frame): draw the frame with every light
-            // tested too, as the next frame will if anything moves. llvmpipe compiles a
-            // program's shaders for the pipeline's state at its first draw; this puts that
-            // in the first frame, not the second.
+            // The first mask written (in the first frame, unless that frame could not be
+            // cached): draw the frame with every light tested too, as the next frame will if
+            // anything moves. llvmpipe compiles a program's shaders for the pipeline's state
+            // at its first draw; this puts that here, not in the next frame.
             self.draw_scene(scene, target, Plan::Test, samplers)?;
         }
         let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;

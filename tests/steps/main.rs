@@ -335,4 +335,5 @@ fn every_scene_and_step_renders_without_gl_errors() {
 }
 
 mod lessons;
+mod page;
 mod playground;
