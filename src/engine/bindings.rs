@@ -11,6 +11,8 @@ use std::ops::Deref;
 pub struct GlContext {
     gl: glow::Context,
     bound: RefCell<Bound>,
+    /// What has been done once on this context ([`GlContext::first_time`]).
+    done: RefCell<Vec<u32>>,
 }
 
 /// What is known bound; `None`: not known (the next bind is sent).
@@ -37,7 +39,19 @@ impl GlContext {
         GlContext {
             gl,
             bound: RefCell::default(),
+            done: RefCell::default(),
         }
+    }
+
+    /// Whether `what` (a GL enum naming it) is asked for the first time on this context;
+    /// it is remembered. For work a driver needs once, such as compiling its own shaders.
+    pub(crate) fn first_time(&self, what: u32) -> bool {
+        let mut done = self.done.borrow_mut();
+        let first = !done.contains(&what);
+        if first {
+            done.push(what);
+        }
+        first
     }
 
     /// `glUseProgram`, unless `program` is already in use.

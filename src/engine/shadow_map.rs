@@ -53,7 +53,10 @@ impl ShadowMap {
             );
         }
         map.fbo.finish(&format!("shadow map {width}x{height}"))?;
-        map.fbo.warm_scissored_clear();
+        // Once per context and depth format (a patched map's clear; see the function).
+        if gl.first_time(super::texture::depth_internal_format(format)) {
+            map.fbo.warm_scissored_clear();
+        }
         Ok(map)
     }
 

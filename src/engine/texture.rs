@@ -11,7 +11,7 @@ use crate::image_data::ImageData;
 use crate::settings::DepthFormat;
 
 /// The GL internal format of a depth map.
-fn depth_internal_format(format: DepthFormat) -> u32 {
+pub(super) fn depth_internal_format(format: DepthFormat) -> u32 {
     match format {
         DepthFormat::D16 => glow::DEPTH_COMPONENT16,
         DepthFormat::D24 => glow::DEPTH_COMPONENT24,

@@ -43,8 +43,9 @@ impl DepthFbo {
     }
 
     /// Clears one texel's depth under a scissor. Mesa clears part of a buffer by drawing a
-    /// quad with shaders of its own, compiled at their first use: here, when the map is made,
-    /// rather than in the first frame that patches a map (a scissored clear).
+    /// quad with shaders of its own, compiled at their first use for the buffer's format:
+    /// here, when the first map of a format is made, rather than in the first frame that
+    /// patches a map (a scissored clear).
     pub(super) fn warm_scissored_clear(&self) {
         self.bind();
         self.gl.set_capability(glow::SCISSOR_TEST, true);
