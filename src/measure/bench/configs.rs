@@ -212,58 +212,17 @@ pub fn sweep(
     let tutorials = tutorial_configs(base);
     out.retain(|c| !tutorials.iter().any(|t| t.settings == c.settings));
     out.extend(tutorials);
-    let variants = |c: &BenchConfig| -> Vec<ShadowSettings> {
-        let s = c.settings;
-        match (Family::of(light, &s), quick) {
-            (Family::OneMap, _)
-                if Family::of(light, &ShadowSettings { cascades: 2, ..s }) == Family::Cascades =>
-            {
-                // The layered kinds (a directional light's), at the filters and biases the
-                // fitted one-map rows do best with.
-                let layered = matches!(s.filter, Filter::Single | Filter::Hardware2x2)
-                    && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
-                    && s.cull == Cull::None
-                    && s.depth_format == DepthFormat::D24;
-                let side = s.map_size.max_side();
-                let mut out = Vec::new();
-                // Cascades: the same total memory as some one-map sizes (4 x 1024^2 = 2048^2).
-                if layered
-                    && (512..=2048).contains(&side)
-                    && (!quick || s.map_size == MapSize::square(1024))
-                {
-                    let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
-                    out.extend(counts.iter().map(|&n| ShadowSettings { cascades: n, ..s }));
-                }
-                // Caster groups: a box per group of casters, each layer the one map's size.
-                if layered && (256..=1024).contains(&side) && (!quick || side >= 512) {
-                    let counts: &[u32] = if quick { &[2] } else { &[2, 4] };
-                    out.extend(counts.iter().map(|&n| ShadowSettings {
-                        caster_groups: n,
-                        ..s
-                    }));
-                }
-                out
-            }
-            (Family::PointLayered, _)
-                if s.cull == Cull::None && s.depth_format == DepthFormat::D24 =>
-            {
-                vec![ShadowSettings {
-                    point_pass: PointPass::SixPasses,
-                    ..s
-                }]
-            }
-            _ => Vec::new(),
-        }
-    };
     let extra: Vec<BenchConfig> = out
         .iter()
         .flat_map(|c| {
-            variants(c).into_iter().map(|settings| BenchConfig {
-                settings,
-                family: Family::of(light, &settings),
-                tutorial: None,
-                ..c.clone()
-            })
+            variants(light, c, quick)
+                .into_iter()
+                .map(|settings| BenchConfig {
+                    settings,
+                    family: Family::of(light, &settings),
+                    tutorial: None,
+                    ..c.clone()
+                })
         })
         .collect();
     out.extend(extra);
@@ -289,6 +248,51 @@ pub fn sweep(
     let mid = rest.len() / 2;
     rest.splice(mid..mid, tutorials);
     rest
+}
+
+/// The variants of a one-map row the sweep adds: cascades and caster groups of the same
+/// memory for a directional light's layered kinds, six passes for a point light's layered
+/// cube.
+fn variants(light: &Light, c: &BenchConfig, quick: bool) -> Vec<ShadowSettings> {
+    let s = c.settings;
+    match (Family::of(light, &s), quick) {
+        (Family::OneMap, _)
+            if Family::of(light, &ShadowSettings { cascades: 2, ..s }) == Family::Cascades =>
+        {
+            // The layered kinds (a directional light's), at the filters and biases the
+            // fitted one-map rows do best with.
+            let layered = matches!(s.filter, Filter::Single | Filter::Hardware2x2)
+                && matches!(c.bias_preset, BiasPreset::Slope | BiasPreset::NormalOffset)
+                && s.cull == Cull::None
+                && s.depth_format == DepthFormat::D24;
+            let side = s.map_size.max_side();
+            let mut out = Vec::new();
+            // Cascades: the same total memory as some one-map sizes (4 x 1024^2 = 2048^2).
+            if layered
+                && (512..=2048).contains(&side)
+                && (!quick || s.map_size == MapSize::square(1024))
+            {
+                let counts: &[u32] = if quick { &[2, 4] } else { &[2, 3, 4] };
+                out.extend(counts.iter().map(|&n| ShadowSettings { cascades: n, ..s }));
+            }
+            // Caster groups: a box per group of casters, each layer the one map's size.
+            if layered && (256..=1024).contains(&side) && (!quick || side >= 512) {
+                let counts: &[u32] = if quick { &[2] } else { &[2, 4] };
+                out.extend(counts.iter().map(|&n| ShadowSettings {
+                    caster_groups: n,
+                    ..s
+                }));
+            }
+            out
+        }
+        (Family::PointLayered, _) if s.cull == Cull::None && s.depth_format == DepthFormat::D24 => {
+            vec![ShadowSettings {
+                point_pass: PointPass::SixPasses,
+                ..s
+            }]
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// Why the measured light (alone, so first) cannot be drawn under `settings`, if it cannot.
@@ -451,29 +455,8 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
     ) {
         push(s, b);
     }
-    for cull in [Cull::Back, Cull::Front] {
-        for format in DepthFormat::ALL {
-            for bias in BiasPreset::ALL {
-                let mut s = *base;
-                s.map_size = MapSize::square(1024);
-                s.filter = Filter::Pcf3x3;
-                s.cull = cull;
-                s.depth_format = format;
-                bias.apply(&mut s);
-                push(s, bias);
-            }
-        }
-    }
-    for format in [DepthFormat::D16, DepthFormat::D32F] {
-        for bias in BiasPreset::ALL {
-            let mut s = *base;
-            s.map_size = MapSize::square(1024);
-            s.filter = Filter::Pcf3x3;
-            s.cull = Cull::None;
-            s.depth_format = format;
-            bias.apply(&mut s);
-            push(s, bias);
-        }
+    for (s, b) in cull_and_format_rows(base) {
+        push(s, b);
     }
     if max_texture_size > 8192 {
         let mut s = tutorial_configs(base)[0].settings;
@@ -481,4 +464,28 @@ fn sweep_grid(base: &ShadowSettings, quick: bool, max_texture_size: u32) -> Vec<
         push(s, BiasPreset::Book);
     }
     out
+}
+
+/// The full sweep's rows at 1024^2 and pcf3x3 that vary what the depth pass draws and
+/// stores: each culled face at each depth format, then D16 and D32F with no culling, at
+/// every bias preset.
+fn cull_and_format_rows(base: &ShadowSettings) -> Vec<(ShadowSettings, BiasPreset)> {
+    let culled = [Cull::Back, Cull::Front]
+        .into_iter()
+        .flat_map(|cull| DepthFormat::ALL.into_iter().map(move |f| (cull, f)));
+    let formats = [DepthFormat::D16, DepthFormat::D32F].map(|f| (Cull::None, f));
+    culled
+        .chain(formats)
+        .flat_map(|(cull, format)| {
+            BiasPreset::ALL.into_iter().map(move |bias| {
+                let mut s = *base;
+                s.map_size = MapSize::square(1024);
+                s.filter = Filter::Pcf3x3;
+                s.cull = cull;
+                s.depth_format = format;
+                bias.apply(&mut s);
+                (s, bias)
+            })
+        })
+        .collect()
 }
