@@ -66,40 +66,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         .as_deref()
         .and_then(|name| steps::get(&scene, name))
         .map(|s| s.name);
-    let mut demo = Demo {
-        args: args.clone(),
-        scene,
-        settings,
-        size,
-        running: None,
-        error: None,
-        keys: HashSet::new(),
-        dragging: false,
-        cursor: None,
-        mouse_delta: (0.0, 0.0),
-        angle_inc: 0.0,
-        frames: 0,
-        last_frame: Instant::now(),
-        update_debt: 0.0,
-        frame_ms: 0.0,
-        shown_ms: None,
-        show_keys: false,
-        show_stats: false,
-        last_title: Instant::now() - Duration::from_secs(1),
-        screenshot_requested: false,
-        screenshots: 0,
-        step,
-        minimised: false,
-        skipped: 0,
-        depth_light: 0,
-        azimuth: None,
-        angle_keys_idle: false,
-        show_inset: args.inset,
-        camera_before_steps: None,
-        sizes_before_steps: None,
-        before_stage: None,
-        frame_times: Vec::new(),
-    };
+    let mut demo = Demo::new(args, scene, settings, size, step);
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
     event_loop
@@ -272,6 +239,96 @@ impl Demo {
             context,
         })
     }
+
+    /// The demo before its window opens: the scene at `size`, the step chosen by name.
+    fn new(
+        args: &DemoArgs,
+        scene: Scene,
+        settings: ShadowSettings,
+        size: (u32, u32),
+        step: Option<&'static str>,
+    ) -> Demo {
+        Demo {
+            args: args.clone(),
+            scene,
+            settings,
+            size,
+            running: None,
+            error: None,
+            keys: HashSet::new(),
+            dragging: false,
+            cursor: None,
+            mouse_delta: (0.0, 0.0),
+            angle_inc: 0.0,
+            frames: 0,
+            last_frame: Instant::now(),
+            update_debt: 0.0,
+            frame_ms: 0.0,
+            shown_ms: None,
+            show_keys: false,
+            show_stats: false,
+            last_title: Instant::now() - Duration::from_secs(1),
+            screenshot_requested: false,
+            screenshots: 0,
+            step,
+            minimised: false,
+            skipped: 0,
+            depth_light: 0,
+            azimuth: None,
+            angle_keys_idle: false,
+            show_inset: args.inset,
+            camera_before_steps: None,
+            sizes_before_steps: None,
+            before_stage: None,
+            frame_times: Vec::new(),
+        }
+    }
+
+    /// A key pressed: the demo's keys (README's table), a step's key, Esc to quit.
+    fn key_pressed(&mut self, event_loop: &ActiveEventLoop, code: KeyCode, repeat: bool) {
+        match code {
+            KeyCode::Escape => event_loop.exit(),
+            KeyCode::F12 if !repeat => self.screenshot_requested = true,
+            KeyCode::Backspace if !repeat => self.select_step(event_loop, None),
+            KeyCode::KeyM if !repeat => self.next_depth_view(event_loop),
+            KeyCode::KeyH if !repeat => self.show_keys = !self.show_keys,
+            KeyCode::KeyP if !repeat => self.show_stats = !self.show_stats,
+            KeyCode::KeyI if !repeat => self.show_inset = !self.show_inset,
+            KeyCode::ArrowUp | KeyCode::ArrowDown | KeyCode::ArrowLeft | KeyCode::ArrowRight
+                if self.azimuth.is_none() =>
+            {
+                self.angle_keys_idle()
+            }
+            KeyCode::KeyC if !repeat => {
+                self.change_settings(event_loop, |s| s.show_cascades = !s.show_cascades)
+            }
+            KeyCode::KeyV if !repeat => self.change_settings(event_loop, |s| {
+                s.technique = match s.technique {
+                    ShadowTechnique::Maps => ShadowTechnique::Volumes,
+                    ShadowTechnique::Volumes => ShadowTechnique::Maps,
+                }
+            }),
+            KeyCode::KeyB if !repeat => {
+                self.change_settings(event_loop, |s| s.show_volumes = !s.show_volumes)
+            }
+            KeyCode::KeyK if !repeat => {
+                self.change_settings(event_loop, |s| s.cascades = s.cascades % MAX_CASCADES + 1)
+            }
+            KeyCode::KeyG if !repeat => self.change_settings(event_loop, |s| {
+                s.caster_groups = s.caster_groups % MAX_CASCADES + 1
+            }),
+            KeyCode::KeyT if !repeat => {
+                self.change_settings(event_loop, |s| s.volumetric = s.volumetric.next())
+            }
+            _ if !repeat => {
+                if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
+                    let name = steps::of(&self.scene).get(i).map(|s| s.name);
+                    self.select_step(event_loop, name);
+                }
+            }
+            _ => {}
+        }
+    }
 }
 
 impl ApplicationHandler for Demo {
@@ -298,58 +355,7 @@ impl ApplicationHandler for Demo {
                 };
                 match event.state {
                     ElementState::Pressed => {
-                        match code {
-                            KeyCode::Escape => event_loop.exit(),
-                            KeyCode::F12 if !event.repeat => self.screenshot_requested = true,
-                            KeyCode::Backspace if !event.repeat => {
-                                self.select_step(event_loop, None)
-                            }
-                            KeyCode::KeyM if !event.repeat => self.next_depth_view(event_loop),
-                            KeyCode::KeyH if !event.repeat => self.show_keys = !self.show_keys,
-                            KeyCode::KeyP if !event.repeat => self.show_stats = !self.show_stats,
-                            KeyCode::KeyI if !event.repeat => self.show_inset = !self.show_inset,
-                            KeyCode::ArrowUp
-                            | KeyCode::ArrowDown
-                            | KeyCode::ArrowLeft
-                            | KeyCode::ArrowRight
-                                if self.azimuth.is_none() =>
-                            {
-                                self.angle_keys_idle()
-                            }
-                            KeyCode::KeyC if !event.repeat => self
-                                .change_settings(event_loop, |s| {
-                                    s.show_cascades = !s.show_cascades
-                                }),
-                            KeyCode::KeyV if !event.repeat => {
-                                self.change_settings(event_loop, |s| {
-                                    s.technique = match s.technique {
-                                        ShadowTechnique::Maps => ShadowTechnique::Volumes,
-                                        ShadowTechnique::Volumes => ShadowTechnique::Maps,
-                                    }
-                                })
-                            }
-                            KeyCode::KeyB if !event.repeat => self
-                                .change_settings(event_loop, |s| s.show_volumes = !s.show_volumes),
-                            KeyCode::KeyK if !event.repeat => self
-                                .change_settings(event_loop, |s| {
-                                    s.cascades = s.cascades % MAX_CASCADES + 1
-                                }),
-                            KeyCode::KeyG if !event.repeat => self
-                                .change_settings(event_loop, |s| {
-                                    s.caster_groups = s.caster_groups % MAX_CASCADES + 1
-                                }),
-                            KeyCode::KeyT if !event.repeat => self
-                                .change_settings(event_loop, |s| {
-                                    s.volumetric = s.volumetric.next()
-                                }),
-                            _ if !event.repeat => {
-                                if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
-                                    let name = steps::of(&self.scene).get(i).map(|s| s.name);
-                                    self.select_step(event_loop, name);
-                                }
-                            }
-                            _ => {}
-                        }
+                        self.key_pressed(event_loop, code, event.repeat);
                         self.keys.insert(code);
                     }
                     ElementState::Released => {

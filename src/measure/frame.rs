@@ -175,16 +175,7 @@ pub fn render_frames_with(
     light: usize,
     after_scene: AfterScene,
 ) -> Result<Frame> {
-    let limits = crate::engine::gl_limits(gl);
-    let max = limits
-        .max_renderbuffer_size
-        .min(limits.max_viewport[0])
-        .min(limits.max_viewport[1]);
-    if width == 0 || height == 0 || width > max || height > max {
-        return Err(Error::Invalid(format!(
-            "frame size {width}x{height}: expected each side from 1 to {max} (the driver's maximum)"
-        )));
-    }
+    check_frame_size(gl, width, height)?;
     // The frame's shape is the scene's from now on (a fitted light box follows it).
     scene.size = [width, height];
     let mut renderer = Renderer::new(gl, scene, settings)?;
@@ -218,17 +209,7 @@ pub fn render_frames_with(
         }
         false => (None, None),
     };
-    let depth_map = renderer.shadow_map().map(|map| {
-        let size = map.size();
-        let mut depth = map.read_depth();
-        // GL rows run bottom-up; flip so the image shows the map with +v up.
-        let (row, rows) = (size.width as usize, size.height as usize);
-        for y in 0..rows / 2 {
-            let (a, b) = depth.split_at_mut((rows - 1 - y) * row);
-            a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
-        }
-        (size, depth)
-    });
+    let depth_map = read_depth_map(&renderer);
     let view = renderer
         .shadow_view()
         .filter(|v| v.perspective && depth_map.is_some());
@@ -253,6 +234,37 @@ pub fn render_frames_with(
         volumetric_draws: renderer.volumetric_maps().draws(),
         casters: renderer.caster_counts(),
         volume_pixels: renderer.volume_pixels(),
+    })
+}
+
+/// Refuses a frame the driver cannot draw: each side from 1 to its largest renderbuffer
+/// and viewport.
+fn check_frame_size(gl: &Gl, width: u32, height: u32) -> Result<()> {
+    let limits = crate::engine::gl_limits(gl);
+    let max = limits
+        .max_renderbuffer_size
+        .min(limits.max_viewport[0])
+        .min(limits.max_viewport[1]);
+    if width == 0 || height == 0 || width > max || height > max {
+        return Err(Error::Invalid(format!(
+            "frame size {width}x{height}: expected each side from 1 to {max} (the driver's maximum)"
+        )));
+    }
+    Ok(())
+}
+
+/// The first light's depth map, read back with its rows top-down (GL's run bottom-up), so
+/// the image shows the map with +v up.
+fn read_depth_map(renderer: &Renderer) -> Option<(MapSize, Vec<f32>)> {
+    renderer.shadow_map().map(|map| {
+        let size = map.size();
+        let mut depth = map.read_depth();
+        let (row, rows) = (size.width as usize, size.height as usize);
+        for y in 0..rows / 2 {
+            let (a, b) = depth.split_at_mut((rows - 1 - y) * row);
+            a[y * row..(y + 1) * row].swap_with_slice(&mut b[..row]);
+        }
+        (size, depth)
     })
 }
 
