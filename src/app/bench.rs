@@ -20,19 +20,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let (scene, base) = load_still_scene(args)?;
     let [width, height] = scene.size;
     let dir = &args.out_dir;
-    // Everything that can be checked without the driver, before any GL work or file
-    // (--target-error is checked as it is parsed).
-    args.settings.check_values(&scene, &base)?;
-    super::quality::check_first_light(&scene)?;
-    if args.settings.quality.is_some() {
-        return Err(Error::Invalid(
-            "--quality: bench sweeps the map size, filter, bias, culling and depth format \
-             itself, so a preset would be replaced; expected bench without it (the presets \
-             are chosen from its measurements)"
-                .into(),
-        ));
-    }
-    check_output_dir("--out-dir", dir)?;
+    check_before_gl(args, &scene, &base)?;
     let activity = Activity::start("bench: opening a headless OpenGL context");
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &base)?;
@@ -100,6 +88,22 @@ translucent casters (--volumetric), on the scene's own settings:
         println!("{}", super::quality::describe_choice(chosen, target));
     }
     Ok(())
+}
+
+/// Everything that can be checked without the driver, before any GL work or file
+/// (--target-error is checked as it is parsed).
+fn check_before_gl(args: &BenchArgs, scene: &Scene, base: &ShadowSettings) -> Result<()> {
+    args.settings.check_values(scene, base)?;
+    super::quality::check_first_light(scene)?;
+    if args.settings.quality.is_some() {
+        return Err(Error::Invalid(
+            "--quality: bench sweeps the map size, filter, bias, culling and depth format \
+             itself, so a preset would be replaced; expected bench without it (the presets \
+             are chosen from its measurements)"
+                .into(),
+        ));
+    }
+    check_output_dir("--out-dir", &args.out_dir)
 }
 
 /// The scene held still at its frame size, with the settings the flags give.
