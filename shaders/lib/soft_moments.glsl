@@ -80,7 +80,8 @@ vec2 softCell(int kind, vec4 m, float ti, bool single, float minVariance, vec2 s
 // subdivision of a non-planar receiver, here always, with the receiver's plane); returns
 // the cells' parts (softCell) weighted by the share of each cell inside the box lo..hi
 // (texels of the map), over the box's area. Read row by row, so that no array is indexed
-// by a loop the compiler may keep.
+// by a loop the compiler may keep. Each corner is read at its texel's centre through the
+// sampler (NEAREST): llvmpipe's texelFetch on an integer texture cost twice a lookup.
 vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 centre,
                  vec2 size, float t, vec2 slope, int kind, float minVariance, vec2 settings,
                  vec4 toward)
@@ -95,7 +96,7 @@ vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 
     for (int j = 0; j < 5; ++j) {
         uvec4 row[5];
         for (int i = 0; i < 5; ++i) {
-            row[i] = texelFetch(table, ivec2(xs[i], ys[j]), 0);
+            row[i] = textureLod(table, (vec2(xs[i], ys[j]) + 0.5) / size, 0.0);
         }
         if (j > 0) {
             float wy = max(min(hi.y, float(ys[j] + 1)) - max(lo.y, float(ys[j - 1] + 1)), 0.0);
