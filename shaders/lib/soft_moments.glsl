@@ -21,7 +21,7 @@ const float SOFT_SEARCH_VARIANCE = 1e-6;
 // of half width a has a^2 / 3. The box of the same spread: a = R sqrt(3) / 2.
 const float SOFT_BOX_OF_DISC = 0.8660254;
 // From this half width on (texels) the filter box is split in cells snapped to whole
-// texels; below, its texels are read one by one (softNarrow).
+// texels; below, its texels are read one by one (softBox).
 const float SOFT_CELL_TEXELS = 4.0;
 
 // A box's half width in texels for a penumbra's half width in uv, within the bounds.
@@ -44,19 +44,13 @@ vec2 softReceiverSlope(vec3 projCoords)
     return clamp(slope, -PCSS_MAX_SLOPE, PCSS_MAX_SLOPE);
 }
 
-// A table's index for the corner before texel `x` of the map (whole texels, within it).
-int satCorner(float x, float size)
-{
-    return int(clamp(floor(x + 0.5), 1.0, size - 1.0)) - 1;
-}
-
-// What softCells sums over a box's cells: the blockers (share, depth sum), vssm's bound
+// What softBox sums over a box's cells: the blockers (share, depth sum), vssm's bound
 // or msm-soft's 4MSM visibility.
 const int SOFT_SEARCH = 0;
 const int SOFT_VSSM = 1;
 const int SOFT_MSM = 2;
 
-// One cell's part, `kind` as softCells', for the cell's mean moments `m` and the receiver
+// One cell's part, `kind` as softBox', for the cell's mean moments `m` and the receiver
 // plane's depth `ti` at its centre. A cell of blockers over a planar receiver has
 // mean = p t + (1 - p) blockers (Yang et al. 2010): the search's part is (1 - p, blockers
 // (1 - p)). `settings`: vssm's (min variance, bleed reduction); msm-soft's (alpha, toward).
@@ -86,7 +80,8 @@ vec2 softCell(int kind, vec4 m, float ti, bool single, float minVariance, vec2 s
 // subdivision of a non-planar receiver, here always, with the receiver's plane); returns
 // the cells' parts (softCell) weighted by the share of each cell inside the box lo..hi
 // (texels of the map), over the box's area. Read row by row, so that no array is indexed
-// by a loop the compiler may keep.
+// by a loop the compiler may keep. Each corner is read at its texel's centre through the
+// sampler (NEAREST): llvmpipe's texelFetch on an integer texture cost twice a lookup.
 vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 centre,
                  vec2 size, float t, vec2 slope, int kind, float minVariance, vec2 settings,
                  vec4 toward)
@@ -101,7 +96,7 @@ vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 
     for (int j = 0; j < 5; ++j) {
         uvec4 row[5];
         for (int i = 0; i < 5; ++i) {
-            row[i] = texelFetch(table, ivec2(xs[i], ys[j]), 0);
+            row[i] = textureLod(table, (vec2(xs[i], ys[j]) + 0.5) / size, 0.0);
         }
         if (j > 0) {
             float wy = max(min(hi.y, float(ys[j] + 1)) - max(lo.y, float(ys[j - 1] + 1)), 0.0);
@@ -122,73 +117,60 @@ vec2 softLattice(usampler2D table, int xs[5], int ys[5], vec2 lo, vec2 hi, vec2 
     return sum / max(total, 1e-6);
 }
 
-// The box centre +- reach split in 4 x 4 cells of whole texels (softLattice), the box's
-// corners snapped to the texels': for a wide box, where a texel is a small part of it.
-vec2 softCells(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
-               int kind, float minVariance, vec2 settings, vec4 toward)
-{
-    int xs[5];
-    int ys[5];
-    for (int i = 0; i < 5; ++i) {
-        xs[i] = satCorner(centre.x - reach.x + reach.x * (0.5 * float(i)), size.x);
-        ys[i] = satCorner(centre.y - reach.y + reach.y * (0.5 * float(i)), size.y);
-    }
-    vec2 lo = vec2(xs[0], ys[0]) + 1.0;
-    vec2 hi = vec2(xs[4], ys[4]) + 1.0;
-    return softLattice(table, xs, ys, lo, hi, centre, size, t, slope, kind, minVariance,
-                       settings, toward);
-}
-
-// A narrow box (under SOFT_CELL_TEXELS either side) over the 4 x 4 blocks of whole texels
-// from its first texel, each block a texel (a box up to 3 texels wide) or a few: each
-// block's own moments, exact to the table's unit, against the receiver's plane, weighted
-// by the part of the box it covers. A single texel's variance is nothing but the least
-// one, so the test is PCF's comparison, texel by texel, at the box's width: one box's
-// bound over caster and receiver together leaks light. Clamped to the map (its edge
+// The box centre +- reach over one 5 x 5 lattice of the table's corners (softLattice), 25
+// reads whichever the box. A wide box (`narrow` false) is split in 4 x 4 cells of whole
+// texels, its corners snapped to the texels': a texel is a small part of it. A narrow box
+// (under SOFT_CELL_TEXELS either side) is read over the 4 x 4 blocks of whole texels from
+// its first texel, each block a texel (a box up to 3 texels wide) or a few: each block's
+// own moments, exact to the table's unit, against the receiver's plane, weighted by the
+// part of the box it covers. A single texel's variance is nothing but the least one, so
+// the test is PCF's comparison, texel by texel, at the box's width: one box's bound over
+// caster and receiver together leaks light. The narrow box is clamped to the map (its edge
 // texels read past it, as a clamped texture's), two texels wide at least.
-vec2 softNarrow(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
-                int kind, float minVariance, vec2 settings, vec4 toward)
+// `narrow` chooses the corners, not the code: llvmpipe runs both sides of a branch that
+// differs between pixels, and each side would read 25 texels.
+vec2 softBox(usampler2D table, vec2 centre, vec2 reach, vec2 size, bool narrow, float t,
+             vec2 slope, int kind, float minVariance, vec2 settings, vec4 toward)
 {
-    vec2 lo = clamp(centre - reach, vec2(1.0), size - 3.0);
-    vec2 hi = clamp(centre + reach, lo + 2.0, size - 1.0);
-    vec2 first = floor(lo);
-    vec2 count = floor(hi) - first + 1.0;
-    vec2 block = max(ceil(count / 4.0), 1.0);
+    vec2 nlo = clamp(centre - reach, vec2(1.0), size - 3.0);
+    vec2 nhi = clamp(centre + reach, nlo + 2.0, size - 1.0);
+    vec2 first = floor(nlo);
+    vec2 block = max(ceil((floor(nhi) - first + 1.0) / 4.0), 1.0);
     int xs[5];
     int ys[5];
     for (int i = 0; i < 5; ++i) {
-        vec2 corner = first + block * float(i);
-        xs[i] = int(clamp(corner.x, 1.0, size.x - 1.0)) - 1;
-        ys[i] = int(clamp(corner.y, 1.0, size.y - 1.0)) - 1;
+        vec2 cell = floor(centre - reach + reach * (0.5 * float(i)) + 0.5);
+        vec2 corner = clamp(narrow ? first + block * float(i) : cell, vec2(1.0), size - 1.0);
+        xs[i] = int(corner.x) - 1;
+        ys[i] = int(corner.y) - 1;
     }
+    vec2 lo = narrow ? nlo : vec2(xs[0], ys[0]) + 1.0;
+    vec2 hi = narrow ? nhi : vec2(xs[4], ys[4]) + 1.0;
     return softLattice(table, xs, ys, lo, hi, centre, size, t, slope, kind, minVariance,
                        settings, toward);
 }
 
-// The blocker search at a fixed cost: the search box's cells (softCells) by Chebyshev's
+// The blocker search at a fixed cost: the search box's cells (softBox) by Chebyshev's
 // bound, each against the receiver plane (one planar box over the whole region took the
 // tilted floor for blockers, and drew penumbrae too wide); the blockers' mean depth is the
 // cells' blocker sums over their shares. t where no cell holds blockers.
 float softBlockerSearch(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t,
                         vec2 slope, float minVariance)
 {
-    vec2 found = softCells(table, centre, reach, size, t, slope, SOFT_SEARCH, minVariance,
-                           vec2(0.0), vec4(0.0));
+    vec2 found = softBox(table, centre, reach, size, false, t, slope, SOFT_SEARCH,
+                         minVariance, vec2(0.0), vec4(0.0));
     return found.x > 1e-5 ? clamp(found.y / found.x, 0.0, t) : t;
 }
 
-// vssm's filter: Chebyshev's bound with the light-bleeding reduction, from
-// SOFT_CELL_TEXELS on over the box's cells (softCells); below, over its texels
-// (softNarrow), weighted by the box's fractional corners so a narrow kernel moves smoothly.
+// vssm's filter: Chebyshev's bound with the light-bleeding reduction over the box
+// (softBox), its cells from SOFT_CELL_TEXELS on, its texels below (weighted by the box's
+// fractional corners, so a narrow kernel moves smoothly).
 float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                  float minVariance, float bleedReduction)
 {
-    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
-        return softNarrow(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
-                          vec2(minVariance, bleedReduction), vec4(0.0)).x;
-    }
-    return softCells(table, centre, reach, size, t, slope, SOFT_VSSM, 0.0,
-                     vec2(minVariance, bleedReduction), vec4(0.0)).x;
+    bool narrow = min(reach.x, reach.y) < SOFT_CELL_TEXELS;
+    return softBox(table, centre, reach, size, narrow, t, slope, SOFT_VSSM, 0.0,
+                   vec2(minVariance, bleedReduction), vec4(0.0)).x;
 }
 
 // msm-soft's filter: the same with the 4MSM reconstruction (moment bias `alpha` toward
@@ -196,12 +178,9 @@ float vssmFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, 
 float msmSoftFilter(usampler2D table, vec2 centre, vec2 reach, vec2 size, float t, vec2 slope,
                     float alpha, vec4 toward)
 {
-    if (min(reach.x, reach.y) < SOFT_CELL_TEXELS) {
-        return softNarrow(table, centre, reach, size, t, slope, SOFT_MSM, 0.0,
-                          vec2(alpha, 0.0), toward).x;
-    }
-    return softCells(table, centre, reach, size, t, slope, SOFT_MSM, 0.0, vec2(alpha, 0.0),
-                     toward).x;
+    bool narrow = min(reach.x, reach.y) < SOFT_CELL_TEXELS;
+    return softBox(table, centre, reach, size, narrow, t, slope, SOFT_MSM, 0.0,
+                   vec2(alpha, 0.0), toward).x;
 }
 
 // The filter's half width in texels, from the blocker search: the penumbra of blockers at
