@@ -10,8 +10,8 @@
 // Defines (src/shadows/program.rs, each only when a light uses it): the lighting's (BLINN,
 // SPECULAR_POWER), the lights' layout (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; CASCADES
 // and more for a layered light; MULTIPASS with shadow volumes), the cached shadow mask's
-// (SHADOW_MASK_WRITE, SHADOW_MASK_READ) and the target's outputs (OUTPUT_VISIBILITY,
-// OUTPUT_GBUFFER).
+// (SHADOW_MASK_WRITE, SHADOW_MASK_READ), the translucent items' tests per vertex
+// (VERTEX_TESTS) and the target's outputs (OUTPUT_VISIBILITY, OUTPUT_GBUFFER).
 
 in vec2 outTexCoord;
 in vec3 mvVertexNormal;
@@ -43,6 +43,11 @@ uniform int passLight;
 // as a frame with the same camera, items and maps computed it (light i in component i).
 uniform sampler2D shadowMask;
 vec4 maskedLit;
+#endif
+
+#ifdef VERTEX_TESTS
+// The translucent items' tests taken per vertex (scene.vert), light i in component i.
+in vec4 vertexLit;
 #endif
 
 #include "lib/lighting.glsl"

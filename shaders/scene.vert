@@ -85,6 +85,14 @@ uniform float cascadeBiasScale[CASCADES];
 out vec4 cascadePos[CASCADES];
 #endif
 
+#ifdef VERTEX_TESTS
+// Translucent items' program with translucent_receivers = "vertex": the tests of the lights
+// that run per vertex, light i in component i, interpolated for the fragment
+// (src/shadows/volumetric/receivers.rs writes vertexTests).
+out vec4 vertexLit;
+#include "generated/vertex_tests.glsl"
+#endif
+
 void main()
 {
     mat4 modelView = instanced ? instanceMat4(0) : modelViewMatrix;
@@ -123,5 +131,8 @@ void main()
 #endif
         cascadePos[c].w = cascadeBiasScale[c];
     }
+#endif
+#ifdef VERTEX_TESTS
+    vertexTests();
 #endif
 }

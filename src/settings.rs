@@ -13,7 +13,8 @@ mod range;
 
 pub use choices::{
     BeyondFar, BiasMode, Blur, Cull, DepthFormat, DepthLookup, Filter, Fit, LightProjection,
-    LightView, MsmToward, PerspectiveDepth, PointPass, ShadowTechnique, Volumetric, Wrap,
+    LightView, MsmToward, PerspectiveDepth, PointPass, ShadowTechnique, TranslucentReceivers,
+    Volumetric, Wrap,
 };
 pub use map_size::{parse_map_size, MapSize};
 
@@ -34,6 +35,7 @@ names::named_by_clap!(
     Fit,
     PointPass,
     Volumetric,
+    TranslucentReceivers,
 );
 
 /// The points of PCSS's Poisson disk (shaders/lib/soft_filters.glsl): the most taps each
@@ -322,6 +324,11 @@ shadow_settings! {
         /// light (peeling stops sooner at an empty layer); crossings past them are lost.
         peel_layers: u32 = 16, range(Range::from_to(1, MAX_PEEL_LAYERS)),
             arg(value_name = "K", allow_negative_numbers = true);
+        /// Where translucent items take each light's shadow test: `pixel` (every fragment
+        /// of every layer) or `vertex` (once a vertex, interpolated: a 2D depth or moment
+        /// map's test, not PCSS's or the soft moment filters'); opaque items always per pixel.
+        translucent_receivers: TranslucentReceivers = TranslucentReceivers::Pixel,
+            arg(value_name = "pixel|vertex");
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {

@@ -181,24 +181,25 @@ impl Renderer {
         Ok(frame_key(scene, size, &program, &maps))
     }
 
-    /// The program `mode`'s scene program draws the translucent items with: itself when it
-    /// tests, none when it writes the mask, the testing one beside a program that reads it
-    /// ([`Renderer::keep_tests_program`] keeps that one compiled).
+    /// The program `mode`'s scene program draws the translucent items with: none when it
+    /// writes the mask; the one that tests per vertex when a light asks for it
+    /// ([`MaskMode::Vertex`]); else itself when it tests, the testing one beside a program
+    /// that reads the mask ([`Renderer::keep_tests_program`] keeps those compiled).
     pub(super) fn translucent_program(&self, mode: MaskMode) -> Option<&ShaderProgram> {
         let (front, program) = self.scene_programs.first()?;
-        match mode {
-            MaskMode::Off => Some(program),
-            MaskMode::Write => None,
-            MaskMode::Read => {
-                let tests = front.with_mask(MaskMode::Off);
-                let found = self.scene_programs.iter().find(|(k, _)| *k == tests);
-                found.map(|(_, p)| p)
-            }
-        }
+        let wanted = match mode {
+            MaskMode::Write => return None,
+            _ if front.tests_per_vertex() => front.with_mask(MaskMode::Vertex),
+            MaskMode::Off | MaskMode::Vertex => return Some(program),
+            MaskMode::Read => front.with_mask(MaskMode::Off),
+        };
+        let found = self.scene_programs.iter().find(|(k, _)| *k == wanted);
+        found.map(|(_, p)| p)
     }
 
-    /// With `mode` reading the mask and translucent items to draw, makes sure the program
-    /// that tests for `outputs` is compiled, for them; the caller then puts `mode`'s in
+    /// With translucent items to draw, makes sure the program they are drawn with beside
+    /// `mode`'s (for `outputs`) is compiled: the one that tests per vertex, or beside a
+    /// program that reads the mask the one that tests; the caller then puts `mode`'s in
     /// front.
     pub(super) fn keep_tests_program(
         &mut self,
@@ -206,7 +207,12 @@ impl Renderer {
         outputs: Outputs,
         mode: MaskMode,
     ) -> Result<()> {
-        if mode == MaskMode::Read && scene.items.iter().any(|i| i.is_translucent()) {
+        if !scene.items.iter().any(|i| i.is_translucent()) {
+            return Ok(());
+        }
+        if self.program_key(scene, outputs)?.tests_per_vertex() {
+            self.use_program(scene, outputs, MaskMode::Vertex)?;
+        } else if mode == MaskMode::Read {
             self.use_program(scene, outputs, MaskMode::Off)?;
         }
         Ok(())

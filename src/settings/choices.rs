@@ -301,6 +301,19 @@ pub enum Cull {
     Front,
 }
 
+/// Where a translucent item's fragments take a light's shadow test (opacity below 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum TranslucentReceivers {
+    /// Per pixel, as the opaque items: the light's filter and translucent lookup at every
+    /// fragment of every translucent layer.
+    #[default]
+    Pixel,
+    /// Per vertex, interpolated across the triangle, as engines light particles: the test
+    /// (a 2D depth or moment map's, not PCSS's or the soft moment filters') runs once a
+    /// vertex.
+    Vertex,
+}
+
 /// How a light casts its translucent items (opacity below 1): the depth map holds one
 /// depth per texel, so without a volumetric technique they cast all or nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]

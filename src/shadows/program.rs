@@ -5,7 +5,7 @@
 
 use super::plan::ShadowPlan;
 use super::slots::{self, LightSlot, MaskMode, ShadowTest};
-use super::volumetric::VolumetricKey;
+use super::volumetric::{receivers, VolumetricKey};
 use super::ShadowKind;
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
 use crate::error::{Error, Result};
@@ -118,6 +118,12 @@ impl ProgramKey {
         !self.multipass && !self.cascades.is_some_and(|c| c.show)
     }
 
+    /// Whether a light's test runs per vertex in this key's translucent program
+    /// ([`receivers::per_vertex`]).
+    pub fn tests_per_vertex(&self) -> bool {
+        self.lights.iter().flatten().any(receivers::per_vertex)
+    }
+
     /// The lights' slots, in the scene's order.
     pub fn slots(&self) -> Vec<LightSlot> {
         self.lights[..self.light_count]
@@ -165,6 +171,8 @@ impl ProgramKey {
             MaskMode::Off => {}
             MaskMode::Write => set("SHADOW_MASK_WRITE", "1".into()),
             MaskMode::Read => set("SHADOW_MASK_READ", "1".into()),
+            MaskMode::Vertex if self.tests_per_vertex() => set("VERTEX_TESTS", "1".into()),
+            MaskMode::Vertex => {}
         }
         if let Some(c) = &self.cascades {
             set("USES_CASCADES", "1".into());
@@ -182,7 +190,8 @@ impl ProgramKey {
     pub fn compile(&self, gl: &Gl) -> Result<ShaderProgram> {
         let slots = self.slots();
         let cascades = self.cascades.map_or(1, |c| c.count);
-        let needed = slots::vertex_outputs(&slots, cascades);
+        let per_vertex = if self.tests_per_vertex() { 4 } else { 0 };
+        let needed = slots::vertex_outputs(&slots, cascades) + per_vertex;
         let allowed = gl_limits(gl).max_vertex_output_components as usize;
         if needed > allowed {
             return Err(Error::Invalid(format!(
@@ -201,7 +210,15 @@ impl ProgramKey {
     pub fn sources(&self) -> Result<[ShaderSource; 2]> {
         let fragment = shaders::scene_frag(&slots::snippets(&self.slots(), self.mask))?;
         let defines = self.defines();
-        Ok([shaders::scene_vert(), fragment].map(|s| ShaderSource {
+        let vertex = match self.mask == MaskMode::Vertex && self.tests_per_vertex() {
+            true => {
+                let generated = [receivers::vertex_snippet(&self.slots())];
+                let plain = shaders::scene_vert();
+                shaders::resolve(&plain.files[0], &plain.text, &generated)?
+            }
+            false => shaders::scene_vert(),
+        };
+        Ok([vertex, fragment].map(|s| ShaderSource {
             text: s.with_defines(&defines),
             ..s
         }))

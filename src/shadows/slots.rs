@@ -22,6 +22,7 @@ use crate::scene::Light;
 use crate::scene::MAX_LIGHTS;
 use crate::settings::{
     glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
+    TranslucentReceivers,
 };
 
 /// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
@@ -66,6 +67,9 @@ pub struct ShadowTest {
     /// The light's translucent map, whose transmittance multiplies the test
     /// ([`crate::shadows::volumetric`]).
     pub volumetric: Option<VolumetricKey>,
+    /// `translucent_receivers = "vertex"`: translucent items take this test per vertex
+    /// where it can run there ([`volumetric::receivers`]).
+    pub vertex_receivers: bool,
 }
 
 impl ShadowTest {
@@ -89,6 +93,7 @@ impl ShadowTest {
             pcss_perspective: false,
             map_depth: map2d::MapDepth::Projected,
             volumetric: None,
+            vertex_receivers: s.translucent_receivers == TranslucentReceivers::Vertex,
         }
     }
 
@@ -157,6 +162,9 @@ pub enum MaskMode {
     Write,
     /// The tests read back from the mask (`SHADOW_MASK_READ`).
     Read,
+    /// The translucent items' program: the lights that can take their test per vertex
+    /// (`VERTEX_TESTS`, [`volumetric::receivers`]), the others per fragment.
+    Vertex,
 }
 
 /// The sampler uniform of light `index`'s shadow, if it has one.
@@ -245,6 +253,12 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     if mask == MaskMode::Read {
         part.lines.push(format!(
             "addLight({i}, toLightOf({i}, {positional}), {cone}, maskedLit[{i}], f);"
+        ));
+        return part;
+    }
+    if mask == MaskMode::Vertex && volumetric::receivers::per_vertex(slot) {
+        part.lines.push(format!(
+            "addLight({i}, toLightOf({i}, {positional}), {cone}, vertexLit[{i}], f);"
         ));
         return part;
     }

@@ -3,7 +3,8 @@
 
 use crate::scene::Light;
 use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
-use crate::shadows::volumetric::method;
+use crate::shadows::slots::ShadowTest;
+use crate::shadows::volumetric::{method, receivers};
 use crate::shadows::ShadowKind;
 
 use super::LightPlan;
@@ -180,6 +181,9 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
                 .into(),
         );
     }
+    if !vertex_capable(kind, s) {
+        push("translucent_receivers", NO_VERTEX_TEST.into());
+    }
     for (name, technique) in VOLUMETRIC_KNOBS {
         if !(kind == ShadowKind::Map && s.volumetric == technique) {
             let value = technique.name();
@@ -306,6 +310,10 @@ pub(super) fn of_scene(
     if !plans.iter().any(|p| p.volumetric.is_some()) {
         idle.push(Idle::new("volumetric_size", no_translucent_map(settings)));
     }
+    if !plans.iter().any(|p| vertex_capable(p.kind, &p.settings)) {
+        let why = format!("no light's test can run per vertex: {NO_VERTEX_TEST}");
+        idle.push(Idle::new("translucent_receivers", why));
+    }
     of_scene_maps(plans, &mut idle);
     idle
 }
@@ -324,6 +332,20 @@ fn no_translucent_map(settings: &ShadowSettings) -> String {
     }
 }
 
+/// Why `translucent_receivers` does nothing for a light.
+const NO_VERTEX_TEST: &str = "only a 2D depth or moment map's test runs per vertex, and not \
+     pcss's, vssm's or msm-soft's (they need the pixel's screen derivatives)";
+
+/// Whether a light whose shadow is `kind` under `s` can take its test per vertex.
+fn vertex_capable(kind: ShadowKind, s: &ShadowSettings) -> bool {
+    receivers::can_run_per_vertex(kind, &ShadowTest::of(s))
+}
+
+/// Why `translucent_receivers` does nothing in a scene with no translucent item.
+pub const NO_TRANSLUCENT_RECEIVER: &str =
+    "the scene has no translucent item (opacity below 1): every receiver is opaque and \
+     tested per pixel";
+
 /// Why `volumetric_size` does nothing in a scene with no translucent caster.
 pub const NO_TRANSLUCENT_CASTER: &str =
     "the scene has no translucent caster (an item with opacity below 1): the translucent map \
@@ -331,13 +353,17 @@ pub const NO_TRANSLUCENT_CASTER: &str =
 
 impl super::ShadowPlan {
     /// The scene's idle settings ([`super::ShadowPlan::idle`]) and those its items make
-    /// idle: `volumetric_size` without a translucent caster (the plan sees the lights
-    /// alone).
+    /// idle: `volumetric_size` without a translucent caster, `translucent_receivers`
+    /// without a translucent item (the plan sees the lights alone).
     pub fn idle_in(&self, scene: &crate::scene::Scene) -> Vec<Idle> {
         let mut idle = self.idle.clone();
         let casters = crate::shadows::volumetric::translucent_casters(scene).next();
         if casters.is_none() && !idle.iter().any(|i| i.setting == "volumetric_size") {
             idle.push(Idle::new("volumetric_size", NO_TRANSLUCENT_CASTER));
+        }
+        if !scene.items.iter().any(|i| i.is_translucent()) {
+            idle.retain(|i| i.setting != "translucent_receivers");
+            idle.push(Idle::new("translucent_receivers", NO_TRANSLUCENT_RECEIVER));
         }
         idle
     }

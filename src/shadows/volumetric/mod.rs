@@ -17,6 +17,7 @@ pub mod cache;
 pub mod fom;
 pub mod maps;
 pub mod osm;
+pub mod receivers;
 
 use glam::{DMat4, DVec3, Mat4};
 

@@ -1,0 +1,70 @@
+//! Translucent receivers tested per vertex (`translucent_receivers = "vertex"`). The smoke's
+//! puffs overlap many layers deep, and each of their fragments runs the light's filter and
+//! the translucent lookup; engines light particles per vertex instead. The program that draws
+//! the translucent items ([`MaskMode::Vertex`]) runs each such light's test, the very lines
+//! the fragment shader would run, in the vertex shader (`generated/vertex_tests.glsl`,
+//! included by shaders/scene.vert under `VERTEX_TESTS`), and the fragment takes it
+//! interpolated (`vertexLit`, light i in component i), as it takes the shadow mask's.
+//! Opaque items keep their tests per pixel.
+
+use super::super::slots::{light_part, map_slots, LightSlot, MaskMode, ShadowTest};
+use super::super::{summed, ShadowKind};
+
+/// The generated snippet scene.vert includes.
+pub const VERTEX_SNIPPET: &str = "generated/vertex_tests.glsl";
+
+/// Whether light `slot`'s test can run in a vertex shader: a 2D depth or moment map's,
+/// not PCSS's nor the soft moment filters' (they turn their taps by the pixel and size
+/// them by screen derivatives, which a vertex shader has not).
+pub fn can_run_per_vertex(kind: ShadowKind, test: &ShadowTest) -> bool {
+    match kind {
+        ShadowKind::Map => test.kernel != 3,
+        ShadowKind::Moments => test
+            .moments
+            .is_some_and(|m| !summed::reads_table_mode(m.mode)),
+        _ => false,
+    }
+}
+
+/// Whether translucent items take light `slot`'s test per vertex: its settings ask for it
+/// and it can run there.
+pub fn per_vertex(slot: &LightSlot) -> bool {
+    (slot.test).is_some_and(|t| t.vertex_receivers && can_run_per_vertex(slot.shadow, &t))
+}
+
+/// The vertex shader's snippet for these lights: the samplers and library files of the
+/// lights tested per vertex, `toLightOf` and an `addLight` that keeps each light's test,
+/// and `vertexTests`, which runs them and writes `vertexLit`.
+pub fn vertex_snippet(slots: &[LightSlot]) -> (&'static str, String) {
+    let mut head = String::from(
+        "// Made by src/shadows/volumetric/receivers.rs: the tests translucent items take per\n\
+         // vertex, each light's lines as the fragment shader has them.\n\
+         struct Fragment\n{\n    vec3 normal;\n    vec4 lit;\n};\n\n\
+         vec3 toLightOf(int i, bool positional)\n{\n    return positional ? \
+         normalize(lightVector[i] - mvVertexPos) : normalize(lightVector[i]);\n}\n\n\
+         void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)\n{\n    \
+         f.lit[i] = lit;\n}\n",
+    );
+    let mut body = String::from(
+        "\nvoid vertexTests()\n{\n    Fragment f;\n    f.normal = mvVertexNormal;\n    \
+         f.lit = vec4(1.0);\n",
+    );
+    let mut included: Vec<&str> = Vec::new();
+    let map_slot = map_slots(slots.iter().map(|s| s.shadow));
+    for (i, slot) in slots.iter().enumerate() {
+        if !per_vertex(slot) {
+            continue;
+        }
+        let part = light_part(i, map_slot[i].unwrap_or(0), slot, MaskMode::Off);
+        head.extend(part.sampler.iter().map(|s| format!("{s}\n")));
+        for file in part.snippets {
+            if !included.contains(&file) {
+                head.push_str(&format!("#include \"{file}\"\n"));
+                included.push(file);
+            }
+        }
+        body.extend(part.lines.iter().map(|l| format!("    {l}\n")));
+    }
+    body.push_str("    vertexLit = f.lit;\n}\n");
+    (VERTEX_SNIPPET, head + &body)
+}
