@@ -117,11 +117,7 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
             format!("only the first casting directional light gets {what}; this one keeps one map")
         }
     };
-    let mut push = |name: &'static str, why: String| {
-        if !idle.iter().any(|i: &Idle| i.setting == name) {
-            idle.push(Idle::new(name, why));
-        }
-    };
+    let mut push = |name: &'static str, why: String| push_once(&mut idle, name, why);
     if s.cascades > 1 && kind != ShadowKind::Cascades {
         push("cascades", layers("cascades"));
     }
@@ -170,11 +166,22 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
             }
         }
     }
+    volumetric_idle(kind, s, &mut idle);
+    idle
+}
+
+/// The light's idle settings of shadow volumes and translucent casters.
+fn volumetric_idle(kind: ShadowKind, s: &ShadowSettings, idle: &mut Vec<Idle>) {
     if kind != ShadowKind::Volume {
-        push("show_volumes", "the light has no shadow volumes".into());
+        push_once(
+            idle,
+            "show_volumes",
+            "the light has no shadow volumes".into(),
+        );
     }
     if !(kind == ShadowKind::Map && method(s.volumetric).is_some()) {
-        push(
+        push_once(
+            idle,
             "volumetric_size",
             "only a 2D depth map with volumetric = \"osm\", \"fom\" or \"avsm\" keeps a \
              translucent map"
@@ -182,18 +189,25 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         );
     }
     if !vertex_capable(kind, s) {
-        push("translucent_receivers", NO_VERTEX_TEST.into());
+        push_once(idle, "translucent_receivers", NO_VERTEX_TEST.into());
     }
     for (name, technique) in VOLUMETRIC_KNOBS {
         if !(kind == ShadowKind::Map && s.volumetric == technique) {
             let value = technique.name();
-            push(
+            push_once(
+                idle,
                 name,
                 format!("only a 2D depth map with volumetric = \"{value}\" reads it"),
             );
         }
     }
-    idle
+}
+
+/// Adds `name` as idle for `why` unless it already is.
+fn push_once(idle: &mut Vec<Idle>, name: &'static str, why: String) {
+    if !idle.iter().any(|i| i.setting == name) {
+        idle.push(Idle::new(name, why));
+    }
 }
 
 /// The translucent maps' counts, each with the technique that reads it.
@@ -297,6 +311,14 @@ pub(super) fn of_scene(
              filters, cube maps, cascades and caster groups filter on their own)",
         ));
     }
+    of_scene_volumetric(settings, plans, &mut idle);
+    of_scene_maps(plans, &mut idle);
+    idle
+}
+
+/// The scene's idle settings of translucent casters: no light keeps such a map, or none
+/// can test translucent receivers per vertex.
+fn of_scene_volumetric(settings: &ShadowSettings, plans: &[LightPlan], idle: &mut Vec<Idle>) {
     for (name, technique) in VOLUMETRIC_KNOBS {
         if !plans.iter().any(|p| p.volumetric == Some(technique)) {
             let value = technique.name();
@@ -314,8 +336,6 @@ pub(super) fn of_scene(
         let why = format!("no light's test can run per vertex: {NO_VERTEX_TEST}");
         idle.push(Idle::new("translucent_receivers", why));
     }
-    of_scene_maps(plans, &mut idle);
-    idle
 }
 
 /// Why no light keeps a translucent map under the scene's `settings`.
