@@ -28,8 +28,14 @@ pub struct HeadlessContext {
 }
 
 impl HeadlessContext {
-    /// Creates a GL 3.3 core context on the first EGL device that can make one.
+    /// Creates a GL 3.3 core context on the first EGL device that can make one, a debug
+    /// context where [`debug_wanted`](super::check::debug_wanted).
     pub fn new() -> Result<HeadlessContext> {
+        Self::with_debug(super::check::debug_wanted())
+    }
+
+    /// [`new`](Self::new) with the driver's debug messages on or off whatever the build.
+    pub fn with_debug(debug: bool) -> Result<HeadlessContext> {
         let devices = Device::query_devices().map_err(|e| {
             Error::Context(format!(
                 "cannot use EGL to render without a display: {e}.\n\
@@ -44,14 +50,14 @@ impl HeadlessContext {
                 .or(device.vendor())
                 .unwrap_or("unnamed EGL device")
                 .to_string();
-            match Self::on_device(&device) {
+            match Self::on_device(&device, debug) {
                 Ok((display, context)) => {
                     // SAFETY: the context is current on this thread; the loader returns its
                     // function pointers.
                     let mut gl = unsafe {
                         glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s))
                     };
-                    super::check::install_debug_output(&mut gl);
+                    super::check::install_debug_output(&mut gl, debug);
                     return Ok(HeadlessContext {
                         gl: Rc::new(super::bindings::GlContext::new(gl)),
                         _context: context,
@@ -78,6 +84,7 @@ impl HeadlessContext {
 
     fn on_device(
         device: &Device,
+        debug: bool,
     ) -> std::result::Result<(Display, PossiblyCurrentContext), glutin::error::Error> {
         // SAFETY: no raw display handle is passed, so there is nothing to keep valid.
         let display = unsafe { Display::with_device(device, None) }?;
@@ -92,7 +99,7 @@ impl HeadlessContext {
         let attributes = ContextAttributesBuilder::new()
             .with_context_api(ContextApi::OpenGl(Some(Version::new(3, 3))))
             .with_profile(GlProfile::Core)
-            .with_debug(super::check::debug_wanted())
+            .with_debug(debug)
             .build(None);
         // SAFETY: the config came from this display.
         let context = unsafe { display.create_context(&config, &attributes) }?;

@@ -106,7 +106,7 @@ impl WindowContext {
         // SAFETY: the context is current on this thread.
         let mut gl =
             unsafe { glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s)) };
-        super::check::install_debug_output(&mut gl);
+        super::check::install_debug_output(&mut gl, super::check::debug_wanted());
         let api = match display {
             Display::Glx(_) => "GLX",
             _ => "EGL",
