@@ -15,7 +15,7 @@
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
 use crate::error::Result;
-use crate::settings::{Filter, MapSize};
+use crate::settings::{Filter, MapSize, ShadowSettings};
 use crate::shaders;
 
 /// Whether `filter` reads a summed-area table ([`Filter::SOFT_MOMENTS`]).
@@ -70,6 +70,29 @@ impl Summed {
     }
 }
 
+/// The most cells a side of a soft moment filter's stage (`soft_search_cells`,
+/// `soft_filter_cells`): `SOFT_MAX_CELLS` of shaders/lib/soft_moments.glsl.
+pub const MAX_SOFT_CELLS: u32 = 4;
+
+/// A soft moment filter's cells a side, the blocker search's and the filter's: each stage
+/// reads (n + 1)^2 corners of the table a pixel. Literal arguments of the light's call, so
+/// the compiler sizes each lattice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SoftCells {
+    pub search: u32,
+    pub filter: u32,
+}
+
+impl SoftCells {
+    /// The cells under `s`, if its filter reads a table (others' keys ignore the counts).
+    pub fn of(s: &ShadowSettings) -> Option<SoftCells> {
+        reads_table(s.filter).then_some(SoftCells {
+            search: s.soft_search_cells,
+            filter: s.soft_filter_cells,
+        })
+    }
+}
+
 /// Whether a moment test's mode ([`super::moments::mode`]) reads a table.
 pub fn reads_table_mode(mode: u32) -> bool {
     mode == MODE_VSSM || mode == MODE_MSM_SOFT
@@ -92,6 +115,8 @@ mod tests {
         assert!(text.contains(&scale), "{scale}");
         // The widest box read: twice the largest half width and a texel each way.
         assert!(text.contains("const float SOFT_MAX_TEXELS = 64.0;"));
+        let cells = format!("const int SOFT_MAX_CELLS = {MAX_SOFT_CELLS};");
+        assert!(text.contains(&cells), "{cells}");
         assert_eq!(SAT_MAX_BOX, 2 * 64 + 2);
     }
 }
