@@ -808,7 +808,15 @@ mod tests {
             "{}",
             g.test
         );
-        assert!(g.test.contains(", lightPenumbra[1], "), "{}", g.test);
+        assert!(g.test.contains(", lightPenumbra[1], 4, 4, "), "{}", g.test);
+        // Each stage's cells, the search's first.
+        let cheap = ShadowTest::of(&ShadowSettings {
+            soft_search_cells: 2,
+            soft_filter_cells: 3,
+            ..vssm
+        });
+        let g = soft_moments_glsl(1, 0, &cheap, &m);
+        assert!(g.test.contains(", lightPenumbra[1], 2, 3, "), "{}", g.test);
         let msm = ShadowSettings {
             filter: Filter::MsmSoft,
             ..vssm
