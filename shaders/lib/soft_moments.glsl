@@ -78,9 +78,9 @@ vec2 softCell(int kind, vec4 m, float ti, bool single, float minVariance, vec2 s
 }
 
 // The cells of a lattice of the table's corners, `cells` a side (`xs`, `ys`: table indices,
-// the corner after texel xs[i]), (cells + 1)^2 reads: each cell's mean moments are tested against the
-// receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver mixed into
-// one box's variance reads lit where it is not, and passes for a blocker: VSSM's
+// the corner after texel xs[i]), (cells + 1)^2 reads: each cell's mean moments are tested
+// against the receiver plane at the cell's centre, `t + slope . offset` (a tilted receiver
+// mixed into one box's variance reads lit where it is not, and passes for a blocker: VSSM's
 // subdivision of a non-planar receiver, here always, with the receiver's plane); returns
 // the cells' parts (softCell) weighted by the share of each cell inside the box lo..hi
 // (texels of the map), over the box's area. Read row by row, so that no array is indexed
@@ -209,8 +209,8 @@ vec2 softSearchHalf(float z, vec4 light, bool perspective, vec2 size)
 // blockers' share and depth, then the bound over a box as wide as their penumbra, with
 // the light-bleeding reduction. `searchCells`, `filterCells`: each stage's cells a side.
 float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
-           int searchCells, int filterCells, float minVariance, float bleedReduction, bool perspective, bool borderLit,
-           bool beyondFarLit)
+           int searchCells, int filterCells, float minVariance, float bleedReduction,
+           bool perspective, bool borderLit, bool beyondFarLit)
 {
     vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
     vec2 size = 1.0 / texel;
@@ -229,7 +229,8 @@ float vssm(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
 // Moment soft shadow maps: the same with four moments, the Hamburger 4MSM reconstruction
 // for both the blockers' share and the filter, the moment bias `alpha` toward `toward`.
 float msmSoft(usampler2D table, vec4 position, float bias, vec2 texel, vec4 light,
-              int searchCells, int filterCells, float alpha, vec4 toward, bool perspective, bool borderLit, bool beyondFarLit)
+              int searchCells, int filterCells, float alpha, vec4 toward, bool perspective,
+              bool borderLit, bool beyondFarLit)
 {
     vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
     vec2 size = 1.0 / texel;
