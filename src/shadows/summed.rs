@@ -5,9 +5,10 @@
 //! point of its kernel; a blurred moment map costs one lookup but its blur is one width for
 //! every edge. A summed-area table of the moments gives the mean over any box in a handful
 //! of reads, so both PCSS stages cost the same at any width: the blockers' mean depth from
-//! the moments of the search box's 4 x 4 cells (Yang et al. 2010, variance soft shadow
-//! mapping; Peters et al. 2016, moment soft shadow mapping), then the moments over a box as
-//! wide as their penumbra, each cell against the receiver's plane.
+//! the moments of the search box's cells (Yang et al. 2010, variance soft shadow mapping;
+//! Peters et al. 2016, moment soft shadow mapping), then the moments over a box as wide as
+//! their penumbra, each cell against the receiver's plane; each stage's cells a side are a
+//! setting ([`SoftCells`], 4 x 4 by default).
 //! The table is built after the depth pass ([`crate::engine::SummedAreaTable`],
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
