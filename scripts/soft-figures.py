@@ -2,8 +2,10 @@
 """Per filter on dummy, playground, large and penumbra: frame time (render --frames, median) and the
 figures against the area-light truth (compare --supersample 1). Prints Markdown rows.
 
-soft-figures.py BIN [SCENES [FILTERS [SCALES]]]: comma-separated lists; SCALES multiply each
-scene's light size (default 1), each scale's filters measured one after the other.
+soft-figures.py BIN [SCENES [FILTERS [SCALES [FLAGS]]]]: comma-separated lists; SCALES multiply
+each scene's light size (default 1), each scale's filters measured one after the other; FLAGS
+(one string, e.g. "--soft-search-cells 2 --soft-filter-cells 2") are added to every render and
+compare.
 On the playground each filter that has a step of its own is measured at it (its settings: vssm
 and msm-soft test the receiver's plane and take no epsilon), every other at the `pcss` step."""
 import json, subprocess, sys, tempfile, re, os
@@ -21,6 +23,7 @@ own_step = {"playground": {"vssm": "vssm", "msm-soft": "msm-soft"}}
 only = sys.argv[2].split(",") if len(sys.argv) > 2 else list(scenes)
 filters = sys.argv[3].split(",") if len(sys.argv) > 3 else filters
 scales = [float(s) for s in sys.argv[4].split(",")] if len(sys.argv) > 4 else [1.0]
+flags = sys.argv[5].split() if len(sys.argv) > 5 else []
 for name in only:
     base, size = scenes[name]
     for scale in scales:
@@ -29,7 +32,7 @@ for name in only:
         print("| filter | frame ms | MAE vs area | bleed | penumbra error px (width) |")
         print("|---|---|---|---|---|", flush=True)
         for f in filters:
-            args = base + light
+            args = base + light + flags
             if f in own_step.get(name, {}):
                 args[args.index("--step") + 1] = own_step[name][f]
             with tempfile.TemporaryDirectory() as d:
@@ -44,4 +47,4 @@ for name in only:
                     continue
                 j = json.load(open(f"{d}/c/metrics.json"))
                 a = j.get("area_light") or {}
-                print(f"| {f} | {m.group(1) if m else '?'} | {a.get('mae', float('nan')):.4f} | {100*a.get('light_bleed_rate', float('nan')):.3f}% | {a.get('penumbra_width_error_px', float('nan')):.2f} ({a.get('penumbra_width_px', float('nan')):.2f}, truth {a.get('penumbra_width_truth_px', float('nan')):.2f}) |", flush=True)
+                print(f"| {f} | {m.group(1) if m else '?'} | {a.get('mae', float('nan')):.5f} | {100*a.get('light_bleed_rate', float('nan')):.3f}% | {a.get('penumbra_width_error_px', float('nan')):.2f} ({a.get('penumbra_width_px', float('nan')):.2f}, truth {a.get('penumbra_width_truth_px', float('nan')):.2f}) |", flush=True)

@@ -251,6 +251,13 @@ shadow_settings! {
             arg(value_name = "ALPHA", value_parser = parse_finite, allow_negative_numbers = true);
         /// What MSM's moment bias pulls toward.
         msm_toward: MsmToward = MsmToward::Half;
+        /// vssm, msm-soft: cells a side of the blocker search's box; (n + 1)^2 reads of the
+        /// summed-area table a pixel (4: 25 reads; 1: one box of 4 corners).
+        soft_search_cells: u32 = 4, range(Range::from_to(1, crate::shadows::summed::MAX_SOFT_CELLS)),
+            arg(value_name = "N", allow_negative_numbers = true);
+        /// vssm, msm-soft: cells a side of the filter's box, as `soft_search_cells`.
+        soft_filter_cells: u32 = 4, range(Range::from_to(1, crate::shadows::summed::MAX_SOFT_CELLS)),
+            arg(value_name = "N", allow_negative_numbers = true);
     }
     /// How the map is drawn.
     "Depth pass" {

@@ -115,6 +115,11 @@ impl ShadowSettings {
             {
                 return None
             }
+            "soft_search_cells" | "soft_filter_cells"
+                if !Filter::SOFT_MOMENTS.contains(&self.filter) =>
+            {
+                return None
+            }
             "osm_slices" if self.volumetric != Volumetric::Osm => return None,
             "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
             "avsm_nodes" | "peel_layers" if self.volumetric != Volumetric::Avsm => return None,

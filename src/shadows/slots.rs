@@ -64,6 +64,8 @@ pub struct ShadowTest {
     pub map_depth: map2d::MapDepth,
     /// A moment filter's own constants.
     pub moments: Option<MomentTest>,
+    /// A soft moment filter's lattices ([`summed::SoftCells`]).
+    pub soft_cells: Option<summed::SoftCells>,
     /// The light's translucent map, whose transmittance multiplies the test
     /// ([`crate::shadows::volumetric`]).
     pub volumetric: Option<VolumetricKey>,
@@ -87,6 +89,7 @@ impl ShadowTest {
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
             moments: MomentTest::of(&s),
+            soft_cells: summed::SoftCells::of(&s),
             kernel: s.filter.kernel(),
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
@@ -291,14 +294,21 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
 
 /// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
 /// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
-/// `usampler2D` read with `texelFetch`, with PCSS's light constants (`lightPenumbra`).
+/// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
 fn soft_moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
     let f = |bits: u32| glsl_float(f32::from_bits(bits));
+    let most = summed::MAX_SOFT_CELLS;
+    let cells = test.soft_cells.unwrap_or(summed::SoftCells {
+        search: most,
+        filter: most,
+    });
     let head = format!(
-        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}]",
+        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}], {}, {}",
         map2d::SAMPLERS[i],
         test.bias_glsl(i),
-        test.texel_glsl()
+        test.texel_glsl(),
+        cells.search.clamp(1, most),
+        cells.filter.clamp(1, most)
     );
     let tail = format!(
         "{}, {}, {}",
@@ -798,7 +808,15 @@ mod tests {
             "{}",
             g.test
         );
-        assert!(g.test.contains(", lightPenumbra[1], "), "{}", g.test);
+        assert!(g.test.contains(", lightPenumbra[1], 4, 4, "), "{}", g.test);
+        // Each stage's cells, the search's first.
+        let cheap = ShadowTest::of(&ShadowSettings {
+            soft_search_cells: 2,
+            soft_filter_cells: 3,
+            ..vssm
+        });
+        let g = soft_moments_glsl(1, 0, &cheap, &m);
+        assert!(g.test.contains(", lightPenumbra[1], 2, 3, "), "{}", g.test);
         let msm = ShadowSettings {
             filter: Filter::MsmSoft,
             ..vssm

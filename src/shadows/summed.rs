@@ -5,9 +5,10 @@
 //! point of its kernel; a blurred moment map costs one lookup but its blur is one width for
 //! every edge. A summed-area table of the moments gives the mean over any box in a handful
 //! of reads, so both PCSS stages cost the same at any width: the blockers' mean depth from
-//! the moments of the search box's 4 x 4 cells (Yang et al. 2010, variance soft shadow
-//! mapping; Peters et al. 2016, moment soft shadow mapping), then the moments over a box as
-//! wide as their penumbra, each cell against the receiver's plane.
+//! the moments of the search box's cells (Yang et al. 2010, variance soft shadow mapping;
+//! Peters et al. 2016, moment soft shadow mapping), then the moments over a box as wide as
+//! their penumbra, each cell against the receiver's plane; each stage's cells a side are a
+//! setting ([`SoftCells`], 4 x 4 by default).
 //! The table is built after the depth pass ([`crate::engine::SummedAreaTable`],
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
@@ -15,7 +16,7 @@
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
 use crate::error::Result;
-use crate::settings::{Filter, MapSize};
+use crate::settings::{Filter, MapSize, ShadowSettings};
 use crate::shaders;
 
 /// Whether `filter` reads a summed-area table ([`Filter::SOFT_MOMENTS`]).
@@ -70,6 +71,29 @@ impl Summed {
     }
 }
 
+/// The most cells a side of a soft moment filter's stage (`soft_search_cells`,
+/// `soft_filter_cells`): `SOFT_MAX_CELLS` of shaders/lib/soft_moments.glsl.
+pub const MAX_SOFT_CELLS: u32 = 4;
+
+/// A soft moment filter's cells a side, the blocker search's and the filter's: each stage
+/// reads (n + 1)^2 corners of the table a pixel. Literal arguments of the light's call, so
+/// the compiler sizes each lattice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SoftCells {
+    pub search: u32,
+    pub filter: u32,
+}
+
+impl SoftCells {
+    /// The cells under `s`, if its filter reads a table (others' keys ignore the counts).
+    pub fn of(s: &ShadowSettings) -> Option<SoftCells> {
+        reads_table(s.filter).then_some(SoftCells {
+            search: s.soft_search_cells,
+            filter: s.soft_filter_cells,
+        })
+    }
+}
+
 /// Whether a moment test's mode ([`super::moments::mode`]) reads a table.
 pub fn reads_table_mode(mode: u32) -> bool {
     mode == MODE_VSSM || mode == MODE_MSM_SOFT
@@ -92,6 +116,29 @@ mod tests {
         assert!(text.contains(&scale), "{scale}");
         // The widest box read: twice the largest half width and a texel each way.
         assert!(text.contains("const float SOFT_MAX_TEXELS = 64.0;"));
+        let cells = format!("const int SOFT_MAX_CELLS = {MAX_SOFT_CELLS};");
+        assert!(text.contains(&cells), "{cells}");
         assert_eq!(SAT_MAX_BOX, 2 * 64 + 2);
+    }
+
+    /// The cells are part of a soft filter's test, so of the program's key, and of no
+    /// other filter's.
+    #[test]
+    fn the_cells_change_a_soft_filters_test_only() {
+        use crate::shadows::slots::ShadowTest;
+        let cells = |filter, search, each| {
+            ShadowTest::of(&ShadowSettings {
+                filter,
+                soft_search_cells: search,
+                soft_filter_cells: each,
+                ..ShadowSettings::default()
+            })
+        };
+        for filter in Filter::SOFT_MOMENTS {
+            assert_ne!(cells(filter, 4, 4), cells(filter, 2, 4), "{filter:?}");
+            assert_ne!(cells(filter, 4, 4), cells(filter, 4, 3), "{filter:?}");
+        }
+        assert_eq!(cells(Filter::Pcss, 4, 4), cells(Filter::Pcss, 1, 1));
+        assert_eq!(cells(Filter::Vsm, 4, 4), cells(Filter::Vsm, 1, 1));
     }
 }

@@ -48,7 +48,7 @@ const MAP_SETTINGS: [&str; 17] = [
 ];
 
 /// The moment maps' knobs, each with the filters that read it and those filters in words.
-const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
+const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 5] = [
     (
         &["blur"],
         &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm],
@@ -68,6 +68,11 @@ const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 4] = [
         &["msm_bias", "msm_toward"],
         &[Filter::Msm, Filter::MsmSoft],
         "msm or msm-soft",
+    ),
+    (
+        &["soft_search_cells", "soft_filter_cells"],
+        &Filter::SOFT_MOMENTS,
+        "vssm or msm-soft",
     ),
 ];
 
