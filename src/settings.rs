@@ -13,8 +13,8 @@ mod range;
 
 pub use choices::{
     BeyondFar, BiasMode, Blur, Cull, DepthFormat, DepthLookup, Filter, Fit, LightProjection,
-    LightView, MsmToward, PerspectiveDepth, PointPass, ShadowTechnique, TranslucentReceivers,
-    Volumetric, Wrap,
+    LightView, MsmToward, OpaqueReceivers, PerspectiveDepth, PointPass, ShadowTechnique,
+    TranslucentReceivers, Volumetric, Wrap,
 };
 pub use map_size::{parse_map_size, MapSize};
 
@@ -36,6 +36,7 @@ names::named_by_clap!(
     PointPass,
     Volumetric,
     TranslucentReceivers,
+    OpaqueReceivers,
 );
 
 /// The points of PCSS's Poisson disk (shaders/lib/soft_filters.glsl): the most taps each
@@ -336,6 +337,11 @@ shadow_settings! {
         /// map's test, not PCSS's or the soft moment filters'); opaque items always per pixel.
         translucent_receivers: TranslucentReceivers = TranslucentReceivers::Pixel,
             arg(value_name = "pixel|vertex");
+        /// What opaque receivers read from a translucent map: `curve` (the technique's lookup
+        /// at the receiver's depth, every pixel) or `resolved` (one filtered fetch of the
+        /// curve read at the depth map's depth, resolved whenever either map is drawn).
+        opaque_receivers: OpaqueReceivers = OpaqueReceivers::Curve,
+            arg(value_name = "curve|resolved");
     }
     /// Pictures instead of, or over, the scene.
     "Debug views" {

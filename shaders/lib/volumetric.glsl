@@ -21,3 +21,12 @@ vec4 volumetricCoords(int light)
     bool behindNearest = c.z > 0.0;
     return vec4(uv, c.z, onMap && underCasters && behindNearest ? 1.0 : 0.0);
 }
+
+// opaque_receivers = "resolved" (src/shadows/volumetric/resolved.rs): the light's
+// translucent map read at the depth map's own depth, one filtered fetch where the
+// fragment's light-space position (its map slot's, as the light's test reads it) falls.
+// Outside the casters' footprint the map holds 1.
+float resolvedTransmittance(sampler2D map, vec4 lightPosition)
+{
+    return texture(map, lightPosition.xy / lightPosition.w * 0.5 + 0.5).r;
+}

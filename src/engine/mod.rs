@@ -46,7 +46,7 @@ pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
-pub use translucent_map::{MapPass, TranslucentMap};
+pub use translucent_map::{MapPass, ResolvedMap, TranslucentMap};
 pub use volume::{
     AdjacencyMesh, LightPass, LightPassGuard, SamplesQuery, VolumeDraw, VolumePassGuard,
 };

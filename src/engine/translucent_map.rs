@@ -82,24 +82,8 @@ impl TranslucentMap {
         pass
     }
 
-    /// Binds the framebuffer to draw into `rect` alone (scissored) with no depth test or
-    /// culling; the pass restores the resting state (and blending, if `additive`) on drop.
     fn begin(&self, rect: PixelRect, additive: bool) -> MapPass {
-        let gl = &self.gl;
-        unsafe {
-            gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
-            let size = self.size();
-            gl.viewport(0, 0, size.width as i32, size.height as i32);
-            gl.set_capability(glow::SCISSOR_TEST, true);
-            let (w, h) = (rect.width as i32, rect.height as i32);
-            gl.scissor(rect.x as i32, rect.y as i32, w, h);
-            gl.set_capability(glow::DEPTH_TEST, false);
-            gl.set_capability(glow::CULL_FACE, false);
-        }
-        MapPass {
-            gl: gl.clone(),
-            additive,
-        }
+        begin_pass(&self.gl, self.fbo, self.size(), rect, additive)
     }
 
     /// Clears every layer to `value`.
@@ -173,6 +157,132 @@ impl TranslucentMap {
 }
 
 impl Drop for TranslucentMap {
+    fn drop(&mut self) {
+        if let Some(fbo) = self.fbo {
+            unsafe { self.gl.delete_framebuffer(fbo) };
+        }
+    }
+}
+
+/// Binds `fbo` (a `size` target) to draw into `rect` alone (scissored) with no depth test
+/// or culling; the pass restores the resting state (and blending, if `additive`) on drop.
+fn begin_pass(
+    gl: &Gl,
+    fbo: Option<glow::Framebuffer>,
+    size: MapSize,
+    rect: PixelRect,
+    additive: bool,
+) -> MapPass {
+    unsafe {
+        gl.bind_framebuffer(glow::FRAMEBUFFER, fbo);
+        gl.viewport(0, 0, size.width as i32, size.height as i32);
+        gl.set_capability(glow::SCISSOR_TEST, true);
+        let (w, h) = (rect.width as i32, rect.height as i32);
+        gl.scissor(rect.x as i32, rect.y as i32, w, h);
+        gl.set_capability(glow::DEPTH_TEST, false);
+        gl.set_capability(glow::CULL_FACE, false);
+    }
+    MapPass {
+        gl: gl.clone(),
+        additive,
+    }
+}
+
+/// A translucent map resolved for opaque receivers (`opaque_receivers = "resolved"`,
+/// `crate::shadows::volumetric::resolved`): one R32F transmittance a texel, read with
+/// LINEAR filtering, clamped, and its framebuffer; both freed on drop.
+pub struct ResolvedMap {
+    gl: Gl,
+    fbo: Option<glow::Framebuffer>,
+    texture: Texture,
+}
+
+impl ResolvedMap {
+    /// A `size` map, every texel 1 (nothing in the way).
+    pub fn new(gl: &Gl, size: MapSize) -> Result<ResolvedMap> {
+        let (w, h) = (size.width, size.height);
+        let texture = Texture::attachment(gl, w, h, glow::R32F, glow::RED, glow::FLOAT)?;
+        let mut map = ResolvedMap {
+            gl: gl.clone(),
+            fbo: None,
+            texture,
+        };
+        unsafe {
+            // Set up right after it was made (Texture::create forgets the bindings).
+            gl.bind_texture(glow::TEXTURE_2D, Some(map.texture.id()));
+            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
+            p(glow::TEXTURE_MIN_FILTER, glow::LINEAR);
+            p(glow::TEXTURE_MAG_FILTER, glow::LINEAR);
+            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
+            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
+            gl.bind_texture(glow::TEXTURE_2D, None);
+            let fbo = gl
+                .create_framebuffer()
+                .map_err(|e| Error::Create(format!("resolved map framebuffer: {e}")))?;
+            super::counters::count(|c| c.framebuffers += 1);
+            map.fbo = Some(fbo);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let (target, id) = (glow::TEXTURE_2D, Some(map.texture.id()));
+            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, target, id, 0);
+            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
+            let status = check_framebuffer(gl, &format!("resolved map {w}x{h}"));
+            gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0; 4]);
+            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+            status?;
+        }
+        Ok(map)
+    }
+
+    /// Binds the framebuffer to overwrite the texels of `rect` alone (scissored), with no
+    /// blending, depth test or culling; dropping the pass puts the resting state back.
+    pub fn begin_write(&self, rect: PixelRect) -> MapPass {
+        begin_pass(&self.gl, self.fbo, self.size(), rect, false)
+    }
+
+    /// Binds the map on texture `unit` for a `sampler2D`, with no sampler object.
+    pub fn bind(&self, unit: u32) {
+        self.texture.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
+    }
+
+    /// Binds a light's depth map on `unit` with no sampler object, for the resolve's
+    /// `texelFetch` (its own NEAREST sampling, no comparison).
+    pub fn bind_depth(&self, depth: &Texture, unit: u32) {
+        depth.bind(unit);
+        unsafe { self.gl.bind_sampler(unit, None) };
+    }
+
+    /// The map read back, texel by texel (row 0 at the bottom).
+    pub fn read(&self) -> Vec<f32> {
+        let size = self.size();
+        let mut bytes = vec![0u8; size.texels() as usize * 4];
+        unsafe {
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
+            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
+            let (w, h) = (size.width as i32, size.height as i32);
+            let data = glow::PixelPackData::Slice(Some(&mut bytes));
+            self.gl
+                .read_pixels(0, 0, w, h, glow::RED, glow::FLOAT, data);
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
+        let float = |c: &[u8]| f32::from_ne_bytes([c[0], c[1], c[2], c[3]]);
+        bytes.chunks_exact(4).map(float).collect()
+    }
+
+    pub fn size(&self) -> MapSize {
+        MapSize {
+            width: self.texture.width(),
+            height: self.texture.height(),
+        }
+    }
+
+    /// Bytes allocated: 4 a texel.
+    pub fn bytes(&self) -> u64 {
+        self.size().texels() * 4
+    }
+}
+
+impl Drop for ResolvedMap {
     fn drop(&mut self) {
         if let Some(fbo) = self.fbo {
             unsafe { self.gl.delete_framebuffer(fbo) };

@@ -169,7 +169,17 @@ impl Renderer {
             schedule.drawn(index, step);
         }
         let boxes = self.schedule.boxes();
-        (self.volumetric).render(&self.gl, &self.gpu.meshes, scene, &self.views, boxes)?;
+        let depth: Vec<_> = (self.shadows.iter().zip(self.schedule.keys()))
+            .map(|(t, key)| t.as_ref().map(|t| (t.texture(), *key)))
+            .collect();
+        (self.volumetric).render(
+            &self.gl,
+            &self.gpu.meshes,
+            scene,
+            &self.views,
+            boxes,
+            &depth,
+        )?;
         self.hook(Pass::Depth, false);
         check_gl(&self.gl, "the depth-map pass")
     }

@@ -182,14 +182,14 @@ impl Renderer {
     }
 
     /// The program `mode`'s scene program draws the translucent items with: none when it
-    /// writes the mask; the one that tests per vertex when a light asks for it
-    /// ([`MaskMode::Vertex`]); else itself when it tests, the testing one beside a program
+    /// writes the mask; their own when a light tests them per vertex or resolves its
+    /// translucent map for the opaque items ([`MaskMode::Vertex`]); else itself when it tests, the testing one beside a program
     /// that reads the mask ([`Renderer::keep_tests_program`] keeps those compiled).
     pub(super) fn translucent_program(&self, mode: MaskMode) -> Option<&ShaderProgram> {
         let (front, program) = self.scene_programs.first()?;
         let wanted = match mode {
             MaskMode::Write => return None,
-            _ if front.tests_per_vertex() => front.with_mask(MaskMode::Vertex),
+            _ if front.translucent_apart() => front.with_mask(MaskMode::Vertex),
             MaskMode::Off | MaskMode::Vertex => return Some(program),
             MaskMode::Read => front.with_mask(MaskMode::Off),
         };
@@ -198,7 +198,7 @@ impl Renderer {
     }
 
     /// With translucent items to draw, makes sure the program they are drawn with beside
-    /// `mode`'s (for `outputs`) is compiled: the one that tests per vertex, or beside a
+    /// `mode`'s (for `outputs`) is compiled: their own ([`MaskMode::Vertex`]), or beside a
     /// program that reads the mask the one that tests; the caller then puts `mode`'s in
     /// front.
     pub(super) fn keep_tests_program(
@@ -210,7 +210,7 @@ impl Renderer {
         if !scene.items.iter().any(|i| i.is_translucent()) {
             return Ok(());
         }
-        if self.program_key(scene, outputs)?.tests_per_vertex() {
+        if self.program_key(scene, outputs)?.translucent_apart() {
             self.use_program(scene, outputs, MaskMode::Vertex)?;
         } else if mode == MaskMode::Read {
             self.use_program(scene, outputs, MaskMode::Off)?;

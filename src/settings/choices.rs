@@ -314,6 +314,18 @@ pub enum TranslucentReceivers {
     Vertex,
 }
 
+/// What an opaque receiver reads from a light's translucent map (`volumetric` osm, fom or
+/// avsm).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]
+pub enum OpaqueReceivers {
+    /// The curve at the receiver's own depth: the technique's lookup at every pixel.
+    #[default]
+    Curve,
+    /// One filtered fetch of a map resolved beside the two maps: the curve read at the
+    /// depth map's own depth, where a lit opaque receiver lies.
+    Resolved,
+}
+
 /// How a light casts its translucent items (opacity below 1): the depth map holds one
 /// depth per texel, so without a volumetric technique they cast all or nothing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, clap::ValueEnum)]

@@ -124,6 +124,18 @@ impl ProgramKey {
         self.lights.iter().flatten().any(receivers::per_vertex)
     }
 
+    /// Whether the translucent items take a program of their own ([`MaskMode::Vertex`]):
+    /// a light tests them per vertex, or the opaque receivers read a resolved map
+    /// ([`crate::shadows::volumetric::resolved`]) where they need the curve.
+    pub fn translucent_apart(&self) -> bool {
+        let resolved = |s: &LightSlot| {
+            s.test
+                .and_then(|t| t.volumetric)
+                .is_some_and(|v| v.resolved)
+        };
+        self.tests_per_vertex() || self.lights.iter().flatten().any(resolved)
+    }
+
     /// The lights' slots, in the scene's order.
     pub fn slots(&self) -> Vec<LightSlot> {
         self.lights[..self.light_count]

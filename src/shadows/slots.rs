@@ -41,6 +41,11 @@ pub fn volumetric_unit(index: usize) -> u32 {
     MASK_UNIT + 1 + index as u32
 }
 
+/// The texture unit of light `index`'s resolved map (after the translucent maps).
+pub fn resolved_unit(index: usize) -> u32 {
+    volumetric_unit(MAX_LIGHTS) + index as u32
+}
+
 /// The shadow test's settings, which the generated call passes as arguments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ShadowTest {
@@ -166,7 +171,8 @@ pub enum MaskMode {
     /// The tests read back from the mask (`SHADOW_MASK_READ`).
     Read,
     /// The translucent items' program: the lights that can take their test per vertex
-    /// (`VERTEX_TESTS`, [`volumetric::receivers`]), the others per fragment.
+    /// (`VERTEX_TESTS`, [`volumetric::receivers`]), the others per fragment, each reading
+    /// its translucent map's curve (not a resolved map, [`volumetric::resolved`]).
     Vertex,
 }
 
@@ -280,13 +286,17 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         format!("float lit{i} = {};", glsl.test),
         format!("addLight({i}, toLight{i}, {cone}, lit{i}, f);"),
     ];
-    if let Some((file, call)) = slot.test.and_then(|t| t.volumetric?.lookup(i)) {
-        // The light that passes the opaque test times what the translucent casters let
-        // through.
-        part.snippets.extend(["lib/volumetric.glsl", file]);
-        let sampler = volumetric::SAMPLERS[i];
+    // The light that passes the opaque test times what the translucent casters let
+    // through; the translucent items' own program (`Vertex`) reads the curve.
+    let opaque = mask != MaskMode::Vertex;
+    let key = slot.test.and_then(|t| t.volumetric);
+    if let Some(((file, call), key)) = key.and_then(|k| Some((k.lookup(i, p, opaque)?, k))) {
+        part.snippets.push("lib/volumetric.glsl");
+        if !part.snippets.contains(&file) {
+            part.snippets.push(file);
+        }
         let declared = part.sampler.take().unwrap_or_default();
-        part.sampler = Some(format!("{declared}\nuniform sampler2DArray {sampler};"));
+        part.sampler = Some(format!("{declared}\n{}", key.sampler(i, opaque)));
         part.lines.insert(2, format!("lit{i} *= {call};"));
     }
     part
@@ -669,6 +679,7 @@ mod tests {
             Some(VolumetricKey {
                 technique,
                 parameter,
+                resolved: false,
             })
         };
         let mut slope = slot(ShadowKind::Map, slope);

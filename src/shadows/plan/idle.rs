@@ -192,6 +192,7 @@ fn volumetric_idle(kind: ShadowKind, s: &ShadowSettings, idle: &mut Vec<Idle>) {
              translucent map"
                 .into(),
         );
+        push_once(idle, "opaque_receivers", NO_MAP_TO_RESOLVE.into());
     }
     if !vertex_capable(kind, s) {
         push_once(idle, "translucent_receivers", NO_VERTEX_TEST.into());
@@ -336,6 +337,8 @@ fn of_scene_volumetric(settings: &ShadowSettings, plans: &[LightPlan], idle: &mu
     }
     if !plans.iter().any(|p| p.volumetric.is_some()) {
         idle.push(Idle::new("volumetric_size", no_translucent_map(settings)));
+        let why = format!("no light's translucent map to resolve: {NO_MAP_TO_RESOLVE}");
+        idle.push(Idle::new("opaque_receivers", why));
     }
     if !plans.iter().any(|p| vertex_capable(p.kind, &p.settings)) {
         let why = format!("no light's test can run per vertex: {NO_VERTEX_TEST}");
@@ -356,6 +359,11 @@ fn no_translucent_map(settings: &ShadowSettings) -> String {
             .to_string(),
     }
 }
+
+/// Why `opaque_receivers` does nothing for a light.
+const NO_MAP_TO_RESOLVE: &str = "only a 2D depth map with volumetric = \"osm\", \"fom\" or \
+     \"avsm\" keeps a translucent map (--volumetric osm, fom or avsm, on a directional or spot \
+     light)";
 
 /// Why `translucent_receivers` does nothing for a light.
 const NO_VERTEX_TEST: &str = "only a 2D depth or moment map's test runs per vertex, and not \
@@ -385,6 +393,7 @@ impl super::ShadowPlan {
         let casters = crate::shadows::volumetric::translucent_casters(scene).next();
         if casters.is_none() && !idle.iter().any(|i| i.setting == "volumetric_size") {
             idle.push(Idle::new("volumetric_size", NO_TRANSLUCENT_CASTER));
+            idle.push(Idle::new("opaque_receivers", NO_TRANSLUCENT_CASTER));
         }
         if !scene.items.iter().any(|i| i.is_translucent()) {
             idle.retain(|i| i.setting != "translucent_receivers");

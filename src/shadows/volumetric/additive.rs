@@ -59,6 +59,15 @@ impl Method for Additive {
         (self.library, call)
     }
 
+    fn texel_call(&self, count: u32) -> (&'static str, String) {
+        // The texel's centre: the filter reads that texel alone.
+        let call = format!(
+            "{}(translucentMap, vec4(uv, depth, 1.0), {count})",
+            self.function
+        );
+        (self.library, call)
+    }
+
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
         (16 * (self.layers)((self.count)(settings)), 1)
     }

@@ -56,6 +56,8 @@ pub fn content_key(scene: &Scene, view: &ShadowView, settings: u64, fit: DepthFi
 pub struct MapDraws {
     pub drawn: u64,
     pub kept: u64,
+    /// Resolves for opaque receivers ([`super::resolved`]).
+    pub resolved: u64,
 }
 
 #[cfg(test)]

@@ -5,8 +5,9 @@
 use glam::{DMat4, DVec3, Mat4, Vec4};
 
 use super::cache::{self, MapDraws};
+use super::resolved::{self, Resolved};
 use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS};
-use crate::engine::{Gl, Mesh, ShaderProgram};
+use crate::engine::{Gl, Mesh, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::{MapSize, Volumetric};
@@ -28,8 +29,14 @@ pub struct Maps {
     made_for: Vec<(u64, bool)>,
     /// What each map holds ([`cache::content_key`]); `None`: draw it again.
     keys: Vec<Option<u64>>,
+    /// Each map resolved for opaque receivers, where the light asks for it.
+    resolved: Vec<Option<Resolved>>,
     draws: MapDraws,
 }
+
+/// A light's depth map, for the resolve: its texture and what it holds (the shadow cache's
+/// key, `None` when drawn every frame).
+pub type DepthMap<'a> = Option<(&'a Texture, Option<u64>)>;
 
 impl Maps {
     /// Makes each light's map match `plan` (a light keeps one when the plan gives it a
@@ -48,13 +55,20 @@ impl Maps {
         self.drawn.resize(n, None);
         self.made_for.resize(n, (0, false));
         self.keys.resize(n, None);
+        self.resolved.resize_with(n, || None);
         for (i, own) in plan.lights.iter().enumerate() {
             let (map, technique) = (&mut self.maps[i], &mut self.techniques[i]);
             let Some(m) = own.volumetric.and_then(method) else {
                 (*map, *technique) = (None, None);
-                self.keys[i] = None;
+                (self.keys[i], self.resolved[i]) = (None, None);
                 continue;
             };
+            let resolved = &mut self.resolved[i];
+            if !resolved::wanted(&own.settings) {
+                *resolved = None;
+            } else if !resolved.as_ref().is_some_and(|r| r.fits(&own.settings)) {
+                *resolved = Some(Resolved::new(gl, &own.settings)?);
+            }
             let fits = map.as_ref().is_some_and(|t| t.fits(&own.settings));
             if !fits || *technique != own.volumetric {
                 *map = Some(m.create(gl, &own.settings)?);
@@ -75,7 +89,47 @@ impl Maps {
     /// Draws each light's map through its camera in `views` (the depth pass' light
     /// cameras); `boxes`: every item's world box. With `shadow_cache` a map whose
     /// [`cache::content_key`] is the one it was drawn with is kept; without, every frame.
+    /// Then resolves each map a light asks for at its `depth` map's depths, where either
+    /// map changed.
     pub fn render(
+        &mut self,
+        gl: &Gl,
+        meshes: &[Mesh],
+        scene: &Scene,
+        views: &[Option<ShadowView>],
+        boxes: &[(DVec3, DVec3)],
+        depth: &[DepthMap],
+    ) -> Result<()> {
+        self.draw(gl, meshes, scene, views, boxes)?;
+        self.resolve(views, depth);
+        Ok(())
+    }
+
+    /// Resolves each light's map for opaque receivers where it or the depth map changed.
+    fn resolve(&mut self, views: &[Option<ShadowView>], depth: &[DepthMap]) {
+        for (i, resolved) in self.resolved.iter_mut().enumerate() {
+            let Some(r) = resolved else { continue };
+            let (Some(map), Some(Some(view)), Some(Some((texture, depth_key)))) =
+                (&self.maps[i], views.get(i), depth.get(i))
+            else {
+                continue;
+            };
+            let size = map.map().size();
+            let source = resolved::Source {
+                translucent: &**map,
+                drawn: self.drawn[i].unwrap_or(TexelRect::whole(size)),
+                fit: self.fits[i],
+                depth: texture,
+                view,
+            };
+            if r.update(&source, resolved::key(self.keys[i], *depth_key)) {
+                self.draws.resolved += 1;
+            }
+        }
+    }
+
+    /// Draws each light's translucent map that changed ([`Maps::render`]).
+    fn draw(
         &mut self,
         gl: &Gl,
         meshes: &[Mesh],
@@ -150,6 +204,11 @@ impl Maps {
             let unit = slots::volumetric_unit(i);
             program.set_i32(SAMPLERS[i], unit as i32);
             map.map().bind(unit);
+            if let Some(r) = &self.resolved[i] {
+                let unit = slots::resolved_unit(i);
+                program.set_i32(resolved::SAMPLERS[i], unit as i32);
+                r.map().bind(unit);
+            }
         }
         program.set_mat4_array("volumetricMatrix", &matrices);
         program.set_vec4_array("volumetricFootprint", &footprints);
@@ -167,7 +226,23 @@ impl Maps {
 
     /// Bytes of GPU memory the maps hold.
     pub fn bytes(&self) -> u64 {
-        self.maps.iter().flatten().map(|m| m.map().bytes()).sum()
+        let resolved: u64 = self
+            .resolved
+            .iter()
+            .flatten()
+            .map(|r| r.map().bytes())
+            .sum();
+        self.maps
+            .iter()
+            .flatten()
+            .map(|m| m.map().bytes())
+            .sum::<u64>()
+            + resolved
+    }
+
+    /// Light `index`'s resolved map, if it has one.
+    pub fn resolved(&self, index: usize) -> Option<&Resolved> {
+        self.resolved.get(index)?.as_ref()
     }
 }
 

@@ -18,6 +18,7 @@ pub mod fom;
 pub mod maps;
 pub mod osm;
 pub mod receivers;
+pub mod resolved;
 
 use glam::{DMat4, DVec3, Mat4};
 
@@ -82,6 +83,10 @@ pub trait Method: Sync {
     /// Its lookup's library file and call for light `i`, compiled for `parameter`: a
     /// transmittance, 1 = nothing in the way.
     fn lookup(&self, i: usize, parameter: u32) -> (&'static str, String);
+    /// Its library file and the curve at one texel of the map, for the resolve
+    /// (shaders/volumetric_resolve.frag: `translucentMap`, `texel`, its centre `uv` and the
+    /// fitted `depth`).
+    fn texel_call(&self, parameter: u32) -> (&'static str, String);
     /// Bytes a texel and passes over the map a frame, without GL (the bench's rows).
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32);
 }
@@ -101,6 +106,9 @@ pub fn method(volumetric: Volumetric) -> Option<&'static dyn Method> {
 pub struct VolumetricKey {
     pub technique: Volumetric,
     pub parameter: u32,
+    /// `opaque_receivers = "resolved"`: opaque receivers read the resolved map
+    /// ([`resolved`]); translucent ones keep the curve.
+    pub resolved: bool,
 }
 
 impl VolumetricKey {
@@ -109,12 +117,28 @@ impl VolumetricKey {
         method(settings.volumetric).map(|m| VolumetricKey {
             technique: settings.volumetric,
             parameter: m.parameter(settings),
+            resolved: resolved::wanted(settings),
         })
     }
 
-    /// Light `i`'s lookup: its library files and its call.
-    pub fn lookup(&self, i: usize) -> Option<(&'static str, String)> {
+    /// Light `i`'s lookup (its light-space position in map slot `p`): its library files
+    /// and its call; for an opaque receiver (`opaque`) under `resolved`, the resolved map's
+    /// one fetch.
+    pub fn lookup(&self, i: usize, p: usize, opaque: bool) -> Option<(&'static str, String)> {
+        if opaque && self.resolved {
+            let map = resolved::SAMPLERS[i];
+            let call = format!("resolvedTransmittance({map}, mlightviewVertexPos[{p}])");
+            return Some(("lib/volumetric.glsl", call));
+        }
         method(self.technique).map(|m| m.lookup(i, self.parameter))
+    }
+
+    /// Light `i`'s sampler declaration for that lookup.
+    pub fn sampler(&self, i: usize, opaque: bool) -> String {
+        match opaque && self.resolved {
+            true => format!("uniform sampler2D {};", resolved::SAMPLERS[i]),
+            false => format!("uniform sampler2DArray {};", SAMPLERS[i]),
+        }
     }
 }
 

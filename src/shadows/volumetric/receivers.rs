@@ -9,6 +9,7 @@
 
 use super::super::slots::{light_part, map_slots, LightSlot, MaskMode, ShadowTest};
 use super::super::{summed, ShadowKind};
+use super::VolumetricKey;
 
 /// The generated snippet scene.vert includes.
 pub const VERTEX_SNIPPET: &str = "generated/vertex_tests.glsl";
@@ -55,6 +56,18 @@ pub fn vertex_snippet(slots: &[LightSlot]) -> (&'static str, String) {
         if !per_vertex(slot) {
             continue;
         }
+        // Translucent receivers read the curve, whatever the opaque ones read.
+        let curve = |t: ShadowTest| ShadowTest {
+            volumetric: t.volumetric.map(|v| VolumetricKey {
+                resolved: false,
+                ..v
+            }),
+            ..t
+        };
+        let slot = &LightSlot {
+            test: slot.test.map(curve),
+            ..*slot
+        };
         let part = light_part(i, map_slot[i].unwrap_or(0), slot, MaskMode::Off);
         head.extend(part.sampler.iter().map(|s| format!("{s}\n")));
         for file in part.snippets {

@@ -65,6 +65,7 @@ fn a_light_with_a_translucent_map_multiplies_its_test_by_the_lookup() {
     let osm = VolumetricKey {
         technique: Volumetric::Osm,
         parameter: 16,
+        resolved: false,
     };
     let part = light_part(2, 0, &slot(Some(osm)), MaskMode::Off);
     assert_eq!(
@@ -83,12 +84,48 @@ fn a_light_with_a_translucent_map_multiplies_its_test_by_the_lookup() {
     let fom = VolumetricKey {
         technique: Volumetric::Fom,
         parameter: 7,
+        resolved: false,
     };
     let part = light_part(0, 0, &slot(Some(fom)), MaskMode::Off);
     assert_eq!(
         part.lines[2],
         "lit0 *= fomTransmittance(volumetricMap0, volumetricCoords(0), 7);"
     );
+    // Resolved: the opaque items' programs fetch the resolved map once, at the light's
+    // map slot position; the translucent items' own program keeps the curve.
+    let resolved = Some(VolumetricKey {
+        resolved: true,
+        ..fom
+    });
+    for mask in [MaskMode::Off, MaskMode::Write] {
+        let part = light_part(1, 0, &slot(resolved), mask);
+        assert_eq!(
+            part.lines[2],
+            "lit1 *= resolvedTransmittance(resolvedMap1, mlightviewVertexPos[0]);"
+        );
+        let samplers = part.sampler.unwrap();
+        assert!(
+            samplers.ends_with("\nuniform sampler2D resolvedMap1;"),
+            "{samplers}"
+        );
+    }
+    let part = light_part(1, 0, &slot(resolved), MaskMode::Vertex);
+    assert_eq!(
+        part.lines[2],
+        "lit1 *= fomTransmittance(volumetricMap1, volumetricCoords(1), 7);"
+    );
+    // And so do their tests per vertex.
+    let mut vertex = slot(resolved);
+    vertex.test = vertex.test.map(|t| ShadowTest {
+        vertex_receivers: true,
+        ..t
+    });
+    let (_, snippet) = super::receivers::vertex_snippet(&[vertex]);
+    assert!(
+        snippet.contains("lit0 *= fomTransmittance(volumetricMap0, volumetricCoords(0), 7);"),
+        "{snippet}"
+    );
+    assert!(!snippet.contains("resolved"), "{snippet}");
     // Without one, the chapters' three lines.
     assert_eq!(light_part(0, 0, &slot(None), MaskMode::Off).lines.len(), 3);
 }

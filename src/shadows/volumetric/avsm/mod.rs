@@ -75,6 +75,11 @@ impl Method for Avsm {
         )
     }
 
+    fn texel_call(&self, nodes: u32) -> (&'static str, String) {
+        let call = format!("avsmTexel(translucentMap, texel, depth, {nodes})");
+        ("lib/avsm.glsl", call)
+    }
+
     /// At most: a peel per layer and for the rest, and one build.
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
         (16 * layers(settings.avsm_nodes), settings.peel_layers + 2)
