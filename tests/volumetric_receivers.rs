@@ -19,17 +19,13 @@ use shadowmap::Scene;
 /// sheet of opacity 0.5 that receives and casts nothing: all of it lies behind the big sheet
 /// alone, where every technique is exact.
 fn covered_sheet() -> Scene {
-    let text = "size = [320, 240]\n\
-         [camera]\nposition = [0.0, 4.0, 3.0]\ntarget = [0.0, -1.0, 0.0]\n\
-         [light]\ndirection = [0.15, 1.0, 0.1]\nshadow_pos_mult = 8.0\n\
-         ortho = { left = -5.0, right = 5.0, bottom = -5.0, top = 5.0, near = -1.0, far = 12.0 }\n\
-         [shadow]\nlight_view = \"look-at\"\nbias = 0.005\n\
-         [[item]]\nname = \"floor\"\nmesh = \"plane\"\nposition = [0.0, -1.0, 0.0]\nscale = 3.0\n\
+    let items = "\
          [[item]]\nname = \"cover\"\nmesh = \"plane\"\nposition = [0.0, 4.5, 0.0]\nscale = 3.0\n\
          colour = [1.0, 1.0, 1.0, 1.0]\nopacity = 0.4\n\
          [[item]]\nname = \"sheet\"\nmesh = \"plane\"\nposition = [0.0, 0.0, 0.0]\n\
          colour = [1.0, 0.5, 0.0, 1.0]\nopacity = 0.5\ncasts_shadows = false\n";
-    parse(text, Path::new("covered.toml"), None).unwrap_or_else(|e| panic!("{e}"))
+    let text = format!("{}{items}", common::OVERHEAD_FLOOR);
+    parse(&text, Path::new("covered.toml"), None).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn frame(scene: &mut Scene, volumetric: Volumetric, receivers: TranslucentReceivers) -> Frame {

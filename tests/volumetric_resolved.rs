@@ -30,16 +30,12 @@ fn with(scene: &Scene, volumetric: Volumetric, receivers: OpaqueReceivers) -> Sh
 /// A floor lit from nearly overhead under a 6 x 6 sheet of opacity 0.4 at y = 4.5, above
 /// the camera (not in view): every lit point of the floor lies behind the sheet alone.
 fn covered_floor() -> Scene {
-    let text = "size = [320, 240]\n\
-         [camera]\nposition = [0.0, 4.0, 3.0]\ntarget = [0.0, -1.0, 0.0]\n\
-         [light]\ndirection = [0.15, 1.0, 0.1]\nshadow_pos_mult = 8.0\n\
-         ortho = { left = -5.0, right = 5.0, bottom = -5.0, top = 5.0, near = -1.0, far = 12.0 }\n\
-         [shadow]\nlight_view = \"look-at\"\nbias = 0.005\n\
-         [[item]]\nname = \"floor\"\nmesh = \"plane\"\nposition = [0.0, -1.0, 0.0]\nscale = 3.0\n\
+    let items = "\
          [[item]]\nname = \"cube\"\nmesh = \"cube\"\nposition = [0.5, -0.5, 0.0]\nscale = 0.5\n\
          [[item]]\nname = \"cover\"\nmesh = \"plane\"\nposition = [0.0, 4.5, 0.0]\nscale = 3.0\n\
          opacity = 0.4\n";
-    parse(text, Path::new("covered.toml"), None).unwrap_or_else(|e| panic!("{e}"))
+    let text = format!("{}{items}", common::OVERHEAD_FLOOR);
+    parse(&text, Path::new("covered.toml"), None).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]

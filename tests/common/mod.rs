@@ -296,3 +296,12 @@ pub fn penumbra_widths_by_side(
     };
     (side(false), side(true))
 }
+
+/// A scene file's start: a 3 x 3 floor at y = -1 lit from nearly overhead by a directional
+/// light whose map covers it, seen from above; items follow.
+pub const OVERHEAD_FLOOR: &str = "size = [320, 240]\n\
+     [camera]\nposition = [0.0, 4.0, 3.0]\ntarget = [0.0, -1.0, 0.0]\n\
+     [light]\ndirection = [0.15, 1.0, 0.1]\nshadow_pos_mult = 8.0\n\
+     ortho = { left = -5.0, right = 5.0, bottom = -5.0, top = 5.0, near = -1.0, far = 12.0 }\n\
+     [shadow]\nlight_view = \"look-at\"\nbias = 0.005\n\
+     [[item]]\nname = \"floor\"\nmesh = \"plane\"\nposition = [0.0, -1.0, 0.0]\nscale = 3.0\n";
