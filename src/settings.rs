@@ -51,6 +51,10 @@ fn poisson_taps() -> Range<u32> {
     Range::from_to(1, PCSS_MAX_TAPS).note("the Poisson disk's points")
 }
 
+/// The most cells a side of a soft moment filter's stage (`soft_search_cells`,
+/// `soft_filter_cells`): `SOFT_MAX_CELLS` of shaders/lib/soft_moments.glsl.
+pub const MAX_SOFT_CELLS: u32 = 4;
+
 /// Cascades per light: the layers of one depth texture array, and slots in the shader's
 /// uniform arrays.
 pub const MAX_CASCADES: u32 = 4;
@@ -254,10 +258,10 @@ shadow_settings! {
         msm_toward: MsmToward = MsmToward::Half;
         /// vssm, msm-soft: cells a side of the blocker search's box; (n + 1)^2 reads of the
         /// summed-area table a pixel (4: 25 reads; 1: one box of 4 corners).
-        soft_search_cells: u32 = 4, range(Range::from_to(1, crate::shadows::summed::MAX_SOFT_CELLS)),
+        soft_search_cells: u32 = 4, range(Range::from_to(1, MAX_SOFT_CELLS)),
             arg(value_name = "N", allow_negative_numbers = true);
         /// vssm, msm-soft: cells a side of the filter's box, as `soft_search_cells`.
-        soft_filter_cells: u32 = 4, range(Range::from_to(1, crate::shadows::summed::MAX_SOFT_CELLS)),
+        soft_filter_cells: u32 = 4, range(Range::from_to(1, MAX_SOFT_CELLS)),
             arg(value_name = "N", allow_negative_numbers = true);
     }
     /// How the map is drawn.

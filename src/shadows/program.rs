@@ -322,4 +322,25 @@ mod tests {
             .unwrap()
         );
     }
+
+    /// The cells are part of a soft filter's test, so of the program's key, and of no
+    /// other filter's.
+    #[test]
+    fn the_cells_change_a_soft_filters_test_only() {
+        use crate::settings::Filter;
+        let cells = |filter, search, each| {
+            ShadowTest::of(&ShadowSettings {
+                filter,
+                soft_search_cells: search,
+                soft_filter_cells: each,
+                ..ShadowSettings::default()
+            })
+        };
+        for filter in Filter::SOFT_MOMENTS {
+            assert_ne!(cells(filter, 4, 4), cells(filter, 2, 4), "{filter:?}");
+            assert_ne!(cells(filter, 4, 4), cells(filter, 4, 3), "{filter:?}");
+        }
+        assert_eq!(cells(Filter::Pcss, 4, 4), cells(Filter::Pcss, 1, 1));
+        assert_eq!(cells(Filter::Vsm, 4, 4), cells(Filter::Vsm, 1, 1));
+    }
 }

@@ -307,7 +307,7 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
 /// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
 fn soft_moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
     let f = |bits: u32| glsl_float(f32::from_bits(bits));
-    let most = summed::MAX_SOFT_CELLS;
+    let most = crate::settings::MAX_SOFT_CELLS;
     let cells = test.soft_cells.unwrap_or(summed::SoftCells {
         search: most,
         filter: most,

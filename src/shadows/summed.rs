@@ -71,10 +71,6 @@ impl Summed {
     }
 }
 
-/// The most cells a side of a soft moment filter's stage (`soft_search_cells`,
-/// `soft_filter_cells`): `SOFT_MAX_CELLS` of shaders/lib/soft_moments.glsl.
-pub const MAX_SOFT_CELLS: u32 = 4;
-
 /// A soft moment filter's cells a side, the blocker search's and the filter's: each stage
 /// reads (n + 1)^2 corners of the table a pixel. Literal arguments of the light's call, so
 /// the compiler sizes each lattice.
@@ -108,6 +104,7 @@ pub const MODE_MSM_SOFT: u32 = 6;
 mod tests {
     use super::*;
     use crate::engine::summed_area::SAT_MAX_BOX;
+    use crate::settings::MAX_SOFT_CELLS;
 
     #[test]
     fn the_snippets_constants_are_the_tables() {
@@ -119,26 +116,5 @@ mod tests {
         let cells = format!("const int SOFT_MAX_CELLS = {MAX_SOFT_CELLS};");
         assert!(text.contains(&cells), "{cells}");
         assert_eq!(SAT_MAX_BOX, 2 * 64 + 2);
-    }
-
-    /// The cells are part of a soft filter's test, so of the program's key, and of no
-    /// other filter's.
-    #[test]
-    fn the_cells_change_a_soft_filters_test_only() {
-        use crate::shadows::slots::ShadowTest;
-        let cells = |filter, search, each| {
-            ShadowTest::of(&ShadowSettings {
-                filter,
-                soft_search_cells: search,
-                soft_filter_cells: each,
-                ..ShadowSettings::default()
-            })
-        };
-        for filter in Filter::SOFT_MOMENTS {
-            assert_ne!(cells(filter, 4, 4), cells(filter, 2, 4), "{filter:?}");
-            assert_ne!(cells(filter, 4, 4), cells(filter, 4, 3), "{filter:?}");
-        }
-        assert_eq!(cells(Filter::Pcss, 4, 4), cells(Filter::Pcss, 1, 1));
-        assert_eq!(cells(Filter::Vsm, 4, 4), cells(Filter::Vsm, 1, 1));
     }
 }
