@@ -255,7 +255,7 @@ impl Texture {
     }
 
     /// `filter` for minifying and magnifying, `wrap` on every axis.
-    fn sampling(&self, filter: u32, wrap: u32) {
+    pub(super) fn sampling(&self, filter: u32, wrap: u32) {
         unsafe {
             self.gl.bind_texture(self.target, Some(self.id));
             let p = |k, v: u32| self.gl.tex_parameter_i32(self.target, k, v as i32);

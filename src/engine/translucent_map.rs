@@ -207,15 +207,9 @@ impl ResolvedMap {
             fbo: None,
             texture,
         };
+        // Filtered: opaque receivers read it with one linear fetch.
+        map.texture.sampling(glow::LINEAR, glow::CLAMP_TO_EDGE);
         unsafe {
-            // Set up right after it was made (Texture::create forgets the bindings).
-            gl.bind_texture(glow::TEXTURE_2D, Some(map.texture.id()));
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
-            p(glow::TEXTURE_MIN_FILTER, glow::LINEAR);
-            p(glow::TEXTURE_MAG_FILTER, glow::LINEAR);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            gl.bind_texture(glow::TEXTURE_2D, None);
             let fbo = gl
                 .create_framebuffer()
                 .map_err(|e| Error::Create(format!("resolved map framebuffer: {e}")))?;
