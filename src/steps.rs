@@ -547,8 +547,13 @@ const LISTS: [StepList; 3] = [
 ];
 
 /// The chapter's starting point for a scene: its own settings with one lookup, no bias, no
-/// culling, an orthographic light and the wrap its tutorial starts with.
+/// culling, an orthographic light and the wrap its tutorial starts with. The volumetric list
+/// starts from the scene as it is: its lesson is what translucent casters do to a depth map
+/// that already has its bias and filter.
 pub fn start(scene: &Scene) -> ShadowSettings {
+    if scene.steps.list == StepList::Volumetric {
+        return scene.shadow;
+    }
     ShadowSettings {
         technique: ShadowTechnique::Maps,
         filter: Filter::Single,

@@ -93,7 +93,11 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let mut files: Vec<(String, Vec<u8>)> = Vec::new();
     // Each step is told against the last step that carries over (variants do not), the
     // first against the chapter's start.
-    let mut base = (steps::start(&scene), "the chapter's start".to_string());
+    let start = match scene.steps.list {
+        shadowmap::scene::StepList::Volumetric => "the scene's own settings",
+        _ => "the chapter's start",
+    };
+    let mut base = (steps::start(&scene), start.to_string());
     for (i, step) in steps::of(&scene).iter().enumerate() {
         let row = bench.measure(i + 1, step, &base, &mut files)?;
         if step.cumulative {
@@ -156,6 +160,7 @@ impl Bench<'_> {
         let image = format!("{n:02}-{}.png", step.name);
         files.push((image.clone(), frame.colour.encode_png()?));
         let (mut metrics, mut error_file, mut area) = (None, None, None);
+        let mut transmittance = None;
         if !settings.show_depth_map {
             let key = (settings.light_projection, stage.map(|s| s.note));
             let reference = match self.references.entry(key) {
@@ -176,6 +181,7 @@ impl Bench<'_> {
                 .as_ref()
                 .map_or(&reference.hard, |a| &a.pixels);
             area = reference.score_area(vis);
+            transmittance = reference.score_transmittance(vis);
             let err = error_image(width as usize, height as usize, vis, truth, &grey);
             let name = format!("{n:02}-{}-error.png", step.name);
             let err = with_error_legend(ImageData {
@@ -195,6 +201,9 @@ impl Bench<'_> {
         if let Some(a) = &area {
             println!("   {}", super::compare::area_summary(a));
         }
+        if let Some(t) = transmittance {
+            println!("   {}", transmittance_line(&t));
+        }
         Ok(Row {
             step,
             settings,
@@ -206,6 +215,14 @@ impl Bench<'_> {
             view,
         })
     }
+}
+
+/// A step's error against the transmittance truth, for a scene with translucent casters.
+fn transmittance_line(t: &shadowmap::reference::TransmittanceMetrics) -> String {
+    format!(
+        "transmittance: MAE {:.4} (within the translucent shadow {:.4}, outside it {:.4})",
+        t.mae, t.mae_in_shadow, t.mae_outside
+    )
 }
 
 /// The terminal's figures of a step.

@@ -59,6 +59,7 @@ pub(super) fn draw(
         true => Vec::new(),
         false => own_program(inputs, p, samplers, gl, scene, u, (view64, projection))?,
     };
+    (inputs.volumetric).set_matrices(p, inputs.views, view64, true);
     let blend = TranslucentBlend::begin(gl);
     for item in items {
         super::scene_inputs::set_item_uniforms(p, item, scene, u, view64, origin);

@@ -31,6 +31,8 @@ pub struct Maps {
     keys: Vec<Option<u64>>,
     /// Each map resolved for opaque receivers, where the light asks for it.
     resolved: Vec<Option<Resolved>>,
+    /// Each light's depth map's size and its translucent map's, for the lookup's lift.
+    sizes: Vec<(MapSize, MapSize)>,
     draws: MapDraws,
 }
 
@@ -56,6 +58,9 @@ impl Maps {
         self.made_for.resize(n, (0, false));
         self.keys.resize(n, None);
         self.resolved.resize_with(n, || None);
+        self.sizes = (plan.lights.iter())
+            .map(|own| (own.settings.map_size, own.settings.volumetric_size))
+            .collect();
         for (i, own) in plan.lights.iter().enumerate() {
             let (map, technique) = (&mut self.maps[i], &mut self.techniques[i]);
             let Some(m) = own.volumetric.and_then(method) else {
@@ -186,19 +191,17 @@ impl Maps {
         self.draws
     }
 
-    /// Binds each light's map on its unit for `program` and sets the matrices that find a
-    /// fragment in it (`camera_view`: the scene camera's view).
+    /// Binds each light's map on its unit for `program` and sets the matrices that find an
+    /// opaque fragment in it (`camera_view`: the scene camera's view).
     pub fn bind(&self, program: &ShaderProgram, views: &[Option<ShadowView>], camera_view: DMat4) {
         if self.maps.iter().all(Option::is_none) {
             return;
         }
-        let mut matrices = vec![Mat4::IDENTITY; self.maps.len()];
         let mut footprints = vec![Vec4::ZERO; self.maps.len()];
         for (i, map) in self.maps.iter().enumerate() {
-            let (Some(map), Some(Some(view))) = (map, views.get(i)) else {
+            let (Some(map), Some(Some(_))) = (map, views.get(i)) else {
                 continue;
             };
-            matrices[i] = super::lookup_matrix(view, self.fits[i], camera_view);
             let drawn = self.drawn[i].unwrap_or(TexelRect::whole(map.map().size()));
             footprints[i] = lookup_footprint(drawn, map.map().size());
             let unit = slots::volumetric_unit(i);
@@ -210,8 +213,36 @@ impl Maps {
                 r.map().bind(unit);
             }
         }
-        program.set_mat4_array("volumetricMatrix", &matrices);
+        self.set_matrices(program, views, camera_view, false);
         program.set_vec4_array("volumetricFootprint", &footprints);
+    }
+
+    /// Sets the matrices that find a fragment in each light's map on `program`, bound
+    /// ([`Maps::bind`]): for a translucent item's fragment (`translucent`), read
+    /// [`super::self_shadow_lift`] nearer the light, so it does not shade itself.
+    pub fn set_matrices(
+        &self,
+        program: &ShaderProgram,
+        views: &[Option<ShadowView>],
+        camera_view: DMat4,
+        translucent: bool,
+    ) {
+        if self.maps.iter().all(Option::is_none) {
+            return;
+        }
+        let mut matrices = vec![Mat4::IDENTITY; self.maps.len()];
+        for (i, map) in self.maps.iter().enumerate() {
+            let (Some(_), Some(Some(view))) = (map, views.get(i)) else {
+                continue;
+            };
+            let (depth, size) = self.sizes[i];
+            let lift = match translucent {
+                true => super::self_shadow_lift(view.texel_world, depth, size),
+                false => 0.0,
+            };
+            matrices[i] = super::lookup_matrix(view, self.fits[i], lift, camera_view);
+        }
+        program.set_mat4_array("volumetricMatrix", &matrices);
     }
 
     /// Light `index`'s map, if it has one.

@@ -26,7 +26,7 @@ use super::{DepthPass, ShadowView};
 use crate::engine::{Gl, Mesh, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
-use crate::settings::{ShadowSettings, Volumetric};
+use crate::settings::{MapSize, ShadowSettings, Volumetric};
 
 pub use maps::Maps;
 
@@ -241,16 +241,27 @@ impl DepthFit {
 
 /// The matrix that takes a fragment's camera-view position to light `view`'s
 /// translucent map: x, y and w as the light's projection gives them (its texel), z the
-/// fitted depth, 0 at `fit.near` to 1 at `fit.far`, undivided (shaders/lib/volumetric.glsl).
-pub fn lookup_matrix(view: &ShadowView, fit: DepthFit, camera_view: DMat4) -> Mat4 {
+/// fitted depth, 0 at `fit.near` to 1 at `fit.far`, undivided (shaders/lib/volumetric.glsl),
+/// read `lift` world units nearer the light ([`self_shadow_lift`]).
+pub fn lookup_matrix(view: &ShadowView, fit: DepthFit, lift: f32, camera_view: DMat4) -> Mat4 {
     let mut projection = view.projection.as_dmat4();
     let inv = 1.0 / f64::from(fit.depth());
     // Row z: -z_view (the distance along the light's axis), moved and scaled.
     projection.x_axis.z = 0.0;
     projection.y_axis.z = 0.0;
     projection.z_axis.z = -inv;
-    projection.w_axis.z = -f64::from(fit.near) * inv;
+    projection.w_axis.z = -(f64::from(fit.near) + f64::from(lift)) * inv;
     (projection * view.view64 * camera_view.inverse()).as_mat4()
+}
+
+/// How much nearer the light a receiver reads the translucent map, in world units: two of
+/// the map's texels (`texel_world`: one of the depth map's, of `map_size`, for a
+/// translucent map of `volumetric_size`). A translucent item is itself one of the crossings
+/// its map holds, at its own depth; read there, the lookup's 2 x 2 texels split on its own
+/// step and it shades itself in specks, the acne of the depth test. Two texels clear a
+/// surface tilted up to 45 degrees from the light's view plane across them.
+pub fn self_shadow_lift(texel_world: f32, map_size: MapSize, volumetric_size: MapSize) -> f32 {
+    2.0 * texel_world * map_size.min_side() as f32 / volumetric_size.min_side().max(1) as f32
 }
 
 #[cfg(test)]

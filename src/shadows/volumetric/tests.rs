@@ -29,7 +29,7 @@ fn the_lookup_matrix_gives_the_lights_texel_and_the_fitted_depth() {
         near: 4.0,
         far: 6.0,
     };
-    let m = lookup_matrix(&v, fit, camera);
+    let m = lookup_matrix(&v, fit, 0.0, camera);
     for (world, depth) in [
         (DVec3::new(1.0, 1.0, 2.0), 0.0),
         (DVec3::new(-2.0, -1.0, 0.5), 1.0),
