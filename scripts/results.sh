@@ -22,6 +22,7 @@ jobs=(
   "steps-dummy|steps --scene dummy --size 640x360|*->steps-dummy/"
   "steps-learnopengl|steps --scene learnopengl --size 320x240|*->steps-learnopengl/"
   "steps-playground|steps --scene playground|*->steps-playground/"
+  "steps-smoke|steps --scene smoke --size 640x360|*->steps-smoke/"
 )
 
 commands_md() {
