@@ -193,11 +193,14 @@ fn picture_files(
             reference_image(width, height, truth).encode_png()?,
         ));
         let error = transmittance_error_image(vis, truth, &grey);
-        let error = ImageData {
-            width,
-            height,
-            rgba: error.concat(),
-        };
+        let error = super::plot::with_legend(
+            ImageData {
+                width,
+                height,
+                rgba: error.concat(),
+            },
+            &super::plot::TRANSMITTANCE_LEGEND,
+        )?;
         files.push(("error-transmittance.png", error.encode_png()?));
     }
     if let Some(truth) = &reference.area {

@@ -11,13 +11,13 @@ use shadowmap::compare::{compute_reference, CompareOptions, Reference};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::image_data::ImageData;
 use shadowmap::output::{check_output_dir, write_into};
-use shadowmap::reference::{error_image, Metrics, SoftMetrics};
+use shadowmap::reference::{error_image, transmittance_error_image, Metrics, SoftMetrics};
 use shadowmap::settings::LightProjection;
 use shadowmap::steps::Step;
 use shadowmap::{steps, Error, Result, Scene, ShadowSettings};
 
 use super::cli::StepsArgs;
-use super::plot::with_error_legend;
+use super::plot::{with_error_legend, with_legend, TRANSMITTANCE_LEGEND};
 
 /// One step as measured: what the page shows of it.
 struct Row {
@@ -169,26 +169,10 @@ impl Bench<'_> {
             };
             let vis = frame.visibility.as_deref().unwrap_or_default();
             metrics = Some(reference.score(vis, 1));
-            let grey: Vec<u8> = frame
-                .colour
-                .rgba
-                .chunks_exact(4)
-                .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
-                .collect();
-            // A light with a size: the errors against its area truth (the soft answer).
-            let truth = reference
-                .area
-                .as_ref()
-                .map_or(&reference.hard, |a| &a.pixels);
             area = reference.score_area(vis);
             transmittance = reference.score_transmittance(vis);
-            let err = error_image(width as usize, height as usize, vis, truth, &grey);
+            let err = error_picture(reference, vis, &frame.colour)?;
             let name = format!("{n:02}-{}-error.png", step.name);
-            let err = with_error_legend(ImageData {
-                width,
-                height,
-                rgba: err.concat(),
-            })?;
             files.push((name.clone(), err.encode_png()?));
             error_file = Some(name);
         }
@@ -215,6 +199,32 @@ impl Bench<'_> {
             view,
         })
     }
+}
+
+/// A step's errors, drawn over the frame in grey: against the transmittance truth where the
+/// scene has translucent casters (its lesson is their grey shadows), else against the area
+/// light's truth for a light with a size (the soft answer), else the hard truth.
+fn error_picture(
+    reference: &Reference,
+    vis: &[Option<f32>],
+    frame: &ImageData,
+) -> Result<ImageData> {
+    let (width, height) = (frame.width, frame.height);
+    let grey: Vec<u8> = (frame.rgba.chunks_exact(4))
+        .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
+        .collect();
+    let picture = |rgba: Vec<[u8; 4]>| ImageData {
+        width,
+        height,
+        rgba: rgba.concat(),
+    };
+    if let Some(truth) = &reference.transmittance {
+        let err = transmittance_error_image(vis, truth, &grey);
+        return with_legend(picture(err), &TRANSMITTANCE_LEGEND);
+    }
+    let truth = (reference.area.as_ref()).map_or(&reference.hard, |a| &a.pixels);
+    let err = error_image(width as usize, height as usize, vis, truth, &grey);
+    with_error_legend(picture(err))
 }
 
 /// A step's error against the transmittance truth, for a scene with translucent casters.
@@ -296,6 +306,16 @@ fn how_to_read(scene: &Scene, supersample: u32) -> String {
             "<p>The light has a size ({size}): the error images are against its area truth \
              ({} rays per pixel to its disc), and each step also lists the figures against it.</p>\n",
             shadowmap::compare::AREA_RAYS
+        ),
+    };
+    let translucent = shadowmap::shadows::volumetric::translucent_casters(scene).count() > 0;
+    let area = match translucent {
+        false => area,
+        true => format!(
+            "{area}<p>The scene has translucent casters: the error images are against the \
+             transmittance truth (the product of 1 - opacity over every crossing), red where \
+             the frame is too dark, blue where too bright, full colour at 0.5 off; each step \
+             also prints its transmittance error.</p>\n"
         ),
     };
     format!(

@@ -522,9 +522,22 @@ pub const ERROR_LEGEND: [([u8; 3], &str); 3] = [
     ([128, 128, 128], "agrees (grey: the frame)"),
 ];
 
+/// The colours of an error image against the transmittance truth
+/// (`transmittance_error_image`).
+pub const TRANSMITTANCE_LEGEND: [([u8; 3], &str); 3] = [
+    ([255, 0, 0], "too dark (full red: 0.5 off)"),
+    ([0, 0, 255], "too bright"),
+    ([128, 128, 128], "agrees (grey: the frame)"),
+];
+
 /// The error image with a band below it naming its colours; the picture itself is left
 /// untouched (row for row the same as the other images of the comparison).
 pub fn with_error_legend(image: ImageData) -> Result<ImageData> {
+    with_legend(image, &ERROR_LEGEND)
+}
+
+/// `image` with a band below it naming `legend`'s colours.
+pub fn with_legend(image: ImageData, legend: &[([u8; 3], &str)]) -> Result<ImageData> {
     let err = |e: &dyn std::fmt::Display| Error::Invalid(format!("cannot draw the legend: {e}"));
     register_font().map_err(|e| err(&e))?;
     const LINE: u32 = 18;
@@ -533,7 +546,7 @@ pub fn with_error_legend(image: ImageData) -> Result<ImageData> {
     // Lay the entries out left to right, wrapping to a new line when the width runs out.
     let mut places = Vec::new();
     let (mut x, mut line) = (4i32, 0u32);
-    for (_, text) in ERROR_LEGEND {
+    for (_, text) in legend {
         let (tw, _) = font.box_size(text).map_err(|e| err(&format!("{e:?}")))?;
         let w = SWATCH + 4 + tw as i32 + 12;
         if x > 4 && x + w > image.width as i32 {
@@ -551,7 +564,7 @@ pub fn with_error_legend(image: ImageData) -> Result<ImageData> {
     }
     {
         let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
-        for ((colour, text), (x, line)) in ERROR_LEGEND.iter().zip(places) {
+        for ((colour, text), (x, line)) in legend.iter().zip(places) {
             let y = (image.height + 3 + line * LINE) as i32;
             let c = RGBColor(colour[0], colour[1], colour[2]);
             root.draw(&Rectangle::new(

@@ -106,3 +106,35 @@ fn the_steps_page_shows_each_step_with_consistent_figures() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// On a scene with translucent casters the error images are against the transmittance
+/// truth: `volumetric-off` is too bright (blue) under the smoke and the glass, AVSM nearly
+/// nowhere; the page says so; each step prints its transmittance line.
+#[test]
+fn the_smoke_steps_draw_their_errors_against_the_transmittance_truth() {
+    let dir = std::env::temp_dir().join(format!("shadowmap-smoke-steps-{}", std::process::id()));
+    let args = ["steps", "--scene", "smoke", "--size", "320x180"];
+    let out = common::stdout_of(common::bin().args(args).arg("--out-dir").arg(&dir));
+    assert_eq!(out.matches("   transmittance: MAE ").count(), 5, "{out}");
+    let html = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    assert!(html.contains("the error images are against the transmittance truth"));
+    // Strongly blue (too bright) and strongly red (too dark) pixels of an error image.
+    let count = |name: &str| {
+        let image = shadowmap::image_data::ImageData::load_png(&dir.join(name)).unwrap();
+        let px = || image.rgba.chunks(4).take((320 * 180) as usize);
+        let strong = |a: u8, b: u8| a > 200 && b < 60;
+        let blue = px().filter(|p| strong(p[2], p[0])).count();
+        let red = px().filter(|p| strong(p[0], p[2])).count();
+        (blue, red)
+    };
+    let (off_blue, _) = count("01-volumetric-off-error.png");
+    let (solid_blue, solid_red) = count("02-volumetric-solid-error.png");
+    let (avsm_blue, avsm_red) = count("05-volumetric-avsm-error.png");
+    assert!(off_blue > 1000, "off: {off_blue} too bright");
+    assert!(
+        solid_red > 1000 && solid_blue < 100,
+        "solid: {solid_red} {solid_blue}"
+    );
+    assert!(avsm_blue + avsm_red < 100, "avsm: {avsm_blue} {avsm_red}");
+    std::fs::remove_dir_all(&dir).ok();
+}
