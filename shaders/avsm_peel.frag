@@ -16,7 +16,7 @@ out vec2 crossing;
 
 uniform sampler2D previousDepth;
 uniform bool firstLayer;
-flat in float opticalDepth;  // -ln(1 - opacity), from the translucent map's draw
+uniform float opticalDepth;  // -ln(1 - opacity), from the translucent map's draw
 
 void main()
 {

@@ -5,7 +5,7 @@
 // the mean, four floats to a layer; blending ONE, ONE sums them.
 
 in float fittedDepth;
-flat in float opticalDepth;  // -ln(1 - opacity)
+uniform float opticalDepth;
 
 layout (location = 0) out vec4 layers[LAYERS];
 

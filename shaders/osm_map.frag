@@ -4,7 +4,7 @@
 // blending ONE, ONE sums them. SLICES slices, four to a layer, LAYERS layers.
 
 in float fittedDepth;
-flat in float opticalDepth;  // -ln(1 - opacity)
+uniform float opticalDepth;
 
 layout (location = 0) out vec4 layers[LAYERS];
 

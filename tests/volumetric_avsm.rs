@@ -2,8 +2,7 @@
 //! builds equal the CPU AVSM built from the truth's crossings (read back, to 1e-4), hold
 //! every crossing exactly when they fit, keep the K nearest crossings of K peeled layers
 //! (and fold the rest into one), stop peeling at the first empty layer, leave 1 - a behind one sheet of opacity a, and
-//! do not depend on the order the casters are drawn in (depth peeling sorts them); a peel
-//! draws a mesh's casters with one instanced call.
+//! do not depend on the order the casters are drawn in (depth peeling sorts them).
 
 mod common;
 
@@ -11,7 +10,7 @@ use std::path::Path;
 
 use glam::{DMat4, DVec3, Mat4, Vec3};
 use shadowmap::compare::{compare, translucent_casters};
-use shadowmap::engine::{counters, Mesh, PixelRect};
+use shadowmap::engine::{Mesh, PixelRect};
 use shadowmap::scene::file::parse;
 use shadowmap::settings::{MapSize, ShadowSettings, Volumetric};
 use shadowmap::shadows::volumetric::avsm::curve::{Curve, Node};
@@ -77,12 +76,11 @@ fn light_view() -> ShadowView {
 }
 
 /// What the GPU built: the nodes of every texel (row 0 at the bottom), the layers peeled
-/// that caught a crossing, the passes, and the draw calls of meshes the last render sent.
+/// that caught a crossing, and the passes.
 struct Built {
     nodes: Vec<Vec<Node>>,
     peeled: u32,
     passes: u32,
-    draws: u64,
 }
 
 fn build(scene: &Scene, nodes: u32, layers: u32) -> Built {
@@ -99,7 +97,6 @@ fn build_frames(scenes: &[&Scene], nodes: u32, layers: u32) -> Built {
     };
     let mut map = AvsmMap::new(gl, size, nodes, layers).unwrap_or_else(|e| panic!("{e}"));
     let view = light_view();
-    let mut draws = 0;
     for scene in scenes {
         let meshes: Vec<Mesh> = (scene.meshes.iter())
             .map(|m| Mesh::new(gl, m).unwrap_or_else(|e| panic!("{e}")))
@@ -117,15 +114,12 @@ fn build_frames(scenes: &[&Scene], nodes: u32, layers: u32) -> Built {
                 height: SIDE,
             },
         };
-        let before = counters::draws();
         map.render(&draw).unwrap_or_else(|e| panic!("{e}"));
-        draws = counters::draws() - before;
     }
     Built {
         nodes: map.read_nodes(),
         peeled: map.peeled(),
         passes: map.passes(),
-        draws,
     }
 }
 
@@ -237,16 +231,6 @@ fn k_layers_keep_the_k_nearest_crossings_and_peeling_stops_at_an_empty_layer() {
     let none = build(&scene_of(&[]), 8, 16);
     assert_eq!((none.peeled, none.passes), (0, 0));
     assert!(none.nodes.iter().all(Vec::is_empty));
-}
-
-#[test]
-fn each_peel_draws_the_sheets_with_one_instanced_call() {
-    // The six sheets share one mesh: one draw a peel (the build draws no mesh), where a
-    // draw per caster would send six.
-    let all = build(&scene_of(&SHEETS), 8, 16);
-    assert_eq!((all.passes, all.draws), (8, 7));
-    let one = build(&scene_of(&SHEETS[..1]), 8, 16);
-    assert_eq!((one.passes, one.draws), (3, 2));
 }
 
 #[test]

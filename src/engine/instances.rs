@@ -63,13 +63,6 @@ impl InstanceBuffer {
         stride: usize,
         fill: impl FnOnce(&mut Values),
     ) -> Instanced<'p> {
-        self.upload(stride, fill);
-        self.reader(program, stride)
-    }
-
-    /// Gathers values with `fill` (every instance `stride` vec4s) and uploads them in one
-    /// call, for any number of passes to read ([`InstanceBuffer::reader`]).
-    pub fn upload(&self, stride: usize, fill: impl FnOnce(&mut Values)) {
         let mut values = self.values.borrow_mut();
         values.clear();
         fill(&mut Values(&mut values));
@@ -79,8 +72,15 @@ impl InstanceBuffer {
             stride + self.align / 16 <= BLOCK_VEC4S,
             "an instance larger than the block"
         );
+        program.set_i32("instanced", 1);
+        program.set_i32("instanceStride", stride as i32);
+        let guard = Instanced {
+            program,
+            buffer: self,
+            stride,
+        };
         if values.is_empty() {
-            return;
+            return guard;
         }
         // A window may start up to an alignment before an instance and always spans the
         // whole block: room for it past the last value.
@@ -99,25 +99,13 @@ impl InstanceBuffer {
                 .buffer_sub_data_u8_slice(glow::UNIFORM_BUFFER, 0, data);
             self.gl.bind_buffer(glow::UNIFORM_BUFFER, None);
         }
-    }
-
-    /// `program` (bound) reads its per-item values from the values last uploaded, `stride`
-    /// vec4s an instance, until the returned guard drops: the passes that draw the same
-    /// instances (a depth peel's layers) upload them once.
-    pub fn reader<'p>(&'p self, program: &'p ShaderProgram, stride: usize) -> Instanced<'p> {
-        program.set_i32("instanced", 1);
-        program.set_i32("instanceStride", stride as i32);
-        Instanced {
-            program,
-            buffer: self,
-            stride,
-        }
+        guard
     }
 }
 
 /// While alive, `program` reads its per-item values from the instance buffer, and draws runs
-/// of them; on drop it reads its uniforms again (the passes that stay per item: the
-/// translucent items' scene pass).
+/// of them; on drop it reads its uniforms again (the passes that stay per item: translucent,
+/// volumetric).
 pub struct Instanced<'p> {
     program: &'p ShaderProgram,
     buffer: &'p InstanceBuffer,

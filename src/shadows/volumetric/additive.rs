@@ -5,7 +5,7 @@
 //! lookup: an [`Additive`] value.
 
 use super::{Draw, Method, VolumetricMap};
-use crate::engine::{Gl, InstanceBuffer, ShaderProgram, ShaderSource, TranslucentMap};
+use crate::engine::{Gl, ShaderProgram, ShaderSource, TranslucentMap};
 use crate::error::Result;
 use crate::settings::ShadowSettings;
 use crate::shaders;
@@ -41,7 +41,6 @@ impl Method for Additive {
                 &(self.fragment)(),
                 &defines,
             )?,
-            instances: InstanceBuffer::new(gl)?,
             count,
             technique: self.count,
         }))
@@ -74,11 +73,10 @@ impl Method for Additive {
     }
 }
 
-/// A light's layers, the program that adds into them and its casters' instance values.
+/// A light's layers and the program that adds into them.
 struct AdditiveMap {
     map: TranslucentMap,
     program: ShaderProgram,
-    instances: InstanceBuffer,
     count: u32,
     technique: fn(&ShadowSettings) -> u32,
 }
@@ -91,7 +89,7 @@ impl VolumetricMap for AdditiveMap {
     fn render(&mut self, draw: &Draw) -> Result<()> {
         let _pass = self.map.begin_additive(draw.region);
         self.program.bind();
-        draw.casters(&self.instances).draw(&self.program);
+        draw.casters(&self.program);
         Ok(())
     }
 

@@ -20,11 +20,10 @@ pub mod osm;
 pub mod receivers;
 pub mod resolved;
 
-use glam::{DMat4, DVec3, Mat4, Vec4};
+use glam::{DMat4, DVec3, Mat4};
 
 use super::{DepthPass, ShadowView};
-use crate::engine::instances::{batches, Batch};
-use crate::engine::{Gl, InstanceBuffer, Mesh, PixelRect, ShaderProgram, TranslucentMap};
+use crate::engine::{Gl, Mesh, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
 use crate::settings::{ShadowSettings, Volumetric};
@@ -171,69 +170,19 @@ pub struct Draw<'a> {
 }
 
 impl Draw<'_> {
-    /// Gathers every translucent caster's values (shaders/translucent_map.vert's per-instance
-    /// attributes) into `instances` with one upload: its light view and its optical depth
-    /// -ln(1 - opacity), the opacity clamped below 1 (an opaque item would take the depth
-    /// map's part; here it stays finite). Every pass over the map then draws them
-    /// ([`Casters::draw`]) without gathering them again: a depth peel's layers all draw the
-    /// same instances.
-    pub fn casters<'b>(&'b self, instances: &'b InstanceBuffer) -> Casters<'b> {
-        // Mesh by mesh, in scene order within a mesh: the order the casters always took.
-        let mut kept: Vec<(usize, &GameItem)> = translucent_casters(self.scene)
-            .filter(|(_, i)| i.mesh < self.meshes.len())
-            .collect();
-        kept.sort_by_key(|(_, i)| i.mesh);
-        instances.upload(CASTER_VEC4S, |t| {
-            for (_, item) in &kept {
-                t.mat4(&self.model_light(item));
-                t.vec4(Vec4::new(optical_depth(item.opacity), 0.0, 0.0, 0.0));
-            }
-        });
-        let batches = batches(kept.iter().map(|(_, i)| i.mesh));
-        Casters {
-            draw: self,
-            instances,
-            kept,
-            batches,
-        }
-    }
-
-    /// A caster's model matrix into the light's view, composed in double precision.
-    fn model_light(&self, item: &GameItem) -> Mat4 {
-        (self.view.view64 * item.model_matrix64()).as_mat4()
-    }
-}
-
-/// Vec4s of a caster's instance values: its model-light matrix and its optical depth.
-const CASTER_VEC4S: usize = 5;
-
-/// The translucent casters of one map draw, their values uploaded ([`Draw::casters`]).
-pub struct Casters<'a> {
-    draw: &'a Draw<'a>,
-    instances: &'a InstanceBuffer,
-    kept: Vec<(usize, &'a GameItem)>,
-    batches: Vec<Batch<usize>>,
-}
-
-impl Casters<'_> {
-    /// Draws every translucent caster with `program` (bound; shaders/translucent_map.vert's
-    /// inputs), one instanced call per mesh; a mesh drawn for one caster takes the
-    /// per-item uniforms instead.
-    pub fn draw(&self, program: &ShaderProgram) {
-        let draw = self.draw;
-        program.set_mat4("orthoProjectionMatrix", &draw.view.projection);
-        program.set_vec2("depthFit", [draw.fit.near, 1.0 / draw.fit.depth()]);
-        let instanced = self.instances.reader(program, CASTER_VEC4S);
-        for b in &self.batches {
-            let mesh = &draw.meshes[b.key];
-            if b.count > 1 {
-                instanced.draw(mesh, b);
-                continue;
-            }
-            let (_, item) = self.kept[b.first];
-            instanced.draw_one(mesh, |p| {
-                p.set_mat4("modelLightViewMatrix", &draw.model_light(item));
-                p.set_f32("itemOpticalDepth", optical_depth(item.opacity));
+    /// Draws every translucent caster with `program` (shaders/translucent_map.vert's
+    /// uniforms): its light view, the light's projection, the fitted depth range and its
+    /// optical depth -ln(1 - opacity), the opacity clamped below 1 (an opaque item would
+    /// take the depth map's part; here it stays finite).
+    pub fn casters(&self, program: &ShaderProgram) {
+        program.set_mat4("orthoProjectionMatrix", &self.view.projection);
+        program.set_vec2("depthFit", [self.fit.near, 1.0 / self.fit.depth()]);
+        for (mesh_id, mesh) in self.meshes.iter().enumerate() {
+            let items = translucent_casters(self.scene).filter(|(_, i)| i.mesh == mesh_id);
+            mesh.render_list(items, |(_, item)| {
+                let model_light = self.view.view64 * item.model_matrix64();
+                program.set_mat4("modelLightViewMatrix", &model_light.as_mat4());
+                program.set_f32("opticalDepth", optical_depth(item.opacity));
             });
         }
     }

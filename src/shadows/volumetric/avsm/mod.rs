@@ -20,10 +20,8 @@ pub mod curve;
 
 use glam::DVec2;
 
-use super::{translucent_casters, Casters, Draw, Method, VolumetricMap, SAMPLERS};
-use crate::engine::{
-    DepthPeel, FullScreenTriangle, Gl, InstanceBuffer, PixelRect, ShaderProgram, TranslucentMap,
-};
+use super::{translucent_casters, Draw, Method, VolumetricMap, SAMPLERS};
+use crate::engine::{DepthPeel, FullScreenTriangle, Gl, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::settings::{MapSize, ShadowSettings};
 use crate::shaders;
@@ -88,12 +86,10 @@ impl Method for Avsm {
     }
 }
 
-/// A light's curves, its peeling, the programs and the casters' instance values (uploaded
-/// once a render, read by every peel).
+/// A light's curves, its peeling and the programs.
 pub struct AvsmMap {
     curves: TranslucentMap,
     peel: DepthPeel,
-    instances: InstanceBuffer,
     peel_program: ShaderProgram,
     /// The peel compiled with `REMAINDER`: the rest past the last layer.
     rest_program: ShaderProgram,
@@ -124,7 +120,6 @@ impl AvsmMap {
         Ok(AvsmMap {
             curves,
             peel: DepthPeel::new(gl, size, max_layers)?,
-            instances: InstanceBuffer::new(gl)?,
             peel_program: ShaderProgram::new(
                 gl,
                 &shaders::translucent_map_vert(),
@@ -158,7 +153,7 @@ impl AvsmMap {
 
     /// Peels layer `k` of the translucent casters (with `rest`, all behind layer k - 1):
     /// whether it caught anything.
-    fn peel_layer(&self, casters: &Casters, k: u32, rest: bool, rect: PixelRect) -> bool {
+    fn peel_layer(&self, draw: &Draw, k: u32, rest: bool, rect: PixelRect) -> bool {
         let (pass, p) = match rest {
             false => (self.peel.begin(k, PEEL_UNIT, rect), &self.peel_program),
             true => (self.peel.begin_rest(k, PEEL_UNIT, rect), &self.rest_program),
@@ -166,7 +161,7 @@ impl AvsmMap {
         p.bind();
         p.set_i32("previousDepth", PEEL_UNIT as i32);
         p.set_i32("firstLayer", i32::from(k == 0));
-        casters.draw(p);
+        draw.casters(p);
         pass.finish()
     }
 
@@ -279,11 +274,10 @@ impl VolumetricMap for AvsmMap {
         let Some(rect) = footprint else {
             return Ok(());
         };
-        let casters = draw.casters(&self.instances);
         let most = self.peel.count();
         let mut rest = false;
         for k in 0..=most {
-            let any = self.peel_layer(&casters, k, k == most, rect);
+            let any = self.peel_layer(draw, k, k == most, rect);
             self.passes += 1;
             if !any {
                 break;
