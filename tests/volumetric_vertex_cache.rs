@@ -7,6 +7,7 @@
 mod common;
 
 use shadowmap::engine::{Outputs, RenderTarget};
+use shadowmap::scene::Light;
 use shadowmap::settings::{ShadowSettings, TranslucentReceivers, Volumetric};
 use shadowmap::shadows::volumetric::vertex_light::VertexLightCounts;
 use shadowmap::{Renderer, Scene, Target};
@@ -26,21 +27,29 @@ enum Move {
     Glass,
     /// The cube, an opaque caster: the depth map changes.
     Cube,
-    /// A translucent pane that casts nothing: no map changes, only where its vertices are.
-    Pane,
+    /// The light turns a little: every map changes.
+    Light,
+    /// A translucent ball that casts nothing: no map changes, only where its vertices are.
+    Ball,
 }
 
-/// The smoke scene with a second pane of glass, translucent and casting nothing, in the
-/// light beside the cube.
-fn smoke_with_pane() -> Scene {
+/// The smoke scene with one more puff, translucent and casting nothing, across the far
+/// edge of the cube's shadow: its vertices' light changes as it moves, and no map does.
+fn smoke_with_ball() -> Scene {
     let mut scene = common::frozen("smoke");
     scene.size = [240, 160];
-    let glass = scene.items.iter().position(|i| i.name == "glass").unwrap();
-    let mut pane = scene.items[glass].clone();
-    pane.name = "pane".into();
-    pane.position += glam::Vec3::new(0.3, -0.6, 0.8);
-    (pane.casts_shadows, pane.casts_translucent) = (false, false);
-    scene.items.push(pane);
+    let puff = scene
+        .items
+        .iter()
+        .position(|i| i.name.starts_with("smoke"))
+        .unwrap();
+    let mut ball = scene.items[puff].clone();
+    ball.name = "ball".into();
+    ball.position = glam::Vec3::new(-0.6, -0.75, 0.1);
+    ball.scale = glam::Vec3::splat(0.25);
+    ball.opacity = 0.5;
+    (ball.casts_shadows, ball.casts_translucent) = (false, false);
+    scene.items.push(ball);
     scene
 }
 
@@ -60,9 +69,9 @@ fn frame_bytes(target: &RenderTarget) -> Vec<u8> {
 /// same. Returns the captures each renderer made and kept.
 fn side_by_side(volumetric: Volumetric, moves: &[Move]) -> [VertexLightCounts; 2] {
     let ctx = common::context();
-    let mut scene = smoke_with_pane();
+    let mut scene = smoke_with_ball();
     let find = |name: &str| scene.items.iter().position(|i| i.name == name).unwrap();
-    let (glass, cube, pane) = (find("glass"), find("cube"), find("pane"));
+    let (glass, cube, ball) = (find("glass"), find("cube"), find("ball"));
     let mut renderers = [true, false].map(|cache| {
         let s = ShadowSettings {
             shadow_cache: cache,
@@ -79,8 +88,12 @@ fn side_by_side(volumetric: Volumetric, moves: &[Move]) -> [VertexLightCounts; 2
             Move::Nothing => {}
             Move::Camera => scene.camera.position.x += 0.2,
             Move::Glass => scene.items[glass].position.x += 0.05,
-            Move::Cube => scene.items[cube].position.z += 0.05,
-            Move::Pane => scene.items[pane].position.x -= 0.1,
+            Move::Cube => scene.items[cube].position.z += 0.2,
+            Move::Ball => scene.items[ball].position.z -= 0.1,
+            Move::Light => match &mut scene.lights[0] {
+                Light::Directional(l) => l.direction.x += 0.05,
+                _ => unreachable!("the smoke's light is directional"),
+            },
         }
         let [cached, fresh] = renderers.each_mut().map(|(renderer, target)| {
             renderer
@@ -101,20 +114,20 @@ fn side_by_side(volumetric: Volumetric, moves: &[Move]) -> [VertexLightCounts; 2
 fn kept_vertex_light_gives_the_frames_captured_every_frame() {
     use Move::*;
     let moves = [
-        Nothing, Nothing, Camera, Glass, Nothing, Cube, Camera, Pane, Nothing,
+        Nothing, Nothing, Camera, Glass, Nothing, Cube, Camera, Ball, Light, Nothing,
     ];
     for volumetric in [
-        Volumetric::Off,
         Volumetric::Osm,
         Volumetric::Fom,
         Volumetric::Avsm,
+        Volumetric::Off,
     ] {
         let [cached, fresh] = side_by_side(volumetric, &moves);
-        // Captured at the first frame and where the glass, the cube or the pane moved;
-        // kept where nothing or only the camera did.
+        // Captured at the first frame and where the glass, the cube, the ball or the light
+        // moved; kept where nothing or only the camera did.
         assert_eq!(
             (cached.captured, cached.kept),
-            (4, 5),
+            (5, 5),
             "{volumetric:?}: {cached:?}"
         );
         assert_eq!(
@@ -128,7 +141,7 @@ fn kept_vertex_light_gives_the_frames_captured_every_frame() {
 #[test]
 fn per_pixel_receivers_capture_nothing() {
     let ctx = common::context();
-    let scene = smoke_with_pane();
+    let scene = smoke_with_ball();
     let s = ShadowSettings {
         volumetric: Volumetric::Osm,
         ..scene.shadow
