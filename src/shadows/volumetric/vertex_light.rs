@@ -139,3 +139,51 @@ impl VertexLight {
         self.counts
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::Outputs;
+    use crate::settings::{ShadowSettings, TranslucentReceivers};
+    use crate::shadows::plan::ShadowPlan;
+    use crate::shadows::slots::MaskMode;
+
+    #[test]
+    fn the_key_follows_the_maps_the_program_and_the_translucent_items_not_the_camera() {
+        let mut scene = Scene::load("smoke").unwrap();
+        let program = |scene: &Scene, s: &ShadowSettings| {
+            let plan = ShadowPlan::decide(&scene.lights, s);
+            let key = ProgramKey::of(scene, &plan, 0, Outputs::default()).unwrap();
+            key.with_mask(MaskMode::Vertex)
+        };
+        let s = ShadowSettings {
+            translucent_receivers: TranslucentReceivers::Vertex,
+            ..scene.shadow
+        };
+        let p = program(&scene, &s);
+        let k0 = key(&p, &scene, &[Some(1), Some(2)]);
+        assert!(k0.is_some());
+        // A map drawn every frame: captured every frame.
+        assert_eq!(key(&p, &scene, &[Some(1), None]), None);
+        // Either map drawn again, or another program.
+        assert_ne!(k0, key(&p, &scene, &[Some(3), Some(2)]));
+        assert_ne!(k0, key(&p, &scene, &[Some(1), Some(3)]));
+        let biased = ShadowSettings { bias: 0.01, ..s };
+        assert_ne!(
+            k0,
+            key(&program(&scene, &biased), &scene, &[Some(1), Some(2)])
+        );
+        // The camera and an opaque item change nothing; a translucent item does.
+        scene.camera.position.x += 1.0;
+        let cube = scene.items.iter().position(|i| i.name == "cube").unwrap();
+        scene.items[cube].position.x += 0.3;
+        assert_eq!(k0, key(&p, &scene, &[Some(1), Some(2)]));
+        let glass = scene.items.iter().position(|i| i.name == "glass").unwrap();
+        let mut moved = scene.clone();
+        moved.items[glass].rotation.y += 1.0;
+        assert_ne!(k0, key(&p, &moved, &[Some(1), Some(2)]));
+        let mut thinner = scene.clone();
+        thinner.items[glass].opacity = 0.4;
+        assert_ne!(k0, key(&p, &thinner, &[Some(1), Some(2)]));
+    }
+}
