@@ -87,10 +87,16 @@ out vec4 cascadePos[CASCADES];
 
 #ifdef VERTEX_TESTS
 // Translucent items' program with translucent_receivers = "vertex": the tests of the lights
-// that run per vertex, light i in component i, interpolated for the fragment
-// (src/shadows/volumetric/receivers.rs writes vertexTests).
+// that run per vertex, light i in component i, interpolated for the fragment. They are
+// computed in world space by the capture program (VERTEX_CAPTURE; vertexTests from
+// src/shadows/volumetric/receivers.rs), kept while the maps and the items stay, and read
+// here per vertex (src/shadows/volumetric/vertex_light.rs).
 out vec4 vertexLit;
+#ifdef VERTEX_CAPTURE
 #include "generated/vertex_tests.glsl"
+#else
+layout (location = 3) in vec4 capturedLit;
+#endif
 #endif
 
 void main()
@@ -132,7 +138,9 @@ void main()
         cascadePos[c].w = cascadeBiasScale[c];
     }
 #endif
-#ifdef VERTEX_TESTS
+#ifdef VERTEX_CAPTURE
     vertexTests();
+#elif defined(VERTEX_TESTS)
+    vertexLit = capturedLit;
 #endif
 }

@@ -251,6 +251,15 @@ fn print_frame_stats(frame: &Frame, settings: &ShadowSettings) {
             v.kept
         );
     }
+    let l = frame.vertex_light;
+    if l.captured + l.kept > 0 {
+        println!(
+            "vertex light over {} frames: {} captured, {} kept",
+            frame.frame_ms.len(),
+            l.captured,
+            l.kept
+        );
+    }
     let m = frame.mask_uses;
     if m.written + m.read > 0 {
         println!(

@@ -23,6 +23,7 @@ pub struct Mesh {
     /// The welded positions' vertex array and its two buffers.
     positions: (glow::VertexArray, glow::Buffer, glow::Buffer),
     index_count: i32,
+    vertex_count: i32,
 }
 
 impl Mesh {
@@ -64,6 +65,7 @@ impl Mesh {
             ebo,
             positions,
             index_count,
+            vertex_count: data.positions.len() as i32,
         })
     }
 
@@ -172,6 +174,43 @@ impl Mesh {
 
     pub fn index_count(&self) -> usize {
         self.index_count as usize
+    }
+
+    /// Vertices in its vertex array (not welded).
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count as usize
+    }
+
+    /// Draws each vertex once, in order, as a point: a transform feedback pass that
+    /// captures one value a vertex ([`super::VertexCapture`]).
+    pub fn render_points(&self) {
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.draw_arrays(glow::POINTS, 0, self.vertex_count);
+            self.gl.bind_vertex_array(None);
+        }
+        super::counters::count_draw();
+    }
+
+    /// Draws the mesh once, with one vec4 a vertex read from `buffer` at byte `offset` on
+    /// location [`INSTANCE_LOCATION`] (vertex k's at `offset + 16 k`); switched off again
+    /// after the draw.
+    pub fn render_with_vertex_values(&self, buffer: glow::Buffer, offset: usize) {
+        let location = INSTANCE_LOCATION;
+        unsafe {
+            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
+            self.gl.enable_vertex_attrib_array(location);
+            (self.gl).vertex_attrib_pointer_f32(location, 4, glow::FLOAT, false, 16, offset as i32);
+            // An instanced draw may have left it per instance.
+            self.gl.vertex_attrib_divisor(location, 0);
+            self.gl.bind_buffer(glow::ARRAY_BUFFER, None);
+            self.gl
+                .draw_elements(glow::TRIANGLES, self.index_count, glow::UNSIGNED_INT, 0);
+            self.gl.disable_vertex_attrib_array(location);
+            self.gl.bind_vertex_array(None);
+        }
+        super::counters::count_draw();
     }
 }
 

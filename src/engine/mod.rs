@@ -23,6 +23,7 @@ pub mod text;
 pub mod texture;
 pub mod timer;
 pub mod translucent_map;
+pub mod vertex_capture;
 pub mod volume;
 pub mod window_context;
 
@@ -47,6 +48,7 @@ pub use summed_area::SummedAreaTable;
 pub use texture::Texture;
 pub use timer::PassTimer;
 pub use translucent_map::{MapPass, ResolvedMap, TranslucentMap};
+pub use vertex_capture::{CapturePass, VertexCapture};
 pub use volume::{
     AdjacencyMesh, LightPass, LightPassGuard, SamplesQuery, VolumeDraw, VolumePassGuard,
 };

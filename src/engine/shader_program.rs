@@ -167,6 +167,17 @@ impl ShaderProgram {
         stages: &[(u32, &ShaderSource)],
         defines: &[(String, String)],
     ) -> Result<ShaderProgram> {
+        Self::capturing(gl, stages, defines, &[])
+    }
+
+    /// [`ShaderProgram::from_stages`], recording the vertex outputs `varyings` into the
+    /// bound transform feedback buffer, interleaved ([`super::VertexCapture`]).
+    pub fn capturing(
+        gl: &Gl,
+        stages: &[(u32, &ShaderSource)],
+        defines: &[(String, String)],
+        varyings: &[&str],
+    ) -> Result<ShaderProgram> {
         let program =
             unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
         super::counters::count(|c| c.programs += 1);
@@ -193,6 +204,9 @@ impl ShaderProgram {
         unsafe {
             for s in &shaders {
                 gl.attach_shader(program, *s);
+            }
+            if !varyings.is_empty() {
+                gl.transform_feedback_varyings(program, varyings, glow::INTERLEAVED_ATTRIBS);
             }
             gl.link_program(program);
             for s in shaders {

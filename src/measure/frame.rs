@@ -42,6 +42,8 @@ pub struct Frame {
     pub mask_uses: crate::renderer::MaskUses,
     /// Translucent maps drawn and kept over the frames.
     pub volumetric_draws: crate::shadows::volumetric::cache::MapDraws,
+    /// The translucent items' per-vertex light captured and kept over the frames.
+    pub vertex_light: crate::shadows::volumetric::vertex_light::VertexLightCounts,
     /// Casters drawn into maps against casters offered, over the frames.
     pub casters: crate::shadows::CasterCounts,
     /// Shadow-volume pixels that passed the depth test in the last frame (0 without
@@ -232,6 +234,7 @@ pub fn render_frames_with(
         depth_passes: renderer.depth_passes(),
         mask_uses: renderer.mask_uses(),
         volumetric_draws: renderer.volumetric_maps().draws(),
+        vertex_light: renderer.vertex_light_counts(),
         casters: renderer.caster_counts(),
         volume_pixels: renderer.volume_pixels(),
     })

@@ -90,6 +90,13 @@ impl Renderer {
         self.mask.uses
     }
 
+    /// The translucent items' per-vertex light captured and kept, so far.
+    pub fn vertex_light_counts(
+        &self,
+    ) -> crate::shadows::volumetric::vertex_light::VertexLightCounts {
+        self.vertex_light.counts()
+    }
+
     /// Casters drawn into maps against casters offered so far (culled per light volume;
     /// cascades cull per cascade and count only in the passes).
     pub fn caster_counts(&self) -> CasterCounts {

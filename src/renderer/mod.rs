@@ -17,6 +17,7 @@ mod scene_pass;
 mod shadow_mask;
 mod target;
 mod translucent_pass;
+mod vertex_light;
 mod volume_pass;
 
 pub use crate::shadows::schedule::DepthPasses;
@@ -62,6 +63,8 @@ pub struct Renderer {
     casters: CasterCounts,
     /// Each light's translucent map, for the lights whose plan keeps one.
     volumetric: crate::shadows::volumetric::Maps,
+    /// The translucent items' per-vertex light, kept with the maps.
+    vertex_light: crate::shadows::volumetric::vertex_light::VertexLight,
     /// Scene programs by what they were compiled for, the last used first.
     scene_programs: Vec<(ProgramKey, ShaderProgram)>,
     samplers: Samplers,
@@ -103,6 +106,7 @@ impl Renderer {
             depth_programs: DepthPrograms::default(),
             casters: CasterCounts::default(),
             volumetric: Default::default(),
+            vertex_light: Default::default(),
             scene_programs: Vec::new(),
             samplers: Samplers::default(),
             mask: shadow_mask::ShadowMask::default(),
@@ -180,6 +184,7 @@ impl Renderer {
             boxes,
             &depth,
         )?;
+        self.capture_vertex_light(scene)?;
         self.hook(Pass::Depth, false);
         check_gl(&self.gl, "the depth-map pass")
     }

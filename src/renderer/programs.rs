@@ -52,6 +52,7 @@ impl Renderer {
             shadows: &self.shadows,
             views: &self.views,
             volumetric: &self.volumetric,
+            vertex_light: Some(&self.vertex_light),
             plan: &self.plan,
             meshes: &self.gpu.meshes,
             textures: &self.gpu.textures,

@@ -53,6 +53,8 @@ pub struct Inputs<'a> {
     pub views: &'a [Option<ShadowView>],
     /// Each light's translucent map, if it keeps one.
     pub volumetric: &'a crate::shadows::volumetric::Maps,
+    /// The translucent items' per-vertex light, where it is tested per vertex.
+    pub vertex_light: Option<&'a crate::shadows::volumetric::vertex_light::VertexLight>,
     /// Each light's kind and settings.
     pub plan: &'a ShadowPlan,
     pub meshes: &'a [Mesh],
@@ -176,6 +178,18 @@ pub(super) fn bind_maps(
     gl: &Gl,
     scene: &Scene,
 ) -> Result<Vec<BoundSampler>> {
+    bind_maps_from(inputs, samplers, gl, scene, scene.camera.view_matrix64())
+}
+
+/// [`bind_maps`] for a program whose "view space" is `camera_view`'s (the per-vertex
+/// capture's: world space, the identity).
+pub(super) fn bind_maps_from(
+    inputs: &Inputs,
+    samplers: &mut Samplers,
+    gl: &Gl,
+    scene: &Scene,
+    camera_view: DMat4,
+) -> Result<Vec<BoundSampler>> {
     let p = inputs.program;
     let mut bound: Vec<BoundSampler> = Vec::with_capacity(inputs.shadows.len());
     let tested = match inputs.mask {
@@ -194,7 +208,7 @@ pub(super) fn bind_maps(
         }
     }
     if inputs.mask.is_none() {
-        (inputs.volumetric).bind(p, inputs.views, scene.camera.view_matrix64());
+        (inputs.volumetric).bind(p, inputs.views, camera_view);
     }
     Ok(bound)
 }

@@ -23,13 +23,12 @@ pub fn drawn_later(inputs: &Inputs, item: &GameItem) -> bool {
     item.is_translucent() && !inputs.plan.has(ShadowKind::Volume)
 }
 
-/// The translucent items, farthest from the camera first: the order blending needs.
-fn back_to_front<'a>(inputs: &Inputs, scene: &'a Scene, view: DMat4) -> Vec<&'a GameItem> {
-    let mut items: Vec<(f64, &GameItem)> = scene
-        .items
-        .iter()
-        .filter(|i| drawn_later(inputs, i))
-        .map(|i| (view.transform_point3(i.position.as_dvec3()).z, i))
+/// The translucent items and their indices, farthest from the camera first: the order
+/// blending needs.
+fn back_to_front<'a>(inputs: &Inputs, scene: &'a Scene, view: DMat4) -> Vec<(usize, &'a GameItem)> {
+    let mut items: Vec<(f64, (usize, &GameItem))> = (scene.items.iter().enumerate())
+        .filter(|(_, i)| drawn_later(inputs, i))
+        .map(|(k, i)| (view.transform_point3(i.position.as_dvec3()).z, (k, i)))
         .collect();
     // View space looks down -z: the most negative z is the farthest.
     items.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -61,7 +60,7 @@ pub(super) fn draw(
     };
     (inputs.volumetric).set_matrices(p, inputs.views, view64, true);
     let blend = TranslucentBlend::begin(gl);
-    for item in items {
+    for (k, item) in items {
         super::scene_inputs::set_item_uniforms(p, item, scene, u, view64, origin);
         let m = &item.material;
         m.texture
@@ -69,7 +68,11 @@ pub(super) fn draw(
             .unwrap_or(inputs.white)
             .bind(MATERIAL_UNIT);
         blend.set_opacity(item.opacity);
-        inputs.meshes[item.mesh].render_list([()], |_| {});
+        // Tested per vertex: each vertex reads the light captured for it.
+        let mesh = &inputs.meshes[item.mesh];
+        if !inputs.vertex_light.is_some_and(|v| v.draw(k, mesh)) {
+            mesh.render_list([()], |_| {});
+        }
     }
     Ok(())
 }

@@ -222,18 +222,25 @@ impl ProgramKey {
     pub fn sources(&self) -> Result<[ShaderSource; 2]> {
         let fragment = shaders::scene_frag(&slots::snippets(&self.slots(), self.mask))?;
         let defines = self.defines();
-        let vertex = match self.mask == MaskMode::Vertex && self.tests_per_vertex() {
-            true => {
-                let generated = [receivers::vertex_snippet(&self.slots())];
-                let plain = shaders::scene_vert();
-                shaders::resolve(&plain.files[0], &plain.text, &generated)?
-            }
-            false => shaders::scene_vert(),
-        };
-        Ok([vertex, fragment].map(|s| ShaderSource {
+        Ok([shaders::scene_vert(), fragment].map(|s| ShaderSource {
             text: s.with_defines(&defines),
             ..s
         }))
+    }
+
+    /// The vertex shader that computes the translucent items' per-vertex tests for this
+    /// key's lights (`VERTEX_CAPTURE`, [`receivers`]), for a transform feedback pass.
+    pub fn capture_source(&self) -> Result<ShaderSource> {
+        let key = self.with_mask(MaskMode::Vertex);
+        let generated = [receivers::vertex_snippet(&key.slots())];
+        let plain = shaders::scene_vert();
+        let vertex = shaders::resolve(&plain.files[0], &plain.text, &generated)?;
+        let mut defines = key.defines();
+        defines.push(("VERTEX_CAPTURE".into(), "1".into()));
+        Ok(ShaderSource {
+            text: vertex.with_defines(&defines),
+            ..vertex
+        })
     }
 }
 

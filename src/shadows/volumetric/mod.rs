@@ -19,6 +19,7 @@ pub mod maps;
 pub mod osm;
 pub mod receivers;
 pub mod resolved;
+pub mod vertex_light;
 
 use glam::{DMat4, DVec3, Mat4};
 
