@@ -96,11 +96,6 @@ impl VertexCapture {
     pub fn draw(&self, mesh: &Mesh, first: usize) {
         mesh.render_with_vertex_values(self.buffer, first * STRIDE);
     }
-
-    /// Vertices it has room for.
-    pub fn capacity(&self) -> usize {
-        self.capacity
-    }
 }
 
 impl Drop for VertexCapture {

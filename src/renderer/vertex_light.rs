@@ -60,7 +60,10 @@ impl Renderer {
             p.set_mat4("projectionMatrix", &Mat4::IDENTITY);
             u.set(p, Mat4::IDENTITY);
             p.set_i32("instanced", 0);
-            Ok((bind_maps_from(&inputs, samplers, gl, scene, world)?, u))
+            let bound = bind_maps_from(&inputs, samplers, gl, scene, world)?;
+            // Translucent items read their maps a little nearer the light.
+            volumetric.set_matrices(p, views, world, true);
+            Ok((bound, u))
         };
         let each = |p: &ShaderProgram, (_, u): &(_, LightUniforms), k: usize| {
             set_item_uniforms(p, &scene.items[k], scene, u, world, world);
