@@ -7,7 +7,6 @@ mod common;
 
 use std::path::Path;
 
-use common::context;
 use shadowmap::frame::Frame;
 use shadowmap::scene::file::parse;
 use shadowmap::settings::{Filter, ShadowSettings, TranslucentReceivers, Volumetric};
@@ -28,14 +27,7 @@ fn covered_sheet() -> Scene {
     parse(&text, Path::new("covered.toml"), None).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn frame(scene: &mut Scene, volumetric: Volumetric, receivers: TranslucentReceivers) -> Frame {
-    let settings = ShadowSettings {
-        volumetric,
-        translucent_receivers: receivers,
-        ..scene.shadow
-    };
-    common::render(&context(), scene, &settings, 320, 240)
-}
+use common::translucent_frame as frame;
 
 /// The largest channel difference and the mean one (over every channel) between two frames.
 fn difference(a: &Frame, b: &Frame) -> (u8, f64) {

@@ -8,10 +8,8 @@ mod common;
 
 use std::path::Path;
 
-use common::context;
-use shadowmap::frame::Frame;
 use shadowmap::scene::file::parse;
-use shadowmap::settings::{ShadowSettings, TranslucentReceivers, Volumetric};
+use shadowmap::settings::{TranslucentReceivers, Volumetric};
 use shadowmap::shadows::volumetric::self_shadow_lift;
 use shadowmap::Scene;
 
@@ -28,14 +26,7 @@ fn tilted_sheet() -> Scene {
     parse(text, Path::new("sheet.toml"), None).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn frame(scene: &mut Scene, volumetric: Volumetric, receivers: TranslucentReceivers) -> Frame {
-    let settings = ShadowSettings {
-        volumetric,
-        translucent_receivers: receivers,
-        ..scene.shadow
-    };
-    common::render(&context(), scene, &settings, 320, 240)
-}
+use common::translucent_frame as frame;
 
 #[test]
 fn a_tilted_sheet_alone_does_not_shade_itself_under_avsm() {

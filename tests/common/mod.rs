@@ -305,3 +305,18 @@ pub const OVERHEAD_FLOOR: &str = "size = [320, 240]\n\
      ortho = { left = -5.0, right = 5.0, bottom = -5.0, top = 5.0, near = -1.0, far = 12.0 }\n\
      [shadow]\nlight_view = \"look-at\"\nbias = 0.005\n\
      [[item]]\nname = \"floor\"\nmesh = \"plane\"\nposition = [0.0, -1.0, 0.0]\nscale = 3.0\n";
+
+/// A 320 x 240 frame of `scene` with its translucent casters cast by `volumetric` and its
+/// translucent items tested per pixel or per vertex (`receivers`).
+pub fn translucent_frame(
+    scene: &mut Scene,
+    volumetric: shadowmap::settings::Volumetric,
+    receivers: shadowmap::settings::TranslucentReceivers,
+) -> Frame {
+    let settings = ShadowSettings {
+        volumetric,
+        translucent_receivers: receivers,
+        ..scene.shadow
+    };
+    render(&context(), scene, &settings, 320, 240)
+}
