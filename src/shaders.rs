@@ -9,7 +9,7 @@
 //! [`crate::engine::shader_program::annotate_log`] decodes both, so a mistake in a snippet
 //! names the snippet and its own line. Files under `generated/` are
 //! not on disk: the renderer makes them for the scene's lights
-//! ([`crate::shadows::slots`]) and passes them in.
+//! ([`crate::shadows::program::slots`]) and passes them in.
 
 use crate::engine::shader_program::LINE_BLOCK;
 use crate::engine::ShaderSource;
@@ -103,6 +103,10 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/volumetric.glsl"),
     ),
     ("lib/osm.glsl", include_str!("../shaders/lib/osm.glsl")),
+    (
+        "lib/vertex_lights.glsl",
+        include_str!("../shaders/lib/vertex_lights.glsl"),
+    ),
     ("lib/fom.glsl", include_str!("../shaders/lib/fom.glsl")),
     (
         "lib/outputs.glsl",

@@ -73,7 +73,7 @@ fn every_cascade_holds_its_slice_of_the_view() {
             snap: true,
             light_depth: 21.0,
         };
-        let boxes = shadowmap::shadows::fitted::item_world_boxes(&scene);
+        let boxes = shadowmap::shadows::camera::fitted::item_world_boxes(&scene);
         let cascades = fit_cascades(&scene, &boxes, to_light, &spec);
         let cam = scene.camera;
         let aspect = scene.size[0] as f64 / scene.size[1] as f64;
@@ -231,7 +231,7 @@ fn cascades_on_the_dummy_game_keep_the_shadow() {
 fn cascades_cover_the_scene_not_the_far_plane() {
     use shadowmap::shadows::cascades::scene_depth_range;
     let scene = Scene::load("dummy").unwrap();
-    let boxes = shadowmap::shadows::fitted::item_world_boxes(&scene);
+    let boxes = shadowmap::shadows::camera::fitted::item_world_boxes(&scene);
     let aspect = 16.0 / 9.0;
     // The camera at z = 2 looking down -z over a plane reaching to z = -2.5: 4.5 deep
     // (rounded up to the next 1/8 of 4), whatever the far plane says.

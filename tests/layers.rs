@@ -168,70 +168,205 @@ fn no_module_uses_a_layer_of_its_rank_or_higher() {
     assert!(wrong.is_empty(), "layer violations:\n{}", wrong.join("\n"));
 }
 
-#[test]
-fn no_import_circles_between_modules_of_one_folder() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
-    // Folder -> module -> the sibling modules it names (`super::x` or `crate::folder::x`).
-    let mut graphs: BTreeMap<PathBuf, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
-    for file in &files {
-        let (Some(dir), Some(stem)) = (file.parent(), file.file_stem()) else {
-            continue;
-        };
-        let stem = stem.to_string_lossy().to_string();
-        if stem == "mod" || stem == "lib" || stem == "main" {
-            continue;
-        }
-        let text = std::fs::read_to_string(file).unwrap();
-        let folder = dir
-            .strip_prefix(&src)
-            .unwrap()
-            .to_string_lossy()
-            .to_string();
-        let code = code_of(&text);
-        let mut names = names_after(&code, "super::");
-        names.extend(names_after(&code, &format!("crate::{folder}::")));
-        names.remove(&stem);
-        graphs
-            .entry(dir.to_path_buf())
-            .or_default()
-            .insert(stem, names);
+/// A module's path from the crate root: `src/shadows/volumetric/mod.rs` and
+/// `src/shadows/map2d.rs` give `["shadows", "volumetric"]` and `["shadows", "map2d"]`.
+fn module_path(src: &Path, file: &Path) -> Vec<String> {
+    let rel = file.strip_prefix(src).unwrap().with_extension("");
+    let mut path: Vec<String> = rel
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().to_string())
+        .collect();
+    if matches!(path.last().map(String::as_str), Some("mod" | "lib" | "main")) {
+        path.pop();
     }
-    for (dir, graph) in &graphs {
-        // Keep only edges to sibling files; then look for a circle by depth-first search.
-        let edges: BTreeMap<&String, Vec<&String>> = graph
-            .iter()
-            .map(|(m, names)| (m, names.iter().filter(|n| graph.contains_key(*n)).collect()))
-            .collect();
-        fn visit<'a>(
-            m: &'a String,
-            edges: &BTreeMap<&'a String, Vec<&'a String>>,
-            path: &mut Vec<&'a String>,
-            done: &mut BTreeSet<&'a String>,
-        ) -> Option<String> {
-            if let Some(i) = path.iter().position(|p| *p == m) {
-                let circle: Vec<&str> = path[i..].iter().map(|s| s.as_str()).collect();
-                return Some(format!("{} -> {m}", circle.join(" -> ")));
+    path
+}
+
+/// Every path a `use` tree or expression starting at `code[at..]` names, its segments
+/// expanded through groups: `a::{b, c::{d, e}}` gives `a::b`, `a::c::d` and `a::c::e`.
+fn paths_at(code: &str) -> Vec<Vec<String>> {
+    fn tree(s: &str, prefix: &[String], out: &mut Vec<Vec<String>>) {
+        let mut path = prefix.to_vec();
+        let mut rest = s;
+        loop {
+            let name = ident(rest);
+            if name.is_empty() {
+                break;
             }
-            if done.contains(m) {
-                return None;
+            rest = rest.trim_start()[name.len()..].trim_start();
+            path.push(name);
+            match rest.strip_prefix("::") {
+                Some(r) => rest = r.trim_start(),
+                None => break,
             }
-            path.push(m);
-            for n in edges.get(m).into_iter().flatten() {
-                if let Some(c) = visit(n, edges, path, done) {
-                    return Some(c);
+            if let Some(group) = rest.strip_prefix('{') {
+                let (mut depth, mut start) = (0usize, 0usize);
+                for (k, c) in group.char_indices() {
+                    match c {
+                        '{' => depth += 1,
+                        '}' if depth == 0 => {
+                            tree(&group[start..k], &path, out);
+                            return;
+                        }
+                        '}' => depth -= 1,
+                        ',' if depth == 0 => {
+                            tree(&group[start..k], &path, out);
+                            start = k + 1;
+                        }
+                        _ => {}
+                    }
                 }
+                return;
             }
-            path.pop();
-            done.insert(m);
-            None
         }
-        let mut done = BTreeSet::new();
-        for m in edges.keys() {
-            if let Some(circle) = visit(m, &edges, &mut Vec::new(), &mut done) {
-                panic!("import circle in {}: {circle}", dir.display());
+        out.push(path);
+    }
+    let mut out = Vec::new();
+    tree(code, &[], &mut out);
+    out
+}
+
+/// The modules a file (at `own`, its module path) refers to through `crate::` and `super::`
+/// paths, each as the full path named (the caller finds the module in it).
+fn module_refs(code: &str, own: &[String]) -> Vec<Vec<String>> {
+    let mut out = Vec::new();
+    let bytes = code.as_bytes();
+    for (at, _) in code.match_indices("crate::").chain(code.match_indices("super::")) {
+        let before = at.checked_sub(1).map(|b| bytes[b] as char);
+        if before.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == ':') {
+            continue; // the middle of a path (`super::super::x`) is read from its start
+        }
+        // `super` is the parent of the file's module; a folder's own file is its module.
+        let mut base: Vec<String> = own.to_vec();
+        let mut rest = &code[at..];
+        if let Some(r) = rest.strip_prefix("crate::") {
+            base.clear();
+            rest = r;
+        } else {
+            while let Some(r) = rest.strip_prefix("super::") {
+                base.pop();
+                rest = r.trim_start();
             }
+        }
+        for p in paths_at(rest) {
+            out.push(base.iter().cloned().chain(p).collect());
         }
     }
+    out
+}
+
+/// For each folder module, a circle among its children, if any: a child is a file or a
+/// whole sub-folder, and child A uses child B when any file inside A names anything inside
+/// B. The folder's own file (`mod.rs`, or `x.rs` beside `x/`) holds the children and is
+/// left out. This finds circles at any depth: `cache -> casters -> volumetric -> patch ->
+/// cache` in `shadows` is one when a file in `shadows/volumetric/` names `shadows::patch`.
+fn circles(src: &Path) -> Vec<String> {
+    let mut files = Vec::new();
+    rust_files(src, &mut files);
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_path(src, f)).collect();
+    // Each file's module and the modules it names (the longest known prefix of each path).
+    let mut uses: Vec<(Vec<String>, BTreeSet<Vec<String>>)> = Vec::new();
+    for file in &files {
+        let own = module_path(src, file);
+        let code = code_of(&std::fs::read_to_string(file).unwrap());
+        let mut named = BTreeSet::new();
+        for path in module_refs(&code, &own) {
+            if let Some(n) = (1..=path.len()).rev().find(|&n| modules.contains(&path[..n])) {
+                named.insert(path[..n].to_vec());
+            }
+        }
+        uses.push((own, named));
+    }
+    let mut found = Vec::new();
+    for parent in modules.iter().filter(|m| !m.is_empty()) {
+        let depth = parent.len();
+        let child_of = |m: &Vec<String>| {
+            (m.len() > depth && m[..depth] == parent[..]).then(|| m[depth].clone())
+        };
+        let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for (own, named) in &uses {
+            let Some(from) = child_of(own) else { continue };
+            let entry = edges.entry(from.clone()).or_default();
+            entry.extend(named.iter().filter_map(child_of).filter(|to| *to != from));
+        }
+        if let Some(circle) = first_circle(&edges) {
+            found.push(format!("{}: {circle}", parent.join("::")));
+        }
+    }
+    found
+}
+
+/// The first circle of a directed graph by depth-first search, as `a -> b -> a`.
+fn first_circle(edges: &BTreeMap<String, BTreeSet<String>>) -> Option<String> {
+    fn visit<'a>(
+        m: &'a String,
+        edges: &'a BTreeMap<String, BTreeSet<String>>,
+        path: &mut Vec<&'a String>,
+        done: &mut BTreeSet<&'a String>,
+    ) -> Option<String> {
+        if let Some(i) = path.iter().position(|p| *p == m) {
+            let circle: Vec<&str> = path[i..].iter().map(|s| s.as_str()).collect();
+            return Some(format!("{} -> {m}", circle.join(" -> ")));
+        }
+        if done.contains(m) {
+            return None;
+        }
+        path.push(m);
+        for n in edges.get(m).into_iter().flatten() {
+            if let Some(c) = visit(n, edges, path, done) {
+                return Some(c);
+            }
+        }
+        path.pop();
+        done.insert(m);
+        None
+    }
+    let mut done = BTreeSet::new();
+    edges
+        .keys()
+        .find_map(|m| visit(m, edges, &mut Vec::new(), &mut done))
+}
+
+#[test]
+fn no_import_circles_at_any_depth() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let found = circles(&src);
+    assert!(found.is_empty(), "import circles:\n{}", found.join("\n"));
+}
+
+#[test]
+fn a_circle_through_a_nested_folder_is_found() {
+    // cache -> casters -> volumetric (a folder, through its own file) -> patch (named from
+    // inside the folder) -> cache, and a two-file circle across folders.
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path();
+    let write = |rel: &str, text: &str| {
+        let path = src.join(rel);
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(path, text).unwrap();
+    };
+    write("lib.rs", "pub mod shadows;");
+    write("shadows/mod.rs", "pub mod cache; pub mod casters; pub mod patch;");
+    write("shadows/cache.rs", "use super::casters::may_land;");
+    write("shadows/casters.rs", "fn f() { super::volumetric::draw_solid(); }");
+    write("shadows/volumetric/mod.rs", "mod resolved;");
+    write("shadows/volumetric/resolved.rs", "use crate::shadows::{patch::TexelRect};");
+    write("shadows/patch.rs", "use super::cache::LightFacts;");
+    let found = circles(src);
+    assert_eq!(
+        found,
+        ["shadows: cache -> casters -> volumetric -> patch -> cache"]
+    );
+    // Broken at one edge, no circle is left; a folder's own file naming its children is
+    // not one.
+    write("shadows/casters.rs", "");
+    write("shadows/patch.rs", "use super::volumetric::Maps;");
+    write("shadows/volumetric/mod.rs", "mod resolved; use resolved::X; use super::cache;");
+    assert_eq!(circles(src), ["shadows: patch -> volumetric -> patch"]);
+    write("shadows/patch.rs", "");
+    assert!(circles(src).is_empty(), "{:?}", circles(src));
+    // `super::super::` from a nested file.
+    write("shadows/program.rs", "use super::volumetric::receivers;");
+    write("shadows/volumetric/receivers.rs", "use super::super::program::light_part;");
+    assert_eq!(circles(src), ["shadows: program -> volumetric -> program"]);
 }

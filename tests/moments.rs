@@ -324,7 +324,7 @@ fn the_blur_scissored_to_the_casters_changes_no_pixel() {
     let area = |s: &Scene| {
         let f = shadowmap::shadows::moments::caster_footprint(
             s,
-            &shadowmap::shadows::fitted::item_world_boxes(s),
+            &shadowmap::shadows::camera::fitted::item_world_boxes(s),
             0,
             &view,
             scene.shadow.map_size,

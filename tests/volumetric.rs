@@ -229,7 +229,7 @@ fn behind_every_caster_each_translucent_map_gives_the_product_to_one_step_of_eig
 fn map_layers(scene: &Scene, settings: &ShadowSettings) -> Vec<Vec<[f32; 4]>> {
     let ctx = context();
     let mut renderer = shadowmap::Renderer::new(ctx.gl(), scene, settings).unwrap();
-    renderer.render_depth_map(scene).unwrap();
+    renderer.render_shadows(scene).unwrap();
     let map = renderer
         .volumetric_maps()
         .get(0)
@@ -397,9 +397,9 @@ fn switching_technique_on_a_renderer_makes_the_new_techniques_map() {
     };
     let fresh = map_layers(&scene, &with(Volumetric::Fom));
     let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &with(Volumetric::Osm)).unwrap();
-    renderer.render_depth_map(&scene).unwrap();
+    renderer.render_shadows(&scene).unwrap();
     renderer.set_settings(&with(Volumetric::Fom)).unwrap();
-    renderer.render_depth_map(&scene).unwrap();
+    renderer.render_shadows(&scene).unwrap();
     let map = renderer
         .volumetric_maps()
         .get(0)
@@ -429,7 +429,7 @@ fn the_translucent_maps_take_their_own_size_and_refuse_a_bad_one() {
             layers.iter().map(Vec::len).collect::<Vec<_>>()
         );
         let mut renderer = shadowmap::Renderer::new(ctx.gl(), &scene, &settings).unwrap();
-        renderer.render_depth_map(&scene).unwrap();
+        renderer.render_shadows(&scene).unwrap();
         let map = renderer
             .volumetric_maps()
             .get(0)
@@ -449,7 +449,7 @@ fn the_translucent_maps_take_their_own_size_and_refuse_a_bad_one() {
             ..settings
         };
         renderer.set_settings(&smaller).unwrap();
-        renderer.render_depth_map(&scene).unwrap();
+        renderer.render_shadows(&scene).unwrap();
         let map = renderer
             .volumetric_maps()
             .get(0)

@@ -6,7 +6,7 @@ use shadowmap::engine::Outputs;
 use shadowmap::shaders;
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::program::ProgramKey;
-use shadowmap::shadows::slots::{self, LightPart, MaskMode};
+use shadowmap::shadows::program::slots::{self, LightPart, MaskMode};
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
 use super::cli::ShadersArgs;

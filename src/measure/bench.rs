@@ -242,7 +242,7 @@ pub(super) fn time_passes(
         // llvmpipe rasterises the depth pass only when its result is needed, so its GPU
         // timer queries charge that work to the scene pass; the split wall times do not.
         let start = Instant::now();
-        renderer.render_depth_map(scene)?;
+        renderer.render_shadows(scene)?;
         renderer.finish();
         let mid = Instant::now();
         renderer.render_scene(scene, Target::Offscreen(target))?;

@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::schedule::DepthPasses;
+use crate::shadows::cache::schedule::DepthPasses;
 use crate::shadows::{CasterCounts, ShadowView};
 
 /// The passes of a frame, for [`PassHooks`].

@@ -12,7 +12,7 @@ use crate::engine::{check_gl, Gl, Samplers, Sampling, ShaderProgram};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shaders;
-use crate::shadows::fitted::corners;
+use crate::shadows::camera::fitted::corners;
 use crate::shadows::{DepthViewKind, ShadowView, Technique};
 
 /// The view's programs (one per kind of texture, compiled on first use) and its triangle.

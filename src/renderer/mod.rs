@@ -16,11 +16,12 @@ mod scene_inputs;
 mod scene_pass;
 mod shadow_mask;
 mod target;
+mod translucent_maps;
 mod translucent_pass;
 mod vertex_light;
 mod volume_pass;
 
-pub use crate::shadows::schedule::DepthPasses;
+pub use crate::shadows::cache::schedule::DepthPasses;
 pub use access::{Pass, PassHooks};
 pub use depth_view::DepthRange;
 pub use shadow_mask::MaskUses;
@@ -36,8 +37,8 @@ use crate::settings::ShadowSettings;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::plan::ShadowPlan;
 use crate::shadows::program::ProgramKey;
-use crate::shadows::schedule::DepthSchedule;
-use crate::shadows::slots::MaskMode;
+use crate::shadows::cache::schedule::DepthSchedule;
+use crate::shadows::program::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::{CasterCounts, DepthPass, ShadowView, Technique};
 use scene_inputs::SceneGpu;
@@ -127,15 +128,32 @@ impl Renderer {
         Ok(renderer)
     }
 
-    /// One frame: the depth maps first, then the scene (or, with `show_depth_map`, a map
-    /// itself) into `target`.
+    /// One frame: the shadows first (the depth maps and what is drawn beside them), then
+    /// the scene (or, with `show_depth_map`, a map itself) into `target`.
     pub fn render(&mut self, scene: &Scene, target: Target) -> Result<()> {
-        self.render_depth_map(scene)?;
+        self.render_shadows(scene)?;
         if self.settings.show_depth_map {
             self.render_depth_view(scene, target)
         } else {
             self.render_scene(scene, target)
         }
+    }
+
+    /// The shadow pass as measurement sees it: the chapter's depth maps, then the
+    /// translucent maps and the per-vertex light drawn from them ([`translucent_maps`]).
+    pub fn render_shadows(&mut self, scene: &Scene) -> Result<()> {
+        self.prepare_shadows(scene)?;
+        self.hook(Pass::Depth, true);
+        let result = self.draw_shadows(scene);
+        self.hook(Pass::Depth, false);
+        result?;
+        check_gl(&self.gl, "the depth-map pass")
+    }
+
+    fn draw_shadows(&mut self, scene: &Scene) -> Result<()> {
+        self.render_depth_map(scene)?;
+        self.render_translucent_maps(scene)?;
+        self.capture_vertex_light(scene)
     }
 
     /// The shadow pass (the book's `renderDepthMap`): each casting light's technique binds
@@ -144,9 +162,7 @@ impl Renderer {
     /// light sees, or has only a patch of it drawn again.
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
-        self.hook(Pass::Depth, true);
-        self.schedule
-            .begin(scene, &self.shadows, self.settings.shadow_cache);
+        self.schedule.begin(scene, &self.shadows, self.settings.shadow_cache);
         for (index, shadow) in self.shadows.iter_mut().enumerate() {
             let view = &mut self.views[index];
             let Some(technique) = shadow else {
@@ -154,15 +170,14 @@ impl Renderer {
                 continue;
             };
             let settings = self.plan.lights[index].settings;
-            let schedule = &mut self.schedule;
-            let step = schedule.step(scene, index, &**technique, &settings, view.is_some());
+            let step = self.schedule.step(scene, index, &**technique, &settings, view.is_some());
             let Some(step) = step else { continue };
             let mut pass = DepthPass {
                 gl: &self.gl,
                 meshes: &self.gpu.meshes,
                 programs: &mut self.depth_programs,
                 settings: &settings,
-                boxes: schedule.boxes(),
+                boxes: self.schedule.boxes(),
                 casters: &mut self.casters,
                 instances: &self.gpu.instances,
             };
@@ -170,23 +185,9 @@ impl Renderer {
                 Some(patch) => technique.render_depth_patch(&mut pass, scene, index, patch)?,
                 None => technique.render_depth(&mut pass, scene, index)?,
             });
-            schedule.drawn(index, step);
+            self.schedule.drawn(index, step);
         }
-        let boxes = self.schedule.boxes();
-        let depth: Vec<_> = (self.shadows.iter().zip(self.schedule.keys()))
-            .map(|(t, key)| t.as_ref().map(|t| (t.texture(), *key)))
-            .collect();
-        (self.volumetric).render(
-            &self.gl,
-            &self.gpu.meshes,
-            scene,
-            &self.views,
-            boxes,
-            &depth,
-        )?;
-        self.capture_vertex_light(scene)?;
-        self.hook(Pass::Depth, false);
-        check_gl(&self.gl, "the depth-map pass")
+        Ok(())
     }
 
     /// The main pass (the book's `renderScene`): the scene from the camera, each light's map

@@ -9,7 +9,7 @@ use crate::engine::{Outputs, Samplers};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::shadows::program::ProgramKey;
-use crate::shadows::slots::MaskMode;
+use crate::shadows::program::slots::MaskMode;
 
 impl Renderer {
     /// Moves the program for this frame's key to the front of the cache, compiling it if it

@@ -8,7 +8,8 @@ use crate::error::Result;
 use crate::image_data::ImageData;
 use crate::scene::{GameItem, Light, Scene, Shading};
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::{slots, ShadowView, Technique};
+use crate::shadows::program::slots;
+use crate::shadows::{ShadowView, Technique};
 
 /// The scene's meshes and textures on the GPU (the book's `Mesh` and `Texture`).
 pub(super) struct SceneGpu {
@@ -200,8 +201,8 @@ pub(super) fn bind_maps_from(
         let Some(t) = shadow else { continue };
         let settings = &own.settings;
         t.set_scene_uniforms(p, scene, settings);
-        if let Some(name) = slots::sampler_name(i, t.kind()) {
-            let unit = slots::texture_unit(i);
+        if let Some(name) = t.kind().sampler(i) {
+            let unit = crate::shadows::units::texture_unit(i);
             p.set_i32(name, unit as i32);
             t.texture().bind(unit);
             bound.push(samplers.get(gl, t.sampling(settings))?.bind(unit));

@@ -12,7 +12,7 @@ use crate::engine::instances::{self, Values};
 use crate::engine::{Gl, Samplers};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
-use crate::shadows::slots::{MASK_UNIT, MATERIAL_UNIT};
+use crate::shadows::units::{MASK_UNIT, MATERIAL_UNIT};
 
 /// Draws every item with `inputs.program` (bound here) into the bound target.
 pub fn draw(

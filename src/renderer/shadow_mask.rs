@@ -15,7 +15,7 @@ use crate::engine::{Gl, Outputs, RenderTarget, Samplers, ShaderProgram, Texture}
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::shadows::program::ProgramKey;
-use crate::shadows::slots::MaskMode;
+use crate::shadows::program::slots::MaskMode;
 
 /// What a frame does with the mask.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

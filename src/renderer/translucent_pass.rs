@@ -14,7 +14,7 @@ use super::scene_inputs::{bind_maps, Inputs, LightUniforms};
 use crate::engine::{BoundSampler, Gl, Samplers, ShaderProgram, TranslucentBlend};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
-use crate::shadows::slots::MATERIAL_UNIT;
+use crate::shadows::units::MATERIAL_UNIT;
 use crate::shadows::ShadowKind;
 
 /// Whether `item` is left to this pass: translucent, and the frame has no shadow volumes

@@ -10,7 +10,7 @@ use super::Renderer;
 use crate::engine::{Mesh, Outputs, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::shadows::slots::MaskMode;
+use crate::shadows::program::slots::MaskMode;
 use crate::shadows::volumetric::vertex_light;
 use crate::shadows::ShadowKind;
 

@@ -16,7 +16,7 @@ use crate::engine::{VolumeDraw, VolumePassGuard};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::slots::MaskMode;
+use crate::shadows::program::slots::MaskMode;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 

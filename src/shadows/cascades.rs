@@ -16,7 +16,7 @@
 use glam::{DVec3, Vec3};
 
 use super::casters::casters;
-use super::fitted::{aabb, corners, FittedBox};
+use super::camera::fitted::{aabb, corners, FittedBox};
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::engine::ShaderProgram;
@@ -300,6 +300,11 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
 
 /// Its part of the generated snippets (one light has cascades): shaders/lib/shadow_cascades.glsl
 /// and its `calcShadowCascades` call.
+/// Light `i`'s part of the scene program: the layered lookup of shadow_layers.glsl.
+pub fn glsl(i: usize, _p: usize, test: &super::ShadowTest) -> Option<super::LightGlsl> {
+    Some(layers::glsl(&SNIPPET, i, test))
+}
+
 pub const SNIPPET: layers::Snippet = layers::Snippet {
     files: &["lib/shadow_cascades.glsl"],
     function: "calcShadowCascades",

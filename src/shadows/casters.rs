@@ -4,15 +4,16 @@
 
 use std::rc::Rc;
 
-use glam::{DMat4, DVec3, Vec4};
+use glam::{DMat4, Vec4};
 
 use crate::engine::instances;
 use crate::engine::{DepthState, Gl, InstanceBuffer, Mesh, ShaderProgram};
 use crate::error::Result;
-use crate::scene::{GameItem, Light, Scene};
-use crate::settings::{PointPass, ShadowSettings};
+use crate::scene::{GameItem, Scene};
+use crate::settings::{PointPass, ShadowSettings, Volumetric};
 use crate::shaders;
 
+use super::camera::culling::may_land;
 use super::{DepthPass, ShadowView};
 
 /// The depth programs, each compiled when a technique first needs it.
@@ -102,34 +103,11 @@ pub fn depth_state(settings: &ShadowSettings) -> DepthState {
     }
 }
 
-/// Whether a caster whose world box is `lo..hi` can land in the map of `light` seen through
-/// `camera`: a point light's cube sees a ball of radius `far`; a 2D map its view volume.
-pub fn may_land(light: &Light, camera: &ShadowView, lo: DVec3, hi: DVec3) -> bool {
-    if let Light::Point(p) = light {
-        let nearest = p.position.as_dvec3().clamp(lo, hi);
-        return nearest.distance(p.position.as_dvec3()) <= f64::from(p.far);
-    }
-    !beyond_a_plane(camera.projection.as_dmat4() * camera.view64, lo, hi)
-}
-
-/// Whether the box `lo..hi` lies wholly beyond one of the clip planes of `clip` (all eight
-/// corners beyond x < -w, x > w, y < -w, y > w, z < -w or z > w): a conservative cull, a box
-/// it keeps may still miss the volume.
-pub fn beyond_a_plane(clip: DMat4, lo: DVec3, hi: DVec3) -> bool {
-    let corners = super::fitted::corners(lo, hi).map(|c| clip * c.extend(1.0));
-    let beyond = |f: &dyn Fn(&glam::DVec4) -> bool| corners.iter().all(f);
-    beyond(&|c| c.x < -c.w)
-        || beyond(&|c| c.x > c.w)
-        || beyond(&|c| c.y < -c.w)
-        || beyond(&|c| c.y > c.w)
-        || beyond(&|c| c.z < -c.w)
-        || beyond(&|c| c.z > c.w)
-}
-
 /// Draws light `index`'s casters into the bound 2D map with `program` (depth.vert's
 /// uniforms), seen through `view`, and counts them: only casters that can land in the map,
 /// the rest would be clipped anyway, and of those only the ones in `only` when given (the
-/// casters a fitted box was fitted to).
+/// casters a fitted box was fitted to). With `volumetric = "solid"` the translucent casters
+/// are drawn too, as opaque ones, every one of them.
 pub fn draw_map_casters(
     pass: &mut DepthPass,
     scene: &Scene,
@@ -141,13 +119,20 @@ pub fn draw_map_casters(
     program.set_mat4("orthoProjectionMatrix", &view.projection);
     let light = &scene.lights[index];
     let boxes = pass.boxes;
+    let solid = pass.settings.volumetric == Volumetric::Solid;
     let keep = |k: usize| {
+        if scene.items[k].casts_translucent {
+            return true; // drawn only when solid, every one of them
+        }
         only.is_none_or(|o| o.contains(&k)) && may_land(light, view, boxes[k].0, boxes[k].1)
     };
-    let drawn = draw_casters(pass.gpu(), scene, program, view.view64, keep);
+    let drawn = draw_casters_with(pass.gpu(), scene, program, view.view64, keep, None, solid);
+    let solid_casters = match solid {
+        true => scene.items.iter().filter(|i| i.casts_translucent).count() as u64,
+        false => 0,
+    };
     pass.casters.drawn += drawn as u64;
-    pass.casters.total += casters(scene);
-    super::volumetric::draw_solid(pass, scene, program, view.view64);
+    pass.casters.total += casters(scene) + solid_casters;
 }
 
 /// Draws every shadow caster that `keep` (by item index) lets through with `light * model`
@@ -161,11 +146,12 @@ pub fn draw_casters(
     light: DMat4,
     keep: impl Fn(usize) -> bool,
 ) -> usize {
-    draw_casters_with((meshes, instances), scene, program, light, keep, None)
+    draw_casters_with((meshes, instances), scene, program, light, keep, None, false)
 }
 
 /// [`draw_casters`], with `faces` giving each drawn item (by index) a texel of its own after
-/// its matrix (a cube map's faces to draw it into). The casters are gathered mesh by mesh in
+/// its matrix (a cube map's faces to draw it into), and with `translucent` the translucent
+/// casters drawn as opaque ones (`volumetric = "solid"`). The casters are gathered mesh by mesh in
 /// scene order (the book's order), their matrices uploaded at once, and each mesh's drawn
 /// with one instanced call.
 pub fn draw_casters_with(
@@ -175,9 +161,13 @@ pub fn draw_casters_with(
     light: DMat4,
     keep: impl Fn(usize) -> bool,
     faces: Option<&dyn Fn(usize) -> Vec4>,
+    translucent: bool,
 ) -> usize {
     let mut kept: Vec<(usize, &GameItem)> = (scene.items.iter().enumerate())
-        .filter(|(k, i)| i.mesh < meshes.len() && i.casts_shadows && keep(*k))
+        .filter(|(k, i)| {
+            let casts = i.casts_shadows || (translucent && i.casts_translucent);
+            i.mesh < meshes.len() && casts && keep(*k)
+        })
         .collect();
     kept.sort_by_key(|(_, i)| i.mesh);
     let stride = if faces.is_some() { 5 } else { 4 };

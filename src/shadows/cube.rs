@@ -6,10 +6,12 @@
 use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
 use super::camera::point_camera;
-use super::casters::{
-    beyond_a_plane, casters, depth_state, draw_casters, draw_casters_with, may_land,
+use super::camera::culling::{beyond_a_plane, may_land};
+use super::casters::{casters, depth_state, draw_casters, draw_casters_with};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
+    Technique,
 };
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 use crate::engine::{state, CubeShadowMap, DepthPassGuard, Gl, Sampling, Texture};
 use crate::error::Result;
 use crate::scene::{Light, PointLight, Scene};
@@ -112,7 +114,7 @@ impl Technique for Cube {
                 program.set_mat4_array("faceProjections", &faces);
                 let keep = |k: usize| masks[k] != 0;
                 let faces = |k: usize| Vec4::new(masks[k] as f32, 0.0, 0.0, 0.0);
-                draw_casters_with(gpu, scene, program, to_light, keep, Some(&faces));
+                draw_casters_with(gpu, scene, program, to_light, keep, Some(&faces), false);
             }
             PointPass::SixPasses => {
                 for (face, clip) in faces.iter().enumerate() {
@@ -171,3 +173,24 @@ impl Technique for Cube {
         DepthViewKind::Cube
     }
 }
+/// Light `i`'s part of the generated snippets, its position relative to the fragment in
+/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
+/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let function = match test.pcf_radius {
+        0 => "calcShadowCube",
+        _ => "calcShadowCubeSoft",
+    };
+    LightGlsl {
+        snippets: vec!["lib/shadow_cube.glsl"],
+        sampler_type: "samplerCube",
+        test: format!(
+            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
+            SAMPLERS[i],
+            test.bias_glsl(i),
+            test.beyond_far_lit
+        ),
+        defines: Vec::new(),
+    }
+}
+

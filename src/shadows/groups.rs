@@ -1,5 +1,5 @@
 //! Caster groups: a directional light's box fitted per group of casters (past the chapters,
-//! and past [`super::fitted`]'s one box).
+//! and past [`super::camera::fitted`]'s one box).
 //!
 //! One fitted box must hold every caster whose shadow the camera sees; two casters far
 //! apart in the light's view make it large, and its texels coarse over both (LearnOpenGL's
@@ -13,7 +13,7 @@
 use glam::DVec3;
 
 use super::casters::casters;
-use super::fitted::{FittedBox, LightFit};
+use super::camera::fitted::{FittedBox, LightFit};
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::scene::{DirectionalLight, Scene};
@@ -25,6 +25,11 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
 
 /// Its part of the generated snippets (one light is layered): shaders/lib/shadow_groups.glsl
 /// and its `calcShadowGroups` call.
+/// Light `i`'s part of the scene program: the layered lookup of shadow_layers.glsl.
+pub fn glsl(i: usize, _p: usize, test: &super::ShadowTest) -> Option<super::LightGlsl> {
+    Some(layers::glsl(&SNIPPET, i, test))
+}
+
 pub const SNIPPET: layers::Snippet = layers::Snippet {
     files: &["lib/shadow_groups.glsl"],
     function: "calcShadowGroups",

@@ -6,13 +6,16 @@
 //!
 //! One light per scene is layered: its positions in every layer are worked out per vertex
 //! (`cascadePos` in scene.vert), and four layers of one light already fill GL 3.3's 64
-//! vertex outputs with four lights ([`super::slots::vertex_outputs`]).
+//! vertex outputs with four lights ([`super::program::slots::vertex_outputs`]).
 
 use glam::{DMat4, Mat4, Vec3};
 
 use super::casters::{depth_state, draw_casters};
-use super::fitted::FittedBox;
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use super::camera::fitted::FittedBox;
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
+    Technique,
+};
 use crate::engine::{
     state, CascadeShadowMap, DepthPassGuard, Gl, Sampling, ShaderProgram, Texture,
 };
@@ -198,3 +201,29 @@ pub fn camera_relative_matrix(b: &FittedBox, camera_position: Vec3) -> DMat4 {
         * b.view
         * DMat4::from_translation(camera_position.as_dvec3())
 }
+/// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
+/// and its filter as the defines of shadow_layers.glsl (one light is layered).
+pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
+    let sampler_type = match test.hardware {
+        true => "sampler2DArrayShadow",
+        false => "sampler2DArray",
+    };
+    let fragment = if snippet.takes_fragment { ", f" } else { "" };
+    LightGlsl {
+        snippets: snippet.files.to_vec(),
+        sampler_type,
+        test: format!(
+            "{}({}, {}{fragment})",
+            snippet.function,
+            snippet.samplers[i],
+            test.bias_glsl(i)
+        ),
+        defines: vec![
+            ("LAYER_SAMPLER", sampler_type.to_string()),
+            ("LAYER_TEXEL", test.texel_glsl()),
+            ("LAYER_RADIUS", test.pcf_radius.to_string()),
+            ("LAYER_TAPS", test.kernel.to_string()),
+        ],
+    }
+}
+

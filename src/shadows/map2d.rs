@@ -11,13 +11,15 @@
 //! perspective, a spot's or a fitted one) and the map behind [`super::Technique`].
 
 mod camera;
+mod glsl;
 mod technique;
 
 pub use super::casters::draw_map_casters;
 pub use camera::{camera, camera_and_casters};
+pub use glsl::glsl;
 
 use super::casters::depth_state;
-use super::patch::{self, Patch};
+use super::cache::patch::{self, Patch};
 use super::{DepthPass, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
 use crate::error::Result;

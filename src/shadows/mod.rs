@@ -29,17 +29,14 @@ pub mod camera;
 pub mod cascades;
 pub mod casters;
 pub mod cube;
-pub mod fitted;
 pub mod groups;
 pub mod layers;
 pub mod map2d;
 pub mod moments;
-pub mod patch;
 pub mod plan;
 pub mod program;
-pub mod schedule;
-pub mod slots;
 pub mod summed;
+pub mod units;
 pub mod volumes;
 pub mod volumetric;
 
@@ -48,7 +45,12 @@ use glam::{DMat4, DVec3, Mat4, Vec3};
 use crate::engine::{Gl, InstanceBuffer, Mesh, Sampling, ShaderProgram, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
-use crate::settings::ShadowSettings;
+use crate::settings::{
+    glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
+    TranslucentReceivers,
+};
+use moments::MomentTest;
+use volumetric::VolumetricKey;
 
 /// What a light's shadow is stored in, and so which technique draws it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -79,19 +81,76 @@ impl ShadowKind {
     /// Makes the storage of this kind for `settings` (`None` for a light that does not cast,
     /// and for volumes, which need none).
     pub fn create(self, gl: &Gl, settings: &ShadowSettings) -> Result<Option<Box<dyn Technique>>> {
-        Ok(match self {
-            ShadowKind::None | ShadowKind::Volume => None,
-            ShadowKind::Map => Some(Box::new(map2d::Map2d::new(gl, settings)?)),
-            ShadowKind::Cube => Some(Box::new(cube::Cube::new(gl, settings)?)),
-            ShadowKind::Cascades => Some(Box::new(layers::Layered::<cascades::Cascades>::new(
-                gl, settings,
-            )?)),
-            ShadowKind::Groups => Some(Box::new(layers::Layered::<groups::Groups>::new(
-                gl, settings,
-            )?)),
-            ShadowKind::Moments => Some(Box::new(moments::Moments::new(gl, settings)?)),
+        self.room().map(|r| (r.create)(gl, settings)).transpose()
+    }
+
+    /// Light `i`'s test in the scene program, its light-space position (if any) in map slot
+    /// `p`: the technique's library files, sampler type and call.
+    pub fn glsl(self, i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
+        self.room().and_then(|r| (r.glsl)(i, p, test))
+    }
+
+    /// The sampler uniform of light `index`'s map, if it has one.
+    pub fn sampler(self, index: usize) -> Option<&'static str> {
+        self.room().and_then(|r| r.samplers.get(index).copied())
+    }
+
+    /// Whether the vertex shader gives the light a light-space position (a 2D or cube
+    /// map's `mlightviewVertexPos` slot).
+    pub fn map_slot(self) -> bool {
+        self.room().is_some_and(|r| r.map_slot)
+    }
+
+    /// The technique behind each kind: the one table a new technique joins.
+    fn room(self) -> Option<Room> {
+        let room = |create, glsl, samplers, map_slot| Room {
+            create,
+            glsl,
+            samplers,
+            map_slot,
+        };
+        Some(match self {
+            ShadowKind::None | ShadowKind::Volume => return None,
+            ShadowKind::Map => room(
+                |gl, s| Ok(Box::new(map2d::Map2d::new(gl, s)?)),
+                |i, p, t| Some(map2d::glsl(i, p, t)),
+                &map2d::SAMPLERS,
+                true,
+            ),
+            ShadowKind::Cube => room(
+                |gl, s| Ok(Box::new(cube::Cube::new(gl, s)?)),
+                |i, p, t| Some(cube::glsl(i, p, t)),
+                &cube::SAMPLERS,
+                true,
+            ),
+            ShadowKind::Cascades => room(
+                |gl, s| Ok(Box::new(layers::Layered::<cascades::Cascades>::new(gl, s)?)),
+                cascades::glsl,
+                &cascades::SAMPLERS,
+                false,
+            ),
+            ShadowKind::Groups => room(
+                |gl, s| Ok(Box::new(layers::Layered::<groups::Groups>::new(gl, s)?)),
+                groups::glsl,
+                &groups::SAMPLERS,
+                false,
+            ),
+            ShadowKind::Moments => room(
+                |gl, s| Ok(Box::new(moments::Moments::new(gl, s)?)),
+                moments::glsl,
+                &map2d::SAMPLERS,
+                true,
+            ),
         })
     }
+}
+
+/// A technique's entries in the kind table ([`ShadowKind::room`]).
+struct Room {
+    create: fn(&Gl, &ShadowSettings) -> Result<Box<dyn Technique>>,
+    glsl: fn(usize, usize, &ShadowTest) -> Option<LightGlsl>,
+    samplers: &'static [&'static str; crate::scene::MAX_LIGHTS],
+    map_slot: bool,
 }
 
 /// What a filter costs per frame: lookups per shaded pixel, passes over the map and the
@@ -201,10 +260,126 @@ pub struct SlotTransform {
 /// chose, with the light's settings as arguments (1 = lit). A layered light's filter is
 /// the program's, so it comes as `defines`.
 pub struct LightGlsl {
-    pub snippets: &'static [&'static str],
+    pub snippets: Vec<&'static str>,
     pub sampler_type: &'static str,
     pub test: String,
     pub defines: Vec<(&'static str, String)>,
+}
+
+/// The shadow test's settings, which the generated call passes as arguments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ShadowTest {
+    pub pcf_radius: u32,
+    pub hardware: bool,
+    pub bias_mode: BiasMode,
+    pub bias_bits: u32,
+    pub bias_min_bits: u32,
+    pub beyond_far_lit: bool,
+    pub normal_offset: bool,
+    /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
+    pub map_size: MapSize,
+    /// [`Filter::kernel`]: the grid, or a soft filter (shaders/lib/soft_filters.glsl).
+    pub kernel: u32,
+    /// PCSS's taps (0 for the other filters, so their key ignores them).
+    pub pcss_blocker_taps: u32,
+    pub pcss_filter_taps: u32,
+    /// PCSS: the light's map is a perspective one (its depth is not linear).
+    pub pcss_perspective: bool,
+    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
+    pub map_depth: map2d::MapDepth,
+    /// A moment filter's own constants.
+    pub moments: Option<MomentTest>,
+    /// A soft moment filter's lattices ([`summed::SoftCells`]).
+    pub soft_cells: Option<summed::SoftCells>,
+    /// The light's translucent map, whose transmittance multiplies the test
+    /// ([`crate::shadows::volumetric`]).
+    pub volumetric: Option<VolumetricKey>,
+    /// `translucent_receivers = "vertex"`: translucent items take this test per vertex
+    /// where it can run there ([`volumetric::receivers`]).
+    pub vertex_receivers: bool,
+}
+
+impl ShadowTest {
+    /// The test as the settings apply it ([`ShadowSettings::effective`]).
+    pub fn of(settings: &ShadowSettings) -> ShadowTest {
+        let s = settings.effective();
+        let pcss = s.filter == Filter::Pcss;
+        ShadowTest {
+            pcf_radius: s.filter.radius(),
+            hardware: s.filter.hardware(),
+            bias_mode: s.bias_mode,
+            bias_bits: s.bias.to_bits(),
+            bias_min_bits: s.bias_min.to_bits(),
+            beyond_far_lit: s.beyond_far == BeyondFar::Lit,
+            normal_offset: s.normal_offset != 0.0,
+            map_size: s.map_size,
+            moments: MomentTest::of(&s),
+            soft_cells: summed::SoftCells::of(&s),
+            kernel: s.filter.kernel(),
+            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
+            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
+            pcss_perspective: false,
+            map_depth: map2d::MapDepth::Projected,
+            volumetric: None,
+            vertex_receivers: s.translucent_receivers == TranslucentReceivers::Vertex,
+        }
+    }
+
+    /// The test of `light` under its own settings: as [`ShadowTest::of`], knowing whether
+    /// PCSS reads a perspective map (a spot's, or a directional light's perspective one).
+    pub fn for_light(light: &Light, settings: &ShadowSettings) -> ShadowTest {
+        let perspective = match light {
+            Light::Spot(_) => true,
+            Light::Directional(_) => settings.light_projection == LightProjection::Perspective,
+            Light::Point(_) => false,
+        };
+        ShadowTest {
+            pcss_perspective: perspective
+                && (settings.filter == Filter::Pcss || summed::reads_table(settings.filter)),
+            map_depth: map2d::map_depth(perspective, settings),
+            ..ShadowTest::of(settings)
+        }
+    }
+}
+
+impl ShadowTest {
+    /// Whether this test can run in a vertex shader (translucent receivers per vertex): a
+    /// 2D depth or moment map's, not PCSS's nor the soft moment filters' (they turn their
+    /// taps by the pixel and size them by screen derivatives, which a vertex shader has
+    /// not).
+    pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
+        match kind {
+            ShadowKind::Map => self.kernel != 3,
+            ShadowKind::Moments => self
+                .moments
+                .is_some_and(|m| !summed::reads_table_mode(m.mode)),
+            _ => false,
+        }
+    }
+
+    /// The bias argument of light `i`'s test (shaders/lib/bias.glsl): a number, or the
+    /// slope bias of the fragment's normal and `toLight{i}`, the direction to the light.
+    pub fn bias_glsl(&self, i: usize) -> String {
+        let bias = glsl_float(f32::from_bits(self.bias_bits));
+        match self.bias_mode {
+            BiasMode::None => "0.0".into(),
+            BiasMode::Constant => bias,
+            BiasMode::Slope => format!(
+                "slopeBias(f.normal, toLight{i}, {bias}, {})",
+                glsl_float(f32::from_bits(self.bias_min_bits))
+            ),
+        }
+    }
+
+    /// One texel of the map, `vec2(1 / width, 1 / height)`: a constant the compiler folds,
+    /// not a `textureSize` query per pixel.
+    pub fn texel_glsl(&self) -> String {
+        format!(
+            "vec2({}, {})",
+            glsl_float(1.0 / self.map_size.width as f32),
+            glsl_float(1.0 / self.map_size.height as f32)
+        )
+    }
 }
 
 /// What a depth pass draws with: the scene's meshes, the depth programs and the settings.
@@ -263,7 +438,7 @@ pub trait Technique {
         pass: &mut DepthPass,
         scene: &Scene,
         index: usize,
-        _patch: &patch::Patch,
+        _patch: &cache::patch::Patch,
     ) -> Result<ShadowView> {
         self.render_depth(pass, scene, index)
     }

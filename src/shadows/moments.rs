@@ -15,11 +15,15 @@
 
 use glam::{DVec2, DVec3};
 
-use super::casters::{depth_state, may_land};
-use super::fitted;
+use super::camera::culling::may_land;
+use super::casters::depth_state;
+use super::camera::fitted;
 use super::map2d::{camera, draw_map_casters};
 use super::summed::{self, Summed};
-use super::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
+use super::{
+    DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
+    Technique,
+};
 use crate::engine::{
     DepthPassGuard, FullScreenTriangle, Gl, MomentMap, PixelRect, Sampling, ShaderProgram, Texture,
 };
@@ -70,7 +74,7 @@ pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
 }
 
 /// The constants of shaders/lib/shadow_moments.glsl for one light (with bias.glsl's, from
-/// [`super::slots::ShadowTest`]).
+/// [`super::program::slots::ShadowTest`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct MomentTest {
     pub mode: u32,
@@ -344,6 +348,28 @@ impl Technique for Moments {
             _ => DepthViewKind::Flat,
         }
     }
+}
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
+/// `sampler2D` (the moments are filtered, not compared).
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
+    let moments = test.moments?;
+    if summed::reads_table_mode(moments.mode) {
+        return Some(summed::glsl(i, p, test, &moments));
+    }
+    let head = format!(
+        "{}, mlightviewVertexPos[{p}], {}",
+        super::map2d::SAMPLERS[i],
+        test.bias_glsl(i)
+    );
+    let tail = format!("{}, {}", moments.border_lit, test.beyond_far_lit);
+    Some(LightGlsl {
+        snippets: vec!["lib/shadow_moments.glsl"],
+        sampler_type: "sampler2D",
+        test: moments.call(&head, &tail),
+        defines: Vec::new(),
+    })
 }
 
 #[cfg(test)]

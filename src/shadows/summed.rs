@@ -15,8 +15,10 @@
 
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
+use super::moments::MomentTest;
+use super::{LightGlsl, ShadowTest};
 use crate::error::Result;
-use crate::settings::{Filter, MapSize, ShadowSettings};
+use crate::settings::{glsl_float, Filter, MapSize, ShadowSettings};
 use crate::shaders;
 
 /// Whether `filter` reads a summed-area table ([`Filter::SOFT_MOMENTS`]).
@@ -99,6 +101,58 @@ pub fn reads_table_mode(mode: u32) -> bool {
 pub const MODE_VSSM: u32 = 5;
 /// The moment shader's number for `msm-soft`.
 pub const MODE_MSM_SOFT: u32 = 6;
+
+/// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
+/// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
+/// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
+pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
+    let f = |bits: u32| glsl_float(f32::from_bits(bits));
+    let most = crate::settings::MAX_SOFT_CELLS;
+    let cells = test.soft_cells.unwrap_or(SoftCells {
+        search: most,
+        filter: most,
+    });
+    let head = format!(
+        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}], {}, {}",
+        super::map2d::SAMPLERS[i],
+        test.bias_glsl(i),
+        test.texel_glsl(),
+        cells.search.clamp(1, most),
+        cells.filter.clamp(1, most)
+    );
+    let tail = format!(
+        "{}, {}, {}",
+        test.pcss_perspective, moments.border_lit, test.beyond_far_lit
+    );
+    let call = match moments.mode {
+        MODE_MSM_SOFT => {
+            let t = moments.msm_toward_bits.map(f);
+            format!(
+                "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
+                f(moments.msm_bias_bits),
+                t[0],
+                t[1],
+                t[2],
+                t[3]
+            )
+        }
+        _ => format!(
+            "vssm({head}, {}, {}, {tail})",
+            f(moments.min_variance_bits),
+            f(moments.bleed_reduction_bits)
+        ),
+    };
+    LightGlsl {
+        snippets: vec![
+            "lib/soft_filters.glsl",
+            "lib/shadow_moments.glsl",
+            "lib/soft_moments.glsl",
+        ],
+        sampler_type: "usampler2D",
+        test: call,
+        defines: Vec::new(),
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -1,11 +1,12 @@
 //! A 2D map's light camera: the book's `OrthoCoords` box with its angle-built view (or
 //! LearnOpenGL's look-at), a perspective frustum (LearnOpenGL's comparison, the slides, the
-//! blog), a spot's frustum, or a box fitted to the scene ([`crate::shadows::fitted`]).
+//! blog), a spot's frustum, or a box fitted to the scene ([`crate::shadows::camera::fitted`]).
 
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
 use crate::shadows::camera::{perspective_view, point_camera, Perspective};
-use crate::shadows::{fitted, Rays, ShadowView};
+use crate::shadows::camera::fitted;
+use crate::shadows::{Rays, ShadowView};
 
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with
 /// `fit = "scene"` an orthographic box fitted to this scene ([`fitted::fit_ortho`]).

@@ -1,12 +1,12 @@
 //! The chapter's map behind [`Technique`]: its kind, whether its storage still fits, how
-//! the scene pass samples it, and a patch drawn into it ([`crate::shadows::patch`]).
+//! the scene pass samples it, and a patch drawn into it ([`crate::shadows::cache::patch`]).
 
 use super::{slot_transform, Map2d};
 use crate::engine::{Sampling, ShadowMap, Texture};
 use crate::error::Result;
 use crate::scene::{Light, Scene};
 use crate::settings::{DepthLookup, ShadowSettings};
-use crate::shadows::patch::Patch;
+use crate::shadows::cache::patch::Patch;
 use crate::shadows::{DepthPass, DepthViewKind, ShadowKind, ShadowView, SlotTransform, Technique};
 
 impl Technique for Map2d {

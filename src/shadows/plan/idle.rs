@@ -3,8 +3,8 @@
 
 use crate::scene::Light;
 use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
-use crate::shadows::slots::ShadowTest;
-use crate::shadows::volumetric::{method, receivers};
+use crate::shadows::ShadowTest;
+use crate::shadows::volumetric::method;
 use crate::shadows::ShadowKind;
 
 use super::LightPlan;
@@ -371,7 +371,7 @@ const NO_VERTEX_TEST: &str = "only a 2D depth or moment map's test runs per vert
 
 /// Whether a light whose shadow is `kind` under `s` can take its test per vertex.
 fn vertex_capable(kind: ShadowKind, s: &ShadowSettings) -> bool {
-    receivers::can_run_per_vertex(kind, &ShadowTest::of(s))
+    ShadowTest::of(s).runs_per_vertex(kind)
 }
 
 /// Why `translucent_receivers` does nothing in a scene with no translucent item.

@@ -73,7 +73,7 @@ mod tests {
         };
         let view = crate::shadows::light_camera(&scene, 0, &s);
         let key = |sc: &Scene, v: &ShadowView, s: &ShadowSettings| {
-            let boxes = crate::shadows::fitted::item_world_boxes(sc);
+            let boxes = crate::shadows::camera::fitted::item_world_boxes(sc);
             content_key(sc, v, settings_key(s), DepthFit::of(sc, &boxes, v.view64))
         };
         let k0 = key(&scene, &view, &s);

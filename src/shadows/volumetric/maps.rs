@@ -11,9 +11,9 @@ use crate::engine::{Gl, Mesh, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::{MapSize, Volumetric};
-use crate::shadows::patch::{footprint, TexelRect};
+use crate::shadows::camera::texels::{footprint, TexelRect};
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::{slots, ShadowView};
+use crate::shadows::ShadowView;
 
 /// One per scene light, `None` for a light without one; with the technique each was
 /// made for and the depth range each was last drawn over.
@@ -204,11 +204,11 @@ impl Maps {
             };
             let drawn = self.drawn[i].unwrap_or(TexelRect::whole(map.map().size()));
             footprints[i] = lookup_footprint(drawn, map.map().size());
-            let unit = slots::volumetric_unit(i);
+            let unit = crate::shadows::units::volumetric_unit(i);
             program.set_i32(SAMPLERS[i], unit as i32);
             map.map().bind(unit);
             if let Some(r) = &self.resolved[i] {
-                let unit = slots::resolved_unit(i);
+                let unit = crate::shadows::units::resolved_unit(i);
                 program.set_i32(resolved::SAMPLERS[i], unit as i32);
                 r.map().bind(unit);
             }

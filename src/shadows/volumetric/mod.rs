@@ -17,13 +17,12 @@ pub mod cache;
 pub mod fom;
 pub mod maps;
 pub mod osm;
-pub mod receivers;
 pub mod resolved;
 pub mod vertex_light;
 
 use glam::{DMat4, DVec3, Mat4};
 
-use super::{DepthPass, ShadowView};
+use super::ShadowView;
 use crate::engine::{Gl, Mesh, PixelRect, ShaderProgram, TranslucentMap};
 use crate::error::Result;
 use crate::scene::{GameItem, Scene};
@@ -52,26 +51,6 @@ pub fn translucent_casters(scene: &Scene) -> impl Iterator<Item = (usize, &GameI
         .iter()
         .enumerate()
         .filter(|(_, i)| i.is_translucent() && i.casts_translucent)
-}
-
-/// With `volumetric = "solid"`, draws the translucent casters into the bound 2D depth map
-/// as opaque ones (`light`: the light's view; depth.vert's uniforms) and counts them among
-/// the casters drawn and offered; otherwise nothing.
-pub fn draw_solid(pass: &mut DepthPass, scene: &Scene, program: &ShaderProgram, light: DMat4) {
-    if pass.settings.volumetric != Volumetric::Solid {
-        return;
-    }
-    let uniform = "modelLightViewMatrix";
-    let mut drawn = 0u64;
-    for (mesh_id, mesh) in pass.meshes.iter().enumerate() {
-        let items = translucent_casters(scene).filter(|(_, i)| i.mesh == mesh_id);
-        mesh.render_list(items, |(_, item)| {
-            drawn += 1;
-            program.set_mat4(uniform, &(light * item.model_matrix64()).as_mat4());
-        });
-    }
-    pass.casters.drawn += drawn;
-    pass.casters.total += drawn;
 }
 
 /// A technique that keeps a translucent map: what the plan, the renderer, the scene
@@ -215,7 +194,7 @@ impl DepthFit {
             let Some(&(lo, hi)) = boxes.get(k) else {
                 continue;
             };
-            for c in super::fitted::corners(lo, hi) {
+            for c in super::camera::fitted::corners(lo, hi) {
                 let depth = -view.transform_point3(c).z;
                 near = near.min(depth);
                 far = far.max(depth);

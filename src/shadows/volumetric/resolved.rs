@@ -22,7 +22,7 @@ use crate::engine::{FullScreenTriangle, Gl, ResolvedMap, ShaderProgram, Texture}
 use crate::error::{Error, Result};
 use crate::settings::{OpaqueReceivers, ShadowSettings};
 use crate::shaders;
-use crate::shadows::patch::TexelRect;
+use crate::shadows::camera::texels::TexelRect;
 use crate::shadows::ShadowView;
 
 /// Each light's sampler of its resolved map in the scene shader.

@@ -1,7 +1,7 @@
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::*;
-use crate::shadows::slots::{light_part, LightSlot, MaskMode, ShadowTest};
+use crate::shadows::program::slots::{light_part, LightSlot, MaskMode, ShadowTest};
 use crate::shadows::{Rays, ShadowKind};
 
 fn view(projection: Mat4, view: DMat4) -> ShadowView {

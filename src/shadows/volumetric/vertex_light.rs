@@ -146,7 +146,7 @@ mod tests {
     use crate::engine::Outputs;
     use crate::settings::{ShadowSettings, TranslucentReceivers};
     use crate::shadows::plan::ShadowPlan;
-    use crate::shadows::slots::MaskMode;
+    use crate::shadows::program::slots::MaskMode;
 
     #[test]
     fn the_key_follows_the_maps_the_program_and_the_translucent_items_not_the_camera() {

@@ -25,7 +25,7 @@ use crate::engine::{DepthPeel, FullScreenTriangle, Gl, PixelRect, ShaderProgram,
 use crate::error::Result;
 use crate::settings::{MapSize, ShadowSettings};
 use crate::shaders;
-use crate::shadows::fitted;
+use crate::shadows::camera::fitted;
 
 /// The technique (`volumetric = "avsm"`, `avsm_nodes` N, `peel_layers` K).
 pub struct Avsm;

@@ -7,45 +7,25 @@
 //! interpolated (`vertexLit`, light i in component i), as it takes the shadow mask's.
 //! Opaque items keep their tests per pixel.
 
-use super::super::slots::{light_part, map_slots, LightSlot, MaskMode, ShadowTest};
-use super::super::{summed, ShadowKind};
-use super::VolumetricKey;
+use super::slots::{light_part, map_slots, LightSlot, MaskMode};
+use crate::shadows::volumetric::VolumetricKey;
+use crate::shadows::ShadowTest;
 
 /// The generated snippet scene.vert includes.
 pub const VERTEX_SNIPPET: &str = "generated/vertex_tests.glsl";
 
-/// Whether light `slot`'s test can run in a vertex shader: a 2D depth or moment map's,
-/// not PCSS's nor the soft moment filters' (they turn their taps by the pixel and size
-/// them by screen derivatives, which a vertex shader has not).
-pub fn can_run_per_vertex(kind: ShadowKind, test: &ShadowTest) -> bool {
-    match kind {
-        ShadowKind::Map => test.kernel != 3,
-        ShadowKind::Moments => test
-            .moments
-            .is_some_and(|m| !summed::reads_table_mode(m.mode)),
-        _ => false,
-    }
-}
-
 /// Whether translucent items take light `slot`'s test per vertex: its settings ask for it
 /// and it can run there.
 pub fn per_vertex(slot: &LightSlot) -> bool {
-    (slot.test).is_some_and(|t| t.vertex_receivers && can_run_per_vertex(slot.shadow, &t))
+    (slot.test).is_some_and(|t| t.vertex_receivers && t.runs_per_vertex(slot.shadow))
 }
 
 /// The vertex shader's snippet for these lights: the samplers and library files of the
 /// lights tested per vertex, `toLightOf` and an `addLight` that keeps each light's test,
 /// and `vertexTests`, which runs them and writes `vertexLit`.
 pub fn vertex_snippet(slots: &[LightSlot]) -> (&'static str, String) {
-    let mut head = String::from(
-        "// Made by src/shadows/volumetric/receivers.rs: the tests translucent items take per\n\
-         // vertex, each light's lines as the fragment shader has them.\n\
-         struct Fragment\n{\n    vec3 normal;\n    vec4 lit;\n};\n\n\
-         vec3 toLightOf(int i, bool positional)\n{\n    return positional ? \
-         normalize(lightVector[i] - mvVertexPos) : normalize(lightVector[i]);\n}\n\n\
-         void addLight(int i, vec3 toLight, bool cone, float lit, inout Fragment f)\n{\n    \
-         f.lit[i] = lit;\n}\n",
-    );
+    // The lines each light's test needs around it, in GLSL: shaders/lib/vertex_lights.glsl.
+    let mut head = String::from("#include \"lib/vertex_lights.glsl\"\n");
     let mut body = String::from(
         "\nvoid vertexTests()\n{\n    Fragment f;\n    f.normal = mvVertexNormal;\n    \
          f.lit = vec4(1.0);\n",

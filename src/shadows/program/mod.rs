@@ -3,10 +3,13 @@
 //! so they are compile-time constants; the key is a small `Copy` value compared every frame
 //! without allocating, and its text is made only when a program is compiled.
 
+pub mod slots;
+pub mod vertex;
+
 use super::plan::ShadowPlan;
-use super::slots::{self, LightSlot, MaskMode, ShadowTest};
-use super::volumetric::{receivers, VolumetricKey};
-use super::ShadowKind;
+use slots::{LightSlot, MaskMode};
+use super::volumetric::VolumetricKey;
+use super::{ShadowKind, ShadowTest};
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
 use crate::error::{Error, Result};
 use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
@@ -119,9 +122,9 @@ impl ProgramKey {
     }
 
     /// Whether a light's test runs per vertex in this key's translucent program
-    /// ([`receivers::per_vertex`]).
+    /// ([`vertex::per_vertex`]).
     pub fn tests_per_vertex(&self) -> bool {
-        self.lights.iter().flatten().any(receivers::per_vertex)
+        self.lights.iter().flatten().any(vertex::per_vertex)
     }
 
     /// Whether the translucent items take a program of their own ([`MaskMode::Vertex`]):
@@ -232,7 +235,7 @@ impl ProgramKey {
     /// key's lights (`VERTEX_CAPTURE`, [`receivers`]), for a transform feedback pass.
     pub fn capture_source(&self) -> Result<ShaderSource> {
         let key = self.with_mask(MaskMode::Vertex);
-        let generated = [receivers::vertex_snippet(&key.slots())];
+        let generated = [vertex::vertex_snippet(&key.slots())];
         let plain = shaders::scene_vert();
         let vertex = shaders::resolve(&plain.files[0], &plain.text, &generated)?;
         let mut defines = key.defines();

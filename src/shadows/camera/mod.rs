@@ -1,6 +1,10 @@
 //! Light cameras shared by the techniques: a perspective light "camera" (the slides', the
 //! blog's, a spot's) and a point light's.
 
+pub mod culling;
+pub mod fitted;
+pub mod texels;
+
 use glam::{Mat4, Vec3};
 
 use super::{Rays, ShadowView};

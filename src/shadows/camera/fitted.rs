@@ -6,7 +6,7 @@
 
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
-use super::{Rays, ShadowView};
+use crate::shadows::{Rays, ShadowView};
 use crate::scene::Scene;
 use crate::settings::MapSize;
 use crate::transformation::{light_basis, light_view};
@@ -69,7 +69,7 @@ pub fn fit_ortho_casters(
 /// What a directional light's fitted boxes are built on: the light's basis, each item's
 /// box in light space, the part of the receivers the camera can see and the casters that
 /// can shadow it. One box around all those casters is [`fit_ortho_casters`]; a box per
-/// group of them is [`super::groups`].
+/// group of them is [`crate::shadows::groups`].
 pub struct LightFit<'a> {
     scene: &'a Scene,
     basis: DMat3,

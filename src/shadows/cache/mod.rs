@@ -6,6 +6,9 @@
 //! changed one where only casters moved may redraw just the part they dirtied
 //! ([`super::patch`]).
 
+pub mod patch;
+pub mod schedule;
+
 use std::cell::RefCell;
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
@@ -71,7 +74,7 @@ pub fn content_key(
     facts.hash.hash(&mut h);
     for ((item, (lo, hi)), placement) in scene.items.iter().zip(boxes).zip(placements) {
         let seen = match &facts.camera {
-            Some(c) => super::casters::may_land(light, c, *lo, *hi),
+            Some(c) => crate::shadows::camera::culling::may_land(light, c, *lo, *hi),
             None => true,
         };
         if item.casts_shadows && seen {
@@ -154,7 +157,7 @@ mod tests {
         let mut scene = Scene::load("dummy").unwrap();
         let s = scene.shadow;
         let key = |sc: &Scene, s: &ShadowSettings| {
-            let boxes = crate::shadows::fitted::item_world_boxes(sc);
+            let boxes = crate::shadows::camera::fitted::item_world_boxes(sc);
             let follows = follows_camera(&sc.lights[0], ShadowKind::Map, s);
             let facts = LightFacts::of(sc, 0, s, follows);
             content_key(sc, &boxes, &placements(sc), 0, &facts)

@@ -14,139 +14,9 @@
 //! compiler inlines it and folds them, so a light's test costs what a hand-written one
 //! would.
 
-use super::map2d::MapDepth;
-use super::moments::MomentTest;
-use super::volumetric::{self, VolumetricKey};
-use super::{cascades, cube, groups, layers, map2d, summed, volumes, LightGlsl, ShadowKind};
-use crate::scene::Light;
-use crate::scene::MAX_LIGHTS;
-use crate::settings::{
-    glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
-    TranslucentReceivers,
-};
-
-/// The material's texture unit; light `i`'s shadow map is on unit `1 + i`.
-pub const MATERIAL_UNIT: u32 = 0;
-
-/// The texture unit of the cached shadow mask (after every light's map).
-pub const MASK_UNIT: u32 = 1 + crate::scene::MAX_LIGHTS as u32;
-
-/// The texture unit of light `index`'s shadow map.
-pub fn texture_unit(index: usize) -> u32 {
-    1 + index as u32
-}
-
-/// The texture unit of light `index`'s translucent map (after the mask).
-pub fn volumetric_unit(index: usize) -> u32 {
-    MASK_UNIT + 1 + index as u32
-}
-
-/// The texture unit of light `index`'s resolved map (after the translucent maps).
-pub fn resolved_unit(index: usize) -> u32 {
-    volumetric_unit(MAX_LIGHTS) + index as u32
-}
-
-/// The shadow test's settings, which the generated call passes as arguments.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct ShadowTest {
-    pub pcf_radius: u32,
-    pub hardware: bool,
-    pub bias_mode: BiasMode,
-    pub bias_bits: u32,
-    pub bias_min_bits: u32,
-    pub beyond_far_lit: bool,
-    pub normal_offset: bool,
-    /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
-    pub map_size: MapSize,
-    /// [`Filter::kernel`]: the grid, or a soft filter (shaders/lib/soft_filters.glsl).
-    pub kernel: u32,
-    /// PCSS's taps (0 for the other filters, so their key ignores them).
-    pub pcss_blocker_taps: u32,
-    pub pcss_filter_taps: u32,
-    /// PCSS: the light's map is a perspective one (its depth is not linear).
-    pub pcss_perspective: bool,
-    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
-    pub map_depth: map2d::MapDepth,
-    /// A moment filter's own constants.
-    pub moments: Option<MomentTest>,
-    /// A soft moment filter's lattices ([`summed::SoftCells`]).
-    pub soft_cells: Option<summed::SoftCells>,
-    /// The light's translucent map, whose transmittance multiplies the test
-    /// ([`crate::shadows::volumetric`]).
-    pub volumetric: Option<VolumetricKey>,
-    /// `translucent_receivers = "vertex"`: translucent items take this test per vertex
-    /// where it can run there ([`volumetric::receivers`]).
-    pub vertex_receivers: bool,
-}
-
-impl ShadowTest {
-    /// The test as the settings apply it ([`ShadowSettings::effective`]).
-    pub fn of(settings: &ShadowSettings) -> ShadowTest {
-        let s = settings.effective();
-        let pcss = s.filter == Filter::Pcss;
-        ShadowTest {
-            pcf_radius: s.filter.radius(),
-            hardware: s.filter.hardware(),
-            bias_mode: s.bias_mode,
-            bias_bits: s.bias.to_bits(),
-            bias_min_bits: s.bias_min.to_bits(),
-            beyond_far_lit: s.beyond_far == BeyondFar::Lit,
-            normal_offset: s.normal_offset != 0.0,
-            map_size: s.map_size,
-            moments: MomentTest::of(&s),
-            soft_cells: summed::SoftCells::of(&s),
-            kernel: s.filter.kernel(),
-            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
-            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
-            pcss_perspective: false,
-            map_depth: map2d::MapDepth::Projected,
-            volumetric: None,
-            vertex_receivers: s.translucent_receivers == TranslucentReceivers::Vertex,
-        }
-    }
-
-    /// The test of `light` under its own settings: as [`ShadowTest::of`], knowing whether
-    /// PCSS reads a perspective map (a spot's, or a directional light's perspective one).
-    pub fn for_light(light: &Light, settings: &ShadowSettings) -> ShadowTest {
-        let perspective = match light {
-            Light::Spot(_) => true,
-            Light::Directional(_) => settings.light_projection == LightProjection::Perspective,
-            Light::Point(_) => false,
-        };
-        ShadowTest {
-            pcss_perspective: perspective
-                && (settings.filter == Filter::Pcss || summed::reads_table(settings.filter)),
-            map_depth: map2d::map_depth(perspective, settings),
-            ..ShadowTest::of(settings)
-        }
-    }
-}
-
-impl ShadowTest {
-    /// The bias argument of light `i`'s test (shaders/lib/bias.glsl): a number, or the
-    /// slope bias of the fragment's normal and `toLight{i}`, the direction to the light.
-    pub fn bias_glsl(&self, i: usize) -> String {
-        let bias = glsl_float(f32::from_bits(self.bias_bits));
-        match self.bias_mode {
-            BiasMode::None => "0.0".into(),
-            BiasMode::Constant => bias,
-            BiasMode::Slope => format!(
-                "slopeBias(f.normal, toLight{i}, {bias}, {})",
-                glsl_float(f32::from_bits(self.bias_min_bits))
-            ),
-        }
-    }
-
-    /// One texel of the map, `vec2(1 / width, 1 / height)`: a constant the compiler folds,
-    /// not a `textureSize` query per pixel.
-    pub fn texel_glsl(&self) -> String {
-        format!(
-            "vec2({}, {})",
-            glsl_float(1.0 / self.map_size.width as f32),
-            glsl_float(1.0 / self.map_size.height as f32)
-        )
-    }
-}
+use super::vertex::per_vertex;
+use crate::settings::BiasMode;
+use crate::shadows::{volumes, ShadowKind, ShadowTest};
 
 /// What the scene program is compiled for about one light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -176,32 +46,15 @@ pub enum MaskMode {
     Vertex,
 }
 
-/// The sampler uniform of light `index`'s shadow, if it has one.
-pub fn sampler_name(index: usize, kind: ShadowKind) -> Option<&'static str> {
-    match kind {
-        _ if index >= MAX_LIGHTS => None,
-        ShadowKind::None | ShadowKind::Volume => None,
-        ShadowKind::Map | ShadowKind::Moments => Some(map2d::SAMPLERS[index]),
-        ShadowKind::Cube => Some(cube::SAMPLERS[index]),
-        ShadowKind::Cascades => Some(cascades::SAMPLERS[index]),
-        ShadowKind::Groups => Some(groups::SAMPLERS[index]),
-    }
-}
-
 /// For each light, its slot among the lights with a 2D or cube map (the ones that get a
 /// light-space position from the vertex shader), in order; `None` for the others.
 pub fn map_slots(kinds: impl IntoIterator<Item = ShadowKind>) -> Vec<Option<usize>> {
     let mut next = 0;
     kinds
         .into_iter()
-        .map(|k| match k {
-            ShadowKind::Map | ShadowKind::Cube | ShadowKind::Moments => {
-                next += 1;
-                Some(next - 1)
-            }
-            ShadowKind::None | ShadowKind::Cascades | ShadowKind::Groups | ShadowKind::Volume => {
-                None
-            }
+        .map(|k| {
+            next += usize::from(k.map_slot());
+            k.map_slot().then(|| next - 1)
         })
         .collect()
 }
@@ -238,23 +91,13 @@ pub struct LightPart {
 /// light added to the fragment times that test.
 pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> LightPart {
     let (positional, cone) = (slot.positional, slot.cone);
-    let glsl = slot.test.and_then(|test| match slot.shadow {
-        ShadowKind::None | ShadowKind::Volume => None,
-        ShadowKind::Map => Some(map2d_glsl(i, p, &test)),
-        ShadowKind::Cube => Some(cube_glsl(i, p, &test)),
-        ShadowKind::Cascades => Some(layered_glsl(&cascades::SNIPPET, i, &test)),
-        ShadowKind::Groups => Some(layered_glsl(&groups::SNIPPET, i, &test)),
-        ShadowKind::Moments if summed::reads_table_mode(test.moments?.mode) => {
-            Some(soft_moments_glsl(i, p, &test, &test.moments?))
-        }
-        ShadowKind::Moments => Some(moments_glsl(i, p, &test, &test.moments?)),
-    });
+    let glsl = slot.test.and_then(|test| slot.shadow.glsl(i, p, &test));
     let mut part = LightPart::default();
     if slot.shadow == ShadowKind::Volume {
         part.lines.push(volumes::call(i, positional, cone));
         return part;
     }
-    let (Some(glsl), Some(name)) = (glsl, sampler_name(i, slot.shadow)) else {
+    let (Some(glsl), Some(name)) = (glsl, slot.shadow.sampler(i)) else {
         part.lines
             .push(format!("addLightUnshadowed({i}, {positional}, {cone}, f);"));
         return part;
@@ -265,7 +108,7 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         ));
         return part;
     }
-    if mask == MaskMode::Vertex && volumetric::receivers::per_vertex(slot) {
+    if mask == MaskMode::Vertex && per_vertex(slot) {
         part.lines.push(format!(
             "addLight({i}, toLightOf({i}, {positional}), {cone}, vertexLit[{i}], f);"
         ));
@@ -275,10 +118,6 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
     part.defines = glsl.defines;
     if slot.test.is_some_and(|t| t.bias_mode == BiasMode::Slope) {
         part.snippets.push("lib/bias.glsl");
-    }
-    let projected = |t: ShadowTest| t.map_depth == map2d::MapDepth::Projected;
-    if slot.shadow == ShadowKind::Map && slot.test.is_some_and(|t| !projected(t)) {
-        part.snippets.push("lib/linear_depth.glsl");
     }
     part.snippets.extend(glsl.snippets);
     part.lines = vec![
@@ -300,58 +139,6 @@ pub fn light_part(i: usize, p: usize, slot: &LightSlot, mask: MaskMode) -> Light
         part.lines.insert(2, format!("lit{i} *= {call};"));
     }
     part
-}
-
-/// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
-/// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
-/// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
-fn soft_moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
-    let f = |bits: u32| glsl_float(f32::from_bits(bits));
-    let most = crate::settings::MAX_SOFT_CELLS;
-    let cells = test.soft_cells.unwrap_or(summed::SoftCells {
-        search: most,
-        filter: most,
-    });
-    let head = format!(
-        "{}, mlightviewVertexPos[{p}], {}, {}, lightPenumbra[{i}], {}, {}",
-        map2d::SAMPLERS[i],
-        test.bias_glsl(i),
-        test.texel_glsl(),
-        cells.search.clamp(1, most),
-        cells.filter.clamp(1, most)
-    );
-    let tail = format!(
-        "{}, {}, {}",
-        test.pcss_perspective, moments.border_lit, test.beyond_far_lit
-    );
-    let call = match moments.mode {
-        summed::MODE_MSM_SOFT => {
-            let t = moments.msm_toward_bits.map(f);
-            format!(
-                "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
-                f(moments.msm_bias_bits),
-                t[0],
-                t[1],
-                t[2],
-                t[3]
-            )
-        }
-        _ => format!(
-            "vssm({head}, {}, {}, {tail})",
-            f(moments.min_variance_bits),
-            f(moments.bleed_reduction_bits)
-        ),
-    };
-    LightGlsl {
-        snippets: &[
-            "lib/soft_filters.glsl",
-            "lib/shadow_moments.glsl",
-            "lib/soft_moments.glsl",
-        ],
-        sampler_type: "usampler2D",
-        test: call,
-        defines: Vec::new(),
-    }
 }
 
 /// Every light's part, in the scene's order.
@@ -402,124 +189,6 @@ pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String);
         ("generated/samplers.glsl", samplers),
         ("generated/lights.glsl", lights),
     ]
-}
-
-/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
-/// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
-/// (hardware comparisons, the playground's soft filters, PCSS).
-pub fn map2d_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
-    let map = map2d::SAMPLERS[i];
-    let (position, bias) = match test.map_depth {
-        MapDepth::Projected => (format!("mlightviewVertexPos[{p}]"), test.bias_glsl(i)),
-        MapDepth::Linear => (
-            format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
-            test.bias_glsl(i),
-        ),
-        MapDepth::LinearBias => (
-            format!(
-                "projectedBiasedPosition(mlightviewVertexPos[{p}], {}, lightDepthRange[{i}])",
-                test.bias_glsl(i)
-            ),
-            "0.0".into(),
-        ),
-    };
-    let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
-    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
-    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
-        _ if test.hardware => (
-            &["lib/hardware_pcf.glsl"],
-            "sampler2DShadow",
-            format!("calcShadowHardware({head}, {r}, {far})"),
-        ),
-        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
-        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
-        3 => (
-            SOFT,
-            "sampler2D",
-            format!(
-                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
-                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
-            ),
-        ),
-        _ => (
-            &["lib/shadow_2d.glsl"],
-            "sampler2D",
-            format!("calcShadow({head}, {r}, {far})"),
-        ),
-    };
-    LightGlsl {
-        snippets,
-        sampler_type,
-        test,
-        defines: Vec::new(),
-    }
-}
-
-const SOFT: &[&str] = &["lib/soft_filters.glsl"];
-
-/// Light `i`'s part of the generated snippets, its position relative to the fragment in
-/// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
-/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
-pub fn cube_glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
-    let function = match test.pcf_radius {
-        0 => "calcShadowCube",
-        _ => "calcShadowCubeSoft",
-    };
-    LightGlsl {
-        snippets: &["lib/shadow_cube.glsl"],
-        sampler_type: "samplerCube",
-        test: format!(
-            "{function}({}, mlightviewVertexPos[{p}].xyz, lightFar[{i}], {}, {})",
-            cube::SAMPLERS[i],
-            test.bias_glsl(i),
-            test.beyond_far_lit
-        ),
-        defines: Vec::new(),
-    }
-}
-
-/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
-/// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
-/// `sampler2D` (the moments are filtered, not compared).
-pub fn moments_glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
-    let head = format!(
-        "{}, mlightviewVertexPos[{p}], {}",
-        map2d::SAMPLERS[i],
-        test.bias_glsl(i)
-    );
-    let tail = format!("{}, {}", moments.border_lit, test.beyond_far_lit);
-    LightGlsl {
-        snippets: &["lib/shadow_moments.glsl"],
-        sampler_type: "sampler2D",
-        test: moments.call(&head, &tail),
-        defines: Vec::new(),
-    }
-}
-
-/// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
-/// and its filter as the defines of shadow_layers.glsl (one light is layered).
-pub fn layered_glsl(snippet: &layers::Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
-    let sampler_type = match test.hardware {
-        true => "sampler2DArrayShadow",
-        false => "sampler2DArray",
-    };
-    let fragment = if snippet.takes_fragment { ", f" } else { "" };
-    LightGlsl {
-        snippets: snippet.files,
-        sampler_type,
-        test: format!(
-            "{}({}, {}{fragment})",
-            snippet.function,
-            snippet.samplers[i],
-            test.bias_glsl(i)
-        ),
-        defines: vec![
-            ("LAYER_SAMPLER", sampler_type.to_string()),
-            ("LAYER_TEXEL", test.texel_glsl()),
-            ("LAYER_RADIUS", test.pcf_radius.to_string()),
-            ("LAYER_TAPS", test.kernel.to_string()),
-        ],
-    }
 }
 
 #[cfg(test)]

@@ -5,131 +5,18 @@
 //! them. A texel's depth is the nearest of the fragments drawn into it whatever their order,
 //! and the scissor only drops fragments, so the patched map is the full redraw's, bit for bit.
 //!
-//! Only the chapter's depth map ([`super::map2d`]) is patched. A box fitted to the scene
+//! Only the chapter's depth map ([`crate::shadows::map2d`]) is patched. A box fitted to the scene
 //! and cascades follow the camera and the casters, so their view changes and they are drawn
 //! whole; a moment map is blurred (a texel depends on its neighbours) and a cube map has six
 //! faces: both are drawn whole too.
 
-use glam::{DMat4, DVec3};
+use glam::DVec3;
 
-use super::cache::LightFacts;
-use super::ShadowView;
-use crate::engine::PixelRect;
+use crate::shadows::cache::LightFacts;
+use crate::shadows::camera::texels::{footprint, TexelRect};
+use crate::shadows::ShadowView;
 use crate::scene::Scene;
 use crate::settings::MapSize;
-
-/// A rectangle of map texels, `x0..x1` by `y0..y1` (half-open) from the bottom-left corner,
-/// GL's way.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct TexelRect {
-    pub x0: u32,
-    pub y0: u32,
-    pub x1: u32,
-    pub y1: u32,
-}
-
-impl TexelRect {
-    /// The whole of a `size` map.
-    pub fn whole(size: MapSize) -> TexelRect {
-        TexelRect {
-            x0: 0,
-            y0: 0,
-            x1: size.width,
-            y1: size.height,
-        }
-    }
-
-    pub fn is_empty(self) -> bool {
-        self.x0 >= self.x1 || self.y0 >= self.y1
-    }
-
-    pub fn texels(self) -> u64 {
-        match self.is_empty() {
-            true => 0,
-            false => u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0),
-        }
-    }
-
-    /// The smallest rectangle holding both (an empty one adds nothing).
-    pub fn union(self, other: TexelRect) -> TexelRect {
-        match (self.is_empty(), other.is_empty()) {
-            (true, _) => other,
-            (_, true) => self,
-            _ => TexelRect {
-                x0: self.x0.min(other.x0),
-                y0: self.y0.min(other.y0),
-                x1: self.x1.max(other.x1),
-                y1: self.y1.max(other.y1),
-            },
-        }
-    }
-
-    /// Grown by `by` texels on every side, clipped to a `size` map (empty stays empty).
-    pub fn grown(self, by: u32, size: MapSize) -> TexelRect {
-        if self.is_empty() {
-            return self;
-        }
-        TexelRect {
-            x0: self.x0.saturating_sub(by),
-            y0: self.y0.saturating_sub(by),
-            x1: self.x1.saturating_add(by).min(size.width),
-            y1: self.y1.saturating_add(by).min(size.height),
-        }
-    }
-
-    /// Whether they share a texel.
-    pub fn overlaps(self, other: TexelRect) -> bool {
-        !self.is_empty()
-            && !other.is_empty()
-            && self.x0 < other.x1
-            && other.x0 < self.x1
-            && self.y0 < other.y1
-            && other.y0 < self.y1
-    }
-
-    pub fn pixels(self) -> PixelRect {
-        PixelRect {
-            x: self.x0,
-            y: self.y0,
-            width: self.x1.saturating_sub(self.x0),
-            height: self.y1.saturating_sub(self.y0),
-        }
-    }
-}
-
-/// The texels of a `size` map seen through `view` that the world box `lo..hi` can cover:
-/// its corners' light-space rectangle widened to whole texels, clipped to the map. A texel
-/// is drawn when its centre is inside a triangle, so this holds every texel the box's
-/// contents can write with half a texel to spare. A box reaching behind a perspective
-/// light's eye (or not a number) can cover the whole map.
-pub fn footprint(view: &ShadowView, size: MapSize, lo: DVec3, hi: DVec3) -> TexelRect {
-    let clip = view.projection.as_dmat4() * view.view64;
-    footprint_in(clip, size, lo, hi)
-}
-
-fn footprint_in(clip: DMat4, size: MapSize, lo: DVec3, hi: DVec3) -> TexelRect {
-    let (w, h) = (f64::from(size.width), f64::from(size.height));
-    let mut min = glam::DVec2::INFINITY;
-    let mut max = glam::DVec2::NEG_INFINITY;
-    for c in super::fitted::corners(lo, hi) {
-        let p = clip * c.extend(1.0);
-        if p.w <= 0.0 || !p.is_finite() {
-            return TexelRect::whole(size);
-        }
-        // Normalised device coordinates to the map's texels (the viewport is the map).
-        let t = glam::DVec2::new((p.x / p.w + 1.0) * 0.5 * w, (p.y / p.w + 1.0) * 0.5 * h);
-        min = min.min(t);
-        max = max.max(t);
-    }
-    // Clamped before the cast, so a box far off the map is an empty rectangle at its edge.
-    let texel = |v: f64, side: f64| v.clamp(0.0, side) as u32;
-    TexelRect {
-        x0: texel(min.x.floor(), w),
-        y0: texel(min.y.floor(), h),
-        x1: texel(max.x.ceil(), w),
-        y1: texel(max.y.ceil(), h),
-    }
-}
 
 /// Whether redrawing `region` of a `size` map is cheaper than drawing it whole: when it is
 /// at most half the map. A patch clears and fills at most half the texels and draws only
@@ -158,7 +45,7 @@ pub fn casters_within(fitted: Option<Vec<usize>>, patch: Option<&Patch>) -> Opti
     }
 }
 
-/// A casting item as its map was drawn: where it was ([`super::cache::hash_placement`]) and
+/// A casting item as its map was drawn: where it was ([`crate::shadows::cache::hash_placement`]) and
 /// the texels it could cover.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct Placed {
@@ -171,7 +58,7 @@ struct Placed {
 pub struct MapRecord {
     /// The light camera's matrices, bit for bit.
     camera: Vec<u64>,
-    /// The light and its settings ([`super::cache::hash_light`]).
+    /// The light and its settings ([`crate::shadows::cache::hash_light`]).
     light: u64,
     size: MapSize,
     /// Per scene item: `None` for one that does not cast.
@@ -182,7 +69,7 @@ impl MapRecord {
     /// A map of `size` as it would be drawn now through the fixed camera in `facts`
     /// (`None` for a map that follows the viewer: it is not patched), `boxes` and
     /// `placements` being the items' world boxes and placement hashes this frame
-    /// ([`super::fitted::item_world_boxes`], [`super::cache::placements`]).
+    /// ([`crate::shadows::camera::fitted::item_world_boxes`], [`crate::shadows::cache::placements`]).
     pub fn of(
         scene: &Scene,
         boxes: &[(DVec3, DVec3)],
@@ -285,7 +172,7 @@ mod tests {
             near: 1.0,
             far: 20.0,
             texel_world: 20.0 / 1024.0,
-            rays: super::super::Rays::Parallel { to_light: Vec3::Z },
+            rays: crate::shadows::Rays::Parallel { to_light: Vec3::Z },
         }
     }
 
@@ -365,7 +252,7 @@ mod tests {
         let mut scene = Scene::load("dummy").unwrap();
         let s = scene.shadow;
         let record = |sc: &Scene, s: &ShadowSettings| {
-            let boxes = crate::shadows::fitted::item_world_boxes(sc);
+            let boxes = crate::shadows::camera::fitted::item_world_boxes(sc);
             let facts = LightFacts::of(sc, 0, s, false);
             let placements = crate::shadows::cache::placements(sc);
             MapRecord::of(sc, &boxes, &placements, &facts, s.map_size)

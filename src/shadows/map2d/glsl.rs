@@ -1,0 +1,65 @@
+//! The chapter's map in the scene program: light `i`'s sampler and its call of
+//! `calcShadow` (shaders/lib/shadow_2d.glsl, "Shadows": `calcShadow`), or of its filter's
+//! function, with the light's settings as literal arguments.
+
+use super::MapDepth;
+use crate::shadows::{LightGlsl, ShadowTest};
+
+const SOFT: &[&str] = &["lib/soft_filters.glsl"];
+
+/// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
+/// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
+/// (hardware comparisons, the playground's soft filters, PCSS).
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+    let map = super::SAMPLERS[i];
+    let test_depth = test.map_depth;
+    let (position, bias) = match test.map_depth {
+        MapDepth::Projected => (format!("mlightviewVertexPos[{p}]"), test.bias_glsl(i)),
+        MapDepth::Linear => (
+            format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
+            test.bias_glsl(i),
+        ),
+        MapDepth::LinearBias => (
+            format!(
+                "projectedBiasedPosition(mlightviewVertexPos[{p}], {}, lightDepthRange[{i}])",
+                test.bias_glsl(i)
+            ),
+            "0.0".into(),
+        ),
+    };
+    let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
+    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
+    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
+        _ if test.hardware => (
+            &["lib/hardware_pcf.glsl"],
+            "sampler2DShadow",
+            format!("calcShadowHardware({head}, {r}, {far})"),
+        ),
+        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
+        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
+        3 => (
+            SOFT,
+            "sampler2D",
+            format!(
+                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
+                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
+            ),
+        ),
+        _ => (
+            &["lib/shadow_2d.glsl"],
+            "sampler2D",
+            format!("calcShadow({head}, {r}, {far})"),
+        ),
+    };
+    let linear = match test_depth {
+        MapDepth::Projected => None,
+        _ => Some("lib/linear_depth.glsl"),
+    };
+    LightGlsl {
+        snippets: linear.into_iter().chain(snippets.iter().copied()).collect(),
+        sampler_type,
+        test,
+        defines: Vec::new(),
+    }
+}
+
