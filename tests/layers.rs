@@ -176,7 +176,10 @@ fn module_path(src: &Path, file: &Path) -> Vec<String> {
         .components()
         .map(|c| c.as_os_str().to_string_lossy().to_string())
         .collect();
-    if matches!(path.last().map(String::as_str), Some("mod" | "lib" | "main")) {
+    if matches!(
+        path.last().map(String::as_str),
+        Some("mod" | "lib" | "main")
+    ) {
         path.pop();
     }
     path
@@ -231,7 +234,10 @@ fn paths_at(code: &str) -> Vec<Vec<String>> {
 fn module_refs(code: &str, own: &[String]) -> Vec<Vec<String>> {
     let mut out = Vec::new();
     let bytes = code.as_bytes();
-    for (at, _) in code.match_indices("crate::").chain(code.match_indices("super::")) {
+    for (at, _) in code
+        .match_indices("crate::")
+        .chain(code.match_indices("super::"))
+    {
         let before = at.checked_sub(1).map(|b| bytes[b] as char);
         if before.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_' || c == ':') {
             continue; // the middle of a path (`super::super::x`) is read from its start
@@ -271,7 +277,10 @@ fn circles(src: &Path) -> Vec<String> {
         let code = code_of(&std::fs::read_to_string(file).unwrap());
         let mut named = BTreeSet::new();
         for path in module_refs(&code, &own) {
-            if let Some(n) = (1..=path.len()).rev().find(|&n| modules.contains(&path[..n])) {
+            if let Some(n) = (1..=path.len())
+                .rev()
+                .find(|&n| modules.contains(&path[..n]))
+            {
                 named.insert(path[..n].to_vec());
             }
         }
@@ -346,11 +355,20 @@ fn a_circle_through_a_nested_folder_is_found() {
         std::fs::write(path, text).unwrap();
     };
     write("lib.rs", "pub mod shadows;");
-    write("shadows/mod.rs", "pub mod cache; pub mod casters; pub mod patch;");
+    write(
+        "shadows/mod.rs",
+        "pub mod cache; pub mod casters; pub mod patch;",
+    );
     write("shadows/cache.rs", "use super::casters::may_land;");
-    write("shadows/casters.rs", "fn f() { super::volumetric::draw_solid(); }");
+    write(
+        "shadows/casters.rs",
+        "fn f() { super::volumetric::draw_solid(); }",
+    );
     write("shadows/volumetric/mod.rs", "mod resolved;");
-    write("shadows/volumetric/resolved.rs", "use crate::shadows::{patch::TexelRect};");
+    write(
+        "shadows/volumetric/resolved.rs",
+        "use crate::shadows::{patch::TexelRect};",
+    );
     write("shadows/patch.rs", "use super::cache::LightFacts;");
     let found = circles(src);
     assert_eq!(
@@ -361,12 +379,18 @@ fn a_circle_through_a_nested_folder_is_found() {
     // not one.
     write("shadows/casters.rs", "");
     write("shadows/patch.rs", "use super::volumetric::Maps;");
-    write("shadows/volumetric/mod.rs", "mod resolved; use resolved::X; use super::cache;");
+    write(
+        "shadows/volumetric/mod.rs",
+        "mod resolved; use resolved::X; use super::cache;",
+    );
     assert_eq!(circles(src), ["shadows: patch -> volumetric -> patch"]);
     write("shadows/patch.rs", "");
     assert!(circles(src).is_empty(), "{:?}", circles(src));
     // `super::super::` from a nested file.
     write("shadows/program.rs", "use super::volumetric::receivers;");
-    write("shadows/volumetric/receivers.rs", "use super::super::program::light_part;");
+    write(
+        "shadows/volumetric/receivers.rs",
+        "use super::super::program::light_part;",
+    );
     assert_eq!(circles(src), ["shadows: program -> volumetric -> program"]);
 }

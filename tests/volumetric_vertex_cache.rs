@@ -7,9 +7,9 @@
 mod common;
 
 use shadowmap::engine::{Outputs, RenderTarget};
+use shadowmap::renderer::VertexLightCounts;
 use shadowmap::scene::Light;
 use shadowmap::settings::{ShadowSettings, TranslucentReceivers, Volumetric};
-use shadowmap::shadows::volumetric::vertex_light::VertexLightCounts;
 use shadowmap::{Renderer, Scene, Target};
 
 const OUTPUTS: Outputs = Outputs {

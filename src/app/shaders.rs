@@ -5,8 +5,8 @@
 use shadowmap::engine::Outputs;
 use shadowmap::shaders;
 use shadowmap::shadows::plan::ShadowPlan;
-use shadowmap::shadows::program::ProgramKey;
 use shadowmap::shadows::program::slots::{self, LightPart, MaskMode};
+use shadowmap::shadows::program::ProgramKey;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
 use super::cli::ShadersArgs;

@@ -43,7 +43,7 @@ pub struct Frame {
     /// Translucent maps drawn and kept over the frames.
     pub volumetric_draws: crate::shadows::volumetric::cache::MapDraws,
     /// The translucent items' per-vertex light captured and kept over the frames.
-    pub vertex_light: crate::shadows::volumetric::vertex_light::VertexLightCounts,
+    pub vertex_light: crate::renderer::VertexLightCounts,
     /// Casters drawn into maps against casters offered, over the frames.
     pub casters: crate::shadows::CasterCounts,
     /// Shadow-volume pixels that passed the depth test in the last frame (0 without

@@ -9,8 +9,8 @@ use crate::engine::{state, ShadowMap};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
-use crate::shadows::plan::ShadowPlan;
 use crate::shadows::cache::schedule::DepthPasses;
+use crate::shadows::plan::ShadowPlan;
 use crate::shadows::{CasterCounts, ShadowView};
 
 /// The passes of a frame, for [`PassHooks`].
@@ -91,9 +91,7 @@ impl Renderer {
     }
 
     /// The translucent items' per-vertex light captured and kept, so far.
-    pub fn vertex_light_counts(
-        &self,
-    ) -> crate::shadows::volumetric::vertex_light::VertexLightCounts {
+    pub fn vertex_light_counts(&self) -> super::vertex_light_cache::VertexLightCounts {
         self.vertex_light.counts()
     }
 

@@ -19,6 +19,7 @@ mod target;
 mod translucent_maps;
 mod translucent_pass;
 mod vertex_light;
+mod vertex_light_cache;
 mod volume_pass;
 
 pub use crate::shadows::cache::schedule::DepthPasses;
@@ -26,6 +27,7 @@ pub use access::{Pass, PassHooks};
 pub use depth_view::DepthRange;
 pub use shadow_mask::MaskUses;
 pub use target::Target;
+pub use vertex_light_cache::VertexLightCounts;
 
 use std::rc::Rc;
 
@@ -34,11 +36,11 @@ use crate::engine::{check_gl, gl_limits, state, Gl, Outputs, Samplers, SamplesQu
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
+use crate::shadows::cache::schedule::DepthSchedule;
 use crate::shadows::casters::DepthPrograms;
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::program::ProgramKey;
-use crate::shadows::cache::schedule::DepthSchedule;
 use crate::shadows::program::slots::MaskMode;
+use crate::shadows::program::ProgramKey;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::{CasterCounts, DepthPass, ShadowView, Technique};
 use scene_inputs::SceneGpu;
@@ -65,7 +67,7 @@ pub struct Renderer {
     /// Each light's translucent map, for the lights whose plan keeps one.
     volumetric: crate::shadows::volumetric::Maps,
     /// The translucent items' per-vertex light, kept with the maps.
-    vertex_light: crate::shadows::volumetric::vertex_light::VertexLight,
+    vertex_light: vertex_light_cache::VertexLight,
     /// Scene programs by what they were compiled for, the last used first.
     scene_programs: Vec<(ProgramKey, ShaderProgram)>,
     samplers: Samplers,
@@ -162,7 +164,8 @@ impl Renderer {
     /// light sees, or has only a patch of it drawn again.
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
-        self.schedule.begin(scene, &self.shadows, self.settings.shadow_cache);
+        self.schedule
+            .begin(scene, &self.shadows, self.settings.shadow_cache);
         for (index, shadow) in self.shadows.iter_mut().enumerate() {
             let view = &mut self.views[index];
             let Some(technique) = shadow else {
@@ -170,7 +173,9 @@ impl Renderer {
                 continue;
             };
             let settings = self.plan.lights[index].settings;
-            let step = self.schedule.step(scene, index, &**technique, &settings, view.is_some());
+            let step = self
+                .schedule
+                .step(scene, index, &**technique, &settings, view.is_some());
             let Some(step) = step else { continue };
             let mut pass = DepthPass {
                 gl: &self.gl,

@@ -57,6 +57,9 @@ impl Renderer {
                 self.schedule.forget(i);
             }
         }
-        self.volumetric.prepare(&self.gl, &self.plan)
+        let lights: Vec<_> = (self.plan.lights.iter())
+            .map(|own| (own.settings, own.volumetric))
+            .collect();
+        self.volumetric.prepare(&self.gl, &lights)
     }
 }

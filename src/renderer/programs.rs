@@ -8,8 +8,8 @@ use super::{scene_pass, Renderer, Target};
 use crate::engine::{Outputs, Samplers};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::shadows::program::ProgramKey;
 use crate::shadows::program::slots::MaskMode;
+use crate::shadows::program::ProgramKey;
 
 impl Renderer {
     /// Moves the program for this frame's key to the front of the cache, compiling it if it

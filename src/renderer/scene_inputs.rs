@@ -55,7 +55,7 @@ pub struct Inputs<'a> {
     /// Each light's translucent map, if it keeps one.
     pub volumetric: &'a crate::shadows::volumetric::Maps,
     /// The translucent items' per-vertex light, where it is tested per vertex.
-    pub vertex_light: Option<&'a crate::shadows::volumetric::vertex_light::VertexLight>,
+    pub vertex_light: Option<&'a super::vertex_light_cache::VertexLight>,
     /// Each light's kind and settings.
     pub plan: &'a ShadowPlan,
     pub meshes: &'a [Mesh],

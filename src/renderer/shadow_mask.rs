@@ -14,8 +14,8 @@ use super::{scene_pass, Renderer};
 use crate::engine::{Gl, Outputs, RenderTarget, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::shadows::program::ProgramKey;
 use crate::shadows::program::slots::MaskMode;
+use crate::shadows::program::ProgramKey;
 
 /// What a frame does with the mask.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

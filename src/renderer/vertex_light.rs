@@ -1,17 +1,17 @@
 //! The translucent items' per-vertex light captured after the maps are drawn
-//! ([`crate::shadows::volumetric::vertex_light`]): the capture program takes the scene
+//! ([`super::vertex_light_cache`]): the capture program takes the scene
 //! pass' uniforms and maps with the world as its "view space" (the identity), so what it
 //! computes does not depend on the camera and a kept value is a recomputed one.
 
 use glam::{DMat4, Mat4};
 
 use super::scene_inputs::{bind_maps_from, set_item_uniforms, Inputs, LightUniforms};
+use super::vertex_light_cache as vertex_light;
 use super::Renderer;
 use crate::engine::{Mesh, Outputs, ShaderProgram};
 use crate::error::Result;
 use crate::scene::Scene;
 use crate::shadows::program::slots::MaskMode;
-use crate::shadows::volumetric::vertex_light;
 use crate::shadows::ShadowKind;
 
 impl Renderer {

@@ -15,8 +15,8 @@
 
 use glam::{DVec3, Vec3};
 
-use super::casters::casters;
 use super::camera::fitted::{aabb, corners, FittedBox};
+use super::casters::casters;
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::engine::ShaderProgram;

@@ -146,7 +146,15 @@ pub fn draw_casters(
     light: DMat4,
     keep: impl Fn(usize) -> bool,
 ) -> usize {
-    draw_casters_with((meshes, instances), scene, program, light, keep, None, false)
+    draw_casters_with(
+        (meshes, instances),
+        scene,
+        program,
+        light,
+        keep,
+        None,
+        false,
+    )
 }
 
 /// [`draw_casters`], with `faces` giving each drawn item (by index) a texel of its own after

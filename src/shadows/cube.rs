@@ -5,8 +5,8 @@
 
 use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 
-use super::camera::point_camera;
 use super::camera::culling::{beyond_a_plane, may_land};
+use super::camera::point_camera;
 use super::casters::{casters, depth_state, draw_casters, draw_casters_with};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
@@ -193,4 +193,3 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         defines: Vec::new(),
     }
 }
-

@@ -12,8 +12,8 @@
 
 use glam::DVec3;
 
-use super::casters::casters;
 use super::camera::fitted::{FittedBox, LightFit};
+use super::casters::casters;
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::scene::{DirectionalLight, Scene};

@@ -10,8 +10,8 @@
 
 use glam::{DMat4, Mat4, Vec3};
 
-use super::casters::{depth_state, draw_casters};
 use super::camera::fitted::FittedBox;
+use super::casters::{depth_state, draw_casters};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
     Technique,
@@ -226,4 +226,3 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
         ],
     }
 }
-

@@ -18,8 +18,8 @@ pub use super::casters::draw_map_casters;
 pub use camera::{camera, camera_and_casters};
 pub use glsl::glsl;
 
-use super::casters::depth_state;
 use super::cache::patch::{self, Patch};
+use super::casters::depth_state;
 use super::{DepthPass, ShadowView, SlotTransform};
 use crate::engine::{state, DepthPassGuard, DepthState, Gl, ShadowMap};
 use crate::error::Result;

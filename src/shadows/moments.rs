@@ -16,8 +16,8 @@
 use glam::{DVec2, DVec3};
 
 use super::camera::culling::may_land;
-use super::casters::depth_state;
 use super::camera::fitted;
+use super::casters::depth_state;
 use super::map2d::{camera, draw_map_casters};
 use super::summed::{self, Summed};
 use super::{
@@ -356,7 +356,7 @@ impl Technique for Moments {
 pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     let moments = test.moments?;
     if summed::reads_table_mode(moments.mode) {
-        return Some(summed::glsl(i, p, test, &moments));
+        return summed::glsl(i, p, test);
     }
     let head = format!(
         "{}, mlightviewVertexPos[{p}], {}",

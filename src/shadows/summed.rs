@@ -13,10 +13,9 @@
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
 
+use super::{LightGlsl, ShadowTest};
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
-use super::moments::MomentTest;
-use super::{LightGlsl, ShadowTest};
 use crate::error::Result;
 use crate::settings::{glsl_float, Filter, MapSize, ShadowSettings};
 use crate::shaders;
@@ -105,7 +104,8 @@ pub const MODE_MSM_SOFT: u32 = 6;
 /// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
 /// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
 /// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
-pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> LightGlsl {
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
+    let moments = test.moments?;
     let f = |bits: u32| glsl_float(f32::from_bits(bits));
     let most = crate::settings::MAX_SOFT_CELLS;
     let cells = test.soft_cells.unwrap_or(SoftCells {
@@ -142,7 +142,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> Ligh
             f(moments.bleed_reduction_bits)
         ),
     };
-    LightGlsl {
+    Some(LightGlsl {
         snippets: vec![
             "lib/soft_filters.glsl",
             "lib/shadow_moments.glsl",
@@ -151,7 +151,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest, moments: &MomentTest) -> Ligh
         sampler_type: "usampler2D",
         test: call,
         defines: Vec::new(),
-    }
+    })
 }
 
 #[cfg(test)]

@@ -23,4 +23,3 @@ pub fn volumetric_unit(index: usize) -> u32 {
 pub fn resolved_unit(index: usize) -> u32 {
     volumetric_unit(MAX_LIGHTS) + index as u32
 }
-

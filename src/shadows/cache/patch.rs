@@ -12,11 +12,11 @@
 
 use glam::DVec3;
 
+use crate::scene::Scene;
+use crate::settings::MapSize;
 use crate::shadows::cache::LightFacts;
 use crate::shadows::camera::texels::{footprint, TexelRect};
 use crate::shadows::ShadowView;
-use crate::scene::Scene;
-use crate::settings::MapSize;
 
 /// Whether redrawing `region` of a `size` map is cheaper than drawing it whole: when it is
 /// at most half the map. A patch clears and fills at most half the texels and draws only
@@ -156,8 +156,9 @@ fn camera_bits(view: &ShadowView) -> Vec<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::PixelRect;
     use crate::settings::ShadowSettings;
-    use glam::{Mat4, Vec3};
+    use glam::{DMat4, Mat4, Vec3};
 
     const MAP: MapSize = MapSize::square(1024);
 

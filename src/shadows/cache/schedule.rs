@@ -8,10 +8,10 @@
 use glam::DVec3;
 
 use super::patch::{MapRecord, Patch};
-use crate::shadows::camera::fitted;
-use crate::shadows::{cache, Technique};
 use crate::scene::Scene;
 use crate::settings::ShadowSettings;
+use crate::shadows::camera::fitted;
+use crate::shadows::{cache, Technique};
 
 /// How many lights' depth passes were drawn whole, how many were skipped because the map
 /// still held what the light sees, and how many drew only the part moved casters changed

@@ -30,4 +30,3 @@ pub fn beyond_a_plane(clip: DMat4, lo: DVec3, hi: DVec3) -> bool {
         || beyond(&|c| c.z < -c.w)
         || beyond(&|c| c.z > c.w)
 }
-

@@ -6,9 +6,9 @@
 
 use glam::{DMat3, DMat4, DVec3, Vec3};
 
-use crate::shadows::{Rays, ShadowView};
 use crate::scene::Scene;
 use crate::settings::MapSize;
+use crate::shadows::{Rays, ShadowView};
 use crate::transformation::{light_basis, light_view};
 
 /// A fitted orthographic light camera.

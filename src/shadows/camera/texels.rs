@@ -120,4 +120,3 @@ fn footprint_in(clip: DMat4, size: MapSize, lo: DVec3, hi: DVec3) -> TexelRect {
         y1: texel(max.y.ceil(), h),
     }
 }
-

@@ -4,8 +4,8 @@
 
 use crate::scene::{Light, Scene};
 use crate::settings::{Fit, LightProjection, ShadowSettings};
-use crate::shadows::camera::{perspective_view, point_camera, Perspective};
 use crate::shadows::camera::fitted;
+use crate::shadows::camera::{perspective_view, point_camera, Perspective};
 use crate::shadows::{Rays, ShadowView};
 
 /// Light `index`'s camera for its 2D map under `settings`: its own, or with

@@ -62,4 +62,3 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         defines: Vec::new(),
     }
 }
-

@@ -3,9 +3,9 @@
 
 use crate::scene::Light;
 use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
-use crate::shadows::ShadowTest;
 use crate::shadows::volumetric::method;
 use crate::shadows::ShadowKind;
+use crate::shadows::ShadowTest;
 
 use super::LightPlan;
 

@@ -216,3 +216,31 @@ fn the_plan_stands_until_the_settings_or_the_lights_shadows_change() {
     more.lights.push(dummy.lights[0]);
     assert!(!plan.fits(&more.lights, &dummy.shadow));
 }
+
+#[test]
+fn the_plan_gives_a_translucent_map_to_a_2d_depth_map_only() {
+    let scene = Scene::load("smoke").unwrap();
+    let with = |volumetric| ShadowSettings {
+        volumetric,
+        ..scene.shadow
+    };
+    let plan = |v| ShadowPlan::decide(&scene.lights, &with(v));
+    assert_eq!(
+        plan(Volumetric::Osm).lights[0].volumetric,
+        Some(Volumetric::Osm)
+    );
+    assert_eq!(
+        plan(Volumetric::Fom).lights[0].volumetric,
+        Some(Volumetric::Fom)
+    );
+    assert_eq!(plan(Volumetric::Solid).lights[0].volumetric, None);
+    assert_eq!(plan(Volumetric::Off).lights[0].volumetric, None);
+    let cost = |v| {
+        crate::shadows::volumetric::method(v)
+            .unwrap()
+            .cost(&with(v))
+    };
+    // 16 slices and 1 + 2 x 7 coefficients: four RGBA32F layers each, 64 bytes.
+    assert_eq!(cost(Volumetric::Osm), (64, 1));
+    assert_eq!(cost(Volumetric::Fom), (64, 1));
+}

@@ -7,7 +7,6 @@ pub mod slots;
 pub mod vertex;
 
 use super::plan::ShadowPlan;
-use slots::{LightSlot, MaskMode};
 use super::volumetric::VolumetricKey;
 use super::{ShadowKind, ShadowTest};
 use crate::engine::{gl_limits, Gl, Outputs, ShaderProgram, ShaderSource};
@@ -15,6 +14,7 @@ use crate::error::{Error, Result};
 use crate::scene::{Scene, Shading, ShadingModel, MAX_LIGHTS};
 use crate::settings::glsl_float;
 use crate::shaders;
+use slots::{LightSlot, MaskMode};
 
 /// A cascaded light's constants (shaders/lib/shadow_cascades.glsl).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -122,9 +122,9 @@ impl ProgramKey {
     }
 
     /// Whether a light's test runs per vertex in this key's translucent program
-    /// ([`vertex::per_vertex`]).
+    /// ([`slots::per_vertex`]).
     pub fn tests_per_vertex(&self) -> bool {
-        self.lights.iter().flatten().any(vertex::per_vertex)
+        self.lights.iter().flatten().any(slots::per_vertex)
     }
 
     /// Whether the translucent items take a program of their own ([`MaskMode::Vertex`]):
@@ -354,3 +354,6 @@ mod tests {
         assert_eq!(cells(Filter::Vsm, 4, 4), cells(Filter::Vsm, 1, 1));
     }
 }
+
+#[cfg(test)]
+mod snippet_tests;

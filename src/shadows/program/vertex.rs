@@ -7,18 +7,12 @@
 //! interpolated (`vertexLit`, light i in component i), as it takes the shadow mask's.
 //! Opaque items keep their tests per pixel.
 
-use super::slots::{light_part, map_slots, LightSlot, MaskMode};
+use super::slots::{light_part, map_slots, per_vertex, LightSlot, MaskMode};
 use crate::shadows::volumetric::VolumetricKey;
 use crate::shadows::ShadowTest;
 
 /// The generated snippet scene.vert includes.
 pub const VERTEX_SNIPPET: &str = "generated/vertex_tests.glsl";
-
-/// Whether translucent items take light `slot`'s test per vertex: its settings ask for it
-/// and it can run there.
-pub fn per_vertex(slot: &LightSlot) -> bool {
-    (slot.test).is_some_and(|t| t.vertex_receivers && t.runs_per_vertex(slot.shadow))
-}
 
 /// The vertex shader's snippet for these lights: the samplers and library files of the
 /// lights tested per vertex, `toLightOf` and an `addLight` that keeps each light's test,

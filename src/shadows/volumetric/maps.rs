@@ -10,9 +10,8 @@ use super::{method, translucent_casters, DepthFit, Draw, VolumetricMap, SAMPLERS
 use crate::engine::{Gl, Mesh, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::settings::{MapSize, Volumetric};
+use crate::settings::{MapSize, ShadowSettings, Volumetric};
 use crate::shadows::camera::texels::{footprint, TexelRect};
-use crate::shadows::plan::ShadowPlan;
 use crate::shadows::ShadowView;
 
 /// One per scene light, `None` for a light without one; with the technique each was
@@ -41,10 +40,15 @@ pub struct Maps {
 pub type DepthMap<'a> = Option<(&'a Texture, Option<u64>)>;
 
 impl Maps {
-    /// Makes each light's map match `plan` (a light keeps one when the plan gives it a
-    /// technique that keeps one, [`crate::shadows::plan::LightPlan::volumetric`]).
-    pub fn prepare(&mut self, gl: &Gl, plan: &ShadowPlan) -> Result<()> {
-        let n = plan.lights.len();
+    /// Makes each light's map match `lights`, each light's own settings and the translucent
+    /// technique its plan gives it (a light keeps a map when that technique keeps one,
+    /// [`crate::shadows::plan::LightPlan::volumetric`]).
+    pub fn prepare(
+        &mut self,
+        gl: &Gl,
+        lights: &[(ShadowSettings, Option<Volumetric>)],
+    ) -> Result<()> {
+        let n = lights.len();
         self.maps.resize_with(n, || None);
         self.fits.resize(
             n,
@@ -58,32 +62,29 @@ impl Maps {
         self.made_for.resize(n, (0, false));
         self.keys.resize(n, None);
         self.resolved.resize_with(n, || None);
-        self.sizes = (plan.lights.iter())
-            .map(|own| (own.settings.map_size, own.settings.volumetric_size))
+        self.sizes = (lights.iter())
+            .map(|(own, _)| (own.map_size, own.volumetric_size))
             .collect();
-        for (i, own) in plan.lights.iter().enumerate() {
+        for (i, &(settings, volumetric)) in lights.iter().enumerate() {
             let (map, technique) = (&mut self.maps[i], &mut self.techniques[i]);
-            let Some(m) = own.volumetric.and_then(method) else {
+            let Some(m) = volumetric.and_then(method) else {
                 (*map, *technique) = (None, None);
                 (self.keys[i], self.resolved[i]) = (None, None);
                 continue;
             };
             let resolved = &mut self.resolved[i];
-            if !resolved::wanted(&own.settings) {
+            if !resolved::wanted(&settings) {
                 *resolved = None;
-            } else if !resolved.as_ref().is_some_and(|r| r.fits(&own.settings)) {
-                *resolved = Some(Resolved::new(gl, &own.settings)?);
+            } else if !resolved.as_ref().is_some_and(|r| r.fits(&settings)) {
+                *resolved = Some(Resolved::new(gl, &settings)?);
             }
-            let fits = map.as_ref().is_some_and(|t| t.fits(&own.settings));
-            if !fits || *technique != own.volumetric {
-                *map = Some(m.create(gl, &own.settings)?);
-                *technique = own.volumetric;
+            let fits = map.as_ref().is_some_and(|t| t.fits(&settings));
+            if !fits || *technique != volumetric {
+                *map = Some(m.create(gl, &settings)?);
+                *technique = volumetric;
                 (self.drawn[i], self.keys[i]) = (None, None);
             }
-            let made_for = (
-                cache::settings_key(&own.settings),
-                own.settings.shadow_cache,
-            );
+            let made_for = (cache::settings_key(&settings), settings.shadow_cache);
             if self.made_for[i] != made_for {
                 (self.made_for[i], self.keys[i]) = (made_for, None);
             }

@@ -18,7 +18,6 @@ pub mod fom;
 pub mod maps;
 pub mod osm;
 pub mod resolved;
-pub mod vertex_light;
 
 use glam::{DMat4, DVec3, Mat4};
 

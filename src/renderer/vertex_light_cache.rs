@@ -1,4 +1,4 @@
-//! The translucent items' per-vertex light ([`super::receivers`]), kept across frames. Each
+//! The translucent items' per-vertex light ([`crate::shadows::program::vertex`]), kept across frames. Each
 //! light's test at a vertex (its filter times the translucent lookup) depends on the
 //! light's maps and on where the item is, not on the camera. So a pass of its own computes
 //! it in world space for every translucent item's vertices (the capture program,
