@@ -68,6 +68,21 @@ fn the_printed_program_is_the_compiled_one_and_compiles() {
 }
 
 #[test]
+fn the_printed_program_has_every_include_resolved() {
+    // What the driver gets has no `#include` line: not in either stage, for any scene, nor
+    // with the translucent items tested per vertex.
+    for scene in Scene::builtin_names() {
+        let (vertex, fragment) = printed(&["--scene", scene]);
+        for (stage, text) in [("vertex", &vertex), ("fragment", &fragment)] {
+            let line = text.lines().find(|l| l.trim_start().starts_with("#include"));
+            assert_eq!(line, None, "{scene}: the {stage} shader keeps an include");
+        }
+    }
+    let (vertex, _) = printed(&["--scene", "smoke", "--translucent-receivers", "vertex"]);
+    assert!(!vertex.contains("#include"), "{vertex}");
+}
+
+#[test]
 fn one_lights_part_is_its_sampler_its_library_and_its_call() {
     let out = common::stdout_of(common::bin().args([
         "shaders",

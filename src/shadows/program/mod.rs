@@ -224,15 +224,23 @@ impl ProgramKey {
     /// hands them to the driver: includes resolved, the defines after `#version`.
     pub fn sources(&self) -> Result<[ShaderSource; 2]> {
         let fragment = shaders::scene_frag(&slots::snippets(&self.slots(), self.mask))?;
+        // The per-vertex tests are compiled into the capture program alone.
+        let none = "// The per-vertex tests: in the capture program only (VERTEX_CAPTURE).\n";
+        let plain = shaders::scene_vert();
+        let vertex = shaders::resolve(
+            &plain.files[0],
+            &plain.text,
+            &[(vertex::VERTEX_SNIPPET, none.into())],
+        )?;
         let defines = self.defines();
-        Ok([shaders::scene_vert(), fragment].map(|s| ShaderSource {
+        Ok([vertex, fragment].map(|s| ShaderSource {
             text: s.with_defines(&defines),
             ..s
         }))
     }
 
     /// The vertex shader that computes the translucent items' per-vertex tests for this
-    /// key's lights (`VERTEX_CAPTURE`, [`receivers`]), for a transform feedback pass.
+    /// key's lights (`VERTEX_CAPTURE`, [`vertex`]), for a transform feedback pass.
     pub fn capture_source(&self) -> Result<ShaderSource> {
         let key = self.with_mask(MaskMode::Vertex);
         let generated = [vertex::vertex_snippet(&key.slots())];
