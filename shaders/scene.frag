@@ -2,12 +2,12 @@
 // Scene pass fragment shader ("Shadows": scene_fragment.fs), for one to four lights: each
 // adds its diffuse and specular light times its own shadow test, 1 = lit. The tests are in
 // shaders/lib/ (shadow_2d.glsl: the chapter's calcShadow). `#include` is resolved by
-// src/shaders.rs. src/shadows/slots.rs writes the two generated snippets (GLSL 3.30
+// src/shaders.rs. src/shadows/program/slots.rs writes the two generated snippets (GLSL 3.30
 // cannot index an array of samplers with a loop index): the lights' samplers, and
 // `addLights`, which calls each light's test with that light's settings as arguments.
 // `shadowmap shaders --scene S` prints the whole program as it is compiled.
 //
-// Defines (src/shadows/program.rs, each only when a light uses it): the lighting's (BLINN,
+// Defines (src/shadows/program/mod.rs, each only when a light uses it): the lighting's (BLINN,
 // SPECULAR_POWER), the lights' layout (LIGHT_COUNT, MAP_SLOTS, VISIBILITY_LIGHT; CASCADES
 // and more for a layered light; MULTIPASS with shadow volumes), the cached shadow mask's
 // (SHADOW_MASK_WRITE, SHADOW_MASK_READ), the translucent items' tests per vertex

@@ -3,7 +3,7 @@
 // Compiled with NORMAL_OFFSET (defined when the lookups move along the normal),
 // LIGHT_COUNT, MAP_COUNT / MAP_SLOTS and USES_CASCADES / CASCADES (see scene.frag). Lighting happens in view space, as in the book.
 //
-// Outputs are counted (src/shadows/slots.rs, `vertex_outputs`): GL 3.3 guarantees 64
+// Outputs are counted (src/shadows/program/slots.rs, `vertex_outputs`): GL 3.3 guarantees 64
 // components, and four lights with cascades use all of them. So only lights with a 2D or
 // cube map get a light-space position (slot p of MAP_SLOTS), the cascaded light gets its
 // cascades' positions, and the G-buffer's world position and normal are rebuilt in the
@@ -23,7 +23,7 @@ uniform mat4 modelViewMatrix;
 uniform mat3 normalMatrix;       // inverse transpose of modelViewMatrix, for normals
 uniform mat3 worldNormalMatrix;  // inverse transpose of modelMatrix
 uniform mat4 projectionMatrix;
-// One per mapped light (slot p, laid out by src/shadows/slots.rs).
+// One per mapped light (slot p, laid out by src/shadows/program/slots.rs).
 uniform mat4 modelLightViewMatrix[MAP_SLOTS];
 uniform mat4 orthoProjectionMatrix[MAP_SLOTS];
 uniform mat3 lightRotation[MAP_SLOTS];    // world to light view, without the translation
@@ -89,8 +89,8 @@ out vec4 cascadePos[CASCADES];
 // Translucent items' program with translucent_receivers = "vertex": the tests of the lights
 // that run per vertex, light i in component i, interpolated for the fragment. They are
 // computed in world space by the capture program (VERTEX_CAPTURE; vertexTests from
-// src/shadows/volumetric/receivers.rs), kept while the maps and the items stay, and read
-// here per vertex (src/shadows/volumetric/vertex_light.rs).
+// src/shadows/program/vertex.rs), kept while the maps and the items stay, and read
+// here per vertex (src/renderer/vertex_light_cache.rs).
 out vec4 vertexLit;
 #ifdef VERTEX_CAPTURE
 #include "generated/vertex_tests.glsl"

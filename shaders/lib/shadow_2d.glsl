@@ -1,7 +1,7 @@
 // The chapter's shadow test for a light with one 2D depth map ("Shadows": calcShadow in
 // scene_fragment.fs; LearnOpenGL: ShadowCalculation). It returns 1 = lit, 0 = in shadow:
 // the book's 1 - shadowFactor, counted as lit lookups so that filters and lights multiply.
-// Each light calls it with its own settings (src/shadows/slots.rs writes the call):
+// Each light calls it with its own settings (the technique writes the call: src/shadows/map2d/glsl.rs):
 //   position      the fragment in the light's clip space (the book's mlightviewVertexPos)
 //   bias          taken off the fragment's depth against shadow acne (lib/bias.glsl)
 //   texel         one texel of the map, 1 / its size (the book asks textureSize per pixel)

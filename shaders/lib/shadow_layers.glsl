@@ -1,7 +1,7 @@
 // One layer of a layered directional light's depth array (src/shadows/layers.rs): the
 // test shared by cascades (shadow_cascades.glsl: a layer per slice of the view) and caster
 // groups (shadow_groups.glsl: a layer per group of casters), which include it. A scene has
-// one layered light, so its filter is the program's (src/shadows/slots.rs defines it):
+// one layered light, so its filter is the program's (src/shadows/layers.rs defines it):
 //   CASCADES       layers (2 to 4)
 //   LAYER_SAMPLER  sampler2DArrayShadow for the hardware filters, else sampler2DArray
 //   LAYER_TEXEL    one texel of a layer, vec2(1 / width, 1 / height)

@@ -154,7 +154,7 @@ pub fn scene_depth_range(
 
 /// The cascades of a light shining from `to_light` for the scene's fitting camera (the
 /// viewer, or `fit_camera`), one `map_size` layer each. `boxes` are the items' world boxes
-/// ([`item_world_boxes`]; the depth pass culls with them too).
+/// ([`crate::shadows::camera::fitted::item_world_boxes`]; the depth pass culls with them too).
 pub fn fit_cascades(
     scene: &Scene,
     boxes: &[(DVec3, DVec3)],

@@ -9,9 +9,6 @@
 //!   cascades and groups, each a `Layout` of its layers.
 //! - [`moments`]: filterable maps (VSM, EVSM, MSM): depth's moments in a float colour
 //!   map, blurred, for directional and spot lights.
-//! - [`fitted`]: a directional light's box fitted to the scene (a light camera, used by
-//!   [`map2d`]).
-//! - [`patch`]: the part of a cached 2D map that moved casters dirtied, drawn again alone.
 //! - [`plan`]: which kind each light gets, under which settings, and what is refused: decided
 //!   once, before any frame.
 //! - [`volumetric`]: how translucent items cast (`volumetric = "off"` or `"solid"`).
@@ -19,10 +16,18 @@
 //!   [`Technique`]: no storage, no depth pass; the renderer draws them per light into the
 //!   stencil buffer (`renderer::volume_pass`).
 //!
+//! Beside the techniques:
+//! - [`camera`]: the light cameras they share (a point light's, a perspective one, the box
+//!   fitted to the scene), culling against them and where a box lands in a map's texels.
+//! - [`casters`]: the depth programs and the one loop that draws the casters.
+//! - [`cache`]: which map to keep, patch or draw again, beside the renderer's loop.
+//! - [`program`]: the scene program: each light's slot, its texture unit ([`units`]) and the
+//!   assembly of the techniques' GLSL into the generated snippets.
+//!
 //! A technique owns its storage (and says whether it still fits the settings), makes its
-//! light camera, runs its depth pass, names its shader snippet and sampler, and gives the
-//! scene pass its uniforms. The renderer only asks; [`slots`] lays the lights out in the
-//! scene shader and [`program`] turns what the shader is compiled for into `#define`s.
+//! light camera, runs its depth pass, writes its part of the scene program (its `glsl`:
+//! library files, sampler and call) and gives the scene pass its uniforms. [`ShadowKind`]'s
+//! one table (`room`) names each technique's constructor, GLSL and samplers.
 
 pub mod cache;
 pub mod camera;
@@ -295,7 +300,7 @@ pub struct ShadowTest {
     /// ([`crate::shadows::volumetric`]).
     pub volumetric: Option<VolumetricKey>,
     /// `translucent_receivers = "vertex"`: translucent items take this test per vertex
-    /// where it can run there ([`volumetric::receivers`]).
+    /// where it can run there ([`program::vertex`]).
     pub vertex_receivers: bool,
 }
 
@@ -388,7 +393,7 @@ pub struct DepthPass<'a> {
     pub meshes: &'a [Mesh],
     pub programs: &'a mut casters::DepthPrograms,
     pub settings: &'a ShadowSettings,
-    /// Every item's world box, in the scene's item order ([`fitted::item_world_boxes`],
+    /// Every item's world box, in the scene's item order ([`camera::fitted::item_world_boxes`],
     /// worked out once a frame for the cache's keys and every pass' culling).
     pub boxes: &'a [(DVec3, DVec3)],
     /// Casters drawn, and casters there were, over the passes so far.
@@ -425,7 +430,7 @@ pub trait Technique {
         scene: &Scene,
         index: usize,
     ) -> Result<ShadowView>;
-    /// Whether [`Technique::render_depth_patch`] draws part of the map ([`patch`]: only
+    /// Whether [`Technique::render_depth_patch`] draws part of the map ([`cache::patch`]: only
     /// the chapter's 2D depth map).
     fn patches(&self) -> bool {
         false

@@ -74,7 +74,7 @@ pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
 }
 
 /// The constants of shaders/lib/shadow_moments.glsl for one light (with bias.glsl's, from
-/// [`super::program::slots::ShadowTest`]).
+/// [`super::ShadowTest`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct MomentTest {
     pub mode: u32,

@@ -4,7 +4,7 @@
 //! map that follows the camera (a fitted box, cascades), the camera and the frame's shape.
 //! An unchanged key means the depth pass would write the same texels, so it is skipped; a
 //! changed one where only casters moved may redraw just the part they dirtied
-//! ([`super::patch`]).
+//! ([`patch`]).
 
 pub mod patch;
 pub mod schedule;
@@ -20,7 +20,7 @@ use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
 
 /// What light `index`'s map depends on this frame besides its casters, worked out once a
-/// frame for both the cache key and the patch record ([`super::patch::MapRecord`]).
+/// frame for both the cache key and the patch record ([`patch::MapRecord`]).
 pub struct LightFacts {
     /// The light and its settings ([`hash_light`]).
     pub hash: u64,

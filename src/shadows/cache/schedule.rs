@@ -1,6 +1,6 @@
 //! Which depth passes a frame draws (past the chapters, which draw every map every frame).
 //! With `shadow_cache` on, a map whose [`cache::content_key`] is the one it was drawn with
-//! is kept, one whose fixed camera saw only casters move is patched ([`crate::shadows::patch`]), and
+//! is kept, one whose fixed camera saw only casters move is patched ([`super::patch`]), and
 //! any other is drawn whole. The renderer asks per light ([`DepthSchedule::step`]) and says
 //! what it drew ([`DepthSchedule::drawn`]); the keys and records stay here, as Filament keeps
 //! its `ShadowMapManager` apart from each `ShadowMap`.
@@ -15,7 +15,7 @@ use crate::shadows::{cache, Technique};
 
 /// How many lights' depth passes were drawn whole, how many were skipped because the map
 /// still held what the light sees, and how many drew only the part moved casters changed
-/// (`shadow_cache`; [`crate::shadows::patch`]).
+/// (`shadow_cache`; [`super::patch`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct DepthPasses {
     pub drawn: u64,

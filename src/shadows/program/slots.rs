@@ -1,5 +1,6 @@
-//! Where each light's shadow lives in the scene shader: its texture unit, its sampler, its
-//! slot in the uniform arrays, and the call that adds its light to a fragment. ("Shadows"
+//! Where each light's shadow lives in the scene shader: its sampler, its slot in the
+//! uniform arrays, and the call that adds its light to a fragment (texture units:
+//! [`crate::shadows::units`]). ("Shadows"
 //! ends with "render a separate depth map for each light"; this is the bookkeeping that
 //! takes.)
 //!
@@ -9,9 +10,9 @@
 //! `generated/samplers.glsl` and `generated/lights.glsl`, included by `shaders/scene.frag`
 //! like the library's (so a compile error in them names the generated file and its line).
 //! Each technique chooses the library function its light's filter calls and writes the
-//! call, the light's settings as literal arguments ([`map2d_glsl`],
-//! [`cube_glsl`], [`moments_glsl`], [`layered_glsl`]); the
-//! compiler inlines it and folds them, so a light's test costs what a hand-written one
+//! call, the light's settings as literal arguments (its `glsl`, reached through
+//! [`ShadowKind::glsl`]); this file names no technique but volumes, which have no test. The
+//! compiler inlines the call and folds them, so a light's test costs what a hand-written one
 //! would.
 
 use crate::settings::BiasMode;
@@ -46,8 +47,8 @@ pub enum MaskMode {
     /// The tests read back from the mask (`SHADOW_MASK_READ`).
     Read,
     /// The translucent items' program: the lights that can take their test per vertex
-    /// (`VERTEX_TESTS`, [`volumetric::receivers`]), the others per fragment, each reading
-    /// its translucent map's curve (not a resolved map, [`volumetric::resolved`]).
+    /// (`VERTEX_TESTS`, [`super::vertex`]), the others per fragment, each reading
+    /// its translucent map's curve (not a resolved map, [`crate::shadows::volumetric::resolved`]).
     Vertex,
 }
 
@@ -165,9 +166,9 @@ pub fn light_parts(slots: &[LightSlot], mask: MaskMode) -> Vec<LightPart> {
 pub fn snippets(slots: &[LightSlot], mask: MaskMode) -> [(&'static str, String); 2] {
     let parts = light_parts(slots, mask);
     let mut samplers =
-        String::from("// Made by src/shadows/slots.rs: one sampler per casting light.\n");
+        String::from("// Made by src/shadows/program/slots.rs: one sampler per casting light.\n");
     let mut lights = String::from(
-        "// Made by src/shadows/slots.rs: the library's tests these lights use, then each\n\
+        "// Made by src/shadows/program/slots.rs: the library's tests these lights use, then each\n\
          // light's test, called with its own settings, and its light.\n",
     );
     let mut included: Vec<&str> = Vec::new();
