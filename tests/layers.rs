@@ -394,3 +394,44 @@ fn a_circle_through_a_nested_folder_is_found() {
     );
     assert_eq!(circles(src), ["shadows: program -> volumetric -> program"]);
 }
+
+#[test]
+fn the_architecture_page_names_every_source_file() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
+    let src = root.join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let missing: Vec<String> = files
+        .iter()
+        .map(|f| {
+            f.strip_prefix(&src)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/")
+        })
+        .filter(|rel| !doc.contains(&format!("`{rel}`")) && !doc.contains(&format!("`src/{rel}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "docs/architecture.md does not name: {missing:?}"
+    );
+    // And every file it names under `src/` is there.
+    let named: Vec<&str> = doc
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|t| t.ends_with(".rs") && !t.contains(' '))
+        .collect();
+    // A bare name (`casters.rs`, beside the folder the sentence names) is some file's name.
+    rust_files(&root.join("tests"), &mut files);
+    let exists = |t: &str| match t.contains('/') {
+        true => src.join(t.trim_start_matches("src/")).exists() || root.join(t).exists(),
+        false => files.iter().any(|f| f.file_name().is_some_and(|n| n == t)),
+    };
+    let gone: Vec<&&str> = named.iter().filter(|t| !exists(t)).collect();
+    assert!(
+        gone.is_empty(),
+        "docs/architecture.md names files that are not there: {gone:?}"
+    );
+}

@@ -74,7 +74,9 @@ fn the_printed_program_has_every_include_resolved() {
     for scene in Scene::builtin_names() {
         let (vertex, fragment) = printed(&["--scene", scene]);
         for (stage, text) in [("vertex", &vertex), ("fragment", &fragment)] {
-            let line = text.lines().find(|l| l.trim_start().starts_with("#include"));
+            let line = text
+                .lines()
+                .find(|l| l.trim_start().starts_with("#include"));
             assert_eq!(line, None, "{scene}: the {stage} shader keeps an include");
         }
     }

@@ -1,3 +1,5 @@
+//! The plan's decisions on the built-in scenes and on lights built to hit each rule.
+
 use super::*;
 use crate::scene::Scene;
 use crate::settings::{Filter, LightView, MapSize};

@@ -1,3 +1,5 @@
+//! The translucent maps' matrices and optical depths.
+
 use glam::{DMat4, DVec3, Mat4, Vec3};
 
 use super::*;
