@@ -144,7 +144,6 @@ impl Renderer {
     /// The shadow pass as measurement sees it: the chapter's depth maps, then the
     /// translucent maps and the per-vertex light drawn from them ([`translucent_maps`]).
     pub fn render_shadows(&mut self, scene: &Scene) -> Result<()> {
-        self.prepare_shadows(scene)?;
         self.hook(Pass::Depth, true);
         let result = self.draw_shadows(scene);
         self.hook(Pass::Depth, false);

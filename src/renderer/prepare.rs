@@ -57,9 +57,7 @@ impl Renderer {
                 self.schedule.forget(i);
             }
         }
-        let lights: Vec<_> = (self.plan.lights.iter())
-            .map(|own| (own.settings, own.volumetric))
-            .collect();
-        self.volumetric.prepare(&self.gl, &lights)
+        let lights = (self.plan.lights.iter()).map(|own| (own.settings, own.volumetric));
+        self.volumetric.prepare(&self.gl, lights)
     }
 }

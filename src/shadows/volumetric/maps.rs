@@ -62,10 +62,9 @@ impl Maps {
         self.made_for.resize(n, (0, false));
         self.keys.resize(n, None);
         self.resolved.resize_with(n, || None);
-        self.sizes = (lights.iter())
-            .map(|(own, _)| (own.map_size, own.volumetric_size))
-            .collect();
-        for (i, &(settings, volumetric)) in lights.iter().enumerate() {
+        self.sizes.clear();
+        (self.sizes).extend(lights.clone().map(|(s, _)| (s.map_size, s.volumetric_size)));
+        for (i, (settings, volumetric)) in lights.enumerate() {
             let (map, technique) = (&mut self.maps[i], &mut self.techniques[i]);
             let Some(m) = volumetric.and_then(method) else {
                 (*map, *technique) = (None, None);
