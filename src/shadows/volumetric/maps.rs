@@ -46,7 +46,7 @@ impl Maps {
     pub fn prepare(
         &mut self,
         gl: &Gl,
-        lights: &[(ShadowSettings, Option<Volumetric>)],
+        lights: impl ExactSizeIterator<Item = (ShadowSettings, Option<Volumetric>)> + Clone,
     ) -> Result<()> {
         let n = lights.len();
         self.maps.resize_with(n, || None);
