@@ -177,3 +177,93 @@ fn attach_texture(gl: &Gl, at: Attachment, texture: &Texture, part: Part) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::counters::{created, Created};
+    use crate::engine::{
+        DepthPeel, FullScreenTriangle, HeadlessContext, MomentMap, Sampler, SamplesQuery, Sampling,
+        SummedAreaTable, VertexCapture,
+    };
+    use crate::error::Error;
+    use crate::settings::{DepthFormat, MapSize};
+
+    /// What `make` makes, by kind (what it made is dropped after).
+    fn made<T>(make: impl FnOnce() -> T) -> Created {
+        let before = created();
+        drop(make());
+        created().since(before)
+    }
+
+    /// The objects that once escaped the counters (the summed-area table's and the vertex
+    /// capture's framebuffers, queries, vertex arrays, samplers) are counted with the rest.
+    #[test]
+    fn every_object_is_counted_when_made() {
+        let context = HeadlessContext::new().expect("a headless context");
+        let gl = context.gl();
+        let size = MapSize::square(8);
+        let table = made(|| SummedAreaTable::new(gl, size, 2).unwrap());
+        let want = Created {
+            textures: 2,
+            framebuffers: 2,
+            ..Created::default()
+        };
+        assert_eq!(table, want);
+        let capture = made(|| VertexCapture::new(gl).unwrap());
+        let want = Created {
+            buffers: 1,
+            framebuffers: 1,
+            renderbuffers: 1,
+            ..Created::default()
+        };
+        assert_eq!(capture, want);
+        let peel = made(|| DepthPeel::new(gl, size, 2).unwrap());
+        let want = Created {
+            textures: 4,
+            framebuffers: 3,
+            queries: 1,
+            ..Created::default()
+        };
+        assert_eq!(peel, want);
+        let moments = made(|| MomentMap::new(gl, size, 4).unwrap());
+        let want = Created {
+            textures: 2,
+            framebuffers: 2,
+            renderbuffers: 1,
+            ..Created::default()
+        };
+        assert_eq!(moments, want);
+        let small = made(|| {
+            let triangle = FullScreenTriangle::new(gl).unwrap();
+            let query = SamplesQuery::new(gl).unwrap();
+            (triangle, query, Sampler::new(gl, Sampling::PLAIN).unwrap())
+        });
+        let want = Created {
+            vertex_arrays: 1,
+            queries: 1,
+            samplers: 1,
+            ..Created::default()
+        };
+        assert_eq!(small, want);
+    }
+
+    /// A framebuffer that cannot be complete says what it was for, and is still counted
+    /// (and freed: its owner drops it with the error).
+    #[test]
+    fn an_incomplete_framebuffer_names_what_it_is_for() {
+        let context = HeadlessContext::new().expect("a headless context");
+        let gl = context.gl();
+        let depth = Texture::depth(gl, 8, 8, DepthFormat::D24).unwrap();
+        let before = created();
+        let result = Framebuffer::build(gl, "a test")
+            .unwrap()
+            .texture(Attachment::Colour(0), &depth, Part::Image)
+            .finish("a depth texture as colour");
+        let Err(Error::IncompleteFramebuffer { what, .. }) = result else {
+            panic!("a depth texture as a colour attachment was accepted");
+        };
+        assert_eq!(what, "a depth texture as colour");
+        assert_eq!(created().since(before).framebuffers, 1);
+    }
+}
