@@ -313,7 +313,7 @@ impl Texture {
         Texture::make(gl, what, Shape::Flat, size, texels, None, filtering)
     }
 
-    /// A 2D texture holding `pixels` (rows from the bottom, tightly packed), sampled with
+    /// A 2D texture holding `pixels` (tightly packed, its first row at v = 0), sampled with
     /// `filtering`.
     pub(crate) fn flat_from(
         gl: &Gl,
