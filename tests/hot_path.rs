@@ -27,14 +27,7 @@ fn made_after_first_frame(name: &str, tweak: impl Fn(&mut ShadowSettings)) -> (C
         scene.update();
         renderer.render(&scene, Target::Offscreen(&target)).unwrap();
     }
-    let now = created();
-    let made = Created {
-        programs: now.programs - after_first.programs,
-        textures: now.textures - after_first.textures,
-        framebuffers: now.framebuffers - after_first.framebuffers,
-        renderbuffers: now.renderbuffers - after_first.renderbuffers,
-        buffers: now.buffers - after_first.buffers,
-    };
+    let made = created().since(after_first);
     let uses = renderer.mask_uses();
     (made, format!("{name}: mask {uses:?}"))
 }

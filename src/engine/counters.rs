@@ -3,23 +3,49 @@
 
 use std::cell::Cell;
 
-/// GL objects made so far on this thread (its context's).
+/// GL objects made so far on this thread (its context's), by kind. Every object is made
+/// through [`super::owned::Owned`], which counts it, so none escapes.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Created {
     pub programs: u64,
+    pub shaders: u64,
     pub textures: u64,
     pub framebuffers: u64,
     pub renderbuffers: u64,
     pub buffers: u64,
+    pub vertex_arrays: u64,
+    pub queries: u64,
+    pub samplers: u64,
+}
+
+impl Created {
+    /// What was made after `earlier` (a count taken before this one).
+    pub fn since(self, earlier: Created) -> Created {
+        Created {
+            programs: self.programs - earlier.programs,
+            shaders: self.shaders - earlier.shaders,
+            textures: self.textures - earlier.textures,
+            framebuffers: self.framebuffers - earlier.framebuffers,
+            renderbuffers: self.renderbuffers - earlier.renderbuffers,
+            buffers: self.buffers - earlier.buffers,
+            vertex_arrays: self.vertex_arrays - earlier.vertex_arrays,
+            queries: self.queries - earlier.queries,
+            samplers: self.samplers - earlier.samplers,
+        }
+    }
 }
 
 thread_local! {
     static CREATED: Cell<Created> = const { Cell::new(Created {
         programs: 0,
+        shaders: 0,
         textures: 0,
         framebuffers: 0,
         renderbuffers: 0,
         buffers: 0,
+        vertex_arrays: 0,
+        queries: 0,
+        samplers: 0,
     }) };
 }
 

@@ -11,11 +11,12 @@
 
 use glow::HasContext;
 
-use super::check::check_framebuffer;
+use super::framebuffer::{Attachment, Framebuffer, Part};
+use super::owned::OwnedQuery;
 use super::state::PixelRect;
 use super::texture::Texture;
 use super::Gl;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::settings::{DepthFormat, MapSize};
 
 /// The colour of a layer's texel that caught nothing: past every fitted depth (0 to 1),
@@ -30,12 +31,12 @@ pub struct DepthPeel {
     depth: [Texture; 2],
     layers: Texture,
     count: u32,
-    fbos: [Option<glow::Framebuffer>; 2],
+    fbos: [Framebuffer; 2],
     /// The rest past the last layer: RGB the product of what they let through, A the
     /// farthest depth; and its framebuffer.
     rest: Texture,
-    rest_fbo: Option<glow::Framebuffer>,
-    query: Option<glow::Query>,
+    rest_fbo: Framebuffer,
+    query: OwnedQuery,
 }
 
 impl DepthPeel {
@@ -49,59 +50,27 @@ impl DepthPeel {
         ];
         let layers = Texture::float_rg_array(gl, w, h, count)?;
         let rest = Texture::float_target(gl, w, h, 4)?;
-        // Owned before anything can fail, so a failure frees what was made.
-        let mut peel = DepthPeel {
+        let query = OwnedQuery::new(gl, "depth peel query")?;
+        let layer_target = |i: usize| {
+            Framebuffer::build(gl, "depth peel")?
+                .texture(Attachment::Colour(0), &layers, Part::Layer(0))
+                .texture(Attachment::Depth, &depth[i], Part::Image)
+                .finish(&format!("depth peel {w}x{h} ({i})"))
+        };
+        let fbos = [layer_target(0)?, layer_target(1)?];
+        let rest_fbo = Framebuffer::build(gl, "depth peel")?
+            .texture(Attachment::Colour(0), &rest, Part::Image)
+            .finish(&format!("depth peel {w}x{h} (rest)"))?;
+        Ok(DepthPeel {
             gl: gl.clone(),
             depth,
             layers,
             count,
-            fbos: [None, None],
+            fbos,
             rest,
-            rest_fbo: None,
-            query: None,
-        };
-        unsafe {
-            let query = gl
-                .create_query()
-                .map_err(|e| Error::Create(format!("depth peel query: {e}")))?;
-            peel.query = Some(query);
-            for i in 0..2 {
-                let fbo = gl
-                    .create_framebuffer()
-                    .map_err(|e| Error::Create(format!("depth peel framebuffer: {e}")))?;
-                super::counters::count(|c| c.framebuffers += 1);
-                peel.fbos[i] = Some(fbo);
-                gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-                let id = Some(peel.layers.id());
-                gl.framebuffer_texture_layer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, id, 0, 0);
-                let depth = Some(peel.depth[i].id());
-                let (target, point) = (glow::TEXTURE_2D, glow::DEPTH_ATTACHMENT);
-                gl.framebuffer_texture_2d(glow::FRAMEBUFFER, point, target, depth, 0);
-                gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
-                let status = check_framebuffer(gl, &format!("depth peel {w}x{h} ({i})"));
-                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                status?;
-            }
-            let fbo = gl
-                .create_framebuffer()
-                .map_err(|e| Error::Create(format!("depth peel framebuffer: {e}")))?;
-            super::counters::count(|c| c.framebuffers += 1);
-            peel.rest_fbo = Some(fbo);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            let id = Some(peel.rest.id());
-            gl.framebuffer_texture_2d(
-                glow::FRAMEBUFFER,
-                glow::COLOR_ATTACHMENT0,
-                glow::TEXTURE_2D,
-                id,
-                0,
-            );
-            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
-            let status = check_framebuffer(gl, &format!("depth peel {w}x{h} (rest)"));
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-            status?;
-        }
-        Ok(peel)
+            rest_fbo,
+            query,
+        })
     }
 
     /// Starts the rest after `k` layers: every fragment behind layer k - 1 (whose depth is
@@ -110,7 +79,7 @@ impl DepthPeel {
     /// depth. Counted as a layer is; within `rect` alone, as a layer is.
     pub fn begin_rest(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
         let gl = &self.gl;
-        self.bind_target(k, unit, self.rest_fbo, rect);
+        self.bind_target(k, unit, &self.rest_fbo, rect);
         unsafe {
             gl.set_capability(glow::DEPTH_TEST, false);
             gl.set_capability(glow::CULL_FACE, false);
@@ -118,9 +87,7 @@ impl DepthPeel {
             gl.enable(glow::BLEND);
             gl.blend_equation_separate(glow::FUNC_ADD, glow::MAX);
             gl.blend_func_separate(glow::ZERO, glow::SRC_COLOR, glow::ONE, glow::ONE);
-            if let Some(q) = self.query {
-                gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
-            }
+            gl.begin_query(glow::ANY_SAMPLES_PASSED, self.query.raw());
         }
         PeelPass {
             peel: self,
@@ -136,13 +103,13 @@ impl DepthPeel {
 
     /// Binds layer k - 1's depth on `unit` (no sampler object: `texelFetch` reads it)
     /// and `fbo` over the whole map, scissored to `rect`.
-    fn bind_target(&self, k: u32, unit: u32, fbo: Option<glow::Framebuffer>, rect: PixelRect) {
+    fn bind_target(&self, k: u32, unit: u32, fbo: &Framebuffer, rect: PixelRect) {
         let gl = &self.gl;
         self.depth[1 - (k % 2) as usize].bind(unit);
         let (w, h) = (self.layers.width() as i32, self.layers.height() as i32);
         unsafe {
             gl.bind_sampler(unit, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, fbo);
+            fbo.bind();
             gl.viewport(0, 0, w, h);
             gl.set_capability(glow::SCISSOR_TEST, true);
             let (rw, rh) = (rect.width as i32, rect.height as i32);
@@ -165,19 +132,18 @@ impl DepthPeel {
     /// the casters, then calls [`PeelPass::finish`].
     pub fn begin(&self, k: u32, unit: u32, rect: PixelRect) -> PeelPass<'_> {
         let gl = &self.gl;
-        self.bind_target(k, unit, self.fbos[(k % 2) as usize], rect);
+        let fbo = &self.fbos[(k % 2) as usize];
+        self.bind_target(k, unit, fbo, rect);
+        let layer = Part::Layer(k.min(self.count - 1));
+        fbo.attach(Attachment::Colour(0), &self.layers, layer);
         unsafe {
-            let (id, layer) = (Some(self.layers.id()), k.min(self.count - 1) as i32);
-            gl.framebuffer_texture_layer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, id, 0, layer);
             gl.depth_mask(true);
             gl.set_capability(glow::DEPTH_TEST, true);
             gl.depth_func(glow::LESS);
             gl.set_capability(glow::CULL_FACE, false);
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &NO_CROSSING);
             gl.clear_buffer_f32_slice(glow::DEPTH, 0, &[1.0]);
-            if let Some(q) = self.query {
-                gl.begin_query(glow::ANY_SAMPLES_PASSED, q);
-            }
+            gl.begin_query(glow::ANY_SAMPLES_PASSED, self.query.raw());
         }
         PeelPass {
             peel: self,
@@ -200,19 +166,6 @@ impl DepthPeel {
     }
 }
 
-impl Drop for DepthPeel {
-    fn drop(&mut self) {
-        unsafe {
-            for fbo in self.fbos.iter().chain([&self.rest_fbo]).flatten() {
-                self.gl.delete_framebuffer(*fbo);
-            }
-            if let Some(q) = self.query {
-                self.gl.delete_query(q);
-            }
-        }
-    }
-}
-
 /// A layer being peeled; dropping it ends the query and puts the resting state back.
 pub struct PeelPass<'a> {
     peel: &'a DepthPeel,
@@ -223,9 +176,7 @@ impl PeelPass<'_> {
     /// Ends the layer: whether any fragment was kept (waits for the query).
     pub fn finish(mut self) -> bool {
         self.close();
-        let Some(q) = self.peel.query else {
-            return false;
-        };
+        let q = self.peel.query.raw();
         let any = unsafe { self.peel.gl.get_query_parameter_u32(q, glow::QUERY_RESULT) };
         any != 0
     }
@@ -237,9 +188,7 @@ impl PeelPass<'_> {
         self.open = false;
         let gl = &self.peel.gl;
         unsafe {
-            if self.peel.query.is_some() {
-                gl.end_query(glow::ANY_SAMPLES_PASSED);
-            }
+            gl.end_query(glow::ANY_SAMPLES_PASSED);
             // What the rest changed; the resting state for a layer's pass too.
             gl.disable(glow::BLEND);
             gl.blend_equation(glow::FUNC_ADD);

@@ -13,8 +13,9 @@ use std::cell::{Cell, RefCell};
 use glam::{Mat3, Mat4, Vec4};
 use glow::HasContext;
 
+use super::owned::OwnedBuffer;
 use super::{Gl, Mesh, ShaderProgram};
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// The uniform buffer binding point of the `Instances` block (every program that declares it
 /// is pointed here when it is linked).
@@ -27,7 +28,7 @@ pub const BLOCK_VEC4S: usize = 1024;
 /// The uniform buffer; deleted on drop.
 pub struct InstanceBuffer {
     gl: Gl,
-    buffer: glow::Buffer,
+    buffer: OwnedBuffer,
     /// Bytes allocated so far: it grows, never shrinks.
     bytes: Cell<usize>,
     /// `GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT`: where a bound window may start.
@@ -38,20 +39,15 @@ pub struct InstanceBuffer {
 
 impl InstanceBuffer {
     pub fn new(gl: &Gl) -> Result<InstanceBuffer> {
-        unsafe {
-            let buffer = gl
-                .create_buffer()
-                .map_err(|e| Error::Create(format!("instance buffer: {e}")))?;
-            super::counters::count(|c| c.buffers += 1);
-            let align = gl.get_parameter_i32(glow::UNIFORM_BUFFER_OFFSET_ALIGNMENT);
-            Ok(InstanceBuffer {
-                gl: gl.clone(),
-                buffer,
-                bytes: Cell::new(0),
-                align: usize::try_from(align).unwrap_or(256).max(16),
-                values: RefCell::new(Vec::new()),
-            })
-        }
+        let buffer = OwnedBuffer::new(gl, "instance buffer")?;
+        let align = unsafe { gl.get_parameter_i32(glow::UNIFORM_BUFFER_OFFSET_ALIGNMENT) };
+        Ok(InstanceBuffer {
+            gl: gl.clone(),
+            buffer,
+            bytes: Cell::new(0),
+            align: usize::try_from(align).unwrap_or(256).max(16),
+            values: RefCell::new(Vec::new()),
+        })
     }
 
     /// Gathers the pass' values with `fill` (every instance `stride` vec4s) and uploads them
@@ -87,7 +83,8 @@ impl InstanceBuffer {
         let needed = values.len() * 16 + BLOCK_VEC4S * 16 + self.align;
         let data: &[u8] = bytemuck::cast_slice(values.as_slice());
         unsafe {
-            self.gl.bind_buffer(glow::UNIFORM_BUFFER, Some(self.buffer));
+            self.gl
+                .bind_buffer(glow::UNIFORM_BUFFER, Some(self.buffer.raw()));
             if needed > self.bytes.get() {
                 // Grown (the first pass, or more instances than ever): a new allocation.
                 let bytes = needed.next_power_of_two();
@@ -121,7 +118,7 @@ impl Instanced<'_> {
             let offset = batch.first * self.stride * 16;
             let positions_only = self.program.reads_positions_only();
             mesh.render_instanced_attributes(
-                b.buffer,
+                b.buffer.raw(),
                 (offset, self.stride),
                 batch.count,
                 positions_only,
@@ -133,7 +130,7 @@ impl Instanced<'_> {
                 b.gl.bind_buffer_range(
                     glow::UNIFORM_BUFFER,
                     INSTANCE_BINDING,
-                    Some(b.buffer),
+                    Some(b.buffer.raw()),
                     w.start as i32,
                     (BLOCK_VEC4S * 16) as i32,
                 );
@@ -187,11 +184,6 @@ impl Drop for Instanced<'_> {
     }
 }
 
-impl Drop for InstanceBuffer {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_buffer(self.buffer) };
-    }
-}
 /// The values of one pass (vec4s: the block's elements), pushed instance by instance.
 pub struct Values<'a>(&'a mut Vec<Vec4>);
 

@@ -7,6 +7,7 @@
 
 use glow::HasContext;
 
+use super::owned::{OwnedBuffer, OwnedVertexArray};
 use super::Gl;
 use crate::error::{Error, Result};
 use crate::geometry::MeshData;
@@ -17,11 +18,9 @@ pub const INSTANCE_LOCATION: u32 = 3;
 /// An uploaded mesh; its VAOs and buffers are deleted on drop.
 pub struct Mesh {
     gl: Gl,
-    vao: glow::VertexArray,
-    vbo: glow::Buffer,
-    ebo: glow::Buffer,
-    /// The welded positions' vertex array and its two buffers.
-    positions: (glow::VertexArray, glow::Buffer, glow::Buffer),
+    all: Uploaded,
+    /// The welded positions.
+    positions: Uploaded,
     index_count: i32,
     vertex_count: i32,
 }
@@ -40,29 +39,13 @@ impl Mesh {
         }
         let index_count = i32::try_from(data.indices.len())
             .map_err(|_| Error::Invalid(format!("mesh '{}': too many indices", data.name)))?;
-        let (vao, vbo, ebo) = upload(
-            gl,
-            as_bytes(&interleaved),
-            &[(0, 3), (1, 2), (2, 3)],
-            &data.indices,
-        )?;
+        let attributes = [(0, 3), (1, 2), (2, 3)];
+        let all = upload(gl, as_bytes(&interleaved), &attributes, &data.indices)?;
         let (welded, indices) = data.welded_positions();
-        let positions = match upload(gl, as_bytes(&welded), &[(0, 3)], &indices) {
-            Ok(p) => p,
-            Err(e) => {
-                unsafe {
-                    gl.delete_vertex_array(vao);
-                    gl.delete_buffer(vbo);
-                    gl.delete_buffer(ebo);
-                }
-                return Err(e);
-            }
-        };
+        let positions = upload(gl, as_bytes(&welded), &[(0, 3)], &indices)?;
         Ok(Mesh {
             gl: gl.clone(),
-            vao,
-            vbo,
-            ebo,
+            all,
             positions,
             index_count,
             vertex_count: data.positions.len() as i32,
@@ -73,9 +56,9 @@ impl Mesh {
     /// else ([`super::ShaderProgram::reads_positions_only`]).
     fn vertices(&self, positions_only: bool) -> glow::VertexArray {
         if positions_only {
-            self.positions.0
+            self.positions.vao()
         } else {
-            self.vao
+            self.all.vao()
         }
     }
 
@@ -104,7 +87,7 @@ impl Mesh {
         mut before_each: impl FnMut(T),
     ) {
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_vertex_array(Some(self.all.vao()));
             for item in items {
                 before_each(item);
                 self.gl
@@ -119,7 +102,7 @@ impl Mesh {
     /// [`super::instances::InstanceBuffer`]).
     pub fn render_instanced(&self, count: usize) {
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_vertex_array(Some(self.all.vao()));
             self.gl.draw_elements_instanced(
                 glow::TRIANGLES,
                 self.index_count,
@@ -185,7 +168,7 @@ impl Mesh {
     /// captures one value a vertex ([`super::VertexCapture`]).
     pub fn render_points(&self) {
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_vertex_array(Some(self.all.vao()));
             self.gl.draw_arrays(glow::POINTS, 0, self.vertex_count);
             self.gl.bind_vertex_array(None);
         }
@@ -198,7 +181,7 @@ impl Mesh {
     pub fn render_with_vertex_values(&self, buffer: glow::Buffer, offset: usize) {
         let location = INSTANCE_LOCATION;
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_vertex_array(Some(self.all.vao()));
             self.gl.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
             self.gl.enable_vertex_attrib_array(location);
             (self.gl).vertex_attrib_pointer_f32(location, 4, glow::FLOAT, false, 16, offset as i32);
@@ -214,20 +197,6 @@ impl Mesh {
     }
 }
 
-impl Drop for Mesh {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.delete_vertex_array(self.vao);
-            self.gl.delete_buffer(self.vbo);
-            self.gl.delete_buffer(self.ebo);
-            let (vao, vbo, ebo) = self.positions;
-            self.gl.delete_vertex_array(vao);
-            self.gl.delete_buffer(vbo);
-            self.gl.delete_buffer(ebo);
-        }
-    }
-}
-
 pub(super) fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
     // f32 and u32 have no padding and any bit pattern is a valid byte sequence.
     unsafe { std::slice::from_raw_parts(data.as_ptr().cast::<u8>(), std::mem::size_of_val(data)) }
@@ -236,66 +205,53 @@ pub(super) fn as_bytes<T: Copy>(data: &[T]) -> &[u8] {
 /// A triangle that covers the whole viewport, generated from `gl_VertexID` (the depth-map
 /// view's "quad"). Core profile needs a bound VAO even with no attributes.
 pub struct FullScreenTriangle {
-    gl: Gl,
-    vao: glow::VertexArray,
+    vao: OwnedVertexArray,
 }
 
 impl FullScreenTriangle {
     pub fn new(gl: &Gl) -> Result<FullScreenTriangle> {
-        let vao = unsafe { gl.create_vertex_array() }
-            .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
-        Ok(FullScreenTriangle {
-            gl: gl.clone(),
-            vao,
-        })
+        let vao = OwnedVertexArray::new(gl, "full-screen triangle vertex array")?;
+        Ok(FullScreenTriangle { vao })
     }
 
     pub fn draw(&self) {
+        let gl = self.vao.gl();
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
-            self.gl.draw_arrays(glow::TRIANGLES, 0, 3);
-            self.gl.bind_vertex_array(None);
+            gl.bind_vertex_array(Some(self.vao.raw()));
+            gl.draw_arrays(glow::TRIANGLES, 0, 3);
+            gl.bind_vertex_array(None);
         }
     }
 }
 
-impl Drop for FullScreenTriangle {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_vertex_array(self.vao) };
+/// A vertex array with its vertex and index buffers; all deleted on drop.
+pub(super) struct Uploaded {
+    vao: OwnedVertexArray,
+    _vertices: OwnedBuffer,
+    _indices: OwnedBuffer,
+}
+
+impl Uploaded {
+    pub(super) fn vao(&self) -> glow::VertexArray {
+        self.vao.raw()
     }
 }
 
 /// Creates a vertex array with its vertex and index buffers and uploads `vertices`
 /// (interleaved f32s: `attributes` are (location, components) in order) and `indices`;
-/// on an error nothing is left behind. The caller owns and deletes the three.
+/// on an error nothing is left behind.
 pub(super) fn upload(
     gl: &Gl,
     vertices: &[u8],
     attributes: &[(u32, i32)],
     indices: &[u32],
-) -> Result<(glow::VertexArray, glow::Buffer, glow::Buffer)> {
+) -> Result<Uploaded> {
+    let vao = OwnedVertexArray::new(gl, "vertex array")?;
+    let vbo = OwnedBuffer::new(gl, "vertex buffer")?;
+    let ebo = OwnedBuffer::new(gl, "index buffer")?;
     unsafe {
-        let vao = gl
-            .create_vertex_array()
-            .map_err(|e| Error::Create(format!("vertex array: {e}")))?;
-        let vbo = match gl.create_buffer() {
-            Ok(b) => b,
-            Err(e) => {
-                gl.delete_vertex_array(vao);
-                return Err(Error::Create(format!("vertex buffer: {e}")));
-            }
-        };
-        let ebo = match gl.create_buffer() {
-            Ok(b) => b,
-            Err(e) => {
-                gl.delete_vertex_array(vao);
-                gl.delete_buffer(vbo);
-                return Err(Error::Create(format!("index buffer: {e}")));
-            }
-        };
-        super::counters::count(|c| c.buffers += 2);
-        gl.bind_vertex_array(Some(vao));
-        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+        gl.bind_vertex_array(Some(vao.raw()));
+        gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo.raw()));
         gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, vertices, glow::STATIC_DRAW);
         let stride = attributes.iter().map(|(_, n)| n).sum::<i32>() * 4;
         let mut offset = 0;
@@ -304,7 +260,7 @@ pub(super) fn upload(
             gl.vertex_attrib_pointer_f32(location, components, glow::FLOAT, false, stride, offset);
             offset += components * 4;
         }
-        gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+        gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo.raw()));
         gl.buffer_data_u8_slice(
             glow::ELEMENT_ARRAY_BUFFER,
             as_bytes(indices),
@@ -312,6 +268,10 @@ pub(super) fn upload(
         );
         gl.bind_vertex_array(None);
         gl.bind_buffer(glow::ARRAY_BUFFER, None);
-        Ok((vao, vbo, ebo))
     }
+    Ok(Uploaded {
+        vao,
+        _vertices: vbo,
+        _indices: ebo,
+    })
 }

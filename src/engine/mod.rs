@@ -1,7 +1,8 @@
 //! The GL-facing engine: every `unsafe` OpenGL call of the project lives in this module.
 //!
-//! Each type owns its GL objects and frees them in `Drop`, so app code never sees a raw GL
-//! name. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
+//! Each type owns its GL objects through [`owned::Owned`], which makes, counts and deletes
+//! them, so app code never sees a raw GL name; every framebuffer is put together by
+//! [`framebuffer::Framebuffer::build`]. The names follow the LWJGL book's classes (`Texture`, `ShadowMap`, `ShaderProgram`,
 //! `Mesh`); `RenderTarget` is the headless stand-in for the window's framebuffer.
 
 pub mod bindings;
@@ -9,10 +10,12 @@ pub mod blend;
 pub mod check;
 pub mod counters;
 pub mod depth_peel;
+pub mod framebuffer;
 pub mod headless;
 pub mod instances;
 pub mod mesh;
 pub mod moment_map;
+pub mod owned;
 pub mod render_target;
 pub mod sampler;
 pub mod shader_program;

@@ -6,20 +6,20 @@
 
 use glow::HasContext;
 
-use super::check::check_framebuffer;
+use super::framebuffer::{Attachment, Framebuffer, Part};
 use super::mesh::FullScreenTriangle;
 use super::state::{NoDepthTest, PixelRect};
 use super::texture::Texture;
 use super::{Gl, ShaderProgram};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::settings::MapSize;
 
-/// Owns both textures, the depth renderbuffer and the two framebuffers; all freed on drop.
+/// Owns both textures and the two framebuffers (the first with the depth renderbuffer);
+/// all freed on drop.
 pub struct MomentMap {
     gl: Gl,
     /// Framebuffer `i` draws into `textures[i]`; only the first has the depth buffer.
-    fbos: [Option<glow::Framebuffer>; 2],
-    depth: Option<glow::Renderbuffer>,
+    fbos: [Framebuffer; 2],
     textures: [Texture; 2],
     components: u32,
 }
@@ -32,64 +32,36 @@ impl MomentMap {
             Texture::float_target(gl, w, h, components)?,
             Texture::float_target(gl, w, h, components)?,
         ];
-        // Owned before anything can fail, so a failure frees what was made.
-        let mut map = MomentMap {
+        let target = |i: usize| {
+            let colour = Framebuffer::build(gl, "moment map")?.texture(
+                Attachment::Colour(0),
+                &textures[i],
+                Part::Image,
+            );
+            let colour = match i {
+                0 => colour.renderbuffer(
+                    Attachment::Depth,
+                    glow::DEPTH_COMPONENT24,
+                    (w, h),
+                    "moment map depth buffer",
+                )?,
+                _ => colour,
+            };
+            colour.finish(&format!("moment map {w}x{h} ({i})"))
+        };
+        Ok(MomentMap {
             gl: gl.clone(),
-            fbos: [None, None],
-            depth: None,
+            fbos: [target(0)?, target(1)?],
             textures,
             components,
-        };
-        unsafe {
-            let depth = gl
-                .create_renderbuffer()
-                .map_err(|e| Error::Create(format!("moment map depth buffer: {e}")))?;
-            super::counters::count(|c| c.renderbuffers += 1);
-            map.depth = Some(depth);
-            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
-            gl.renderbuffer_storage(
-                glow::RENDERBUFFER,
-                glow::DEPTH_COMPONENT24,
-                w as i32,
-                h as i32,
-            );
-            gl.bind_renderbuffer(glow::RENDERBUFFER, None);
-            for i in 0..2 {
-                let fbo = gl
-                    .create_framebuffer()
-                    .map_err(|e| Error::Create(format!("moment map framebuffer: {e}")))?;
-                super::counters::count(|c| c.framebuffers += 1);
-                map.fbos[i] = Some(fbo);
-                gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-                gl.framebuffer_texture_2d(
-                    glow::FRAMEBUFFER,
-                    glow::COLOR_ATTACHMENT0,
-                    glow::TEXTURE_2D,
-                    Some(map.textures[i].id()),
-                    0,
-                );
-                if i == 0 {
-                    gl.framebuffer_renderbuffer(
-                        glow::FRAMEBUFFER,
-                        glow::DEPTH_ATTACHMENT,
-                        glow::RENDERBUFFER,
-                        Some(depth),
-                    );
-                }
-                gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
-                let status = check_framebuffer(gl, &format!("moment map {w}x{h} ({i})"));
-                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                status?;
-            }
-        }
-        Ok(map)
+        })
     }
 
     /// Binds the depth pass' framebuffer, sets the viewport to the map and clears the
     /// moments to `far` (the moments of depth 1, where nothing was drawn) and the depth to 1.
     pub fn begin_depth_pass(&self, far: [f32; 4]) {
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbos[0]);
+            self.fbos[0].bind();
             self.viewport();
             self.gl.depth_mask(true);
             self.gl.clear_buffer_f32_slice(glow::COLOR, 0, &far);
@@ -143,8 +115,7 @@ impl MomentMap {
         unsafe { self.gl.bind_sampler(0, None) };
         for (from, step, scissor) in passes {
             unsafe {
-                self.gl
-                    .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[1 - from]);
+                self.fbos[1 - from].bind();
                 match scissor {
                     Some(s) => {
                         self.gl.set_capability(glow::SCISSOR_TEST, true);
@@ -191,18 +162,5 @@ impl MomentMap {
     /// Bytes allocated: two float textures and a depth buffer (4 bytes a texel).
     pub fn bytes(&self) -> u64 {
         self.size().texels() * (2 * 4 * u64::from(self.components) + 4)
-    }
-}
-
-impl Drop for MomentMap {
-    fn drop(&mut self) {
-        unsafe {
-            for fbo in self.fbos.iter().flatten() {
-                self.gl.delete_framebuffer(*fbo);
-            }
-            if let Some(depth) = self.depth {
-                self.gl.delete_renderbuffer(depth);
-            }
-        }
     }
 }

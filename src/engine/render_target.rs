@@ -4,7 +4,7 @@
 
 use glow::HasContext;
 
-use super::check::check_framebuffer;
+use super::framebuffer::{Attachment, Framebuffer, Part};
 use super::texture::Texture;
 use super::Gl;
 use crate::error::{Error, Result};
@@ -25,8 +25,8 @@ pub type GBufferData = (Vec<[f32; 3]>, Vec<[f32; 3]>);
 /// shadow volumes) and the chosen outputs.
 pub struct RenderTarget {
     gl: Gl,
-    fbo: glow::Framebuffer,
-    depth: glow::Renderbuffer,
+    /// With its depth-stencil renderbuffer.
+    fbo: Framebuffer,
     colour: Texture,
     visibility: Option<Texture>,
     positions: Option<Texture>,
@@ -83,72 +83,34 @@ impl RenderTarget {
             || Texture::attachment(gl, width, height, glow::RGBA32F, glow::RGBA, glow::FLOAT);
         let positions = outputs.gbuffer.then(float_target).transpose()?;
         let normals = outputs.gbuffer.then(float_target).transpose()?;
-        unsafe {
-            let fbo = gl
-                .create_framebuffer()
-                .map_err(|e| Error::Create(format!("render-target framebuffer: {e}")))?;
-            super::counters::count(|c| {
-                c.framebuffers += 1;
-                c.renderbuffers += 1;
-            });
-            let depth = match gl.create_renderbuffer() {
-                Ok(d) => d,
-                Err(e) => {
-                    gl.delete_framebuffer(fbo);
-                    return Err(Error::Create(format!("depth renderbuffer: {e}")));
-                }
-            };
-            let target = RenderTarget {
-                gl: gl.clone(),
-                fbo,
-                depth,
-                colour,
-                visibility,
-                positions,
-                normals,
-                width,
-                height,
-            };
-            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
-            gl.renderbuffer_storage(
-                glow::RENDERBUFFER,
-                glow::DEPTH24_STENCIL8,
-                width as i32,
-                height as i32,
-            );
-            gl.bind_renderbuffer(glow::RENDERBUFFER, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            gl.framebuffer_renderbuffer(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_STENCIL_ATTACHMENT,
-                glow::RENDERBUFFER,
-                Some(depth),
-            );
-            let mut draw_buffers = Vec::new();
-            for (i, tex) in target.attachments() {
-                match tex {
-                    Some(tex) => {
-                        gl.framebuffer_texture_2d(
-                            glow::FRAMEBUFFER,
-                            glow::COLOR_ATTACHMENT0 + i,
-                            glow::TEXTURE_2D,
-                            Some(tex.id()),
-                            0,
-                        );
-                        draw_buffers.push(glow::COLOR_ATTACHMENT0 + i);
-                    }
-                    None => draw_buffers.push(glow::NONE),
-                }
+        let mut fbo = Framebuffer::build(gl, "render target")?.renderbuffer(
+            Attachment::DepthStencil,
+            glow::DEPTH24_STENCIL8,
+            (width, height),
+            "depth renderbuffer",
+        )?;
+        let outputs = [
+            Some(&colour),
+            visibility.as_ref(),
+            positions.as_ref(),
+            normals.as_ref(),
+        ];
+        for (i, tex) in outputs.into_iter().enumerate() {
+            if let Some(tex) = tex {
+                fbo = fbo.texture(Attachment::Colour(i as u32), tex, Part::Image);
             }
-            while draw_buffers.last() == Some(&glow::NONE) {
-                draw_buffers.pop();
-            }
-            gl.draw_buffers(&draw_buffers);
-            let status = check_framebuffer(gl, &format!("render target {width}x{height}"));
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-            status?;
-            Ok(target)
         }
+        let fbo = fbo.finish(&format!("render target {width}x{height}"))?;
+        Ok(RenderTarget {
+            gl: gl.clone(),
+            fbo,
+            colour,
+            visibility,
+            positions,
+            normals,
+            width,
+            height,
+        })
     }
 
     /// The extra outputs this target has (the scene program writes only those).
@@ -170,8 +132,8 @@ impl RenderTarget {
 
     /// Binds the framebuffer and clears colour to `clear`, the extra outputs to zero.
     pub fn bind_and_clear(&self, clear: [f32; 4]) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl
                 .viewport(0, 0, self.width as i32, self.height as i32);
             self.gl.depth_mask(true);
@@ -191,15 +153,15 @@ impl RenderTarget {
     /// Binds the framebuffer and sets the viewport to its size without clearing, for what
     /// is drawn over a finished frame (the HUD).
     pub fn bind(&self) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo));
             self.gl
                 .viewport(0, 0, self.width as i32, self.height as i32);
         }
     }
 
     pub fn framebuffer(&self) -> glow::Framebuffer {
-        self.fbo
+        self.fbo.raw()
     }
 
     pub fn width(&self) -> u32 {
@@ -212,7 +174,7 @@ impl RenderTarget {
 
     /// The colour image as RGBA8, rows top to bottom.
     pub fn read_colour(&self) -> Vec<u8> {
-        read_rgba8(&self.gl, Some(self.fbo), 0, self.width, self.height)
+        read_rgba8(&self.gl, Some(self.fbo.raw()), 0, self.width, self.height)
     }
 
     /// Per pixel: `Some(visibility)` where geometry was drawn, `None` elsewhere; rows top to
@@ -260,7 +222,7 @@ impl RenderTarget {
         let mut data = vec![0u8; w * h * bytes_per_pixel];
         unsafe {
             self.gl
-                .bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo));
+                .bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo.raw()));
             self.gl.read_buffer(glow::COLOR_ATTACHMENT0 + attachment);
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
             self.gl.read_pixels(
@@ -277,15 +239,6 @@ impl RenderTarget {
         }
         flip_rows(&mut data, w * bytes_per_pixel);
         data
-    }
-}
-
-impl Drop for RenderTarget {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.delete_framebuffer(self.fbo);
-            self.gl.delete_renderbuffer(self.depth);
-        }
     }
 }
 

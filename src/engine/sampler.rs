@@ -5,8 +5,10 @@
 
 use glow::HasContext;
 
+use super::owned::OwnedSampler;
+use super::texture::Filtering;
 use super::Gl;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::settings::Wrap;
 
 /// What a sampler does.
@@ -38,38 +40,24 @@ fn wrap_mode(wrap: Wrap) -> u32 {
     }
 }
 
-/// An owned sampler object; deleted on drop.
+/// An owned sampler object; deleted with its name.
 pub struct Sampler {
-    gl: Gl,
-    id: glow::Sampler,
+    name: OwnedSampler,
     sampling: Sampling,
 }
 
 impl Sampler {
     pub fn new(gl: &Gl, sampling: Sampling) -> Result<Sampler> {
-        let id =
-            unsafe { gl.create_sampler() }.map_err(|e| Error::Create(format!("sampler: {e}")))?;
-        let s = Sampler {
-            gl: gl.clone(),
-            id,
-            sampling,
+        let name = OwnedSampler::new(gl, "sampler")?;
+        let id = name.raw();
+        let filter = if sampling.linear {
+            glow::LINEAR
+        } else {
+            glow::NEAREST
         };
         unsafe {
             let p = |k, v: u32| gl.sampler_parameter_i32(id, k, v as i32);
-            let filter = if sampling.linear {
-                glow::LINEAR
-            } else {
-                glow::NEAREST
-            };
-            p(glow::TEXTURE_MIN_FILTER, filter);
-            p(glow::TEXTURE_MAG_FILTER, filter);
-            for axis in [
-                glow::TEXTURE_WRAP_S,
-                glow::TEXTURE_WRAP_T,
-                glow::TEXTURE_WRAP_R,
-            ] {
-                p(axis, wrap_mode(sampling.wrap));
-            }
+            Filtering::new(filter, wrap_mode(sampling.wrap)).apply(p);
             if sampling.wrap == Wrap::ClampToBorder {
                 gl.sampler_parameter_f32_slice(id, glow::TEXTURE_BORDER_COLOR, &[1.0; 4]);
             }
@@ -80,22 +68,17 @@ impl Sampler {
                 p(glow::TEXTURE_COMPARE_MODE, glow::NONE);
             }
         }
-        Ok(s)
+        Ok(Sampler { name, sampling })
     }
 
     /// Binds the sampler to texture unit `unit` until the returned guard drops.
     pub fn bind(&self, unit: u32) -> BoundSampler {
-        unsafe { self.gl.bind_sampler(unit, Some(self.id)) };
+        let gl = self.name.gl();
+        unsafe { gl.bind_sampler(unit, Some(self.name.raw())) };
         BoundSampler {
-            gl: self.gl.clone(),
+            gl: gl.clone(),
             unit,
         }
-    }
-}
-
-impl Drop for Sampler {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_sampler(self.id) };
     }
 }
 

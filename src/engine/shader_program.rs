@@ -6,6 +6,7 @@ use std::cell::RefCell;
 use glam::{Mat3, Mat4, Vec3, Vec4};
 use glow::HasContext;
 
+use super::owned::{OwnedProgram, OwnedShader};
 use super::Gl;
 use crate::error::{Error, Result};
 
@@ -133,7 +134,7 @@ fn annotate_line(files: &[String], line: &str) -> Option<String> {
 /// A linked program; deleted on drop.
 pub struct ShaderProgram {
     gl: Gl,
-    program: glow::Program,
+    program: OwnedProgram,
     uniforms: RefCell<Uniforms>,
     /// Reads instanced values as per-instance vertex attributes (`instanceMatrix`), not
     /// from the `Instances` block.
@@ -178,40 +179,30 @@ impl ShaderProgram {
         defines: &[(String, String)],
         varyings: &[&str],
     ) -> Result<ShaderProgram> {
-        let program =
-            unsafe { gl.create_program() }.map_err(|e| Error::Create(format!("program: {e}")))?;
-        super::counters::count(|c| c.programs += 1);
+        let owned = OwnedProgram::new(gl, "program")?;
+        let program = owned.raw();
         let mut this = ShaderProgram {
             gl: gl.clone(),
-            program,
+            program: owned,
             uniforms: RefCell::new(Uniforms::default()),
             instance_attributes: false,
             positions_only: false,
         };
-        let mut shaders = Vec::with_capacity(stages.len());
-        for (kind, source) in stages {
-            match compile(gl, *kind, source, defines) {
-                Ok(s) => shaders.push(s),
-                Err(e) => {
-                    shaders
-                        .into_iter()
-                        .for_each(|s| unsafe { gl.delete_shader(s) });
-                    return Err(e);
-                }
-            }
-        }
+        let shaders = stages
+            .iter()
+            .map(|(kind, source)| compile(gl, *kind, source, defines))
+            .collect::<Result<Vec<_>>>()?;
         let names: Vec<&str> = stages.iter().map(|(_, s)| s.name.as_str()).collect();
         unsafe {
             for s in &shaders {
-                gl.attach_shader(program, *s);
+                gl.attach_shader(program, s.raw());
             }
             if !varyings.is_empty() {
                 gl.transform_feedback_varyings(program, varyings, glow::INTERLEAVED_ATTRIBS);
             }
             gl.link_program(program);
             for s in shaders {
-                gl.detach_shader(program, s);
-                gl.delete_shader(s);
+                gl.detach_shader(program, s.raw());
             }
             if !gl.get_program_link_status(program) {
                 let log = gl.get_program_info_log(program);
@@ -244,7 +235,7 @@ impl ShaderProgram {
     }
 
     pub fn bind(&self) {
-        self.gl.use_program_once(Some(self.program));
+        self.gl.use_program_once(Some(self.program.raw()));
     }
 
     pub fn unbind(&self) {
@@ -279,7 +270,7 @@ impl ShaderProgram {
             // The same name at another address: the same uniform.
             Some(n) => n.1,
             None => {
-                let loc = unsafe { self.gl.get_uniform_location(self.program, name) };
+                let loc = unsafe { self.gl.get_uniform_location(self.program.raw(), name) };
                 u.slots.push((loc, Vec::new()));
                 u.slots.len() - 1
             }
@@ -392,13 +383,6 @@ struct Uniforms {
     slots: Vec<(Option<glow::UniformLocation>, Vec<u32>)>,
 }
 
-impl Drop for ShaderProgram {
-    fn drop(&mut self) {
-        self.gl.forget_program(self.program);
-        unsafe { self.gl.delete_program(self.program) };
-    }
-}
-
 /// Whether every active attribute of `program` is the position (location 0) or a
 /// per-instance one (locations [`super::mesh::INSTANCE_LOCATION`] on). The compiler drops
 /// inputs a program never reads from its active attributes.
@@ -418,23 +402,21 @@ fn compile(
     kind: u32,
     source: &ShaderSource,
     defines: &[(String, String)],
-) -> Result<glow::Shader> {
+) -> Result<OwnedShader> {
+    let owned = OwnedShader::with(gl, &format!("shader {}", source.name), kind)?;
+    let shader = owned.raw();
     unsafe {
-        let shader = gl
-            .create_shader(kind)
-            .map_err(|e| Error::Create(format!("shader {}: {e}", source.name)))?;
         gl.shader_source(shader, &source.with_defines(defines));
         gl.compile_shader(shader);
         if !gl.get_shader_compile_status(shader) {
             let log = gl.get_shader_info_log(shader);
-            gl.delete_shader(shader);
             return Err(Error::Shader {
                 file: source.name.clone(),
                 log: annotate_log(&source.files, &log),
             });
         }
-        Ok(shader)
     }
+    Ok(owned)
 }
 
 #[cfg(test)]

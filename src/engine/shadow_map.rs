@@ -6,17 +6,17 @@ mod layered;
 
 use glow::HasContext;
 
+use super::framebuffer::{Framebuffer, Part};
 use super::texture::Texture;
 use super::Gl;
 use crate::error::Result;
 use crate::settings::{DepthFormat, MapSize};
-use fbo::DepthFbo;
 pub use layered::{CascadeShadowMap, CubeShadowMap};
 
 /// Owns the framebuffer and the depth texture attached to it; both are freed on drop.
 pub struct ShadowMap {
     gl: Gl,
-    fbo: DepthFbo,
+    fbo: Framebuffer,
     depth_map: Texture,
     format: DepthFormat,
 }
@@ -35,29 +35,18 @@ impl ShadowMap {
     /// attachment gives [`Error::IncompleteFramebuffer`], never a silently black map.
     pub fn from_texture(gl: &Gl, depth_map: Texture, format: DepthFormat) -> Result<ShadowMap> {
         let (width, height) = (depth_map.width(), depth_map.height());
-        // The FBO has its owner before the completeness check, so a failure frees it.
-        let map = ShadowMap {
-            gl: gl.clone(),
-            fbo: DepthFbo::new(gl, "shadow-map framebuffer")?,
-            depth_map,
-            format,
-        };
-        map.fbo.bind();
-        unsafe {
-            gl.framebuffer_texture_2d(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
-                glow::TEXTURE_2D,
-                Some(map.depth_map.id()),
-                0,
-            );
-        }
-        map.fbo.finish(&format!("shadow map {width}x{height}"))?;
+        let what = format!("shadow map {width}x{height}");
+        let fbo = fbo::depth_only(gl, &depth_map, Part::Image, &what)?;
         // Once per context and depth format (a patched map's clear; see the function).
         if gl.first_time(super::texture::depth_internal_format(format)) {
-            map.fbo.warm_scissored_clear();
+            fbo::warm_scissored_clear(gl, &fbo);
         }
-        Ok(map)
+        Ok(ShadowMap {
+            gl: gl.clone(),
+            fbo,
+            depth_map,
+            format,
+        })
     }
 
     /// Binds the FBO and sets the viewport to the map's size (the start of `renderDepthMap`).
@@ -84,6 +73,6 @@ impl ShadowMap {
 
     /// Reads the depth values back (row 0 at the bottom, as GL stores them).
     pub fn read_depth(&self) -> Vec<f32> {
-        self.fbo.read_depth(self.size())
+        fbo::read_depth(&self.gl, &self.fbo, self.size())
     }
 }

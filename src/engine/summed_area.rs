@@ -8,7 +8,7 @@
 
 use glow::HasContext;
 
-use super::check::check_framebuffer;
+use super::framebuffer::{Attachment, Framebuffer, Part};
 use super::mesh::FullScreenTriangle;
 use super::state::NoDepthTest;
 use super::texture::Texture;
@@ -43,7 +43,7 @@ pub fn axis_passes(side: u32) -> u32 {
 pub struct SummedAreaTable {
     gl: Gl,
     /// Framebuffer `i` draws into `textures[i]`.
-    fbos: [Option<glow::Framebuffer>; 2],
+    fbos: [Framebuffer; 2],
     textures: [Texture; 2],
     components: u32,
     /// The texture that holds the table after the last build.
@@ -64,34 +64,19 @@ impl SummedAreaTable {
         };
         let (w, h) = (size.width, size.height);
         let make = || Texture::attachment(gl, w, h, internal, format, glow::UNSIGNED_INT);
-        let mut table = SummedAreaTable {
+        let textures = [make()?, make()?];
+        let target = |i: usize| {
+            Framebuffer::build(gl, "summed-area table")?
+                .texture(Attachment::Colour(0), &textures[i], Part::Image)
+                .finish(&format!("summed-area table {w}x{h} ({i})"))
+        };
+        Ok(SummedAreaTable {
             gl: gl.clone(),
-            fbos: [None, None],
-            textures: [make()?, make()?],
+            fbos: [target(0)?, target(1)?],
+            textures,
             components,
             result: 0,
-        };
-        for i in 0..2 {
-            unsafe {
-                let fbo = gl
-                    .create_framebuffer()
-                    .map_err(|e| Error::Create(format!("summed-area framebuffer: {e}")))?;
-                table.fbos[i] = Some(fbo);
-                gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-                gl.framebuffer_texture_2d(
-                    glow::FRAMEBUFFER,
-                    glow::COLOR_ATTACHMENT0,
-                    glow::TEXTURE_2D,
-                    Some(table.textures[i].id()),
-                    0,
-                );
-                gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
-                let status = check_framebuffer(gl, &format!("summed-area table {w}x{h} ({i})"));
-                gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                status?;
-            }
-        }
-        Ok(table)
+        })
     }
 
     /// Builds the table of `source` (float moments, the table's size): `convert` (reading
@@ -137,10 +122,7 @@ impl SummedAreaTable {
                 }
             }
             program.set_vec2("stepTexels", [step[0] as f32, step[1] as f32]);
-            unsafe {
-                self.gl
-                    .bind_framebuffer(glow::FRAMEBUFFER, self.fbos[target]);
-            }
+            self.fbos[target].bind();
             triangle.draw();
             from = Some(target);
         }
@@ -166,7 +148,7 @@ impl SummedAreaTable {
         };
         unsafe {
             self.gl
-                .bind_framebuffer(glow::READ_FRAMEBUFFER, self.fbos[self.result]);
+                .bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbos[self.result].raw()));
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
             self.gl.read_pixels(
                 0,
@@ -237,16 +219,6 @@ pub fn float_texture_from(
         gl.bind_texture(glow::TEXTURE_2D, None);
     }
     Ok(texture)
-}
-
-impl Drop for SummedAreaTable {
-    fn drop(&mut self) {
-        unsafe {
-            for fbo in self.fbos.iter().flatten() {
-                self.gl.delete_framebuffer(*fbo);
-            }
-        }
-    }
 }
 
 #[cfg(test)]

@@ -10,7 +10,9 @@ use std::collections::HashMap;
 use glow::HasContext;
 
 use super::check::check_gl;
+use super::owned::{OwnedBuffer, OwnedVertexArray};
 use super::shader_program::{ShaderProgram, ShaderSource};
+use super::texture::{Filtering, Texels, Texture};
 use super::Gl;
 use crate::error::{Error, Result};
 
@@ -219,9 +221,9 @@ const FLOATS_PER_VERTEX: usize = 8;
 pub struct TextRenderer {
     gl: Gl,
     program: ShaderProgram,
-    vao: glow::VertexArray,
-    vbo: glow::Buffer,
-    atlas: glow::Texture,
+    vao: OwnedVertexArray,
+    vbo: OwnedBuffer,
+    atlas: Texture,
     /// Vertex bytes, kept between frames to avoid reallocating.
     bytes: Vec<u8>,
 }
@@ -237,42 +239,13 @@ impl TextRenderer {
         fragment: &ShaderSource,
     ) -> Result<TextRenderer> {
         let program = ShaderProgram::new(gl, vertex, fragment, &[])?;
+        let vao = OwnedVertexArray::new(gl, "text vertex array")?;
+        let vbo = OwnedBuffer::new(gl, "text vertex buffer")?;
         unsafe {
-            let vao = gl
-                .create_vertex_array()
-                .map_err(|e| Error::Create(format!("text vertex array: {e}")))?;
-            let vbo = match gl.create_buffer() {
-                Ok(b) => b,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    return Err(Error::Create(format!("text vertex buffer: {e}")));
-                }
-            };
-            super::counters::count(|c| {
-                c.buffers += 1;
-                c.textures += 1;
-            });
-            let texture = match gl.create_texture() {
-                Ok(t) => t,
-                Err(e) => {
-                    gl.delete_vertex_array(vao);
-                    gl.delete_buffer(vbo);
-                    return Err(Error::Create(format!("glyph atlas texture: {e}")));
-                }
-            };
-            // Owned from here on: an error below still frees all three.
-            let text = TextRenderer {
-                gl: gl.clone(),
-                program,
-                vao,
-                vbo,
-                atlas: texture,
-                bytes: Vec::new(),
-            };
             let previous_vao = gl.get_parameter_vertex_array(glow::VERTEX_ARRAY_BINDING);
             let previous_buffer = gl.get_parameter_buffer(glow::ARRAY_BUFFER_BINDING);
-            gl.bind_vertex_array(Some(vao));
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.bind_vertex_array(Some(vao.raw()));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo.raw()));
             let stride = (FLOATS_PER_VERTEX * 4) as i32;
             gl.enable_vertex_attrib_array(0);
             gl.vertex_attrib_pointer_f32(0, 2, glow::FLOAT, false, stride, 0);
@@ -282,39 +255,17 @@ impl TextRenderer {
             gl.vertex_attrib_pointer_f32(2, 4, glow::FLOAT, false, stride, 4 * 4);
             gl.bind_vertex_array(previous_vao);
             gl.bind_buffer(glow::ARRAY_BUFFER, previous_buffer);
-
-            let previous_unit = gl.get_parameter_i32(glow::ACTIVE_TEXTURE) as u32;
-            gl.active_texture(glow::TEXTURE0);
-            let previous_texture = gl.get_parameter_texture(glow::TEXTURE_BINDING_2D);
-            let previous_alignment = gl.get_parameter_i32(glow::UNPACK_ALIGNMENT);
-            gl.bind_texture(glow::TEXTURE_2D, Some(texture));
-            gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
-            gl.tex_image_2d(
-                glow::TEXTURE_2D,
-                0,
-                glow::R8 as i32,
-                atlas.width() as i32,
-                atlas.height() as i32,
-                0,
-                glow::RED,
-                glow::UNSIGNED_BYTE,
-                glow::PixelUnpackData::Slice(Some(atlas.pixels())),
-            );
-            let p = |k, v: u32| gl.tex_parameter_i32(glow::TEXTURE_2D, k, v as i32);
-            // Glyphs are placed on whole pixels, one texel to a pixel, so nearest sampling
-            // reads what linear would, at a fraction of the cost on a software rasteriser;
-            // no mipmaps, the atlas is never minified.
-            p(glow::TEXTURE_MIN_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_MAG_FILTER, glow::NEAREST);
-            p(glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE);
-            p(glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE);
-            gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, previous_alignment);
-            gl.bind_texture(glow::TEXTURE_2D, previous_texture);
-            gl.active_texture(previous_unit);
-            gl.forget_bindings();
-            check_gl(gl, "uploading the glyph atlas")?;
-            Ok(text)
         }
+        let atlas = upload_atlas(gl, atlas)?;
+        check_gl(gl, "uploading the glyph atlas")?;
+        Ok(TextRenderer {
+            gl: gl.clone(),
+            program,
+            vao,
+            vbo,
+            atlas,
+            bytes: Vec::new(),
+        })
     }
 
     /// Draws `quads` over what the bound draw framebuffer holds, a `width` x `height` frame:
@@ -349,9 +300,9 @@ impl TextRenderer {
             self.program.bind();
             self.program.set_i32("atlas", 0);
             gl.active_texture(glow::TEXTURE0);
-            gl.bind_texture(glow::TEXTURE_2D, Some(self.atlas));
-            gl.bind_vertex_array(Some(self.vao));
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo));
+            gl.bind_texture(glow::TEXTURE_2D, Some(self.atlas.id()));
+            gl.bind_vertex_array(Some(self.vao.raw()));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo.raw()));
             gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &self.bytes, glow::STREAM_DRAW);
             gl.draw_arrays(glow::TRIANGLES, 0, count);
             saved.restore(gl);
@@ -390,13 +341,30 @@ impl TextRenderer {
     }
 }
 
-impl Drop for TextRenderer {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.delete_texture(self.atlas);
-            self.gl.delete_buffer(self.vbo);
-            self.gl.delete_vertex_array(self.vao);
-        }
+/// The atlas as an R8 texture on unit 0, leaving unit 0's binding, the active unit and the
+/// unpack alignment as they were. Glyphs are placed on whole pixels, one texel to a pixel,
+/// so nearest sampling reads what linear would, at a fraction of the cost on a software
+/// rasteriser; no mipmaps, the atlas is never minified.
+fn upload_atlas(gl: &Gl, atlas: &FontAtlas) -> Result<Texture> {
+    unsafe {
+        let previous_unit = gl.get_parameter_i32(glow::ACTIVE_TEXTURE) as u32;
+        gl.active_texture(glow::TEXTURE0);
+        let previous_texture = gl.get_parameter_texture(glow::TEXTURE_BINDING_2D);
+        let previous_alignment = gl.get_parameter_i32(glow::UNPACK_ALIGNMENT);
+        let texels = Texels {
+            internal: glow::R8,
+            format: glow::RED,
+            ty: glow::UNSIGNED_BYTE,
+        };
+        let size = (atlas.width(), atlas.height());
+        let filtering = Filtering::NEAREST_CLAMPED;
+        let texture =
+            Texture::flat_from(gl, "glyph atlas", size, texels, atlas.pixels(), filtering);
+        gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, previous_alignment);
+        gl.bind_texture(glow::TEXTURE_2D, previous_texture);
+        gl.active_texture(previous_unit);
+        gl.forget_bindings();
+        texture
     }
 }
 

@@ -2,33 +2,31 @@
 
 use glow::HasContext;
 
+use super::owned::OwnedQuery;
 use super::Gl;
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// One timer query per pass; owned, deleted on drop.
 pub struct PassTimer {
     gl: Gl,
-    queries: Vec<glow::Query>,
+    queries: Vec<OwnedQuery>,
 }
 
 impl PassTimer {
     pub fn new(gl: &Gl, passes: usize) -> Result<PassTimer> {
-        let mut timer = PassTimer {
+        let queries = (0..passes)
+            .map(|_| OwnedQuery::new(gl, "timer query"))
+            .collect::<Result<_>>()?;
+        Ok(PassTimer {
             gl: gl.clone(),
-            queries: Vec::with_capacity(passes),
-        };
-        for _ in 0..passes {
-            let q = unsafe { gl.create_query() }
-                .map_err(|e| Error::Create(format!("timer query: {e}")))?;
-            timer.queries.push(q);
-        }
-        Ok(timer)
+            queries,
+        })
     }
 
     /// Starts timing pass `i`; only one pass can be timed at a time.
     pub fn begin(&self, i: usize) {
         if let Some(q) = self.queries.get(i) {
-            unsafe { self.gl.begin_query(glow::TIME_ELAPSED, *q) };
+            unsafe { self.gl.begin_query(glow::TIME_ELAPSED, q.raw()) };
         }
     }
 
@@ -45,7 +43,7 @@ impl PassTimer {
                 // With no query buffer bound, the "offset" is the address to write to.
                 unsafe {
                     self.gl.get_query_parameter_u64_with_offset(
-                        *q,
+                        q.raw(),
                         glow::QUERY_RESULT,
                         &mut ns as *mut u64 as usize,
                     )
@@ -53,13 +51,5 @@ impl PassTimer {
                 ns as f64 / 1.0e6
             })
             .collect()
-    }
-}
-
-impl Drop for PassTimer {
-    fn drop(&mut self) {
-        for q in &self.queries {
-            unsafe { self.gl.delete_query(*q) };
-        }
     }
 }

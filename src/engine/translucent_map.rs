@@ -5,9 +5,9 @@
 
 use glow::HasContext;
 
-use super::check::check_framebuffer;
+use super::framebuffer::{Attachment, Framebuffer, Part};
 use super::state::PixelRect;
-use super::texture::Texture;
+use super::texture::{Filtering, Texels, Texture};
 use super::Gl;
 use crate::error::{Error, Result};
 use crate::settings::MapSize;
@@ -18,7 +18,7 @@ pub const MAX_LAYERS: u32 = 8;
 /// Owns the layered texture and its framebuffer; both freed on drop.
 pub struct TranslucentMap {
     gl: Gl,
-    fbo: Option<glow::Framebuffer>,
+    fbo: Framebuffer,
     texture: Texture,
     layers: u32,
 }
@@ -32,37 +32,17 @@ impl TranslucentMap {
             )));
         }
         let texture = Texture::float_array(gl, size.width, size.height, layers)?;
-        // Owned before anything can fail, so a failure frees what was made.
-        let mut map = TranslucentMap {
+        let mut fbo = Framebuffer::build(gl, "translucent map")?;
+        for l in 0..layers {
+            fbo = fbo.texture(Attachment::Colour(l), &texture, Part::Layer(l));
+        }
+        let what = format!("translucent map {}x{} ({layers})", size.width, size.height);
+        Ok(TranslucentMap {
             gl: gl.clone(),
-            fbo: None,
+            fbo: fbo.finish(&what)?,
             texture,
             layers,
-        };
-        unsafe {
-            let fbo = gl
-                .create_framebuffer()
-                .map_err(|e| Error::Create(format!("translucent map framebuffer: {e}")))?;
-            super::counters::count(|c| c.framebuffers += 1);
-            map.fbo = Some(fbo);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            let attachments: Vec<u32> = (0..layers).map(|l| glow::COLOR_ATTACHMENT0 + l).collect();
-            for (l, &attachment) in attachments.iter().enumerate() {
-                gl.framebuffer_texture_layer(
-                    glow::FRAMEBUFFER,
-                    attachment,
-                    Some(map.texture.id()),
-                    0,
-                    l as i32,
-                );
-            }
-            gl.draw_buffers(&attachments);
-            let what = format!("translucent map {}x{} ({layers})", size.width, size.height);
-            let status = check_framebuffer(gl, &what);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-            status?;
-        }
-        Ok(map)
+        })
     }
 
     /// Binds the framebuffer, sets the viewport to the map and clears every layer to 0
@@ -83,13 +63,13 @@ impl TranslucentMap {
     }
 
     fn begin(&self, rect: PixelRect, additive: bool) -> MapPass {
-        begin_pass(&self.gl, self.fbo, self.size(), rect, additive)
+        begin_pass(&self.gl, &self.fbo, self.size(), rect, additive)
     }
 
     /// Clears every layer to `value`.
     pub fn clear(&self, value: [f32; 4]) {
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             for l in 0..self.layers {
                 self.gl.clear_buffer_f32_slice(glow::COLOR, l, &value);
             }
@@ -116,8 +96,8 @@ impl TranslucentMap {
         let size = self.size();
         let n = size.texels() as usize;
         let mut bytes = vec![0u8; n * 16];
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             self.gl.read_buffer(glow::COLOR_ATTACHMENT0 + layer);
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
             self.gl.read_pixels(
@@ -156,25 +136,17 @@ impl TranslucentMap {
     }
 }
 
-impl Drop for TranslucentMap {
-    fn drop(&mut self) {
-        if let Some(fbo) = self.fbo {
-            unsafe { self.gl.delete_framebuffer(fbo) };
-        }
-    }
-}
-
 /// Binds `fbo` (a `size` target) to draw into `rect` alone (scissored) with no depth test
 /// or culling; the pass restores the resting state (and blending, if `additive`) on drop.
 fn begin_pass(
     gl: &Gl,
-    fbo: Option<glow::Framebuffer>,
+    fbo: &Framebuffer,
     size: MapSize,
     rect: PixelRect,
     additive: bool,
 ) -> MapPass {
+    fbo.bind();
     unsafe {
-        gl.bind_framebuffer(glow::FRAMEBUFFER, fbo);
         gl.viewport(0, 0, size.width as i32, size.height as i32);
         gl.set_capability(glow::SCISSOR_TEST, true);
         let (w, h) = (rect.width as i32, rect.height as i32);
@@ -193,7 +165,7 @@ fn begin_pass(
 /// LINEAR filtering, clamped, and its framebuffer; both freed on drop.
 pub struct ResolvedMap {
     gl: Gl,
-    fbo: Option<glow::Framebuffer>,
+    fbo: Framebuffer,
     texture: Texture,
 }
 
@@ -201,36 +173,33 @@ impl ResolvedMap {
     /// A `size` map, every texel 1 (nothing in the way).
     pub fn new(gl: &Gl, size: MapSize) -> Result<ResolvedMap> {
         let (w, h) = (size.width, size.height);
-        let texture = Texture::attachment(gl, w, h, glow::R32F, glow::RED, glow::FLOAT)?;
-        let mut map = ResolvedMap {
-            gl: gl.clone(),
-            fbo: None,
-            texture,
+        let texels = Texels {
+            internal: glow::R32F,
+            format: glow::RED,
+            ty: glow::FLOAT,
         };
         // Filtered: opaque receivers read it with one linear fetch.
-        map.texture.sampling(glow::LINEAR, glow::CLAMP_TO_EDGE);
+        let filtering = Filtering::LINEAR_CLAMPED;
+        let texture = Texture::flat(gl, "resolved map", (w, h), texels, filtering)?;
+        let fbo = Framebuffer::build(gl, "resolved map")?
+            .texture(Attachment::Colour(0), &texture, Part::Image)
+            .finish(&format!("resolved map {w}x{h}"))?;
+        fbo.bind();
         unsafe {
-            let fbo = gl
-                .create_framebuffer()
-                .map_err(|e| Error::Create(format!("resolved map framebuffer: {e}")))?;
-            super::counters::count(|c| c.framebuffers += 1);
-            map.fbo = Some(fbo);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            let (target, id) = (glow::TEXTURE_2D, Some(map.texture.id()));
-            gl.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, target, id, 0);
-            gl.draw_buffers(&[glow::COLOR_ATTACHMENT0]);
-            let status = check_framebuffer(gl, &format!("resolved map {w}x{h}"));
             gl.clear_buffer_f32_slice(glow::COLOR, 0, &[1.0; 4]);
             gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-            status?;
         }
-        Ok(map)
+        Ok(ResolvedMap {
+            gl: gl.clone(),
+            fbo,
+            texture,
+        })
     }
 
     /// Binds the framebuffer to overwrite the texels of `rect` alone (scissored), with no
     /// blending, depth test or culling; dropping the pass puts the resting state back.
     pub fn begin_write(&self, rect: PixelRect) -> MapPass {
-        begin_pass(&self.gl, self.fbo, self.size(), rect, false)
+        begin_pass(&self.gl, &self.fbo, self.size(), rect, false)
     }
 
     /// Binds the map on texture `unit` for a `sampler2D`, with no sampler object.
@@ -250,8 +219,8 @@ impl ResolvedMap {
     pub fn read(&self) -> Vec<f32> {
         let size = self.size();
         let mut bytes = vec![0u8; size.texels() as usize * 4];
+        self.fbo.bind();
         unsafe {
-            self.gl.bind_framebuffer(glow::FRAMEBUFFER, self.fbo);
             self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 4);
             let (w, h) = (size.width as i32, size.height as i32);
             let data = glow::PixelPackData::Slice(Some(&mut bytes));
@@ -273,14 +242,6 @@ impl ResolvedMap {
     /// Bytes allocated: 4 a texel.
     pub fn bytes(&self) -> u64 {
         self.size().texels() * 4
-    }
-}
-
-impl Drop for ResolvedMap {
-    fn drop(&mut self) {
-        if let Some(fbo) = self.fbo {
-            unsafe { self.gl.delete_framebuffer(fbo) };
-        }
     }
 }
 

@@ -9,63 +9,42 @@
 
 use glow::HasContext;
 
+use super::framebuffer::{Attachment, Framebuffer};
+use super::owned::OwnedBuffer;
 use super::{Gl, Mesh, ShaderProgram};
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// Bytes a vertex: one vec4.
 const STRIDE: usize = 16;
 
-/// The buffer the values are captured into; deleted on drop.
+/// The buffer the values are captured into, and the framebuffer bound meanwhile; both
+/// deleted on drop.
 pub struct VertexCapture {
     gl: Gl,
-    buffer: glow::Buffer,
-    /// The 1 x 1 framebuffer bound while capturing, and its colour renderbuffer.
-    target: (glow::Framebuffer, glow::Renderbuffer),
+    buffer: OwnedBuffer,
+    /// The 1 x 1 framebuffer (a colour renderbuffer) bound while capturing.
+    target: Framebuffer,
     /// Vertices it has room for.
     capacity: usize,
 }
 
 impl VertexCapture {
     pub fn new(gl: &Gl) -> Result<VertexCapture> {
-        let create = |what: &str, e: String| Error::Create(format!("vertex capture {what}: {e}"));
-        unsafe {
-            let buffer = gl.create_buffer().map_err(|e| create("buffer", e))?;
-            super::counters::count(|c| c.buffers += 1);
-            let capture = |target| VertexCapture {
-                gl: gl.clone(),
-                buffer,
-                target,
-                capacity: 0,
-            };
-            let fbo = match gl.create_framebuffer() {
-                Ok(f) => f,
-                Err(e) => {
-                    gl.delete_buffer(buffer);
-                    return Err(create("framebuffer", e));
-                }
-            };
-            let colour = match gl.create_renderbuffer() {
-                Ok(r) => r,
-                Err(e) => {
-                    gl.delete_buffer(buffer);
-                    gl.delete_framebuffer(fbo);
-                    return Err(create("renderbuffer", e));
-                }
-            };
-            let this = capture((fbo, colour));
-            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(colour));
-            gl.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, 1, 1);
-            gl.bind_renderbuffer(glow::RENDERBUFFER, None);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            let at = glow::COLOR_ATTACHMENT0;
-            gl.framebuffer_renderbuffer(glow::FRAMEBUFFER, at, glow::RENDERBUFFER, Some(colour));
-            let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
-            gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-            if status != glow::FRAMEBUFFER_COMPLETE {
-                return Err(create("framebuffer", format!("incomplete ({status:#x})")));
-            }
-            Ok(this)
-        }
+        let buffer = OwnedBuffer::new(gl, "vertex capture buffer")?;
+        let target = Framebuffer::build(gl, "vertex capture")?
+            .renderbuffer(
+                Attachment::Colour(0),
+                glow::RGBA8,
+                (1, 1),
+                "vertex capture renderbuffer",
+            )?
+            .finish("vertex capture 1x1")?;
+        Ok(VertexCapture {
+            gl: gl.clone(),
+            buffer,
+            target,
+            capacity: 0,
+        })
     }
 
     /// Starts capturing `vertices` values with `program` (its varyings recorded,
@@ -76,16 +55,16 @@ impl VertexCapture {
         let gl = &self.gl;
         unsafe {
             if vertices > self.capacity {
-                gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, Some(self.buffer));
+                gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, Some(self.buffer.raw()));
                 let bytes = (vertices * STRIDE) as i32;
                 gl.buffer_data_size(glow::TRANSFORM_FEEDBACK_BUFFER, bytes, glow::STATIC_COPY);
                 gl.bind_buffer(glow::TRANSFORM_FEEDBACK_BUFFER, None);
                 self.capacity = vertices;
             }
             program.bind();
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.target.0));
+            self.target.bind();
             gl.set_capability(glow::RASTERIZER_DISCARD, true);
-            gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, Some(self.buffer));
+            gl.bind_buffer_base(glow::TRANSFORM_FEEDBACK_BUFFER, 0, Some(self.buffer.raw()));
             gl.begin_transform_feedback(glow::POINTS);
         }
         CapturePass { capture: self }
@@ -94,17 +73,7 @@ impl VertexCapture {
     /// Draws `mesh` reading its vertices' values from vertex `first` of the buffer on
     /// location 3 (scene.vert's `capturedLit`).
     pub fn draw(&self, mesh: &Mesh, first: usize) {
-        mesh.render_with_vertex_values(self.buffer, first * STRIDE);
-    }
-}
-
-impl Drop for VertexCapture {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.delete_buffer(self.buffer);
-            self.gl.delete_framebuffer(self.target.0);
-            self.gl.delete_renderbuffer(self.target.1);
-        }
+        mesh.render_with_vertex_values(self.buffer.raw(), first * STRIDE);
     }
 }
 

@@ -4,7 +4,8 @@
 
 use glow::HasContext;
 
-use super::mesh::{as_bytes, upload};
+use super::mesh::{as_bytes, upload, Uploaded};
+use super::owned::OwnedQuery;
 use super::Gl;
 use crate::error::{Error, Result};
 
@@ -12,9 +13,7 @@ use crate::error::{Error, Result};
 /// and buffers are deleted on drop.
 pub struct AdjacencyMesh {
     gl: Gl,
-    vao: glow::VertexArray,
-    vbo: glow::Buffer,
-    ebo: glow::Buffer,
+    uploaded: Uploaded,
     index_count: i32,
 }
 
@@ -34,12 +33,10 @@ impl AdjacencyMesh {
         }
         let index_count =
             i32::try_from(indices.len()).map_err(|_| bad("too many indices".into()))?;
-        let (vao, vbo, ebo) = upload(gl, as_bytes(positions), &[(0, 3)], indices)?;
+        let uploaded = upload(gl, as_bytes(positions), &[(0, 3)], indices)?;
         Ok(AdjacencyMesh {
             gl: gl.clone(),
-            vao,
-            vbo,
-            ebo,
+            uploaded,
             index_count,
         })
     }
@@ -51,7 +48,7 @@ impl AdjacencyMesh {
         mut before_each: impl FnMut(T),
     ) {
         unsafe {
-            self.gl.bind_vertex_array(Some(self.vao));
+            self.gl.bind_vertex_array(Some(self.uploaded.vao()));
             for item in items {
                 before_each(item);
                 self.gl.draw_elements(
@@ -62,16 +59,6 @@ impl AdjacencyMesh {
                 );
             }
             self.gl.bind_vertex_array(None);
-        }
-    }
-}
-
-impl Drop for AdjacencyMesh {
-    fn drop(&mut self) {
-        unsafe {
-            self.gl.delete_vertex_array(self.vao);
-            self.gl.delete_buffer(self.vbo);
-            self.gl.delete_buffer(self.ebo);
         }
     }
 }
@@ -202,26 +189,21 @@ pub fn clear_stencil(gl: &Gl) {
 /// Counts the samples that pass the depth test while it is active (`GL_SAMPLES_PASSED`,
 /// core since 1.5): the volume pixels a frame draws. Owned, deleted on drop.
 pub struct SamplesQuery {
-    gl: Gl,
-    query: glow::Query,
+    query: OwnedQuery,
 }
 
 impl SamplesQuery {
     pub fn new(gl: &Gl) -> Result<SamplesQuery> {
-        let query = unsafe { gl.create_query() }
-            .map_err(|e| Error::Create(format!("samples-passed query: {e}")))?;
-        Ok(SamplesQuery {
-            gl: gl.clone(),
-            query,
-        })
+        let query = OwnedQuery::new(gl, "samples-passed query")?;
+        Ok(SamplesQuery { query })
     }
 
     pub fn begin(&self) {
-        unsafe { self.gl.begin_query(glow::SAMPLES_PASSED, self.query) };
+        unsafe { (self.query.gl()).begin_query(glow::SAMPLES_PASSED, self.query.raw()) };
     }
 
     pub fn end(&self) {
-        unsafe { self.gl.end_query(glow::SAMPLES_PASSED) };
+        unsafe { self.query.gl().end_query(glow::SAMPLES_PASSED) };
     }
 
     /// The count of the last begin/end (waits for it).
@@ -229,18 +211,12 @@ impl SamplesQuery {
         let mut n: u64 = 0;
         // With no query buffer bound, the "offset" is the address to write to.
         unsafe {
-            self.gl.get_query_parameter_u64_with_offset(
-                self.query,
+            self.query.gl().get_query_parameter_u64_with_offset(
+                self.query.raw(),
                 glow::QUERY_RESULT,
                 &mut n as *mut u64 as usize,
             )
         };
         n
-    }
-}
-
-impl Drop for SamplesQuery {
-    fn drop(&mut self) {
-        unsafe { self.gl.delete_query(self.query) };
     }
 }

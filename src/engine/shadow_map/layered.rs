@@ -3,8 +3,8 @@
 
 use glow::HasContext;
 
-use super::fbo::DepthFbo;
-use crate::engine::check::check_framebuffer;
+use super::fbo::depth_only;
+use crate::engine::framebuffer::{Attachment, Framebuffer, Part};
 use crate::engine::texture::Texture;
 use crate::engine::Gl;
 use crate::error::Result;
@@ -15,56 +15,43 @@ use crate::settings::DepthFormat;
 /// geometry shader).
 pub struct CubeShadowMap {
     gl: Gl,
-    fbo: DepthFbo,
+    fbo: Framebuffer,
     cube: Texture,
     format: DepthFormat,
 }
 
 impl CubeShadowMap {
     pub fn new(gl: &Gl, size: u32, format: DepthFormat) -> Result<CubeShadowMap> {
-        let map = CubeShadowMap {
+        let cube = Texture::depth_cube(gl, size, format)?;
+        let what = format!("cube shadow map {size}x{size}");
+        Ok(CubeShadowMap {
             gl: gl.clone(),
-            fbo: DepthFbo::new(gl, "cube shadow-map framebuffer")?,
-            cube: Texture::depth_cube(gl, size, format)?,
+            fbo: depth_only(gl, &cube, Part::Face(0), &what)?,
+            cube,
             format,
-        };
-        map.bind_face(0);
-        map.fbo.finish(&format!("cube shadow map {size}x{size}"))?;
-        Ok(map)
+        })
     }
 
     /// Binds the framebuffer with face `face` (0..6: +X, -X, +Y, -Y, +Z, -Z) as its depth
     /// attachment, and the viewport to the face's size.
     pub fn bind_face(&self, face: u32) {
-        self.fbo.bind();
-        unsafe {
-            self.gl.framebuffer_texture_2d(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
-                glow::TEXTURE_CUBE_MAP_POSITIVE_X + face,
-                Some(self.cube.id()),
-                0,
-            );
-            let size = self.cube.width() as i32;
-            self.gl.viewport(0, 0, size, size);
-        }
+        self.fbo
+            .attach(Attachment::Depth, &self.cube, Part::Face(face));
+        self.viewport();
     }
 
     /// Binds the framebuffer with the whole cube map attached (layered: a geometry shader
     /// picks each face with gl_Layer), and the viewport to a face's size.
     pub fn bind_layered(&self) -> Result<()> {
-        self.fbo.bind();
-        unsafe {
-            self.gl.framebuffer_texture(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
-                Some(self.cube.id()),
-                0,
-            );
-            let size = self.cube.width() as i32;
-            self.gl.viewport(0, 0, size, size);
-        }
-        check_framebuffer(&self.gl, "layered cube shadow map")
+        self.fbo
+            .attach(Attachment::Depth, &self.cube, Part::Layered);
+        self.viewport();
+        self.fbo.check("layered cube shadow map")
+    }
+
+    fn viewport(&self) {
+        let size = self.cube.width() as i32;
+        unsafe { self.gl.viewport(0, 0, size, size) };
     }
 
     pub fn texture(&self) -> &Texture {
@@ -86,7 +73,7 @@ impl CubeShadowMap {
 /// is needed.
 pub struct CascadeShadowMap {
     gl: Gl,
-    fbos: Vec<DepthFbo>,
+    fbos: Vec<Framebuffer>,
     array: Texture,
     format: DepthFormat,
     layers: u32,
@@ -97,21 +84,8 @@ impl CascadeShadowMap {
         let array = Texture::depth_array(gl, size, layers, format)?;
         let mut fbos = Vec::with_capacity(layers as usize);
         for layer in 0..layers {
-            let fbo = DepthFbo::new(gl, "cascade shadow-map framebuffer")?;
-            fbo.bind();
-            unsafe {
-                gl.framebuffer_texture_layer(
-                    glow::FRAMEBUFFER,
-                    glow::DEPTH_ATTACHMENT,
-                    Some(array.id()),
-                    0,
-                    layer as i32,
-                );
-            }
-            fbo.finish(&format!(
-                "cascaded shadow map {size}x{size}x{layers}, layer {layer}"
-            ))?;
-            fbos.push(fbo);
+            let what = format!("cascaded shadow map {size}x{size}x{layers}, layer {layer}");
+            fbos.push(depth_only(gl, &array, Part::Layer(layer), &what)?);
         }
         Ok(CascadeShadowMap {
             gl: gl.clone(),
