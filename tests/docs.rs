@@ -262,7 +262,7 @@ fn steps_takes_no_step_and_the_other_commands_do() {
 // - A CONSTANT (`SHADOW_MASK_READ`), a camelCase name (a GLSL function or variable:
 //   `calcShadow`), a PascalCase type and a `call()` must appear as a whole word in the
 //   program: src/, shaders/, examples/, scripts/, comment lines and unit tests (`tests.rs`,
-//   an inline `#[cfg(test)] mod`) left out. OpenGL's names (`GL_*`, `gl*`, `gl_*`) are not
+//   an inline `#[cfg(test)] mod`) left out. OpenGL's names (`GL_*`, `gl*`, `gl_*`, `glm::`) are not
 //   looked up, nor placeholders (`crate::X`). A plain lowercase word is also a setting's or
 //   a step's name (`shadow_cache`, `bias`), so it is looked up only when paired with a file.
 // - Paired with a file: a name directly followed by ` (`path`...`, `, `path`` or
@@ -295,6 +295,7 @@ const CHAPTER_NAMES: &[(&str, &[&str])] = &[
             "depth_fragment.fs",
             "scene_vertex.vs",
             "scene_fragment.fs",
+            "RenderScene",
         ],
     ),
     ("docs/techniques/perspective-depth.md", &["LinearizeDepth"]),
@@ -469,13 +470,14 @@ fn is_identifier(s: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
-/// OpenGL's and GLSL's own names (`GL_NONE`, `glFinish`, `gl_FragDepth`), not the program's.
+/// OpenGL's, GLSL's and glm's own names (`GL_NONE`, `glFinish`, `gl_FragDepth`, `glm::ortho`).
 fn is_opengl(name: &str) -> bool {
     let upper_after = |prefix: &str| {
         name.strip_prefix(prefix)
             .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_uppercase()))
     };
-    name.starts_with("GL_") || name.starts_with("gl_") || upper_after("gl") || upper_after("glu")
+    let gl = upper_after("gl") || upper_after("glu");
+    gl || name.starts_with("GL_") || name.starts_with("gl_") || name == "glm"
 }
 
 fn classify(token: &str) -> Cited {
