@@ -816,3 +816,33 @@ Flags and settings are not names: `--map-size 512`, `shadow_cache`, `bias = 0.05
     assert_eq!(wrong, expected);
     assert_eq!(checked, 15, "{wrong:?}");
 }
+
+/// The reading guide maps every function of the two one-file examples onto the engine, but
+/// their plumbing (reading the frame back, writing it, `main`).
+#[test]
+fn the_reading_guide_maps_every_function_of_the_examples() {
+    let guide = std::fs::read_to_string(root().join("docs/reading-guide.md")).unwrap();
+    let plumbing = ["main", "render_to", "read_colour", "read_depth", "finish"];
+    let function = regex::Regex::new(r"(?m)^\s*(?:pub )?fn ([a-z_0-9]+)").unwrap();
+    let mut missing = Vec::new();
+    for example in ["lwjgl_dummygame", "learnopengl_3_1_3"] {
+        let text = std::fs::read_to_string(root().join(format!("examples/{example}.rs"))).unwrap();
+        let names: Vec<&str> = function
+            .captures_iter(&text)
+            .map(|c| c.get(1).unwrap().as_str())
+            .filter(|n| !plumbing.contains(n))
+            .collect();
+        assert!(names.len() >= 6, "{example}: {names:?}");
+        for name in names {
+            let cited =
+                guide.contains(&format!("`{name}`")) || guide.contains(&format!("::{name}`"));
+            if !cited {
+                missing.push(format!("{example}: {name}"));
+            }
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not in docs/reading-guide.md: {missing:?}"
+    );
+}
