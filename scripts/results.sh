@@ -6,8 +6,8 @@
 #   scripts/results.sh --list            print the jobs and their commands, run nothing
 #
 # BIN is a built shadowmap (cargo build --release; target/release/shadowmap). The jobs:
-# dummy (the full sweep, about 12 minutes), learnopengl, large, volumes, scale (a few
-# minutes each) and steps (seconds). OUT=DIR writes elsewhere than assets/readme.
+# dummy (the full sweep, about 12 minutes), learnopengl, large, volumes, scale, volumetric
+# (a few minutes each) and steps (seconds). OUT=DIR writes elsewhere than assets/readme.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-assets/readme}"
@@ -19,6 +19,7 @@ jobs=(
   "large|bench --scene large --quick --size 640x360 --frames 40|bench.md->bench-large.md pareto.png->pareto-large.png"
   "volumes|bench --scene dummy --quick --size 640x360|bench.csv->bench-volumes-dummy.csv pareto.png->pareto-volumes-dummy.png"
   "scale|bench --scale|scale.csv->scale.csv scale-fit.csv->scale-fit.csv scale.png->scale.png"
+  "volumetric|bench --scene smoke --quick --size 640x360 --frames 10 --warmup 3|bench.md->bench-smoke.md"
   "steps-dummy|steps --scene dummy --size 640x360|*->steps-dummy/"
   "steps-learnopengl|steps --scene learnopengl --size 320x240|*->steps-learnopengl/"
   "steps-playground|steps --scene playground|*->steps-playground/"

@@ -247,3 +247,7 @@ fn steps_takes_no_step_and_the_other_commands_do() {
         }
     }
 }
+
+/// The code names the docs cite, against the code.
+#[path = "docs/names.rs"]
+mod names;

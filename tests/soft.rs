@@ -83,8 +83,10 @@ fn pcss_hardens_at_contact_as_the_area_light_does() {
         (low, high)
     };
     let ((truth_low, pcss_low), (truth_high, pcss_high)) = widths(Filter::Pcss);
+    // Measured: 1.14 and 5.58 px, 4.9 times wider under the high slab.
+    let ratio = truth_high / truth_low;
     assert!(
-        truth_high > 3.0 * truth_low,
+        (4.0..6.0).contains(&ratio),
         "the truth: {truth_low} px under the low slab, {truth_high} px under the high one"
     );
     assert!(
