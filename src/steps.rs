@@ -112,8 +112,9 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "depth-map",
         change: "The first pass only: the scene as the light sees it, stored as depth.",
-        look_for: "Dark is near the light. An orthographic map is shown raw; a perspective one \
-                   is linearised first.",
+        look_for: "Dark is near the light. The greys are stretched over the casters' depths \
+                   (the range is printed beside the picture) so that they can be told apart; \
+                   a perspective map is linearised first.",
         cumulative: false,
         stages: &[],
         same_picture: &[],
@@ -604,6 +605,20 @@ fn builtin_scenes_of(list: StepList) -> Vec<&'static str> {
         .collect()
 }
 
+/// The scenes whose own view the chapters' staged steps (those with a [`Stage`]) are given.
+pub const STAGED_SCENES: [&str; 2] = ["dummy", "learnopengl"];
+
+/// Why the other scenes that take the chapters' list show those steps from their own view.
+pub const UNSTAGED_WHY: &str = "The chapters' steps that need a view of their own \
+    (cull-front: a caster resting on its receiver, seen at the contact; the over-sampling \
+    steps: floor outside the light's box, which they narrow) have one on dummy and \
+    learnopengl, the chapters' own scenes, whose boxes and casters the steps were written \
+    for. The other scenes that take the chapters' list (slides, point-shadows, large, \
+    three-lights, overlap, penumbra) draw every step from their own camera and light: \
+    their first lights are spots and points with no box to narrow, or boxes fitted to \
+    scenes made for other lessons (cascades, several lights, light bleeding, penumbrae), \
+    so where a step's change lies outside their view their picture is the step before's.";
+
 /// Which built-in scenes take which steps, from the lists themselves (for `--step`'s and
 /// `steps`' help).
 pub fn lists_help() -> String {
@@ -617,6 +632,8 @@ pub fn lists_help() -> String {
             names.join(", ")
         ));
     }
+    text.push_str("\n\n");
+    text.push_str(UNSTAGED_WHY);
     text
 }
 
@@ -645,6 +662,20 @@ pub fn show(scene: &mut Scene, name: &str, keep_camera: bool, keep_light_size: b
         Some(step) => step.set_stage(scene, keep_camera),
         None => Ok(()),
     }
+}
+
+/// Step `name` as every command shows it (`render`, `demo` and its keys, `compare`,
+/// `bench`, `soak`, `steps`): `scene` set up by [`show`], and the step's settings from
+/// [`settings_for`]. The one meaning of a step: its view and its settings together.
+pub fn stage(
+    scene: &mut Scene,
+    name: &str,
+    keep_camera: bool,
+    keep_light_size: bool,
+) -> Result<ShadowSettings> {
+    let settings = settings_for(scene, name)?;
+    show(scene, name, keep_camera, keep_light_size)?;
+    Ok(settings)
 }
 
 /// Step `name` of `scene`'s list.
