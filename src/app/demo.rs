@@ -25,7 +25,10 @@ mod controls;
 mod fallback;
 mod frame;
 
-pub fn run(args: &DemoArgs) -> Result<()> {
+/// The scene as loaded with the flags (what the step keys start from), the scene as
+/// shown first and its settings: `--step` shows what `render --step` shows, the step's view
+/// and settings.
+pub(super) fn scenes(args: &DemoArgs) -> Result<(Scene, Scene, ShadowSettings)> {
     let mut loaded = args.scene.load()?;
     if args.no_animation {
         loaded.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
@@ -35,9 +38,13 @@ pub fn run(args: &DemoArgs) -> Result<()> {
             }
         }
     }
-    // `--step` shows what `render --step` shows: the step's view and settings.
     let mut scene = loaded.clone();
     let settings = args.settings.resolve(&args.scene, &mut scene)?;
+    Ok((loaded, scene, settings))
+}
+
+pub fn run(args: &DemoArgs) -> Result<()> {
+    let (loaded, scene, settings) = scenes(args)?;
     // What needs no window or driver is checked before anything opens.
     args.settings.check_values(&scene, &settings)?;
     if let Some(path) = &args.screenshot {

@@ -412,12 +412,13 @@ mod tests {
             lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
             "{lines:?}"
         );
-        // The step's lesson under its name, then the shadow in words.
+        // The step's lesson under its name, wrapped, then the shadow in words.
+        let shadow = lines.iter().position(|l| l.starts_with("Shadow:")).unwrap();
         assert_eq!(
-            lines[2],
+            lines[2..shadow].iter().map(|l| l.trim()).collect::<Vec<_>>().join(" "),
             "Look for: Softer, less blocky shadow edges with intermediate values."
         );
-        let lines: Vec<String> = lines.iter().skip(1).cloned().collect();
+        let lines: Vec<String> = lines.iter().skip(shadow - 2).cloned().collect();
         let m = settings.map_size;
         assert_eq!(
             lines[2],

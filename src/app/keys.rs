@@ -97,3 +97,53 @@ pub fn keys_help() -> String {
         .collect();
     format!("Keys:\n{}", rows.join("\n"))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every list's every step is reached by N from the scene's own settings, and N after
+    /// the last goes back to them; Shift+N and PageUp walk back the same way.
+    #[test]
+    fn every_step_of_every_list_is_reached_from_the_keyboard() {
+        for name in shadowmap::Scene::builtin_names() {
+            let scene = shadowmap::Scene::load(name).unwrap();
+            let count = shadowmap::steps::of(&scene).len();
+            let mut seen = Vec::new();
+            let mut at = None;
+            for _ in 0..count {
+                at = step_key(KeyCode::KeyN, false, at, count).unwrap();
+                seen.push(at.unwrap_or_else(|| panic!("{name}: N left the list early")));
+            }
+            assert_eq!(seen, (0..count).collect::<Vec<_>>(), "{name}");
+            assert_eq!(step_key(KeyCode::PageDown, false, at, count), Some(None));
+            let mut back = Vec::new();
+            let mut at = None;
+            for (i, key) in (0..count).map(|i| (i, [KeyCode::KeyN, KeyCode::PageUp][i % 2])) {
+                at = step_key(key, key == KeyCode::KeyN, at, count).unwrap();
+                back.push(at.unwrap_or_else(|| panic!("{name}: back {i} left the list")));
+            }
+            assert_eq!(back, (0..count).rev().collect::<Vec<_>>(), "{name}");
+        }
+    }
+
+    #[test]
+    fn the_number_keys_pick_the_first_twelve_steps_and_backspace_the_scene() {
+        // The chapters' 13 steps: the number keys reach 12, N the thirteenth.
+        assert_eq!(step_key(KeyCode::Digit1, false, None, 13), Some(Some(0)));
+        assert_eq!(step_key(KeyCode::Equal, false, None, 13), Some(Some(11)));
+        assert_eq!(step_key(KeyCode::KeyN, false, Some(11), 13), Some(Some(12)));
+        // A key past a short list's end does nothing; Backspace leaves any step.
+        assert_eq!(step_key(KeyCode::Digit9, false, None, 5), None);
+        assert_eq!(step_key(KeyCode::Backspace, false, Some(3), 5), Some(None));
+        assert_eq!(step_key(KeyCode::KeyM, false, Some(3), 5), None);
+    }
+
+    #[test]
+    fn the_key_table_names_the_walking_keys() {
+        let help = keys_help();
+        for key in ["N / PageDown", "Shift+N / PageUp", "Backspace"] {
+            assert!(help.contains(key), "{help}");
+        }
+    }
+}
