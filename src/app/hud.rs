@@ -415,7 +415,11 @@ mod tests {
         // The step's lesson under its name, wrapped, then the shadow in words.
         let shadow = lines.iter().position(|l| l.starts_with("Shadow:")).unwrap();
         assert_eq!(
-            lines[2..shadow].iter().map(|l| l.trim()).collect::<Vec<_>>().join(" "),
+            lines[2..shadow]
+                .iter()
+                .map(|l| l.trim())
+                .collect::<Vec<_>>()
+                .join(" "),
             "Look for: Softer, less blocky shadow edges with intermediate values."
         );
         let lines: Vec<String> = lines.iter().skip(shadow - 2).cloned().collect();
