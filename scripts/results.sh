@@ -20,7 +20,7 @@ jobs=(
   "volumes|bench --scene dummy --quick --size 640x360|bench.csv->bench-volumes-dummy.csv pareto.png->pareto-volumes-dummy.png"
   "scale|bench --scale|scale.csv->scale.csv scale-fit.csv->scale-fit.csv scale.png->scale.png"
   "steps-dummy|steps --scene dummy --size 640x360|*->steps-dummy/"
-  "steps-learnopengl|steps --scene learnopengl --size 320x240|*->steps-learnopengl/"
+  "steps-learnopengl|steps --scene learnopengl --size 800x600|*->steps-learnopengl/"
   "steps-playground|steps --scene playground|*->steps-playground/"
   "steps-smoke|steps --scene smoke --size 640x360|*->steps-smoke/"
 )

@@ -113,7 +113,7 @@ pub const STEPS: &[Step] = &[
         name: "depth-map",
         change: "The first pass only: the scene as the light sees it, stored as depth.",
         look_for: "Dark is near the light. The greys are stretched over the casters' depths \
-                   (the range is printed beside the picture) so that they can be told apart; \
+                   (the range is under the picture) so that they can be told apart; \
                    a perspective map is linearised first.",
         cumulative: false,
         stages: &[],

@@ -33,6 +33,8 @@ struct Row {
     before: Option<Before>,
     /// How many times brighter the frame is shown than drawn (1: as drawn).
     gain: f32,
+    /// A depth map's greys in words: the depths they are stretched over.
+    depth_range: Option<String>,
     /// How the step is shown on this scene (its stage) and why its picture is the one
     /// before's, where it is by design: HTML paragraphs, or empty.
     view: String,
@@ -233,6 +235,7 @@ impl Bench<'_> {
             changed,
             before,
             gain,
+            depth_range: frame.depth_view_range.map(|r| r.words()),
             view,
         })
     }
@@ -292,7 +295,11 @@ fn outside_note(
         return Ok(None);
     }
     Ok(Some(format!(
-        "{outside:.1}% of the receivers are red only because this step, as the chapter's start,          wraps the map with {} and shadows everything beyond the light's far plane ({}):          the floor outside the light's box. Steps {first} to {last} (over-sampling) explain          and fix it; with their fix in this view the false shadow is {:.3}%, the part this          step's lesson is about.",
+        "{outside:.1}% of the receivers are red only because this step still wraps the map \
+         with {} and counts what lies beyond the light's far plane as {} (the chapter's \
+         start): floor outside the light's box. Steps {first} to {last} (over-sampling) \
+         explain and fix it; with their fix in this same view the false shadow is {:.3}%, \
+         the part this step's lesson is about.",
         settings.wrap.name(),
         settings.beyond_far.name(),
         with_fix.false_shadow_rate * 100.0
@@ -596,9 +603,10 @@ fn section(n: usize, row: &Row) -> String {
         Some(m) => figures(m, row.before.as_ref(), row.area.as_ref()),
         None => String::new(),
     };
-    let frame = match row.gain {
-        1.0 => "The frame.".to_string(),
-        g => format!("The frame, shown {g:.1} times as bright as drawn, to be read."),
+    let frame = match (row.gain, &row.depth_range) {
+        (_, Some(range)) => format!("The shadow map: {}.", escape(range)),
+        (1.0, None) => "The frame.".to_string(),
+        (g, None) => format!("The frame, shown {g:.1} times as bright as drawn, to be read."),
     };
     format!(
         "<section class=\"step\" id=\"{name}\"><h2>{n}. {name}{variant}</h2>\n<div class=\"row\">\
