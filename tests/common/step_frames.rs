@@ -50,13 +50,15 @@ pub fn demo_and_render(dir: &Path, scene: &str, step: &str, display: bool) -> (P
     if !display {
         cmd.env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY");
     }
-    stdout_of(
+    let out = stdout_of(
         cmd.arg("demo")
             .args(common)
             .args(["--no-hud", "--no-animation", "--exit-after-frames", "2"])
             .arg("--screenshot")
             .arg(&demo),
     );
+    // The window's frame where a display is asked for, the fallback's where not.
+    assert_eq!(out.contains("No display for a window"), !display, "{out}");
     stdout_of(bin().arg("render").args(common).arg("--out").arg(&render));
     (demo, render)
 }
