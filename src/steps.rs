@@ -648,7 +648,7 @@ pub fn names() -> Vec<&'static str> {
     names
 }
 
-/// Sets `scene` up as step `name` is shown by `steps` and `render --step`: from the scene's
+/// Sets `scene` up as step `name` is shown by every command ([`stage`]): from the scene's
 /// steps camera with its steps' light size, then the step's own stage. `keep_camera` and
 /// `keep_light_size`: a flag chose them.
 pub fn show(scene: &mut Scene, name: &str, keep_camera: bool, keep_light_size: bool) -> Result<()> {

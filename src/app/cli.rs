@@ -51,7 +51,8 @@ pub enum Command {
     /// Render every chapter step with its measured errors: PNGs and index.html.
     #[command(after_help = steps::lists_help())]
     Steps(StepsArgs),
-    /// Render many frames headless while the light, map size and step change; report memory.
+    /// Render many frames headless while the light, map size and step (each in its view;
+    /// --step holds one) change; report memory.
     Soak(SoakArgs),
     /// Print the scene program's GLSL exactly as it is compiled for these settings.
     Shaders(ShadersArgs),
@@ -106,11 +107,13 @@ pub struct SceneArgs {
 /// come from the settings' one description (`shadowmap::settings::ShadowPatch`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct SettingsArgs {
-    /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
+    /// A chapter step: its view and its preset of settings (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()),
-          long_help = format!("A chapter step: its preset of settings replaces the scene's (flags \
-              still apply on top). `render` draws it as `steps` does: from the scene's steps \
-              camera, and from the step's own view where it has one.\n\n{}", steps::lists_help()))]
+          long_help = format!("A chapter step: its view and its preset of settings, which \
+              replaces the scene's (flags still apply on top). Every command (render, demo, \
+              compare, bench, soak) draws it as `steps` does: from the scene's steps camera, \
+              and from the step's own view where it has one; a camera flag or --view keeps \
+              its camera, --light-size its size.\n\n{}", steps::lists_help()))]
     pub step: Option<String>,
     /// A preset chosen from the bench's measurements (docs/results.md, "Quality presets"): map
     /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags

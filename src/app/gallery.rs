@@ -164,13 +164,7 @@ impl Bench<'_> {
             c => format!("{} (against {})", c.join(", "), base.1),
         };
         let stage = step.stage(scene);
-        let mut view = String::new();
-        if let Some(note) = stage.map(|s| s.note) {
-            let _ = write!(view, "<p><b>Shown here:</b> {}</p>", escape(note));
-        }
-        if let Some(why) = step.same_picture_on(scene) {
-            let _ = write!(view, "<p><b>The same picture:</b> {}</p>", escape(why));
-        }
+        let mut view = view_notes(step, scene);
         let frame = render_visibility(gl, scene, &settings, width, height, 0)?;
         // A dim scene (LearnOpenGL's light colour is 0.3) is shown brighter to be read; a
         // depth map is shown as drawn.
@@ -201,13 +195,7 @@ impl Bench<'_> {
             }
             // What it builds on, in this view and against the same reference.
             if base.0.light_projection == settings.light_projection {
-                let was = render_visibility(gl, scene, &base.0, width, height, 0)?;
-                let vis = was.visibility.as_deref().unwrap_or_default();
-                before = Some(Before {
-                    name: base.1.clone(),
-                    metrics: reference.score(vis, 1),
-                    area: reference.score_area(vis),
-                });
+                before = Some(measure_before(gl, scene, base, reference, opts)?);
             }
         }
         let figures = match (&metrics, frame.depth_view_range) {
@@ -239,6 +227,37 @@ impl Bench<'_> {
             view,
         })
     }
+}
+
+/// How a step is shown on `scene` and why its picture is the one before's, where it is by
+/// design: HTML paragraphs, or empty.
+fn view_notes(step: &Step, scene: &Scene) -> String {
+    let mut view = String::new();
+    if let Some(note) = step.stage(scene).map(|s| s.note) {
+        let _ = write!(view, "<p><b>Shown here:</b> {}</p>", escape(note));
+    }
+    if let Some(why) = step.same_picture_on(scene) {
+        let _ = write!(view, "<p><b>The same picture:</b> {}</p>", escape(why));
+    }
+    view
+}
+
+/// The settings a step builds on (`base`: them and their name), drawn on the step's scene
+/// and scored against its reference.
+fn measure_before(
+    gl: &shadowmap::engine::Gl,
+    scene: &Scene,
+    base: &(ShadowSettings, String),
+    reference: &Reference,
+    opts: &CompareOptions,
+) -> Result<Before> {
+    let was = render_visibility(gl, scene, &base.0, opts.width, opts.height, 0)?;
+    let vis = was.visibility.as_deref().unwrap_or_default();
+    Ok(Before {
+        name: base.1.clone(),
+        metrics: reference.score(vis, 1),
+        area: reference.score_area(vis),
+    })
 }
 
 /// Where a step still wraps the map with REPEAT or CLAMP_TO_EDGE, or shadows what lies

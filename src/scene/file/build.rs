@@ -168,9 +168,12 @@ fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
     })
 }
 
+/// Named cameras, in the file's order of names.
+type Views = Vec<(String, Camera)>;
+
 /// The named views (`[views]`, each over `[camera]`) and the one the commands open on
 /// (`view`), which must be one of them.
-fn build_views(file: &SceneFile, cx: &Context) -> Result<(Vec<(String, Camera)>, Option<String>)> {
+fn build_views(file: &SceneFile, cx: &Context) -> Result<(Views, Option<String>)> {
     let mut views = Vec::new();
     for (name, c) in &file.views {
         let camera = build_camera(&c.over(&file.camera), &format!("views.{name}"), cx)?;
