@@ -682,3 +682,26 @@ pub fn stage(
 pub fn get(scene: &Scene, name: &str) -> Option<&'static Step> {
     of(scene).iter().find(|s| s.name == name)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The chapters' scenes without views for the staged steps are each named where the
+    /// help says why, and the staged scenes have a stage for every staged step.
+    #[test]
+    fn every_chapters_scene_has_the_staged_steps_views_or_is_named_in_why_not() {
+        for name in builtin_scenes_of(StepList::Chapters) {
+            let staged = STEPS.iter().filter(|s| !s.stages.is_empty());
+            match STAGED_SCENES.contains(&name) {
+                true => {
+                    for step in staged {
+                        assert!(step.stages.iter().any(|s| s.scene == name), "{name}");
+                    }
+                }
+                false => assert!(UNSTAGED_WHY.contains(name), "{name}: {UNSTAGED_WHY}"),
+            }
+        }
+        assert!(lists_help().ends_with(UNSTAGED_WHY));
+    }
+}
