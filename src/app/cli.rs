@@ -51,8 +51,10 @@ pub enum Command {
     /// Render every chapter step with its measured errors: PNGs and index.html.
     #[command(after_help = steps::lists_help())]
     Steps(StepsArgs),
-    /// Render many frames headless while the light, map size and step (each in its view;
-    /// --step holds one) change; report memory.
+    /// Render many frames headless while the light, map size and step change; report memory.
+    ///
+    /// Each step is drawn in its own view, as `render --step` draws it; `--step` holds one
+    /// step while the light and the map size change.
     Soak(SoakArgs),
     /// Print the scene program's GLSL exactly as it is compiled for these settings.
     Shaders(ShadersArgs),
