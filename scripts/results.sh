@@ -21,7 +21,7 @@ jobs=(
   "scale|bench --scale|scale.csv->scale.csv scale-fit.csv->scale-fit.csv scale.png->scale.png"
   "volumetric|bench --scene smoke --quick --size 640x360 --frames 10 --warmup 3|bench.md->bench-smoke.md"
   "steps-dummy|steps --scene dummy --size 640x360|*->steps-dummy/"
-  "steps-learnopengl|steps --scene learnopengl --size 320x240|*->steps-learnopengl/"
+  "steps-learnopengl|steps --scene learnopengl --size 800x600|*->steps-learnopengl/"
   "steps-playground|steps --scene playground|*->steps-playground/"
   "steps-smoke|steps --scene smoke --size 640x360|*->steps-smoke/"
 )

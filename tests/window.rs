@@ -339,3 +339,19 @@ fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
     assert!(out.contains("quality low: map_size "), "{out}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn the_window_draws_each_staged_step_as_render_does() {
+    use common::step_frames::{demo_and_render, differing_share, staged_steps};
+    let dir = display_and_dir("window-steps");
+    for (scene, step) in staged_steps() {
+        let (demo, render) = demo_and_render(&dir, scene, step, true);
+        let share = differing_share(&demo, &render);
+        assert!(
+            share <= 0.01,
+            "{scene} {step}: {:.2}% of the window's pixels differ from render's",
+            share * 100.0
+        );
+    }
+}

@@ -107,14 +107,13 @@ fn check_before_gl(args: &BenchArgs, scene: &Scene, base: &ShadowSettings) -> Re
 }
 
 /// The scene held still at its frame size, with the settings the flags give.
-fn load_still_scene(args: &BenchArgs) -> Result<(Scene, ShadowSettings)> {
-    let mut scene = args.scene.load()?;
+pub(super) fn load_still_scene(args: &BenchArgs) -> Result<(Scene, ShadowSettings)> {
+    let (mut scene, base) = args.scene.load_with(&args.settings)?;
     // Time a still frame: the animation would change what is measured between frames.
     scene
         .items
         .iter_mut()
         .for_each(|i| i.spin = glam::Vec3::ZERO);
-    let base = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     scene.size = [width, height];
     Ok((scene, base))

@@ -52,6 +52,9 @@ pub enum Command {
     #[command(after_help = steps::lists_help())]
     Steps(StepsArgs),
     /// Render many frames headless while the light, map size and step change; report memory.
+    ///
+    /// Each step is drawn in its own view, as `render --step` draws it; `--step` holds one
+    /// step while the light and the map size change.
     Soak(SoakArgs),
     /// Print the scene program's GLSL exactly as it is compiled for these settings.
     Shaders(ShadersArgs),
@@ -84,6 +87,11 @@ pub struct SceneArgs {
     /// Frame size in pixels; default: the scene's size.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
+    /// Show the scene from its named view NAME (its file's [views]; `learnopengl`: `above`,
+    /// where it opens, or `code`, the tutorial code's camera at (0, 0, 3)); the camera
+    /// flags move it from there.
+    #[arg(long, value_name = "NAME")]
+    pub view: Option<String>,
     /// Move the camera: world position X,Y,Z.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_triple, allow_hyphen_values = true)]
     pub camera_position: Option<[f32; 3]>,
@@ -101,11 +109,13 @@ pub struct SceneArgs {
 /// come from the settings' one description (`shadowmap::settings::ShadowPatch`).
 #[derive(Args, Debug, Clone, Default)]
 pub struct SettingsArgs {
-    /// A chapter step: its preset of settings replaces the scene's (flags still apply on top).
+    /// A chapter step: its view and its preset of settings (flags still apply on top).
     #[arg(long, value_name = "STEP", value_parser = clap::builder::PossibleValuesParser::new(steps::names()),
-          long_help = format!("A chapter step: its preset of settings replaces the scene's (flags \
-              still apply on top). `render` draws it as `steps` does: from the scene's steps \
-              camera, and from the step's own view where it has one.\n\n{}", steps::lists_help()))]
+          long_help = format!("A chapter step: its view and its preset of settings, which \
+              replaces the scene's (flags still apply on top). Every command (render, demo, \
+              compare, bench, soak) draws it as `steps` does: from the scene's steps camera, \
+              and from the step's own view where it has one; a camera flag or --view keeps \
+              its camera, --light-size its size.\n\n{}", steps::lists_help()))]
     pub step: Option<String>,
     /// A preset chosen from the bench's measurements (docs/results.md, "Quality presets"): map
     /// size, filter, bias, culling and the light's box over the scene's (or the step's) settings; the flags
@@ -419,6 +429,22 @@ pub fn parse_fraction(s: &str) -> Result<f64, String> {
 }
 
 impl SceneArgs {
+    /// Whether a camera flag picks the view (a step's view then keeps its camera).
+    pub fn camera_given(&self) -> bool {
+        self.view.is_some()
+            || self.camera_position.is_some()
+            || self.camera_rotation.is_some()
+            || self.camera_target.is_some()
+    }
+
+    /// The scene loaded with these flags, then `settings`' step and flags
+    /// ([`SettingsArgs::resolve`]).
+    pub fn load_with(&self, settings: &SettingsArgs) -> shadowmap::Result<(Scene, ShadowSettings)> {
+        let mut scene = self.load()?;
+        let s = settings.resolve(self, &mut scene)?;
+        Ok((scene, s))
+    }
+
     /// Loads the scene and applies the light angle.
     pub fn load(&self) -> shadowmap::Result<Scene> {
         if self.camera_rotation.is_some() && self.camera_target.is_some() {
@@ -429,6 +455,7 @@ impl SceneArgs {
             ));
         }
         let mut scene = Scene::load(&self.scene)?;
+        scene.open_view(self.view.as_deref())?;
         if let Some(p) = self.camera_position {
             scene.camera.position = p.into();
         }
@@ -601,6 +628,22 @@ impl SettingsArgs {
     /// Whether the setting `name` (as the scene file spells it) was given as a flag.
     fn flag_given(&self, name: &str) -> bool {
         self.patch.given().contains(&name)
+    }
+
+    /// What a command draws with `--step`: the step's view of `scene` and its preset
+    /// ([`steps::stage`]), then the flags ([`SettingsArgs::apply`]). Every command that
+    /// takes `--step` (and the demo's step keys) comes through here, so a step means one
+    /// picture everywhere; a camera flag keeps its camera, `--light-size` its size.
+    pub fn resolve(
+        &self,
+        scene_args: &SceneArgs,
+        scene: &mut Scene,
+    ) -> shadowmap::Result<ShadowSettings> {
+        if let Some(step) = &self.step {
+            let light_size = scene_args.light_size.is_some();
+            steps::stage(scene, step, scene_args.camera_given(), light_size)?;
+        }
+        self.apply(scene)
     }
 
     /// The scene's settings, then the step's preset, then the flags. The flags also win

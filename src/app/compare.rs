@@ -17,8 +17,7 @@ use shadowmap::{Error, Result, Scene, ShadowSettings};
 use super::cli::{CompareArgs, Truth};
 
 pub fn run(args: &CompareArgs) -> Result<()> {
-    let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&mut scene)?;
+    let (scene, settings) = args.scene.load_with(&args.settings)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
     // Everything that can be checked without the driver, before any GL work or file.

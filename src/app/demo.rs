@@ -25,9 +25,26 @@ mod controls;
 mod fallback;
 mod frame;
 
+/// The scene as loaded with the flags (what the step keys start from), the scene as
+/// shown first and its settings: `--step` shows what `render --step` shows, the step's view
+/// and settings.
+pub(super) fn scenes(args: &DemoArgs) -> Result<(Scene, Scene, ShadowSettings)> {
+    let mut loaded = args.scene.load()?;
+    if args.no_animation {
+        loaded.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
+        for light in &mut loaded.lights {
+            if let shadowmap::scene::Light::Point(p) = light {
+                p.oscillate = Vec3::ZERO;
+            }
+        }
+    }
+    let mut scene = loaded.clone();
+    let settings = args.settings.resolve(&args.scene, &mut scene)?;
+    Ok((loaded, scene, settings))
+}
+
 pub fn run(args: &DemoArgs) -> Result<()> {
-    let mut scene = args.scene.load()?;
-    let settings = args.settings.apply(&mut scene)?;
+    let (loaded, scene, settings) = scenes(args)?;
     // What needs no window or driver is checked before anything opens.
     args.settings.check_values(&scene, &settings)?;
     if let Some(path) = &args.screenshot {
@@ -46,14 +63,6 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     if let Some(line) = args.settings.quality_summary()? {
         println!("{line}");
     }
-    if args.no_animation {
-        scene.items.iter_mut().for_each(|i| i.spin = Vec3::ZERO);
-        for light in &mut scene.lights {
-            if let shadowmap::scene::Light::Point(p) = light {
-                p.oscillate = Vec3::ZERO;
-            }
-        }
-    }
     let event_loop = match EventLoop::new() {
         Ok(l) => l,
         // winit's own error names its source file and line: the fallback says what it means.
@@ -66,7 +75,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         .as_deref()
         .and_then(|name| steps::get(&scene, name))
         .map(|s| s.name);
-    let mut demo = Demo::new(args, scene, settings, size, step);
+    let mut demo = Demo::new(args, (loaded, scene), settings, size, step);
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
     event_loop
@@ -131,40 +140,12 @@ struct Demo {
     angle_keys_idle: bool,
     /// Whether the shadow-map inset is drawn (I).
     show_inset: bool,
-    /// The camera to go back to when the steps (shown from the scene's steps camera) end.
-    camera_before_steps: Option<shadowmap::scene::Camera>,
-    /// The lights' sizes to go back to when the steps (shown with the scene's
-    /// `[steps] light_size`) end.
-    sizes_before_steps: Option<Vec<f32>>,
-    /// The camera, lights and items as they were before the shown step's own view of the
-    /// scene (its stage), to go back to when another step is picked.
-    before_stage: Option<StageUndo>,
+    /// The scene as loaded with the flags, before any step: each step key shows its step
+    /// from here, as `--step` would ([`super::cli::SettingsArgs::resolve`]).
+    loaded: Scene,
     /// Wall time of each frame after the first, frame to frame (printed at a scripted exit).
     frame_times: Vec<f64>,
 }
-
-/// What a step's stage changes, as it was before: the camera, the lights, the items.
-type StageUndo = (
-    shadowmap::scene::Camera,
-    Vec<shadowmap::scene::Light>,
-    Vec<shadowmap::scene::GameItem>,
-);
-
-/// Number keys pick the chapter steps in order; Backspace goes back to the scene's settings.
-const STEP_KEYS: [KeyCode; 12] = [
-    KeyCode::Digit1,
-    KeyCode::Digit2,
-    KeyCode::Digit3,
-    KeyCode::Digit4,
-    KeyCode::Digit5,
-    KeyCode::Digit6,
-    KeyCode::Digit7,
-    KeyCode::Digit8,
-    KeyCode::Digit9,
-    KeyCode::Digit0,
-    KeyCode::Minus,
-    KeyCode::Equal,
-];
 
 impl Demo {
     /// A new framebuffer size; 0 x 0 means minimised, and then nothing is drawn.
@@ -243,7 +224,7 @@ impl Demo {
     /// The demo before its window opens: the scene at `size`, the step chosen by name.
     fn new(
         args: &DemoArgs,
-        scene: Scene,
+        (loaded, scene): (Scene, Scene),
         settings: ShadowSettings,
         size: (u32, u32),
         step: Option<&'static str>,
@@ -277,9 +258,7 @@ impl Demo {
             azimuth: None,
             angle_keys_idle: false,
             show_inset: args.inset,
-            camera_before_steps: None,
-            sizes_before_steps: None,
-            before_stage: None,
+            loaded,
             frame_times: Vec::new(),
         }
     }
@@ -289,7 +268,6 @@ impl Demo {
         match code {
             KeyCode::Escape => event_loop.exit(),
             KeyCode::F12 if !repeat => self.screenshot_requested = true,
-            KeyCode::Backspace if !repeat => self.select_step(event_loop, None),
             KeyCode::KeyM if !repeat => self.next_depth_view(event_loop),
             KeyCode::KeyH if !repeat => self.show_keys = !self.show_keys,
             KeyCode::KeyP if !repeat => self.show_stats = !self.show_stats,
@@ -321,9 +299,15 @@ impl Demo {
                 self.change_settings(event_loop, |s| s.volumetric = s.volumetric.next())
             }
             _ if !repeat => {
-                if let Some(i) = STEP_KEYS.iter().position(|k| *k == code) {
-                    let name = steps::of(&self.scene).get(i).map(|s| s.name);
-                    self.select_step(event_loop, name);
+                let list = steps::of(&self.scene);
+                let shift = [KeyCode::ShiftLeft, KeyCode::ShiftRight]
+                    .iter()
+                    .any(|k| self.keys.contains(k));
+                let current = self
+                    .step
+                    .and_then(|n| list.iter().position(|s| s.name == n));
+                if let Some(pick) = super::keys::step_key(code, shift, current, list.len()) {
+                    self.select_step(event_loop, pick.map(|i| list[i].name));
                 }
             }
             _ => {}

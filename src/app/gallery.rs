@@ -28,15 +28,34 @@ struct Row {
     metrics: Option<Metrics>,
     area: Option<SoftMetrics>,
     changed: String,
+    /// The step it builds on, measured in this step's view (its settings on this step's
+    /// scene), so the two columns of its table differ by the step's change alone.
+    before: Option<Before>,
+    /// How many times brighter the frame is shown than drawn (1: as drawn).
+    gain: f32,
+    /// A depth map's greys in words: the depths they are stretched over.
+    depth_range: Option<String>,
     /// How the step is shown on this scene (its stage) and why its picture is the one
     /// before's, where it is by design: HTML paragraphs, or empty.
     view: String,
 }
 
+/// A step's predecessor measured in the step's own view.
+struct Before {
+    /// Its name on the page ("step 5, cull-front").
+    name: String,
+    metrics: Metrics,
+    area: Option<SoftMetrics>,
+}
+
 /// What every step is rendered and scored with.
 struct Bench<'a> {
     gl: &'a shadowmap::engine::Gl,
-    scene: &'a Scene,
+    /// The scene as loaded with the flags, before any step: each step is shown from here
+    /// by [`steps::stage`], as `render --step` shows it.
+    loaded: &'a Scene,
+    /// A flag picked the lights' size: the steps keep it.
+    keep_light_size: bool,
     opts: CompareOptions,
     /// One reference per kind of light projection (orthographic: parallel rays;
     /// perspective: rays to a point) and per stage (a step's own view of the scene).
@@ -46,22 +65,17 @@ struct Bench<'a> {
 }
 
 pub fn run(args: &StepsArgs) -> Result<()> {
-    let mut scene = args.scene.load()?;
-    // Shown from the scene's steps camera, unless a camera flag picks the view.
-    let camera_flag = args.scene.camera_position.is_some()
-        || args.scene.camera_rotation.is_some()
-        || args.scene.camera_target.is_some();
-    if !camera_flag {
-        scene.camera = scene.steps_camera();
-    }
-    // With the lights' size its steps ask for, unless --light-size gives one.
-    if args.scene.light_size.is_none() {
-        scene.use_steps_light_size();
-    }
-    scene
+    let mut loaded = args.scene.load()?;
+    loaded
         .items
         .iter_mut()
         .for_each(|i| i.spin = glam::Vec3::ZERO);
+    // The scene as the steps show it (the steps camera, unless a camera flag picks the
+    // view; the steps' light size, unless --light-size gives one), for the page's words.
+    let camera_flag = args.scene.camera_given();
+    let keep_light_size = args.scene.light_size.is_some();
+    let mut scene = loaded.clone();
+    steps::show(&mut scene, "", camera_flag, keep_light_size)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
     // Checked before any GL work; the folder is made when the first picture is ready.
@@ -76,7 +90,8 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     let context = HeadlessContext::new()?;
     let mut bench = Bench {
         gl: context.gl(),
-        scene: &scene,
+        loaded: &loaded,
+        keep_light_size,
         opts: CompareOptions {
             rays: shadowmap::compare::AREA_RAYS,
             width,
@@ -133,34 +148,34 @@ impl Bench<'_> {
         base: &(ShadowSettings, String),
         files: &mut Vec<(String, Vec<u8>)>,
     ) -> Result<Row> {
-        let (gl, scene, opts) = (self.gl, self.scene, &self.opts);
+        let (gl, opts) = (self.gl, &self.opts);
         let (width, height) = (opts.width, opts.height);
-        let settings = steps::settings_for(scene, step.name)?;
+        // The step as `render --step` shows it: its view of the scene and its settings.
+        let mut scene = self.loaded.clone();
+        let settings = steps::stage(
+            &mut scene,
+            step.name,
+            self.keep_camera,
+            self.keep_light_size,
+        )?;
+        let scene = &scene;
         let changed = match changed_fields(&base.0, &settings) {
             c if c.is_empty() => format!("nothing on this scene against {}", base.1),
             c => format!("{} (against {})", c.join(", "), base.1),
         };
-        // The step's own view of the scene, where it has one.
         let stage = step.stage(scene);
-        let mut staged = None;
-        if stage.is_some() {
-            let mut s = scene.clone();
-            step.set_stage(&mut s, self.keep_camera)?;
-            staged = Some(s);
-        }
-        let mut view = String::new();
-        if let Some(note) = stage.map(|s| s.note) {
-            let _ = write!(view, "<p><b>Shown here:</b> {}</p>", escape(note));
-        }
-        if let Some(why) = step.same_picture_on(scene) {
-            let _ = write!(view, "<p><b>The same picture:</b> {}</p>", escape(why));
-        }
-        let scene = staged.as_ref().unwrap_or(scene);
+        let mut view = view_notes(step, scene);
         let frame = render_visibility(gl, scene, &settings, width, height, 0)?;
+        // A dim scene (LearnOpenGL's light colour is 0.3) is shown brighter to be read; a
+        // depth map is shown as drawn.
+        let (colour, gain) = match settings.show_depth_map {
+            true => (frame.colour.clone(), 1.0),
+            false => brightened(&frame.colour),
+        };
         let image = format!("{n:02}-{}.png", step.name);
-        files.push((image.clone(), frame.colour.encode_png()?));
+        files.push((image.clone(), colour.encode_png()?));
         let (mut metrics, mut error_file, mut area) = (None, None, None);
-        let mut transmittance = None;
+        let (mut transmittance, mut before) = (None, None);
         if !settings.show_depth_map {
             let key = (settings.light_projection, stage.map(|s| s.note));
             let reference = match self.references.entry(key) {
@@ -171,10 +186,17 @@ impl Bench<'_> {
             metrics = Some(reference.score(vis, 1));
             area = reference.score_area(vis);
             transmittance = reference.score_transmittance(vis);
-            let err = error_picture(reference, vis, &frame.colour)?;
+            let err = error_picture(reference, vis, &colour)?;
             let name = format!("{n:02}-{}-error.png", step.name);
             files.push((name.clone(), err.encode_png()?));
             error_file = Some(name);
+            if let Some(note) = outside_note(gl, scene, step, &settings, reference, opts)? {
+                let _ = write!(view, "<p><b>Outside the light's box:</b> {note}</p>");
+            }
+            // What it builds on, in this view and against the same reference.
+            if base.0.light_projection == settings.light_projection {
+                before = Some(measure_before(gl, scene, base, reference, opts)?);
+            }
         }
         let figures = match (&metrics, frame.depth_view_range) {
             (Some(m), _) => line_figures(m),
@@ -182,6 +204,9 @@ impl Bench<'_> {
             (None, None) => "(depth map)".into(),
         };
         println!("{n:>2} {:<22} {figures}; changed: {changed}", step.name);
+        if let Some(b) = &before {
+            println!("   {} in this view: {}", b.name, line_figures(&b.metrics));
+        }
         if let Some(a) = &area {
             println!("   {}", super::compare::area_summary(a));
         }
@@ -196,9 +221,138 @@ impl Bench<'_> {
             metrics,
             area,
             changed,
+            before,
+            gain,
+            depth_range: frame.depth_view_range.map(|r| r.words()),
             view,
         })
     }
+}
+
+/// How a step is shown on `scene` and why its picture is the one before's, where it is by
+/// design: HTML paragraphs, or empty.
+fn view_notes(step: &Step, scene: &Scene) -> String {
+    let mut view = String::new();
+    if let Some(note) = step.stage(scene).map(|s| s.note) {
+        let _ = write!(view, "<p><b>Shown here:</b> {}</p>", escape(note));
+    }
+    if let Some(why) = step.same_picture_on(scene) {
+        let _ = write!(view, "<p><b>The same picture:</b> {}</p>", escape(why));
+    }
+    view
+}
+
+/// The settings a step builds on (`base`: them and their name), drawn on the step's scene
+/// and scored against its reference.
+fn measure_before(
+    gl: &shadowmap::engine::Gl,
+    scene: &Scene,
+    base: &(ShadowSettings, String),
+    reference: &Reference,
+    opts: &CompareOptions,
+) -> Result<Before> {
+    let was = render_visibility(gl, scene, &base.0, opts.width, opts.height, 0)?;
+    let vis = was.visibility.as_deref().unwrap_or_default();
+    Ok(Before {
+        name: base.1.clone(),
+        metrics: reference.score(vis, 1),
+        area: reference.score_area(vis),
+    })
+}
+
+/// Where a step still wraps the map with REPEAT or CLAMP_TO_EDGE, or shadows what lies
+/// beyond the far plane (the chapter's start), and that puts false shadow on floor outside
+/// the light's box: how much, measured as the false shadow that LearnOpenGL's fix (a border
+/// of depth 1, z > 1 lit) takes away in the same view, and which steps explain it. `None`
+/// where it is under 0.5% of the receivers, or the step is one of those that explain it.
+fn outside_note(
+    gl: &shadowmap::engine::Gl,
+    scene: &Scene,
+    step: &Step,
+    settings: &ShadowSettings,
+    reference: &Reference,
+    opts: &CompareOptions,
+) -> Result<Option<String>> {
+    use shadowmap::settings::{BeyondFar, Wrap};
+    let list = steps::of(scene);
+    let explained: Vec<usize> = (list.iter().enumerate())
+        .filter(|(_, s)| s.name.starts_with("over-sampling"))
+        .map(|(i, _)| i + 1)
+        .collect();
+    let fixed_already =
+        settings.wrap == Wrap::ClampToBorder && settings.beyond_far == BeyondFar::Lit;
+    let (Some(first), Some(last)) = (explained.first(), explained.last()) else {
+        return Ok(None);
+    };
+    if fixed_already
+        || step.name.starts_with("over-sampling")
+        || settings.light_projection != LightProjection::Ortho
+    {
+        return Ok(None);
+    }
+    let fixed = ShadowSettings {
+        wrap: Wrap::ClampToBorder,
+        beyond_far: BeyondFar::Lit,
+        ..*settings
+    };
+    let (w, h) = (opts.width, opts.height);
+    let frame = render_visibility(gl, scene, &fixed, w, h, 0)?;
+    let vis = frame.visibility.as_deref().unwrap_or_default();
+    let with_fix = reference.score(vis, 1);
+    let here = reference.score(
+        render_visibility(gl, scene, settings, w, h, 0)?
+            .visibility
+            .as_deref()
+            .unwrap_or_default(),
+        1,
+    );
+    let outside = percent(
+        here.false_shadow.saturating_sub(with_fix.false_shadow),
+        here.receivers,
+    );
+    if outside < 0.5 {
+        return Ok(None);
+    }
+    Ok(Some(format!(
+        "{outside:.1}% of the receivers are red only because this step still wraps the map \
+         with {} and counts what lies beyond the light's far plane as {} (the chapter's \
+         start): floor outside the light's box. Steps {first} to {last} (over-sampling) \
+         explain and fix it; with their fix in this same view the false shadow is {:.3}%, \
+         the part this step's lesson is about.",
+        settings.wrap.name(),
+        settings.beyond_far.name(),
+        with_fix.false_shadow_rate * 100.0
+    )))
+}
+
+/// The brightest receivers' level a frame is brought up to on the page.
+const SHOWN_LEVEL: f32 = 230.0;
+
+/// `frame` brightened so that its brightest pixels (the 99th percentile of the largest
+/// channel) reach [`SHOWN_LEVEL`], by at most 4 times, and the gain; a frame already
+/// that bright is returned as it is.
+fn brightened(frame: &ImageData) -> (ImageData, f32) {
+    let mut levels: Vec<u8> = (frame.rgba.chunks_exact(4))
+        .map(|p| p[0].max(p[1]).max(p[2]))
+        .collect();
+    levels.sort_unstable();
+    let top = levels.get(levels.len() * 99 / 100).copied().unwrap_or(255);
+    let gain = (SHOWN_LEVEL / f32::from(top.max(1))).min(4.0);
+    if gain < 1.2 {
+        return (frame.clone(), 1.0);
+    }
+    let rgba = (frame.rgba.chunks_exact(4))
+        .flat_map(|p| {
+            let up = |c: u8| (f32::from(c) * gain).round().min(255.0) as u8;
+            [up(p[0]), up(p[1]), up(p[2]), p[3]]
+        })
+        .collect();
+    let shown = ImageData {
+        width: frame.width,
+        height: frame.height,
+        rgba,
+    };
+    (shown, gain)
 }
 
 /// A step's errors, drawn over the frame in grey: against the transmittance truth where the
@@ -286,13 +440,8 @@ fn page(scene: &Scene, supersample: u32, rows: &[Row]) -> String {
     );
     html.push_str(&how_to_read(scene, supersample));
     html.push_str(&overview(rows));
-    let mut before: Option<&Row> = None;
     for (i, row) in rows.iter().enumerate() {
-        html.push_str(&section(i + 1, row, before));
-        // The next steps build on this one only if it carries over.
-        if row.step.cumulative {
-            before = row.metrics.as_ref().map(|_| row);
-        }
+        html.push_str(&section(i + 1, row));
     }
     html.push_str("</body></html>\n");
     html
@@ -318,9 +467,17 @@ fn how_to_read(scene: &Scene, supersample: u32) -> String {
              also prints its transmittance error.</p>\n"
         ),
     };
+    let chapters = scene.steps.list == shadowmap::scene::StepList::Chapters;
+    let area = match chapters && !steps::STAGED_SCENES.contains(&scene.name.as_str()) {
+        true => format!("{area}<p>{}</p>\n", escape(steps::UNSTAGED_WHY)),
+        false => area,
+    };
     format!(
         "<p>Each step adds one change to the one before it (a <i>variant</i> shows a choice \
-         and does not carry over). Left: the frame as the step draws it. Middle: the same frame \
+         and does not carry over); each is drawn as <code>shadowmap render --step NAME</code> \
+         draws it, some from a view of their own, and its table sets beside its figures those \
+         of the step it builds on drawn in the same view, so the two differ by the step's \
+         change alone. Left: the frame as the step draws it. Middle: the same frame \
          with its errors marked against an exact ray-traced reference: <b style=\"color:#d00\">red</b> \
          is false shadow (drawn dark where the light reaches), <b style=\"color:#00d\">blue</b> \
          false light (drawn lit where the light is blocked), grey agrees. Right: what changed, \
@@ -450,7 +607,7 @@ fn overview(rows: &[Row]) -> String {
 }
 
 /// One step: its frame and its errors side by side, the lesson beside them.
-fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
+fn section(n: usize, row: &Row) -> String {
     let name = row.step.name;
     let errors = match &row.error_file {
         Some(f) => format!(
@@ -462,13 +619,18 @@ fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
             .into(),
     };
     let figures = match &row.metrics {
-        Some(m) => figures(m, before, row.area.as_ref()),
+        Some(m) => figures(m, row.before.as_ref(), row.area.as_ref()),
         None => String::new(),
+    };
+    let frame = match (row.gain, &row.depth_range) {
+        (_, Some(range)) => format!("The shadow map: {}.", escape(range)),
+        (1.0, None) => "The frame.".to_string(),
+        (g, None) => format!("The frame, shown {g:.1} times as bright as drawn, to be read."),
     };
     format!(
         "<section class=\"step\" id=\"{name}\"><h2>{n}. {name}{variant}</h2>\n<div class=\"row\">\
          <figure><a href=\"{image}\"><img src=\"{image}\" alt=\"{name}\"></a>\
-         <figcaption>The frame.</figcaption></figure>\n{errors}\n<div class=\"lesson\">\
+         <figcaption>{frame}</figcaption></figure>\n{errors}\n<div class=\"lesson\">\
          <p><b>What changed:</b> {change}</p><p><b>Look for:</b> {look}</p>{view}\
          <p><b>Settings changed:</b> {changed}</p>{figures}\
          <p><small>All settings: {summary}</small></p></div></div></section>\n",
@@ -487,8 +649,9 @@ fn section(n: usize, row: &Row, before: Option<&Row>) -> String {
 }
 
 /// A step's figures with what each counts, and the step before's for comparison.
-fn figures(m: &Metrics, before: Option<&Row>, area: Option<&SoftMetrics>) -> String {
-    let was = before.and_then(|b| b.metrics.as_ref().map(|p| (b.step.name, p)));
+fn figures(m: &Metrics, before: Option<&Before>, area: Option<&SoftMetrics>) -> String {
+    let label = before.map(|b| format!("{}, in this view", b.name));
+    let was = before.map(|b| (label.as_deref().unwrap_or_default(), &b.metrics));
     let lines: [FigureLine; 5] = [
         (
             "false shadow",
@@ -540,7 +703,7 @@ fn figures(m: &Metrics, before: Option<&Row>, area: Option<&SoftMetrics>) -> Str
     if let Some(a) = area {
         html.push_str(&area_figures(
             a,
-            before.and_then(|b| Some((b.step.name, b.area.as_ref()?))),
+            before.and_then(|b| Some((label.as_deref()?, b.area.as_ref()?))),
         ));
     }
     html

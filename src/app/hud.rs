@@ -88,12 +88,16 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         }
         None => upper_first(&scene.light().describe()),
     };
-    let step = match info.step {
-        Some(name) => match steps::of(scene).iter().position(|s| s.name == name) {
-            Some(i) => format!("Step {} of {}: {name}", i + 1, steps::of(scene).len()),
-            None => format!("Step: {name}"),
+    let list = steps::of(scene);
+    let (step, lesson) = match info.step {
+        Some(name) => match list.iter().position(|s| s.name == name) {
+            Some(i) => (
+                format!("Step {} of {}: {name}", i + 1, list.len()),
+                Some(lesson(list[i].look_for)),
+            ),
+            None => (format!("Step: {name}"), None),
         },
-        None => format!("Settings: the {} scene's own", scene.name),
+        None => (format!("Settings: the {} scene's own", scene.name), None),
     };
     let mut lines = vec![light];
     match scene.lights.len() {
@@ -102,6 +106,9 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         n => lines.push(format!("and {} more lights", n - 1)),
     }
     lines.push(step);
+    if let Some(lesson) = lesson {
+        lines.extend(wrap_words(&lesson, LINE_WIDTH));
+    }
     // The first light's shadow in words, each line wrapped to stay in the corner.
     if let Some(first) = info.plan.lights.first() {
         for line in words::shadow(first) {
@@ -130,6 +137,12 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
         lines.push(KEYS_HINT.to_string());
     }
     lines
+}
+
+/// A step's lesson for the HUD: the first sentence of what to look for.
+fn lesson(look_for: &str) -> String {
+    let end = look_for.find(". ").map_or(look_for.len(), |i| i + 1);
+    format!("Look for: {}", &look_for[..end])
 }
 
 fn upper_first(s: &str) -> String {
@@ -399,6 +412,17 @@ mod tests {
             lines[1].contains("pcf") && lines[1].starts_with("Step 9 of"),
             "{lines:?}"
         );
+        // The step's lesson under its name, wrapped, then the shadow in words.
+        let shadow = lines.iter().position(|l| l.starts_with("Shadow:")).unwrap();
+        assert_eq!(
+            lines[2..shadow]
+                .iter()
+                .map(|l| l.trim())
+                .collect::<Vec<_>>()
+                .join(" "),
+            "Look for: Softer, less blocky shadow edges with intermediate values."
+        );
+        let lines: Vec<String> = lines.iter().skip(shadow - 2).cloned().collect();
         let m = settings.map_size;
         assert_eq!(
             lines[2],

@@ -12,3 +12,6 @@ pub mod quality;
 pub mod render;
 pub mod shaders;
 pub mod soak;
+
+#[cfg(test)]
+mod tests;

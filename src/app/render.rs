@@ -20,15 +20,8 @@ use super::quality::choose_for_target;
 
 pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
-    let mut scene = args.scene.load()?;
-    if let Some(step) = &args.settings.step {
-        // Shown as `steps` shows it, unless a flag picks the view or the light's size.
-        let s = &args.scene;
-        let camera_flag =
-            s.camera_position.is_some() || s.camera_rotation.is_some() || s.camera_target.is_some();
-        shadowmap::steps::show(&mut scene, step, camera_flag, s.light_size.is_some())?;
-    }
-    let mut settings = args.settings.apply(&mut scene)?;
+    // A step is shown as `steps` shows it, unless a flag picks the view or the light's size.
+    let (mut scene, mut settings) = args.scene.load_with(&args.settings)?;
     let (width, height) = args.scene.size(&scene);
     // Everything that can be checked without the driver, before any GL work or file.
     let mut plan = args.settings.check_values(&scene, &settings)?;

@@ -5,9 +5,9 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use shadowmap::engine::{HeadlessContext, Outputs, RenderTarget};
-use shadowmap::{steps, Renderer, Result, Target};
+use shadowmap::{steps, Renderer, Result, Scene, ShadowSettings, Target};
 
-use super::cli::SoakArgs;
+use super::cli::{SettingsArgs, SoakArgs};
 
 /// Resident memory of this process in KiB (Linux `/proc/self/statm`), if readable.
 pub fn resident_kib() -> Option<u64> {
@@ -19,11 +19,28 @@ pub fn resident_kib() -> Option<u64> {
 /// Frames in one full cycle of steps and map sizes.
 const WARM_FRAMES: u64 = 600;
 
-pub fn run(args: &SoakArgs) -> Result<()> {
-    let mut scene = args.scene.load()?;
-    let base = args.settings.apply(&mut scene)?;
+/// The scene as `render --step` shows `step` (the scene's own settings for `None`), with
+/// the flags, at the frame size.
+pub(super) fn at_step(
+    args: &SoakArgs,
+    loaded: &Scene,
+    step: Option<&str>,
+) -> Result<(Scene, ShadowSettings)> {
+    let mut scene = loaded.clone();
+    let settings = SettingsArgs {
+        step: step.map(str::to_string),
+        ..args.settings.clone()
+    };
+    let s = settings.resolve(&args.scene, &mut scene)?;
     let (width, height) = args.scene.size(&scene);
     scene.size = [width, height];
+    Ok((scene, s))
+}
+
+pub fn run(args: &SoakArgs) -> Result<()> {
+    let loaded = args.scene.load()?;
+    let (mut scene, base) = at_step(args, &loaded, args.settings.step.as_deref())?;
+    let (width, height) = args.scene.size(&scene);
     let context = HeadlessContext::new()?;
     let gl = context.gl();
     args.settings.check(gl, &scene, &base)?;
@@ -43,10 +60,17 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     for frame in 0..args.frames {
         if frame % 50 == 0 {
             // Every 50 frames: the next step and the next map size.
+            // `--step` holds one step; each step is drawn in its own view.
             let k = (frame / 50) as usize;
-            let list = steps::of(&scene);
-            let step = list[k % list.len()].name;
-            let mut s = steps::settings_for(&scene, step)?;
+            let list = steps::of(&loaded);
+            let step = args
+                .settings
+                .step
+                .as_deref()
+                .unwrap_or(list[k % list.len()].name);
+            let (staged, mut s) = at_step(args, &loaded, Some(step))?;
+            (scene.camera, scene.lights, scene.items) =
+                (staged.camera, staged.lights, staged.items);
             s.map_size = sizes[k % sizes.len()].into();
             renderer.set_settings(&s)?;
         }

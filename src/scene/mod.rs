@@ -92,6 +92,12 @@ pub struct Scene {
     /// The camera a fitted light box follows, when it should not be the viewing camera
     /// (to watch or measure the fit from elsewhere).
     pub fit_camera: Option<Camera>,
+    /// Named cameras (`[views]`): `--view NAME` shows one, and a tutorial's own camera
+    /// keeps its name where the scene opens on another.
+    pub views: Vec<(String, Camera)>,
+    /// The view the commands open on (`view`), where the file names one; `camera` stays
+    /// the file's `[camera]` until [`Scene::open_view`] picks it.
+    pub opening_view: Option<String>,
     /// Seconds of animation so far (30 updates a second).
     pub time: f32,
 }
@@ -220,6 +226,34 @@ impl Scene {
         if let Some(size) = self.steps.light_size {
             self.lights.iter_mut().for_each(|l| l.set_size(size));
         }
+    }
+
+    /// The named view `name`'s camera, if the scene has it.
+    pub fn view(&self, name: &str) -> Option<Camera> {
+        self.views.iter().find(|(n, _)| n == name).map(|(_, c)| *c)
+    }
+
+    /// Puts the camera at view `name`, or at the view the scene opens on (`None`; the
+    /// file's `[camera]` if it names none), as the commands show the scene.
+    pub fn open_view(&mut self, name: Option<&str>) -> Result<()> {
+        let Some(name) = name.or(self.opening_view.as_deref()) else {
+            return Ok(());
+        };
+        let names: Vec<&str> = self.views.iter().map(|(n, _)| n.as_str()).collect();
+        self.camera = self.view(name).ok_or_else(|| {
+            Error::Invalid(match names.is_empty() {
+                true => format!(
+                    "--view {name}: the {} scene has no named views (its file has no [views])",
+                    self.name
+                ),
+                false => format!(
+                    "--view {name}: the {} scene's views are {}",
+                    self.name,
+                    names.join(", ")
+                ),
+            })
+        })?;
+        Ok(())
     }
 
     /// The camera the chapter steps are shown from: `[steps] camera`, else the scene's.

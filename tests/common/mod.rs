@@ -1,6 +1,8 @@
 //! Shared by the integration tests: a headless context and scene shortcuts.
 #![allow(dead_code)]
 
+pub mod step_frames;
+
 use glam::Vec3;
 use shadowmap::engine::{HeadlessContext, Outputs};
 use shadowmap::frame::{render_frames, Frame};

@@ -5,11 +5,12 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 use shadowmap::shadows::plan::ShadowPlan;
-use shadowmap::{steps, ShadowSettings};
+use shadowmap::ShadowSettings;
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 
 use super::Demo;
+use crate::app::cli::SettingsArgs;
 
 /// Camera step per update (DummyGame's CAMERA_POS_STEP).
 const CAMERA_POS_STEP: f32 = 0.05;
@@ -19,56 +20,21 @@ const MOUSE_SENSITIVITY: f32 = 0.2;
 const ANGLE_STEP: f32 = 0.05;
 
 impl Demo {
-    /// Switches to a chapter step (or back to the scene's settings with `None`).
+    /// Switches to a chapter step (or back to the scene's settings with `None`): what
+    /// `demo --step` with the same flags shows, the step's view and settings.
     pub(super) fn select_step(&mut self, event_loop: &ActiveEventLoop, step: Option<&'static str>) {
-        if let Some((camera, lights, items)) = self.before_stage.take() {
-            (self.scene.camera, self.scene.lights, self.scene.items) = (camera, lights, items);
-        }
-        // Steps are shown from the scene's steps camera (where its own does not show what
-        // they change); back to the scene's camera with its own settings.
-        if self.scene.steps.camera.is_some() {
-            match (step, self.camera_before_steps) {
-                (Some(_), None) => {
-                    self.camera_before_steps = Some(self.scene.camera);
-                    self.scene.camera = self.scene.steps_camera();
-                }
-                (None, Some(camera)) => {
-                    self.scene.camera = camera;
-                    self.camera_before_steps = None;
-                }
-                _ => {}
-            }
-        }
-        // And with the lights' size its steps ask for (`[steps] light_size`), if any.
-        if self.scene.steps.light_size.is_some() {
-            match (step, self.sizes_before_steps.take()) {
-                (Some(_), None) => {
-                    let sizes = self.scene.lights.iter().map(|l| l.size()).collect();
-                    self.sizes_before_steps = Some(sizes);
-                    self.scene.use_steps_light_size();
-                }
-                (None, Some(sizes)) => {
-                    for (l, size) in self.scene.lights.iter_mut().zip(sizes) {
-                        l.set_size(size);
-                    }
-                }
-                (_, kept) => self.sizes_before_steps = kept,
-            }
-        }
-        // The step's own view of the scene, where it has one (undone by the next pick).
-        if let Some(staged) = step.and_then(|name| steps::get(&self.scene, name)) {
-            if staged.stage(&self.scene).is_some() {
-                let s = &self.scene;
-                self.before_stage = Some((s.camera, s.lights.clone(), s.items.clone()));
-                if let Err(e) = staged.set_stage(&mut self.scene, false) {
-                    return self.fail(event_loop, e);
-                }
-            }
-        }
-        let settings = match step {
-            Some(name) => steps::settings_for(&self.scene, name),
-            None => self.args.settings.apply(&mut self.scene),
+        let mut scene = self.loaded.clone();
+        // Kept from the running scene: the frame's shape and the animation's clock.
+        (scene.size, scene.time) = (self.scene.size, self.scene.time);
+        let flags = SettingsArgs {
+            step: step.map(str::to_string),
+            ..self.args.settings.clone()
         };
+        let settings = flags.resolve(&self.args.scene, &mut scene);
+        if settings.is_ok() {
+            (self.scene.camera, self.scene.lights) = (scene.camera, scene.lights);
+            self.scene.items = scene.items;
+        }
         let result = settings.and_then(|s| {
             if let Some(r) = &mut self.running {
                 r.renderer.set_settings(&s)?;

@@ -26,6 +26,7 @@ pub(super) fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
     let lights = build_lights(&file, cx)?;
     check_light_settings(&lights, &file.shadow, cx)?;
     let steps = build_steps(&file.steps, &file.camera, cx)?;
+    let (views, opening_view) = build_views(&file, cx)?;
     if let Some(size) = steps.light_size {
         if let Some(problem) = lights.iter().find_map(|l| l.size_problem(size)) {
             return Err(cx.bad("steps.light_size", problem));
@@ -49,6 +50,8 @@ pub(super) fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
         shading: file.shading,
         steps,
         fit_camera: None,
+        views,
+        opening_view,
         time: 0.0,
         ambient: Vec3::from(file.ambient.0),
         specular_power: file.specular_power,
@@ -163,6 +166,32 @@ fn build_camera(c: &CameraFile, table: &str, cx: &Context) -> Result<Camera> {
         near,
         far,
     })
+}
+
+/// Named cameras, in the file's order of names.
+type Views = Vec<(String, Camera)>;
+
+/// The named views (`[views]`, each over `[camera]`) and the one the commands open on
+/// (`view`), which must be one of them.
+fn build_views(file: &SceneFile, cx: &Context) -> Result<(Views, Option<String>)> {
+    let mut views = Vec::new();
+    for (name, c) in &file.views {
+        let camera = build_camera(&c.over(&file.camera), &format!("views.{name}"), cx)?;
+        views.push((name.clone(), camera));
+    }
+    if let Some(view) = &file.view {
+        if !file.views.contains_key(view) {
+            let names: Vec<&str> = file.views.keys().map(String::as_str).collect();
+            return Err(cx.bad(
+                "view",
+                match names.is_empty() {
+                    true => format!("\"{view}\": the file has no [views] table to name one of"),
+                    false => format!("\"{view}\": expected one of [views]: {}", names.join(", ")),
+                },
+            ));
+        }
+    }
+    Ok((views, file.view.clone()))
 }
 
 fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result<StepContext> {

@@ -74,6 +74,11 @@ struct SceneFile {
     shading: ShadingModel,
     #[serde(default)]
     camera: CameraFile,
+    /// The view the commands open on (a name in `[views]`); left out: `[camera]`.
+    view: Option<String>,
+    /// Named cameras (`--view NAME`), each over `[camera]`: fields left out are its.
+    #[serde(default)]
+    views: std::collections::BTreeMap<String, CameraFile>,
     /// One light (`[light]`), or several (`[[lights]]`); not both. Only counted here: each
     /// is read by its `kind` in [`build`], from the document.
     light: Option<LightTable>,

@@ -465,3 +465,39 @@ fn volumetric_is_refused_by_name_where_it_cannot_cast() {
     let ok = format!("{LIGHT}[shadow]\nvolumetric = \"solid\"\n");
     assert!(parse(&ok, Path::new("s.toml"), None).is_ok());
 }
+
+#[test]
+fn named_views_lie_over_the_camera_and_the_opening_view_must_be_one() {
+    let text = format!(
+        "view = \"high\"\n{LIGHT}[camera]\nposition = [0.0, 0.0, 3.0]\nfov = 45.0\n\
+         [views]\nhigh = {{ position = [0.0, 8.0, 8.0], target = [0.0, 0.0, 0.0] }}\ncode = {{}}\n"
+    );
+    let mut s = parse(&text, Path::new("s.toml"), None).unwrap();
+    // The file's [camera] until a command opens the scene on its view.
+    assert_eq!(s.camera.position, Vec3::new(0.0, 0.0, 3.0));
+    assert_eq!(s.view("code").unwrap().position, s.camera.position);
+    s.open_view(None).unwrap();
+    assert_eq!(s.camera.position, Vec3::new(0.0, 8.0, 8.0));
+    assert_eq!(s.camera.fov, 45.0, "fields left out are [camera]'s");
+    s.open_view(Some("code")).unwrap();
+    assert_eq!(s.camera.position, Vec3::new(0.0, 0.0, 3.0));
+    assert_eq!(
+        s.open_view(Some("low")).unwrap_err().to_string(),
+        "--view low: the s scene's views are code, high"
+    );
+    refuses(
+        &format!("view = \"low\"\n{LIGHT}[views]\nhigh = {{ fov = 30.0 }}\n"),
+        "view",
+        "\"low\": expected one of [views]: high",
+    );
+    refuses(
+        &format!("view = \"low\"\n{LIGHT}"),
+        "view",
+        "\"low\": the file has no [views] table to name one of",
+    );
+    refuses(
+        &format!("{LIGHT}[views]\nhigh = {{ fov = 0.0 }}\n"),
+        "views.high.fov",
+        "0: expected degrees between 0 and 180",
+    );
+}
