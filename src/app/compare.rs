@@ -17,6 +17,9 @@ use shadowmap::{Error, Result, Scene, ShadowSettings};
 use super::cli::{CompareArgs, Truth};
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    if let Some(path) = super::motion::compare_path(args)? {
+        return super::motion::run_compare(args, path);
+    }
     let mut scene = args.scene.load()?;
     let settings = args.settings.apply(&mut scene)?;
     let (width, height) = args.scene.size(&scene);

@@ -30,6 +30,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     let settings = args.settings.apply(&mut scene)?;
     // What needs no window or driver is checked before anything opens.
     args.settings.check_values(&scene, &settings)?;
+    args.motion.start(&mut scene)?;
     if let Some(path) = &args.screenshot {
         check_output_image("--screenshot", path)?;
     }

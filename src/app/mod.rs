@@ -7,6 +7,8 @@ pub mod demo;
 pub mod gallery;
 pub mod hud;
 pub mod keys;
+pub mod motion;
+pub mod motion_plot;
 pub mod plot;
 pub mod quality;
 pub mod render;

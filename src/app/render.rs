@@ -29,6 +29,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         shadowmap::steps::show(&mut scene, step, camera_flag, s.light_size.is_some())?;
     }
     let mut settings = args.settings.apply(&mut scene)?;
+    args.motion.start(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     // Everything that can be checked without the driver, before any GL work or file.
     let mut plan = args.settings.check_values(&scene, &settings)?;
@@ -65,6 +66,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     );
     if let Some(line) = args.settings.quality_summary()? {
         println!("{line}");
+    }
+    if let Some(path) = &scene.motion {
+        let moved = super::motion::describe(path);
+        println!("motion: {moved}; the image is frame {}", path.frame);
     }
     if let Some(path) = &args.shadow_out {
         println!(

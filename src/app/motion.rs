@@ -1,0 +1,173 @@
+//! `--motion`: a scripted path for `render`, `compare`, `bench` and `demo`, and `compare
+//! --motion`'s run: every frame traced and scored, and its false flicker
+//! ([`shadowmap::motion`]) with an animation of the error and a plot of the flicker.
+
+use clap::Args;
+use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
+use shadowmap::engine::HeadlessContext;
+use shadowmap::motion::{rendered_state, FlickerMeter, MotionFrame};
+use shadowmap::output::{check_output_dir, write_into, Activity};
+use shadowmap::reference::error_image;
+use shadowmap::scene::motion::{MotionPath, PathKind};
+use shadowmap::{Error, Result, Scene};
+
+use super::cli::CompareArgs;
+
+/// The path flags every command that draws frames shares.
+#[derive(Args, Debug, Clone, Default)]
+pub struct MotionArgs {
+    /// A scripted path, the same picture at the same frame every run: the camera moves
+    /// (dolly: forward; strafe: to its right; orbit: about the point it looks at on the
+    /// ground), the first light turns (light-sweep, as the DummyGame's UP/DOWN keys), or
+    /// the scene file's `[motion] keyframes`. Frame 0 is the scene's own view.
+    #[arg(long, value_enum, value_name = "PATH")]
+    pub motion: Option<PathKind>,
+    /// The path's step a frame: world units for dolly and strafe (default 0.05, the
+    /// DummyGame's camera step), degrees for orbit and light-sweep (default 0.5).
+    #[arg(long, value_name = "STEP", requires = "motion", allow_negative_numbers = true,
+          value_parser = shadowmap::settings::parse_finite)]
+    pub motion_step: Option<f32>,
+}
+
+impl MotionArgs {
+    /// The path from the scene's pose, or why it cannot be had; `None` without `--motion`.
+    pub fn path(&self, scene: &Scene) -> Result<Option<MotionPath>> {
+        self.motion
+            .map(|kind| MotionPath::new(kind, self.motion_step, scene))
+            .transpose()
+    }
+
+    /// Sets the scene moving along the path (each `Scene::update` is its next frame).
+    pub fn start(&self, scene: &mut Scene) -> Result<()> {
+        scene.motion = self.path(scene)?;
+        Ok(())
+    }
+}
+
+/// What a path is, in words: "strafe, 0.05 world units a frame".
+pub fn describe(path: &MotionPath) -> String {
+    match path.kind {
+        PathKind::Still | PathKind::Keyframes => path.kind.name().to_string(),
+        k => format!("{}, {} {} a frame", k.name(), path.step, k.unit()),
+    }
+}
+
+/// `compare --motion`: each frame of the path traced, rendered and scored.
+pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
+    let mut scene = args.scene.load()?;
+    let settings = args.settings.apply(&mut scene)?;
+    let (width, height) = args.scene.size(&scene);
+    let dir = &args.out_dir;
+    args.settings.check_values(&scene, &settings)?;
+    check_output_dir("--out-dir", dir)?;
+    let context = HeadlessContext::new()?;
+    let plan = args.settings.check(context.gl(), &scene, &settings)?;
+    args.scene.check_size(context.gl(), &scene)?;
+    let opts = CompareOptions {
+        width,
+        height,
+        supersample: args.supersample,
+        band: args.band,
+        light: args.light,
+        rays: args.rays,
+    };
+    let gl = context.gl();
+    let mut meter = FlickerMeter::default();
+    let mut pictures = Vec::new();
+    let activity = Activity::start(format!(
+        "compare: {} frames of {} ({}): tracing and rendering each",
+        args.frames,
+        describe(&path),
+        plan.in_use().summary()
+    ));
+    for i in 0..args.frames {
+        let mut s = scene.clone();
+        path.pose(&mut s, i);
+        let reference = compute_reference(gl, &s, &settings, &opts)?;
+        let frame = render_visibility(gl, &s, &settings, width, height, args.light)?;
+        let vis = frame.visibility.as_deref().unwrap_or_default();
+        let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
+            .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
+            .collect();
+        let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+        pictures.push(error.concat());
+        let rendered = vis.iter().map(|v| rendered_state(*v)).collect();
+        meter.push(MotionFrame::of_reference(&reference, &s.camera), rendered);
+    }
+    activity.done("");
+    let score = meter.finish(path.kind.name());
+    let json = serde_json::json!({
+        "scene": scene.name,
+        "size": [width, height],
+        "light": args.light,
+        "settings": settings,
+        "motion_step": path.step,
+        "motion": score,
+    });
+    let files = [
+        (
+            "metrics.json",
+            "the file",
+            format!("{json:#}\n").into_bytes(),
+        ),
+        (
+            "motion-error.png",
+            "the image",
+            apng(width, height, &pictures)?,
+        ),
+        (
+            "motion-flicker.png",
+            "the plot",
+            super::motion_plot::flicker_png(&score)?,
+        ),
+    ];
+    write_into(dir, &files)?;
+    println!("{}", score.line());
+    println!(
+        "error per frame: {}",
+        (score.frames.iter())
+            .map(|f| format!("{:.3}%", f.misclassified * 100.0))
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    println!(
+        "wrote {}: metrics.json, motion-error.png (the error over the path, animated: {}), \
+         motion-flicker.png (false flicker and the truth's change per frame)",
+        dir.display(),
+        super::compare::ERROR_COLOURS.trim_start_matches("the error images: ")
+    );
+    Ok(())
+}
+
+/// The frames as an animated PNG, ten frames a second, looping.
+pub fn apng(width: u32, height: u32, frames: &[Vec<u8>]) -> Result<Vec<u8>> {
+    let err = |e: png::EncodingError| Error::Invalid(format!("cannot encode the animation: {e}"));
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, width, height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder
+            .set_animated(frames.len().max(1) as u32, 0)
+            .map_err(err)?;
+        encoder.set_frame_delay(1, 10).map_err(err)?;
+        let mut writer = encoder.write_header().map_err(err)?;
+        for f in frames {
+            writer.write_image_data(f).map_err(err)?;
+        }
+        writer.finish().map_err(err)?;
+    }
+    Ok(bytes)
+}
+
+/// Whether `compare` runs a path: any `--motion`, checked before any work.
+pub fn compare_path(args: &CompareArgs) -> Result<Option<MotionPath>> {
+    match args.motion.motion {
+        None => Ok(None),
+        Some(_) => {
+            let mut scene = args.scene.load()?;
+            args.settings.apply(&mut scene)?;
+            args.motion.path(&scene)
+        }
+    }
+}
