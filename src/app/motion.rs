@@ -86,13 +86,18 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         let reference = compute_reference(gl, &s, &settings, &opts)?;
         let frame = render_visibility(gl, &s, &settings, width, height, args.light)?;
         let vis = frame.visibility.as_deref().unwrap_or_default();
+        let here = MotionFrame::of_reference(&reference, &s.camera);
+        let before = match i {
+            0 => None,
+            _ => Some(previous_here(gl, &scene, &path, i, &here, &settings, &opts)?),
+        };
         let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
             .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
             .collect();
         let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
         pictures.push(error.concat());
         let rendered = vis.iter().map(|v| rendered_state(*v)).collect();
-        meter.push(MotionFrame::of_reference(&reference, &s.camera), rendered);
+        meter.push_after(before, here, rendered);
     }
     activity.done("");
     let score = meter.finish(path.kind.name());
@@ -137,6 +142,36 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         super::compare::ERROR_COLOURS.trim_start_matches("the error images: ")
     );
     Ok(())
+}
+
+/// Frame `i - 1`'s shadows at frame `i`'s pixels: its light, and its camera as the one the
+/// light's box or cascades are fitted to, seen from frame `i`'s camera; with its truth
+/// (traced again only when the light moved). The same world points in both frames, so the
+/// camera's own motion is not counted.
+fn previous_here(
+    gl: &shadowmap::engine::Gl,
+    scene: &Scene,
+    path: &MotionPath,
+    i: u32,
+    here: &MotionFrame,
+    settings: &shadowmap::ShadowSettings,
+    opts: &CompareOptions,
+) -> Result<(MotionFrame, Vec<Option<bool>>)> {
+    let (mut now, mut before) = (scene.clone(), scene.clone());
+    path.pose(&mut now, i);
+    path.pose(&mut before, i - 1);
+    before.fit_camera = Some(before.camera);
+    before.camera = now.camera;
+    let truth = match before.lights == now.lights {
+        true => here.clone(),
+        false => {
+            let reference = compute_reference(gl, &before, settings, opts)?;
+            MotionFrame::of_reference(&reference, &now.camera)
+        }
+    };
+    let frame = render_visibility(gl, &before, settings, opts.width, opts.height, opts.light)?;
+    let vis = frame.visibility.as_deref().unwrap_or_default();
+    Ok((truth, vis.iter().map(|v| rendered_state(*v)).collect()))
 }
 
 /// The frames as an animated PNG, ten frames a second, looping.

@@ -211,6 +211,19 @@ pub struct FlickerMeter {
 impl FlickerMeter {
     /// Adds the next frame (its truth and what was rendered) and returns its figures.
     pub fn push(&mut self, frame: MotionFrame, rendered: Vec<Option<bool>>) -> FrameFlicker {
+        let prev = self.prev.take();
+        self.push_after(prev, frame, rendered)
+    }
+
+    /// [`FlickerMeter::push`] against a given previous frame: the previous frame's shadows
+    /// drawn at this frame's pixels (its light and fitting camera, this frame's view), so
+    /// the points match pixel for pixel.
+    pub fn push_after(
+        &mut self,
+        prev: Option<(MotionFrame, Vec<Option<bool>>)>,
+        frame: MotionFrame,
+        rendered: Vec<Option<bool>>,
+    ) -> FrameFlicker {
         let index = self.frames.len() as u32;
         let mut f = FrameFlicker {
             frame: index,
@@ -220,7 +233,7 @@ impl FlickerMeter {
             truth_change: None,
             flicker: None,
         };
-        if let Some((prev, prev_rendered)) = &self.prev {
+        if let Some((prev, prev_rendered)) = &prev {
             let (matched, false_flicker, truth, flicker) =
                 score_pair(prev, prev_rendered, &frame, &rendered);
             f.matched = matched;
