@@ -89,7 +89,9 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         let here = MotionFrame::of_reference(&reference, &s.camera);
         let before = match i {
             0 => None,
-            _ => Some(previous_here(gl, &scene, &path, i, &here, &settings, &opts)?),
+            _ => Some(previous_here(
+                gl, &scene, &path, i, &here, &settings, &opts,
+            )?),
         };
         let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
             .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
