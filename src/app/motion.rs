@@ -24,7 +24,7 @@ pub struct MotionArgs {
     pub motion: Option<PathKind>,
     /// The path's step a frame: world units for dolly and strafe (default 0.05, the
     /// DummyGame's camera step), degrees for orbit and light-sweep (default 0.5).
-    #[arg(long, value_name = "STEP", requires = "motion", allow_negative_numbers = true,
+    #[arg(long, value_name = "STEP", requires = "motion", allow_hyphen_values = true,
           value_parser = shadowmap::settings::parse_finite)]
     pub motion_step: Option<f32>,
 }
