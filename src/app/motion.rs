@@ -3,9 +3,9 @@
 //! ([`shadowmap::motion`]) with an animation of the error and a plot of the flicker.
 
 use clap::Args;
-use shadowmap::compare::{compute_reference, render_visibility, CompareOptions};
+use shadowmap::compare::CompareOptions;
 use shadowmap::engine::HeadlessContext;
-use shadowmap::motion::{rendered_state, FlickerMeter, MotionFrame};
+use shadowmap::motion::score_path;
 use shadowmap::output::{check_output_dir, write_into, Activity};
 use shadowmap::reference::error_image;
 use shadowmap::scene::motion::{MotionPath, PathKind};
@@ -18,7 +18,7 @@ use super::cli::CompareArgs;
 pub struct MotionArgs {
     /// A scripted path, the same picture at the same frame every run: the camera moves
     /// (dolly: forward; strafe: to its right; orbit: about the point it looks at on the
-    /// ground), the first light turns (light-sweep, as the DummyGame's UP/DOWN keys), or
+    /// ground, or nearest the origin on its view), the first light turns (light-sweep, as the DummyGame's UP/DOWN keys), or
     /// the scene file's `[motion] keyframes`. Frame 0 is the scene's own view.
     #[arg(long, value_enum, value_name = "PATH")]
     pub motion: Option<PathKind>,
@@ -72,7 +72,6 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         rays: args.rays,
     };
     let gl = context.gl();
-    let mut meter = FlickerMeter::default();
     let mut pictures = Vec::new();
     let activity = Activity::start(format!(
         "compare: {} frames of {} ({}): tracing and rendering each",
@@ -80,29 +79,22 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         describe(&path),
         plan.in_use().summary()
     ));
-    for i in 0..args.frames {
-        let mut s = scene.clone();
-        path.pose(&mut s, i);
-        let reference = compute_reference(gl, &s, &settings, &opts)?;
-        let frame = render_visibility(gl, &s, &settings, width, height, args.light)?;
-        let vis = frame.visibility.as_deref().unwrap_or_default();
-        let here = MotionFrame::of_reference(&reference, &s.camera);
-        let before = match i {
-            0 => None,
-            _ => Some(previous_here(
-                gl, &scene, &path, i, &here, &settings, &opts,
-            )?),
-        };
-        let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
-            .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
-            .collect();
-        let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
-        pictures.push(error.concat());
-        let rendered = vis.iter().map(|v| rendered_state(*v)).collect();
-        meter.push_after(before, here, rendered);
-    }
+    let score = score_path(
+        gl,
+        &scene,
+        &settings,
+        (&path, args.frames),
+        &opts,
+        |frame, reference| {
+            let vis = frame.visibility.as_deref().unwrap_or_default();
+            let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
+                .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
+                .collect();
+            let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+            pictures.push(error.concat());
+        },
+    )?;
     activity.done("");
-    let score = meter.finish(path.kind.name());
     let json = serde_json::json!({
         "scene": scene.name,
         "size": [width, height],
@@ -144,36 +136,6 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
         super::compare::ERROR_COLOURS.trim_start_matches("the error images: ")
     );
     Ok(())
-}
-
-/// Frame `i - 1`'s shadows at frame `i`'s pixels: its light, and its camera as the one the
-/// light's box or cascades are fitted to, seen from frame `i`'s camera; with its truth
-/// (traced again only when the light moved). The same world points in both frames, so the
-/// camera's own motion is not counted.
-fn previous_here(
-    gl: &shadowmap::engine::Gl,
-    scene: &Scene,
-    path: &MotionPath,
-    i: u32,
-    here: &MotionFrame,
-    settings: &shadowmap::ShadowSettings,
-    opts: &CompareOptions,
-) -> Result<(MotionFrame, Vec<Option<bool>>)> {
-    let (mut now, mut before) = (scene.clone(), scene.clone());
-    path.pose(&mut now, i);
-    path.pose(&mut before, i - 1);
-    before.fit_camera = Some(before.camera);
-    before.camera = now.camera;
-    let truth = match before.lights == now.lights {
-        true => here.clone(),
-        false => {
-            let reference = compute_reference(gl, &before, settings, opts)?;
-            MotionFrame::of_reference(&reference, &now.camera)
-        }
-    };
-    let frame = render_visibility(gl, &before, settings, opts.width, opts.height, opts.light)?;
-    let vis = frame.visibility.as_deref().unwrap_or_default();
-    Ok((truth, vis.iter().map(|v| rendered_state(*v)).collect()))
 }
 
 /// The frames as an animated PNG, ten frames a second, looping.

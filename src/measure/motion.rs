@@ -251,5 +251,8 @@ impl FlickerMeter {
     }
 }
 
+mod run;
 #[cfg(test)]
 mod tests;
+
+pub use run::score_path;

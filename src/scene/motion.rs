@@ -19,7 +19,8 @@ pub enum PathKind {
     /// The camera moves to its right, keeping its direction (world units a frame).
     Strafe,
     /// The camera turns about a vertical axis through the point it looks at on the ground
-    /// (y = 0), still looking at it (degrees a frame).
+    /// (y = 0; looking above the horizon, the point of its view nearest the origin), still
+    /// looking at it (degrees a frame).
     Orbit,
     /// The first light turns about its azimuth as the DummyGame's UP/DOWN keys turn it
     /// (degrees a frame, up to 180).
@@ -187,13 +188,18 @@ pub fn right_direction(camera: &Camera) -> Vec3 {
     Vec3::new(y.cos(), 0.0, y.sin())
 }
 
-/// Where the view meets the ground (y = 0), or 10 units ahead when it does not.
+/// Where the view meets the ground (y = 0); when it does not, the point of the view's line
+/// nearest the world's origin (where the scenes stand), else 10 units ahead.
 fn orbit_pivot(camera: &Camera) -> Vec3 {
     let d = view_direction(camera);
     let hit = -camera.position.y / d.y;
-    match hit.is_finite() && hit > 0.0 && hit < camera.far {
-        true => camera.position + d * hit,
-        false => camera.position + d * 10.0,
+    let nearest = -camera.position.dot(d);
+    if hit.is_finite() && hit > 0.0 && hit < camera.far {
+        camera.position + d * hit
+    } else if nearest > 0.0 {
+        camera.position + d * nearest
+    } else {
+        camera.position + d * 10.0
     }
 }
 

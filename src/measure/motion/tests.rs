@@ -73,7 +73,7 @@ fn an_edge_moved_one_texel_of_a_snapped_map_flips_only_that_texel() {
     let mut meter = FlickerMeter::default();
     let f0 = floor(0.0, |x| x < e0);
     let r0 = through_map(&f0, t, 0.0, |x| x < e0);
-    meter.push(f0, r0.clone());
+    meter.push(f0.clone(), r0.clone());
     let f1 = floor(3.0, |x| x < e1);
     let r1 = through_map(&f1, t, 0.0, |x| x < e1);
     let pair = meter.push(f1.clone(), r1.clone());
