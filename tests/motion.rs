@@ -170,3 +170,46 @@ fn render_moves_along_the_path() {
         "{stdout}"
     );
 }
+
+#[test]
+fn bench_gains_a_false_flicker_column_with_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bench");
+    stdout_of(bin().args([
+        "bench",
+        "--quick",
+        "--scene",
+        "dummy",
+        "--size",
+        "160x90",
+        "--frames",
+        "1",
+        "--warmup",
+        "0",
+        "--supersample",
+        "1",
+        "--motion",
+        "light-sweep",
+        "--motion-frames",
+        "3",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]));
+    let text = std::fs::read_to_string(out.join("bench.csv")).unwrap();
+    let mut rows = csv::Reader::from_reader(text.as_bytes());
+    let header = rows.headers().unwrap().clone();
+    let at = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (flicker, family) = (at("false_flicker"), at("family"));
+    let rows: Vec<csv::StringRecord> = rows.records().map(|r| r.unwrap()).collect();
+    let of = |r: &csv::StringRecord| r[flicker].parse::<f64>().unwrap();
+    // The stencil volumes are exact: they flip exactly where the truth does.
+    let volumes = rows.iter().find(|r| r[family].contains("volume")).unwrap();
+    assert_eq!(of(volumes), 0.0);
+    assert!(
+        rows.iter().any(|r| of(r) > 0.0),
+        "no map flickered on the sweep"
+    );
+    assert!(std::fs::read_to_string(out.join("bench.md"))
+        .unwrap()
+        .contains("false flicker a frame"));
+}

@@ -138,6 +138,43 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
     Ok(())
 }
 
+/// `bench --motion`: each configuration's false flicker over `frames` of the path, into
+/// its row (each frame traced and drawn; no supersampling, which the flicker does not use).
+pub fn bench_flicker(
+    gl: &shadowmap::engine::Gl,
+    scene: &Scene,
+    (path, frames): (&MotionPath, u32),
+    rows: &mut [shadowmap::bench::BenchRow],
+    (band, rays): (usize, u32),
+) -> Result<()> {
+    let opts = CompareOptions {
+        width: scene.size[0],
+        height: scene.size[1],
+        supersample: 1,
+        band,
+        light: 0,
+        rays,
+    };
+    eprintln!(
+        "bench: false flicker of {} configurations over {frames} frames of {}",
+        rows.len(),
+        describe(path)
+    );
+    let mut counter = shadowmap::output::Counter::new(rows.len() as u64);
+    for row in rows.iter_mut() {
+        let settings = row.config.settings;
+        let score = score_path(gl, scene, &settings, (path, frames), &opts, |_, _| {})?;
+        row.false_flicker = Some(score.false_flicker);
+        counter.step(&format!(
+            "{}: false flicker {:.3}%",
+            row.label(),
+            score.false_flicker * 100.0
+        ));
+    }
+    counter.finish();
+    Ok(())
+}
+
 /// The frames as an animated PNG, ten frames a second, looping.
 pub fn apng(width: u32, height: u32, frames: &[Vec<u8>]) -> Result<Vec<u8>> {
     let err = |e: png::EncodingError| Error::Invalid(format!("cannot encode the animation: {e}"));
