@@ -213,3 +213,32 @@ fn bench_gains_a_false_flicker_column_with_motion() {
         .unwrap()
         .contains("false flicker a frame"));
 }
+
+#[test]
+fn scene_file_keyframes_out_of_order_are_refused_by_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("k.toml");
+    std::fs::write(
+        &scene,
+        "[light]\nangle = 45.0\n[[item]]\nmesh = \"cube\"\n[motion]\n\
+         keyframes = [{ frame = 5 }, { frame = 2 }]\n",
+    )
+    .unwrap();
+    let png = dir.path().join("k.png");
+    let e = refused(&[
+        "render",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--motion",
+        "keyframes",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        e.contains(
+            "motion.keyframes[1].frame: 2: expected a frame after the previous keyframe's 5"
+        ),
+        "{e}"
+    );
+    assert!(!png.exists());
+}
