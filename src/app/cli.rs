@@ -124,7 +124,7 @@ pub struct DemoArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub motion: super::motion::MotionArgs,
+    pub motion: super::motion_args::MotionArgs,
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
@@ -186,7 +186,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub motion: super::motion::MotionArgs,
+    pub motion: super::motion_args::MotionArgs,
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
@@ -245,7 +245,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub motion: super::motion::MotionArgs,
+    pub motion: super::motion_args::MotionArgs,
     /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
     /// (for a light with a size) reference-area.png and error-area.png, and
     /// metrics.json (created if missing).
@@ -304,7 +304,7 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     #[command(flatten)]
-    pub motion: super::motion::MotionArgs,
+    pub motion: super::motion_args::MotionArgs,
     /// Folder for bench.csv, bench.md and pareto.png (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,

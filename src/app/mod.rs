@@ -8,6 +8,7 @@ pub mod gallery;
 pub mod hud;
 pub mod keys;
 pub mod motion;
+pub mod motion_args;
 pub mod motion_plot;
 pub mod plot;
 pub mod quality;
