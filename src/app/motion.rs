@@ -98,10 +98,10 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
             .join(" ")
     );
     println!(
-        "wrote {}: metrics.json, motion-error.png (the error over the path, animated: {}), \
-         motion-flicker.png (false flicker and the truth's change per frame)",
-        dir.display(),
-        super::compare::ERROR_COLOURS.trim_start_matches("the error images: ")
+        "wrote {}: metrics.json, motion-error.png (the error over the path, animated: red = \
+         false shadow, blue = false light, grey = agrees), motion-flicker.png (false flicker \
+         and the truth's change per frame)",
+        dir.display()
     );
     Ok(())
 }

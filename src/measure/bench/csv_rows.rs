@@ -92,7 +92,7 @@ struct BenchLine {
     passes: u32,
     blur_taps: u32,
     map_bytes: u64,
-    /// With `bench --motion` (else empty): false flicker, a share of receivers a frame.
+    /// With `bench --motion` (else `-`): false flicker, a share of receivers a frame.
     false_flicker: String,
 }
 
@@ -154,7 +154,7 @@ impl BenchLine {
             passes: cost.passes,
             blur_taps: cost.blur_taps,
             map_bytes: r.map_bytes(),
-            false_flicker: r.false_flicker.map_or(String::new(), |f| format!("{f:.6}")),
+            false_flicker: r.false_flicker.map_or("-".into(), |f| format!("{f:.6}")),
         }
     }
 }
