@@ -23,7 +23,7 @@ pub mod steps;
 pub mod transformation;
 
 // The measurement modules keep their old paths for the program and the tests.
-pub use measure::{bench, compare, frame, reference, scale};
+pub use measure::{bench, compare, frame, motion, reference, scale};
 
 pub use error::{Error, Result};
 pub use renderer::{Renderer, Target};

@@ -21,6 +21,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let [width, height] = scene.size;
     let dir = &args.out_dir;
     check_before_gl(args, &scene, &base)?;
+    let path = args.motion.path(&scene)?;
     let activity = Activity::start("bench: opening a headless OpenGL context");
     let context = HeadlessContext::new()?;
     args.settings.check(context.gl(), &scene, &base)?;
@@ -47,7 +48,11 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         opts.warmup,
     );
     let reference = trace_reference(gl, &scene, &base, &opts)?;
-    let rows = time_configs(gl, &scene, &configs, &reference, &opts)?;
+    let mut rows = time_configs(gl, &scene, &configs, &reference, &opts)?;
+    if let Some(path) = &path {
+        let frames = (path, args.motion_frames);
+        super::motion::bench_flicker(gl, &scene, frames, &mut rows, (args.band, args.rays))?;
+    }
 
     let mut markdown = markdown(&rows);
     let translucent = bench::volumetric::configs(&scene, &base);

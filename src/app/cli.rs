@@ -25,7 +25,8 @@ use super::quality::Quality;
         shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
         shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope\n  \
         shadowmap render --scene large --cascades 4 --map-size 1024 --show-cascades --out csm.png\n  \
-        shadowmap compare --scene three-lights --light 2 --out-dir point"
+        shadowmap compare --scene three-lights --light 2 --out-dir point\n  \
+        shadowmap compare --scene large --cascades 4 --snap on --motion strafe --frames 8 --out-dir moving"
 )]
 #[command(args_conflicts_with_subcommands = true)]
 pub struct Cli {
@@ -132,6 +133,8 @@ pub struct DemoArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub motion: super::motion_args::MotionArgs,
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
@@ -192,6 +195,8 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub motion: super::motion_args::MotionArgs,
     /// Before drawing: run the bench's quick sweep on this scene's view (timed and scored
     /// against the exact reference, about half a minute) and use the cheapest
     /// configuration whose misclassified fraction is at most E (0.01 = 1%); prints which
@@ -249,6 +254,8 @@ pub struct CompareArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub motion: super::motion_args::MotionArgs,
     /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
     /// (for a light with a size) reference-area.png and error-area.png, and
     /// metrics.json (created if missing).
@@ -284,6 +291,10 @@ pub struct CompareArgs {
     /// with the ray cast is printed beside.
     #[arg(long, value_name = "cpu|volumes", default_value = "cpu")]
     pub truth: Truth,
+    /// With --motion: frames of the path, each traced and scored (writes metrics.json,
+    /// motion-error.png and motion-flicker.png instead of one frame's images).
+    #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
+    pub frames: u32,
 }
 
 /// The reference `compare` scores against.
@@ -302,6 +313,8 @@ pub struct BenchArgs {
     /// Settings the sweep does not vary (wrap, beyond-far, light view) come from here.
     #[command(flatten)]
     pub settings: SettingsArgs,
+    #[command(flatten)]
+    pub motion: super::motion_args::MotionArgs,
     /// Folder for bench.csv, bench.md and pareto.png (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
@@ -349,6 +362,10 @@ pub struct BenchArgs {
     /// Rays per pixel to a light with a size (the soft-shadow truth).
     #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
     pub rays: u32,
+    /// With --motion: frames of the path each configuration is scored over for the
+    /// flicker column (each frame's reference traced once).
+    #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(2..), allow_negative_numbers = true)]
+    pub motion_frames: u32,
 }
 
 #[derive(Args, Debug, Clone)]

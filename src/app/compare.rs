@@ -17,6 +17,9 @@ use shadowmap::{Error, Result, Scene, ShadowSettings};
 use super::cli::{CompareArgs, Truth};
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    if let Some(path) = super::motion::compare_path(args)? {
+        return super::motion::run_compare(args, path);
+    }
     let (scene, settings) = args.scene.load_with(&args.settings)?;
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;

@@ -44,9 +44,10 @@ pub(super) fn scenes(args: &DemoArgs) -> Result<(Scene, Scene, ShadowSettings)> 
 }
 
 pub fn run(args: &DemoArgs) -> Result<()> {
-    let (loaded, scene, settings) = scenes(args)?;
+    let (loaded, mut scene, settings) = scenes(args)?;
     // What needs no window or driver is checked before anything opens.
     args.settings.check_values(&scene, &settings)?;
+    args.motion.start(&mut scene)?;
     if let Some(path) = &args.screenshot {
         check_output_image("--screenshot", path)?;
     }

@@ -16,7 +16,7 @@ const ERROR_FLOOR_PCT: f64 = 0.001;
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
 /// Makes the embedded font the plots' "sans-serif" (no system fonts are needed).
-fn register_font() -> std::result::Result<(), String> {
+pub(super) fn register_font() -> std::result::Result<(), String> {
     // Registering twice is harmless.
     plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
         .map_err(|_| "the embedded font is not readable".to_string())

@@ -22,6 +22,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     // A step is shown as `steps` shows it, unless a flag picks the view or the light's size.
     let (mut scene, mut settings) = args.scene.load_with(&args.settings)?;
+    args.motion.start(&mut scene)?;
     let (width, height) = args.scene.size(&scene);
     // Everything that can be checked without the driver, before any GL work or file.
     let mut plan = args.settings.check_values(&scene, &settings)?;
@@ -58,6 +59,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     );
     if let Some(line) = args.settings.quality_summary()? {
         println!("{line}");
+    }
+    if let Some(path) = &scene.motion {
+        let moved = super::motion::describe(path);
+        println!("motion: {moved}; the image is frame {}", path.frame);
     }
     if let Some(path) = &args.shadow_out {
         println!(

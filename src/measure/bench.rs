@@ -82,6 +82,9 @@ pub struct BenchRow {
     pub transmittance: Option<TransmittanceMetrics>,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
+    /// With `bench --motion`: the false flicker over the path ([`crate::motion`]), the
+    /// share of receivers a frame.
+    pub false_flicker: Option<f64>,
 }
 
 impl BenchRow {
@@ -326,6 +329,7 @@ mod tests {
             volume_pixels: 0,
             soft: super::super::reference::compute_soft_metrics(0, 0, &[], &[], 0),
             transmittance: None,
+            false_flicker: None,
         }
     }
 

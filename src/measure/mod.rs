@@ -8,6 +8,7 @@
 pub mod bench;
 pub mod compare;
 pub mod frame;
+pub mod motion;
 pub mod reference;
 pub mod scale;
 pub mod timing;

@@ -5,6 +5,7 @@ pub mod camera;
 pub mod file;
 pub mod game_item;
 pub mod light;
+pub mod motion;
 pub mod refusals;
 
 use glam::{Vec3, Vec4};
@@ -100,6 +101,10 @@ pub struct Scene {
     pub opening_view: Option<String>,
     /// Seconds of animation so far (30 updates a second).
     pub time: f32,
+    /// The scene file's `[motion] keyframes` (`--motion keyframes`).
+    pub motion_keyframes: Vec<motion::Keyframe>,
+    /// A scripted path: each update moves the camera and light to its next frame.
+    pub motion: Option<motion::MotionPath>,
 }
 
 /// The tutorial-specific numbers the chapter steps use ([`crate::steps`]).
@@ -170,6 +175,11 @@ impl Scene {
             item.update();
         }
         self.time += 1.0 / 30.0;
+        if let Some(mut path) = self.motion.take() {
+            path.frame += 1;
+            path.pose(self, path.frame);
+            self.motion = Some(path);
+        }
         for light in &mut self.lights {
             if let Light::Point(p) = light {
                 p.position = p.centre + p.oscillate * (0.5 * self.time).sin();

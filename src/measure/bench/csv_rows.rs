@@ -92,6 +92,8 @@ struct BenchLine {
     passes: u32,
     blur_taps: u32,
     map_bytes: u64,
+    /// With `bench --motion` (else `-`): false flicker, a share of receivers a frame.
+    false_flicker: String,
 }
 
 /// A lowercased `Debug` name, as the first tables spelled families and point passes.
@@ -152,6 +154,7 @@ impl BenchLine {
             passes: cost.passes,
             blur_taps: cost.blur_taps,
             map_bytes: r.map_bytes(),
+            false_flicker: r.false_flicker.map_or("-".into(), |f| format!("{f:.6}")),
         }
     }
 }

@@ -28,6 +28,10 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             "penumbra width error px",
         ]);
     }
+    let moving = rows.iter().any(|r| r.false_flicker.is_some());
+    if moving {
+        header.push("false flicker a frame");
+    }
     // The delimiter row has as many cells as the header, or no viewer draws a table.
     let mut out = format!(
         "| {} |\n|{}\n",
@@ -80,6 +84,10 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
                 pct(a.light_bleed_rate),
                 a.penumbra_width_error_px
             ));
+        }
+        if moving {
+            let f = r.false_flicker.map_or("n/a".into(), pct);
+            out.push_str(&format!(" {f} |"));
         }
         out.push('\n');
     }

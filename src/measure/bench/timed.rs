@@ -169,5 +169,6 @@ fn timed_row(
         soft,
         transmittance: None,
         pareto: false,
+        false_flicker: None,
     }
 }

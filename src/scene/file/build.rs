@@ -36,6 +36,8 @@ pub(super) fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
     for (i, item) in file.items.into_iter().enumerate() {
         items.add(i, item, cx)?;
     }
+    let motion = file.motion.keyframes;
+    crate::scene::motion::check_keyframes(&motion).map_err(|(f, m)| cx.bad(f, m))?;
     let name = file.name.unwrap_or_else(|| {
         cx.source
             .file_stem()
@@ -53,6 +55,8 @@ pub(super) fn build(file: SceneFile, cx: &Context) -> Result<Scene> {
         views,
         opening_view,
         time: 0.0,
+        motion_keyframes: motion,
+        motion: None,
         ambient: Vec3::from(file.ambient.0),
         specular_power: file.specular_power,
         clear_colour: Vec3::from(file.clear_colour.0).extend(1.0),

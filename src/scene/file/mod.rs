@@ -90,6 +90,16 @@ struct SceneFile {
     steps: StepsFile,
     #[serde(default, rename = "item")]
     items: Vec<ItemFile>,
+    /// A scripted path by keyframes (`--motion keyframes`).
+    #[serde(default)]
+    motion: MotionFile,
+}
+
+/// `[motion]`: keyframes of the camera and the first light's angle.
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct MotionFile {
+    keyframes: Vec<super::motion::Keyframe>,
 }
 
 /// A camera table: `[camera]`, and `[steps] camera` over it. Not `Camera` itself: glam's
