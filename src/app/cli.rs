@@ -383,6 +383,30 @@ pub fn quick_help() -> String {
     )
 }
 
+/// clap's refusal of a value, its "a similar value exists" tip chosen by the edit
+/// distance every other message uses (clap's own measure offers `pcss` for `pfc`, not
+/// `pcf`). Any other error passes as clap made it.
+pub fn nearer_suggestion(mut e: clap::Error) -> clap::Error {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() != ErrorKind::InvalidValue {
+        return e;
+    }
+    let guess = match (
+        e.get(ContextKind::InvalidValue),
+        e.get(ContextKind::ValidValue),
+    ) {
+        (Some(ContextValue::String(given)), Some(ContextValue::Strings(valid))) => {
+            shadowmap::suggest::did_you_mean(given, valid.iter().map(String::as_str))
+                .map(String::from)
+        }
+        _ => None,
+    };
+    if let Some(guess) = guess {
+        e.insert(ContextKind::SuggestedValue, ContextValue::String(guess));
+    }
+    e
+}
+
 /// Parses `WxH`, e.g. `1280x720`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
@@ -448,9 +472,9 @@ impl SceneArgs {
         }
         if let Some(a) = self.light_angle {
             // Outside 0..180 the light would be clamped without a word: refuse instead.
-            if !(0.0..=180.0).contains(&a) {
+            if let Some(problem) = shadowmap::scene::DirectionalLight::angle_problem(a) {
                 return Err(shadowmap::Error::Invalid(format!(
-                    "--light-angle {a}: expected degrees from 0 to 180 (90 = overhead)"
+                    "--light-angle {problem}"
                 )));
             }
             if !scene.set_light_angle(a) {
