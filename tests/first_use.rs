@@ -228,3 +228,24 @@ fn render_says_what_it_wrote_in_plain_words() {
         assert!(!entry.contains("possible values"), "{flag}:{entry}");
     }
 }
+
+/// The README's paragraph of built-in scenes names each scene `--scene` takes, and no
+/// other; and its install line keeps Cargo.lock's crates (`--locked`).
+#[test]
+fn the_readme_names_every_built_in_scene_and_installs_locked() {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let start = readme.find("The built-in scenes:").expect("the paragraph");
+    let paragraph = &readme[start..];
+    let paragraph = &paragraph[..paragraph.find("; or any").expect("its end")];
+    let mut named: Vec<&str> = paragraph.split('`').skip(1).step_by(2).collect();
+    let mut builtin = Scene::builtin_names();
+    named.sort_unstable();
+    builtin.sort_unstable();
+    assert_eq!(named, builtin, "{paragraph}");
+    assert!(
+        readme.contains("cargo install --locked --path ."),
+        "{readme}"
+    );
+    assert!(!readme.contains("cargo install --path"), "{readme}");
+}
