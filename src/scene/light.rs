@@ -23,6 +23,25 @@ pub struct OrthoCoords {
     pub far: f32,
 }
 
+/// As a scene file writes it (`{ left = -10, right = 10, ... }`), for messages.
+impl std::fmt::Display for OrthoCoords {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let OrthoCoords {
+            left,
+            right,
+            bottom,
+            top,
+            near,
+            far,
+        } = self;
+        write!(
+            f,
+            "{{ left = {left}, right = {right}, bottom = {bottom}, top = {top}, near = {near}, \
+             far = {far} }}"
+        )
+    }
+}
+
 impl Default for OrthoCoords {
     /// The DummyGame's box: +-10 across, near -1, far 20.
     fn default() -> Self {

@@ -400,10 +400,18 @@ fn directional(l: DirectionalFile, prefix: &str, cx: &Context) -> Result<Light> 
 /// An ortho box must be ordered, and not so wide that its width overflows f32
 /// (left = -3e38, right = 3e38 is ordered, but the projection divides by an infinity).
 fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
-    if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
+    let pairs = [
+        ("left", o.left, "right", o.right),
+        ("bottom", o.bottom, "top", o.top),
+        ("near", o.near, "far", o.far),
+    ];
+    if let Some((a, va, b, vb)) = pairs.iter().find(|(_, va, _, vb)| !(va < vb)) {
         return Err(cx.bad(
             field,
-            format!("{o:?}: expected left < right, bottom < top and near < far"),
+            format!(
+                "{o}: {a} = {va} is not below {b} = {vb} (expected left < right, bottom < top \
+                 and near < far)"
+            ),
         ));
     }
     for (name, a, b) in [
@@ -415,7 +423,7 @@ fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
             return Err(cx.bad(
                 field,
                 format!(
-                    "{o:?}: {name} overflows 32-bit floats: expected a box less than {:e} across",
+                    "{o}: {name} overflows 32-bit floats: expected a box less than {:e} across",
                     f32::MAX
                 ),
             ));
