@@ -131,21 +131,34 @@ fn a_bad_screenshot_path_is_refused_before_anything_opens() {
     }
 }
 
+/// A short soak reports memory, and says truly how many frames it drew and when it took
+/// its first figure (never a frame the run did not reach).
 #[test]
 fn a_short_soak_reports_memory_and_no_error() {
-    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-        .args(["soak", "--frames", "300", "--size", "64x36"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(
-        stdout.starts_with("soak: 300 frames of the dummy scene"),
-        "{stdout}"
-    );
-    assert!(stdout.contains("no error; resident memory"), "{stdout}");
+    for (frames, drawn, first) in [
+        ("300", "300 frames", "after 100 frames"),
+        ("50", "50 frames", "before the first frame"),
+        ("1", "1 frame", "before the first frame"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+            .args(["soak", "--frames", frames, "--size", "64x36"])
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            stdout.starts_with(&format!("soak: {drawn} of the dummy scene in ")),
+            "{stdout}"
+        );
+        assert!(stdout.contains("no error; resident memory "), "{stdout}");
+        assert!(
+            stdout.contains(&format!(" MiB {first}, ")),
+            "{frames}: {stdout}"
+        );
+        assert!(!stdout.contains("frame 100"), "{stdout}");
+    }
 }
