@@ -345,6 +345,22 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
             &["soak", "--frames", "-1"],
             "invalid value '-1' for '--frames <N>'",
         ),
+        // Zero frames would open nothing and exit 0 without a word.
+        (
+            &["demo", "--exit-after-frames", "0"],
+            "error: invalid value '0' for '--exit-after-frames <N>': '0': expected a whole \
+             number of frames from 1 to 18446744073709551615",
+        ),
+        (
+            &["soak", "--frames", "0"],
+            "error: invalid value '0' for '--frames <N>': '0': expected a whole number of \
+             frames from 1 to 18446744073709551615",
+        ),
+        (
+            &["render", "--frames", "0"],
+            "error: invalid value '0' for '--frames <N>': '0': expected a whole number of \
+             frames from 1 to 4294967295",
+        ),
     ];
     // Run in an empty folder of their own: a refused command writes nothing there.
     let refused = dir.join("refused");

@@ -129,8 +129,8 @@ pub struct DemoArgs {
     /// configurations that have them (`--technique maps`: no volumes).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
     pub target_error: Option<f64>,
-    /// Close the window after this many frames (for scripted runs).
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// Close the window after this many frames (for scripted runs); at least 1.
+    #[arg(long, value_name = "N", value_parser = parse_frames, allow_negative_numbers = true)]
     pub exit_after_frames: Option<u64>,
     /// With --exit-after-frames: save the last frame to this PNG.
     #[arg(long, value_name = "FILE", requires = "exit_after_frames")]
@@ -193,7 +193,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
     pub out: PathBuf,
     /// Frames to render (the scene animates between them); the last one is written.
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = parse_frames_u32, allow_negative_numbers = true)]
     pub frames: u32,
     /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
     #[arg(long, value_name = "FILE.png")]
@@ -360,7 +360,7 @@ pub struct SoakArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Frames to render.
-    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = parse_frames, allow_negative_numbers = true)]
     pub frames: u64,
 }
 
@@ -417,6 +417,31 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(err());
     }
     Ok((w, h))
+}
+
+/// Parses a count of frames: a whole number, at least 1 (0 frames would do nothing and
+/// say nothing).
+pub fn parse_frames(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "'{s}': expected a whole number of frames from 1 to {}",
+            u64::MAX
+        )),
+    }
+}
+
+/// [`parse_frames`] for a count that must fit 32 bits.
+pub fn parse_frames_u32(s: &str) -> Result<u32, String> {
+    parse_frames(s)
+        .ok()
+        .and_then(|n| u32::try_from(n).ok())
+        .ok_or_else(|| {
+            format!(
+                "'{s}': expected a whole number of frames from 1 to {}",
+                u32::MAX
+            )
+        })
 }
 
 /// Parses `A,B,C` into three finite numbers.
