@@ -142,6 +142,10 @@ pub struct DemoArgs {
     /// running (use with --exit-after-frames 40 or more).
     #[arg(long)]
     pub stress_window: bool,
+    /// Refuse to run without a window: with no display, fail instead of rendering headless
+    /// to a PNG (for scripts and tests that mean to test the window).
+    #[arg(long)]
+    pub require_window: bool,
     /// Leave the HUD (light angle, step, settings, frame time) out of the frame.
     #[arg(long)]
     pub no_hud: bool,

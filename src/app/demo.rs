@@ -57,6 +57,12 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     let event_loop = match EventLoop::new() {
         Ok(l) => l,
         // winit's own error names its source file and line: the fallback says what it means.
+        Err(_) if args.require_window => {
+            return Err(Error::Context(format!(
+                "--require-window: no window ({}); nothing rendered",
+                fallback::no_display_reason()
+            )))
+        }
         Err(_) => return headless_fallback(args, scene, &settings),
     };
     let size = args.scene.size(&scene);

@@ -32,6 +32,44 @@ fn fallback_line(frames: &str, path: &Path, replacing: bool) -> String {
     )
 }
 
+/// `--require-window` (the window tests pass it) refuses the headless fallback: with no
+/// display, or a display with no X server behind it, the demo fails and writes nothing.
+#[test]
+fn require_window_refuses_the_fallback() {
+    let dir = case_dir("require-window").canonicalize().unwrap();
+    let args = [
+        "demo",
+        "--require-window",
+        "--exit-after-frames",
+        "2",
+        "--size",
+        "64x36",
+    ];
+    let out = demo_without_display(&dir, &args);
+    assert!(!out.status.success());
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --require-window: no window (DISPLAY and WAYLAND_DISPLAY are not set); \
+         nothing rendered\n"
+    );
+    // A display number no X server listens on.
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(args)
+        .current_dir(&dir)
+        .env("DISPLAY", ":97")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --require-window: no window (the X server at DISPLAY=:97 refused the \
+         connection); nothing rendered\n"
+    );
+    assert!(!dir.join("shadowmap-demo.png").exists());
+}
+
 #[test]
 fn no_display_falls_back_to_a_headless_picture() {
     let dir = case_dir("no-display").canonicalize().unwrap();
