@@ -243,11 +243,14 @@ pub struct CompareArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub settings: SettingsArgs,
-    /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
-    /// (for a light with a size) reference-area.png and error-area.png, and
-    /// metrics.json (created if missing).
+    /// Folder for visibility.png, reference.png, error.png, (for a light with a size)
+    /// reference-area.png and error-area.png, and metrics.json (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
+    /// Also write the reference's G-buffer as NumPy arrays: positions.npy (world
+    /// positions) and normals.npy, float32 HEIGHT x WIDTH x 3 (22 MB at 1280x720).
+    #[arg(long)]
+    pub arrays: bool,
     /// Sub-pixel rays per side for the supersampled reference that judges filtered edges
     /// (N x N per pixel; 1 = off).
     #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]

@@ -51,7 +51,9 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     activity.done("");
 
     let mut files = picture_files(&frame, &reference, width, height)?;
-    files.extend(gbuffer_files(&reference)?);
+    if args.arrays {
+        files.extend(gbuffer_files(&reference)?);
+    }
     let json = serde_json::json!({
         "scene": scene.name,
         "size": [width, height],
