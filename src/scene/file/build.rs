@@ -405,7 +405,10 @@ fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
         ("bottom", o.bottom, "top", o.top),
         ("near", o.near, "far", o.far),
     ];
-    if let Some((a, va, b, vb)) = pairs.iter().find(|(_, va, _, vb)| !(va < vb)) {
+    if let Some((a, va, b, vb)) = pairs
+        .iter()
+        .find(|(_, va, _, vb)| va.partial_cmp(vb) != Some(std::cmp::Ordering::Less))
+    {
         return Err(cx.bad(
             field,
             format!(
