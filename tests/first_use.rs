@@ -277,3 +277,51 @@ fn compare_scores_the_binary_line_against_the_opaque_casters() {
     assert!(rate < 0.1, "{line}");
     assert!(stdout.contains("transmittance: MAE 0.00"), "{stdout}");
 }
+
+/// The smoke demo starts with its translucent shadows on (the scene's own setting, off,
+/// stays `render`'s and `compare`'s), says so, and shows it in the HUD; `--volumetric`
+/// keeps the user's choice.
+#[test]
+fn the_smoke_demo_starts_with_translucent_shadows_on() {
+    let dir = case_dir("smoke_demo");
+    let demo = |extra: &[&str], png: &str| {
+        let out = common::bin()
+            .current_dir(&dir)
+            .env_remove("DISPLAY")
+            .env_remove("WAYLAND_DISPLAY")
+            .args(["--scene", "smoke", "--size", "320x180", "--no-animation"])
+            .args(["--exit-after-frames", "1", "--screenshot", png])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let img = image::open(dir.join(png)).unwrap().to_rgb8();
+        (String::from_utf8_lossy(&out.stdout).into_owned(), img)
+    };
+    let (stdout, on) = demo(&["--no-hud"], "on.png");
+    assert!(
+        stdout.starts_with(
+            "demo: the smoke scene's 81 translucent casters start with their shadows on \
+             (volumetric osm; the scene's own setting is off: T cycles off, solid, osm, fom, \
+             avsm, or give --volumetric)\n"
+        ),
+        "{stdout}"
+    );
+    let (stdout, off) = demo(&["--no-hud", "--volumetric", "off"], "off.png");
+    assert!(!stdout.contains("translucent casters start"), "{stdout}");
+    // The smoke's shadow darkens the floor: many pixels darker with it on.
+    let darker = on
+        .pixels()
+        .zip(off.pixels())
+        .filter(|(a, b)| u32::from(a[2]) + 10 < u32::from(b[2]))
+        .count();
+    assert!(
+        darker > 300,
+        "{darker} pixels darker with translucent shadows on"
+    );
+    eprintln!("{darker} pixels darker with translucent shadows on");
+}
