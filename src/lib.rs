@@ -20,7 +20,6 @@ pub mod settings;
 pub mod shaders;
 pub mod shadows;
 pub mod steps;
-pub mod suggest;
 pub mod transformation;
 
 // The measurement modules keep their old paths for the program and the tests.

@@ -403,7 +403,7 @@ pub fn nearer_suggestion(mut e: clap::Error) -> clap::Error {
         e.get(ContextKind::ValidValue),
     ) {
         (Some(ContextValue::String(given)), Some(ContextValue::Strings(valid))) => {
-            shadowmap::suggest::did_you_mean(given, valid.iter().map(String::as_str))
+            shadowmap::settings::suggest::did_you_mean(given, valid.iter().map(String::as_str))
                 .map(String::from)
         }
         _ => None,

@@ -148,7 +148,7 @@ impl Scene {
             }
             None => {
                 let names = Self::builtin_names();
-                let guess = crate::suggest::did_you_mean(name, names.iter().copied())
+                let guess = crate::settings::suggest::did_you_mean(name, names.iter().copied())
                     .map_or(String::new(), |g| format!(" (did you mean '{g}'?)"));
                 Err(Error::Invalid(format!(
                     "unknown scene '{name}'{guess}: expected one of {} or a path to a .toml \

@@ -266,7 +266,7 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
     if let Some(key) = own("unknown field `") {
         let fields = light_fields(kind);
         let takes = fields.join(", ");
-        let guess = crate::suggest::did_you_mean(key, fields.iter().map(String::as_str));
+        let guess = crate::settings::suggest::did_you_mean(key, fields.iter().map(String::as_str));
         let message = match LIGHT_KINDS
             .iter()
             .any(|k| light_fields(k).iter().any(|f| f == key))

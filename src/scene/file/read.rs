@@ -186,7 +186,7 @@ fn near_name(message: &str) -> Option<String> {
         .iter()
         .find_map(|(prefix, what)| Some((*what, backticked(head, prefix)?)))?;
     let names = list.split('`').skip(1).step_by(2);
-    let guess = crate::suggest::did_you_mean(given, names)?;
+    let guess = crate::settings::suggest::did_you_mean(given, names)?;
     Some(format!("unknown {what} `{given}`: did you mean `{guess}`?"))
 }
 
