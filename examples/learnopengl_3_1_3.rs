@@ -343,14 +343,15 @@ fn render_to(out: &Path) -> Result<()> {
 #[allow(dead_code)] // not called where tests and benches include this file
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let [out] = args.as_slice() else {
-        eprintln!(
-            "usage: cargo run --release --example learnopengl_3_1_3 -- OUT.png\n\
-             renders LearnOpenGL's shadow_mapping 3.1.3 frame ({SCR_WIDTH}x{SCR_HEIGHT}) \
-             headless and writes it as a PNG"
-        );
-        return ExitCode::from(2);
-    };
+    let usage = format!(
+        "usage: cargo run --release --example learnopengl_3_1_3 -- OUT.png\n\
+         renders LearnOpenGL's shadow_mapping 3.1.3 frame ({SCR_WIDTH}x{SCR_HEIGHT}) headless \
+         and writes it as a PNG"
+    );
+    if let Err(code) = check_args(&args, 1..=1, &usage) {
+        return code;
+    }
+    let out = &args[0];
     let out = PathBuf::from(out);
     match render_to(&out) {
         Ok(()) => {
@@ -362,4 +363,35 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `--help` (or `-h`) prints the usage and succeeds; an option this program does not take,
+/// or a wrong count of arguments (`count`), is refused with the usage, before any work.
+fn check_args(
+    args: &[String],
+    count: std::ops::RangeInclusive<usize>,
+    usage: &str,
+) -> std::result::Result<(), ExitCode> {
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        println!("{usage}");
+        return Err(ExitCode::SUCCESS);
+    }
+    let problem = match args
+        .iter()
+        .find(|a| a.starts_with('-') && a.parse::<f64>().is_err())
+    {
+        Some(option) => format!("unknown option '{option}'"),
+        None if !count.contains(&args.len()) => format!(
+            "expected {} argument{}, got {}",
+            match count.start() == count.end() {
+                true => count.start().to_string(),
+                false => format!("{} to {}", count.start(), count.end()),
+            },
+            if *count.end() == 1 { "" } else { "s" },
+            args.len()
+        ),
+        None => return Ok(()),
+    };
+    eprintln!("error: {problem}\n\n{usage}");
+    Err(ExitCode::from(2))
 }

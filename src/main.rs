@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 fn main() -> ExitCode {
-    let cli = app::cli::Cli::parse();
+    let cli = app::cli::Cli::try_parse().unwrap_or_else(|e| app::cli::nearer_suggestion(e).exit());
     let result = match cli.command {
         None => app::demo::run(&cli.demo),
         Some(app::cli::Command::Demo(args)) => app::demo::run(&args),

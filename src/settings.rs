@@ -10,6 +10,7 @@ mod describe;
 mod map_size;
 mod names;
 mod range;
+pub mod suggest;
 
 pub use choices::{
     BeyondFar, BiasMode, Blur, Cull, DepthFormat, DepthLookup, Filter, Fit, LightProjection,

@@ -97,7 +97,15 @@ fn scene_file_errors_name_the_line_or_field() {
         "{e}"
     );
     let e = load_err("near_far.toml");
-    assert!(e.contains("light.ortho") && e.contains("near < far"), "{e}");
+    // The box as the file writes it, not as Rust's Debug prints it.
+    assert!(
+        e.ends_with(
+            "near_far.toml: light.ortho: { left = -10, right = 10, bottom = -10, top = 10, \
+             near = 20, far = -1 }: near = 20 is not below far = -1 (expected left < right, bottom \
+             < top and near < far)"
+        ),
+        "{e}"
+    );
     let e = load_err("missing_mesh.toml");
     assert!(
         e.contains("item[0].mesh: ")
@@ -337,6 +345,22 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
             &["soak", "--frames", "-1"],
             "invalid value '-1' for '--frames <N>'",
         ),
+        // Zero frames would open nothing and exit 0 without a word.
+        (
+            &["demo", "--exit-after-frames", "0"],
+            "error: invalid value '0' for '--exit-after-frames <N>': '0': expected a whole \
+             number of frames from 1 to 18446744073709551615",
+        ),
+        (
+            &["soak", "--frames", "0"],
+            "error: invalid value '0' for '--frames <N>': '0': expected a whole number of \
+             frames from 1 to 18446744073709551615",
+        ),
+        (
+            &["render", "--frames", "0"],
+            "error: invalid value '0' for '--frames <N>': '0': expected a whole number of \
+             frames from 1 to 4294967295",
+        ),
     ];
     // Run in an empty folder of their own: a refused command writes nothing there.
     let refused = dir.join("refused");
@@ -439,4 +463,80 @@ fn a_frame_size_too_large_names_where_it_came_from() {
         "{text}"
     );
     assert!(!out.exists(), "nothing is written");
+}
+
+/// A name one slip away from a known one is answered with that name (edit distance, a swap
+/// of neighbours counting as one): scenes, steps, flags' values and flags, and a scene
+/// file's keys and values, where the message keeps its line and column and leaves out the
+/// list of every field.
+#[test]
+fn a_near_miss_gets_a_did_you_mean() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let key = file(
+        "key.toml",
+        "[light]\nangle = 45.0\n[shadow]\nmapsize = 1024\n",
+    );
+    let value = file(
+        "value.toml",
+        "[light]\nangle = 45.0\n[shadow]\nfilter = \"pfc3x3\"\n",
+    );
+    let light = file("light.toml", "[light]\nangel = 45.0\n");
+    let cases: [(&[&str], String); 6] = [
+        (
+            &["render", "--scene", "dumy"],
+            "error: unknown scene 'dumy' (did you mean 'dummy'?): expected one of dummy, \
+             learnopengl, slides, playground, point-shadows, large, three-lights, overlap, \
+             penumbra, smoke or a path to a .toml scene file\n"
+                .into(),
+        ),
+        (
+            &["render", "--scene", &key],
+            format!(
+                "error: {key}: shadow.mapsize: line 4, column 1: unknown field `mapsize`: did \
+                 you mean `map_size`?\n"
+            ),
+        ),
+        (
+            &["render", "--scene", &value],
+            format!(
+                "error: {value}: shadow.filter: line 4, column 10: unknown value `pfc3x3`: did \
+                 you mean `pcf3x3`?\n"
+            ),
+        ),
+        (
+            &["render", "--scene", &light],
+            format!(
+                "error: {light}: light.angel: line 2, column 1: unknown field `angel`: did you \
+                 mean `angle`?\n"
+            ),
+        ),
+        // clap's own measure would offer `pcss` here.
+        (
+            &["render", "--step", "pfc"],
+            "tip: a similar value exists: 'pcf'".into(),
+        ),
+        (
+            &["render", "--map-szie", "512"],
+            "tip: a similar argument exists: '--map-size'".into(),
+        ),
+    ];
+    for (args, expected) in cases {
+        let (ok, stdout, stderr) = run_in(dir.path(), args);
+        assert!(!ok && stdout.is_empty(), "{args:?}: {stdout}");
+        match expected.starts_with("error:") {
+            true => assert_eq!(stderr, expected, "{args:?}"),
+            false => assert!(stderr.contains(&expected), "{args:?}: {stderr}"),
+        }
+    }
+    // Nothing near: the full list, as before.
+    let (_, _, stderr) = run(&["render", "--scene", "castle"]);
+    assert!(
+        stderr.starts_with("error: unknown scene 'castle': expected one of dummy"),
+        "{stderr}"
+    );
 }

@@ -142,3 +142,71 @@ fn learnopengl_example_matches_from_above_where_the_bias_shows() {
         0.001,
     );
 }
+
+/// An example's program, built as `cargo build --example` builds it (this test's cargo
+/// has released its lock by the time tests run).
+fn example_bin(name: &str) -> std::path::PathBuf {
+    let status = std::process::Command::new(env!("CARGO"))
+        .args(["build", "--quiet", "--example", name])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .status()
+        .unwrap();
+    assert!(status.success(), "cargo build --example {name}");
+    // This test runs from target/<profile>/deps; the examples sit beside it.
+    let deps = std::env::current_exe().unwrap();
+    deps.parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("examples")
+        .join(name)
+}
+
+/// Each example answers `--help` with its usage (and writes nothing), and refuses an
+/// unknown option or a wrong count of arguments with the usage, exit status 2.
+#[test]
+fn each_example_has_a_help_and_refuses_bad_arguments() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, count) in [
+        ("learnopengl_3_1_3", "expected 1 argument, got 0"),
+        ("lwjgl_dummygame", "expected 1 argument, got 0"),
+        ("render_diff", "expected 2 to 3 arguments, got 0"),
+        ("playground_score", "expected 2 to 3 arguments, got 0"),
+    ] {
+        let bin = example_bin(name);
+        let run = |args: &[&str]| {
+            let out = std::process::Command::new(&bin)
+                .args(args)
+                .current_dir(dir.path())
+                .output()
+                .unwrap();
+            let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+            (out.status.code(), text(&out.stdout), text(&out.stderr))
+        };
+        let usage = format!("usage: cargo run --release --example {name} -- ");
+        let (code, stdout, stderr) = run(&["--help"]);
+        assert_eq!(code, Some(0), "{name} --help: {stderr}");
+        assert!(stdout.starts_with(&usage), "{name}: {stdout}");
+        assert_eq!(stderr, "", "{name}");
+        for (args, problem) in [
+            (
+                &["--size", "a", "b"][..],
+                "error: unknown option '--size'\n\n",
+            ),
+            (&[][..], &*format!("error: {count}\n\n")),
+        ] {
+            let (code, stdout, stderr) = run(args);
+            assert_eq!(code, Some(2), "{name} {args:?}: {stderr}");
+            assert_eq!(stdout, "", "{name}");
+            assert!(
+                stderr.starts_with(&format!("{problem}{usage}")),
+                "{name}: {stderr}"
+            );
+        }
+    }
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "nothing written"
+    );
+}

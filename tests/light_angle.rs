@@ -207,3 +207,48 @@ fn demo_help_lists_the_angle_keys_and_the_inset() {
         );
     }
 }
+
+/// A scene file's `angle` and `--light-angle` take the same degrees and refuse the rest in
+/// the same words, the file's message naming its line: 450 is not silently 90, nor -45
+/// accepted.
+#[test]
+fn the_scene_files_angle_and_the_flag_refuse_alike() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let out = common::bin()
+            .current_dir(dir.path())
+            .args(["render", "--size", "32x24", "--out", "o.png"])
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            out.status.success(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    for angle in ["450", "-45", "180.5"] {
+        let file = dir.path().join("s.toml");
+        std::fs::write(&file, format!("[light]\nangle = {angle}\n")).unwrap();
+        let scene = file.to_str().unwrap();
+        let rule = format!("{angle}: expected degrees from 0 to 180 (90 = overhead)\n");
+        let (ok, stderr) = run(&["--scene", scene]);
+        assert!(!ok);
+        assert_eq!(
+            stderr,
+            format!("error: {scene}: light.angle: line 2, column 9: {rule}")
+        );
+        let (ok, stderr) = run(&["--light-angle", angle]);
+        assert!(!ok);
+        assert_eq!(stderr, format!("error: --light-angle {rule}"));
+    }
+    assert!(!dir.path().join("o.png").exists(), "nothing written");
+    for angle in ["0", "180", "90.5"] {
+        std::fs::write(
+            dir.path().join("s.toml"),
+            format!("[light]\nangle = {angle}\n"),
+        )
+        .unwrap();
+        assert!(run(&["--scene", "s.toml"]).0, "{angle}");
+        assert!(run(&["--light-angle", angle]).0, "{angle}");
+    }
+}

@@ -141,12 +141,44 @@ fn compare_writes_every_output() {
     ] {
         assert!(dir.join(f).is_file(), "{f} missing");
     }
+    // The arrays only on request: without --arrays, no .npy and none announced.
+    let npy = |dir: &std::path::Path| {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .path()
+                    .extension()
+                    .is_some_and(|x| x == "npy")
+            })
+            .count()
+    };
+    assert_eq!(npy(&dir), 0, "{stdout}");
+    assert!(!stdout.contains(".npy"), "{stdout}");
+    let arrays = tmp("compare-arrays");
+    let stdout = common::stdout_of(
+        common::bin()
+            .args([
+                "compare",
+                "--size",
+                "160x90",
+                "--supersample",
+                "1",
+                "--arrays",
+            ])
+            .arg("--out-dir")
+            .arg(&arrays),
+    );
+    assert_eq!(npy(&arrays), 2, "{stdout}");
+    assert!(stdout.contains("positions.npy, normals.npy"), "{stdout}");
     // float32, 90 x 160 x 3, after a 128-byte header.
     for f in ["positions.npy", "normals.npy"] {
-        let bytes = std::fs::read(dir.join(f)).unwrap();
+        let bytes = std::fs::read(arrays.join(f)).unwrap();
         assert_eq!(bytes.len(), 128 + 90 * 160 * 3 * 4, "{f}");
         assert!(String::from_utf8_lossy(&bytes[..128]).contains("'shape': (90, 160, 3)"));
     }
+    std::fs::remove_dir_all(&arrays).ok();
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("metrics.json")).unwrap()).unwrap();
     let m = &json["metrics"];

@@ -135,7 +135,7 @@ fn the_shadow_table_takes_depth_lookup_and_refuses_a_bad_one_where_it_is() {
         .to_string();
     assert_eq!(
         e,
-        "lookup.toml: shadow.depth_lookup: line 6, column 16: unknown variant `bilinear`, \
-         expected `nearest` or `linear`"
+        "lookup.toml: shadow.depth_lookup: line 6, column 16: unknown value `bilinear`: did \
+         you mean `linear`?"
     );
 }

@@ -45,6 +45,7 @@ fn window_shows_the_scene_and_its_shadow() {
         bin()
             .args([
                 "demo",
+                "--require-window",
                 "--no-animation",
                 "--no-hud",
                 "--size",
@@ -101,6 +102,7 @@ fn window_survives_a_resize_storm_and_a_minimise() {
         bin()
             .args([
                 "demo",
+                "--require-window",
                 "--no-animation",
                 "--size",
                 "640x360",
@@ -148,6 +150,7 @@ fn window_draws_several_lights_and_cascades_as_headless_does() {
             bin()
                 .args([
                     "demo",
+                    "--require-window",
                     "--no-animation",
                     "--no-hud",
                     "--scene",
@@ -188,7 +191,13 @@ fn window_screenshots_carry_the_hud_in_the_top_left_corner() {
         let path = dir.join(name);
         stdout_of(
             bin()
-                .args(["demo", "--no-animation", "--size", "640x360"])
+                .args([
+                    "demo",
+                    "--require-window",
+                    "--no-animation",
+                    "--size",
+                    "640x360",
+                ])
                 .args(extra)
                 .args(["--exit-after-frames", "5", "--screenshot"])
                 .arg(&path),
@@ -213,7 +222,14 @@ fn window_draws_the_shadow_map_inset_in_its_corner_as_headless_does() {
         let path = dir.join(name);
         stdout_of(
             bin()
-                .args(["demo", "--no-animation", "--no-hud", "--size", "640x360"])
+                .args([
+                    "demo",
+                    "--require-window",
+                    "--no-animation",
+                    "--no-hud",
+                    "--size",
+                    "640x360",
+                ])
                 .args(extra)
                 .args(["--exit-after-frames", "5", "--screenshot"])
                 .arg(&path),
@@ -266,6 +282,7 @@ fn window_draws_the_same_frame_through_glx_and_through_egl() {
             bin()
                 .args([
                     "demo",
+                    "--require-window",
                     "--no-animation",
                     "--no-hud",
                     "--scene",
@@ -300,6 +317,7 @@ fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
         bin()
             .args([
                 "demo",
+                "--require-window",
                 "--no-animation",
                 "--no-hud",
                 "--size",
@@ -328,6 +346,7 @@ fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
     assert!(mean < 1.0, "window and headless differ by {mean} ({flags})");
     let out = stdout_of(bin().args([
         "demo",
+        "--require-window",
         "--no-animation",
         "--size",
         "160x90",

@@ -142,8 +142,8 @@ pub struct DemoArgs {
     /// configurations that have them (`--technique maps`: no volumes).
     #[arg(long, value_name = "E", value_parser = parse_fraction, allow_negative_numbers = true, conflicts_with = "quality")]
     pub target_error: Option<f64>,
-    /// Close the window after this many frames (for scripted runs).
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// Close the window after this many frames (for scripted runs); at least 1.
+    #[arg(long, value_name = "N", value_parser = parse_frames, allow_negative_numbers = true)]
     pub exit_after_frames: Option<u64>,
     /// With --exit-after-frames: save the last frame to this PNG.
     #[arg(long, value_name = "FILE", requires = "exit_after_frames")]
@@ -155,6 +155,10 @@ pub struct DemoArgs {
     /// running (use with --exit-after-frames 40 or more).
     #[arg(long)]
     pub stress_window: bool,
+    /// Refuse to run without a window: with no display, fail instead of rendering headless
+    /// to a PNG (for scripts and tests that mean to test the window).
+    #[arg(long)]
+    pub require_window: bool,
     /// Leave the HUD (light angle, step, settings, frame time) out of the frame.
     #[arg(long)]
     pub no_hud: bool,
@@ -208,7 +212,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FILE.png", default_value = "shadowmap.png")]
     pub out: PathBuf,
     /// Frames to render (the scene animates between them); the last one is written.
-    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = parse_frames_u32, allow_negative_numbers = true)]
     pub frames: u32,
     /// Also write the shadow test's visibility: grey 255 lit .. 0 shadowed, alpha 0 off geometry.
     #[arg(long, value_name = "FILE.png")]
@@ -256,11 +260,14 @@ pub struct CompareArgs {
     pub settings: SettingsArgs,
     #[command(flatten)]
     pub motion: super::motion_args::MotionArgs,
-    /// Folder for visibility.png, reference.png, error.png, positions.npy, normals.npy and
-    /// (for a light with a size) reference-area.png and error-area.png, and
-    /// metrics.json (created if missing).
+    /// Folder for visibility.png, reference.png, error.png, (for a light with a size)
+    /// reference-area.png and error-area.png, and metrics.json (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
+    /// Also write the reference's G-buffer as NumPy arrays: positions.npy (world
+    /// positions) and normals.npy, float32 HEIGHT x WIDTH x 3 (22 MB at 1280x720).
+    #[arg(long)]
+    pub arrays: bool,
     /// Sub-pixel rays per side for the supersampled reference that judges filtered edges
     /// (N x N per pixel; 1 = off).
     #[arg(long, value_name = "N", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
@@ -387,7 +394,7 @@ pub struct SoakArgs {
     #[command(flatten)]
     pub settings: SettingsArgs,
     /// Frames to render.
-    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..), allow_negative_numbers = true)]
+    #[arg(long, value_name = "N", default_value_t = 20_000, value_parser = parse_frames, allow_negative_numbers = true)]
     pub frames: u64,
 }
 
@@ -410,6 +417,30 @@ pub fn quick_help() -> String {
     )
 }
 
+/// clap's refusal of a value, its "a similar value exists" tip chosen by the edit
+/// distance every other message uses (clap's own measure offers `pcss` for `pfc`, not
+/// `pcf`). Any other error passes as clap made it.
+pub fn nearer_suggestion(mut e: clap::Error) -> clap::Error {
+    use clap::error::{ContextKind, ContextValue, ErrorKind};
+    if e.kind() != ErrorKind::InvalidValue {
+        return e;
+    }
+    let guess = match (
+        e.get(ContextKind::InvalidValue),
+        e.get(ContextKind::ValidValue),
+    ) {
+        (Some(ContextValue::String(given)), Some(ContextValue::Strings(valid))) => {
+            shadowmap::settings::suggest::did_you_mean(given, valid.iter().map(String::as_str))
+                .map(String::from)
+        }
+        _ => None,
+    };
+    if let Some(guess) = guess {
+        e.insert(ContextKind::SuggestedValue, ContextValue::String(guess));
+    }
+    e
+}
+
 /// Parses `WxH`, e.g. `1280x720`.
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let err = || format!("'{s}': expected WIDTHxHEIGHT with both at least 1, like 1280x720");
@@ -420,6 +451,31 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(err());
     }
     Ok((w, h))
+}
+
+/// Parses a count of frames: a whole number, at least 1 (0 frames would do nothing and
+/// say nothing).
+pub fn parse_frames(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "'{s}': expected a whole number of frames from 1 to {}",
+            u64::MAX
+        )),
+    }
+}
+
+/// [`parse_frames`] for a count that must fit 32 bits.
+pub fn parse_frames_u32(s: &str) -> Result<u32, String> {
+    parse_frames(s)
+        .ok()
+        .and_then(|n| u32::try_from(n).ok())
+        .ok_or_else(|| {
+            format!(
+                "'{s}': expected a whole number of frames from 1 to {}",
+                u32::MAX
+            )
+        })
 }
 
 /// Parses `A,B,C` into three finite numbers.
@@ -492,9 +548,9 @@ impl SceneArgs {
         }
         if let Some(a) = self.light_angle {
             // Outside 0..180 the light would be clamped without a word: refuse instead.
-            if !(0.0..=180.0).contains(&a) {
+            if let Some(problem) = shadowmap::scene::DirectionalLight::angle_problem(a) {
                 return Err(shadowmap::Error::Invalid(format!(
-                    "--light-angle {a}: expected degrees from 0 to 180 (90 = overhead)"
+                    "--light-angle {problem}"
                 )));
             }
             if !scene.set_light_angle(a) {

@@ -47,13 +47,16 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     ));
     let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
     let vis = frame.visibility.as_deref().unwrap_or_default();
-    let metrics = reference.score(vis, args.band);
+    let (metrics, opaque_only) =
+        binary_metrics(context.gl(), args, &scene, &settings, &reference, vis)?;
     let area = reference.score_area(vis);
     let transmittance = reference.score_transmittance(vis);
     activity.done("");
 
     let mut files = picture_files(&frame, &reference, width, height)?;
-    files.extend(gbuffer_files(&reference)?);
+    if args.arrays {
+        files.extend(gbuffer_files(&reference)?);
+    }
     let json = serde_json::json!({
         "scene": scene.name,
         "size": [width, height],
@@ -78,10 +81,20 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     });
     files.push(("metrics.json", format!("{json:#}\n").into_bytes()));
     write_files(dir, &files)?;
-    println!(
-        "{}",
-        summary(&scene.name, &plan.in_use().summary(), &metrics, args.band)
-    );
+    let line = summary(&scene.name, &plan.in_use().summary(), &metrics, args.band);
+    match opaque_only {
+        // The hard truth knows only the opaque casters: say so, and score their own test.
+        true => println!(
+            "{}",
+            line.replacen(
+                "]: misclassified",
+                "]: opaque casters alone (their shadow test, volumetric off, against their \
+                 truth): misclassified",
+                1
+            )
+        ),
+        false => println!("{line}"),
+    }
     print_agreement(agreement.as_ref(), args.band);
     if let Some(a) = &area {
         println!("{}", area_summary(a));
@@ -101,6 +114,32 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         files.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
     );
     Ok(())
+}
+
+/// The binary figures. With translucent casters the hard truth is the opaque casters'
+/// alone, while the rendered light is also dimmed by the translucent ones (that is scored
+/// against the transmittance truth): the binary line scores the opaque casters' own
+/// shadow test, a frame with `volumetric` off, and says so (`true`).
+fn binary_metrics(
+    gl: &Gl,
+    args: &CompareArgs,
+    scene: &Scene,
+    settings: &ShadowSettings,
+    reference: &Reference,
+    vis: &[Option<f32>],
+) -> Result<(Metrics, bool)> {
+    use shadowmap::settings::Volumetric;
+    if reference.transmittance.is_none() || settings.volumetric == Volumetric::Off {
+        return Ok((reference.score(vis, args.band), false));
+    }
+    let opaque = ShadowSettings {
+        volumetric: Volumetric::Off,
+        ..*settings
+    };
+    let (w, h) = (reference.width, reference.height);
+    let frame = render_visibility(gl, scene, &opaque, w, h, args.light)?;
+    let vis = frame.visibility.as_deref().unwrap_or_default();
+    Ok((reference.score(vis, args.band), true))
 }
 
 /// Traces the exact reference, and with `--truth volumes` swaps in the stencil shadow

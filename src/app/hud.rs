@@ -109,6 +109,15 @@ pub fn status_lines(info: &HudInfo) -> Vec<String> {
     if let Some(lesson) = lesson {
         lines.extend(wrap_words(&lesson, LINE_WIDTH));
     }
+    // Translucent casters: which shadows they cast (T changes it), as the demo may start
+    // them otherwise than the scene's own settings.
+    if shadowmap::shadows::volumetric::translucent_casters(scene)
+        .next()
+        .is_some()
+    {
+        let v = info.plan.scene_settings().volumetric;
+        lines.push(format!("Translucent shadows: {} (T)", v.name()));
+    }
     // The first light's shadow in words, each line wrapped to stay in the corner.
     if let Some(first) = info.plan.lights.first() {
         for line in words::shadow(first) {

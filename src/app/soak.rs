@@ -57,7 +57,12 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     );
     // Taken once: past the overhead a light's own horizontal part points the other way.
     let azimuth = scene.light_azimuth();
+    let baseline = baseline_frame(args.frames);
     for frame in 0..args.frames {
+        if frame == baseline {
+            renderer.finish();
+            rss_start = resident_kib();
+        }
         if frame % 50 == 0 {
             // Every 50 frames: the next step and the next map size.
             // `--step` holds one step; each step is drawn in its own view.
@@ -85,11 +90,6 @@ pub fn run(args: &SoakArgs) -> Result<()> {
         if frame % 100 == 0 {
             renderer.finish();
             let rss = resident_kib().unwrap_or(0);
-            // The first cycle (12 steps x 4 map sizes, 50 frames each) fills the driver's and
-            // the allocator's caches; count from the end of it.
-            if frame == WARM_FRAMES || (frame == 100 && args.frames <= WARM_FRAMES) {
-                rss_start = Some(rss);
-            }
             rss_peak = rss_peak.max(rss);
             bar.set_message(format!("{} MiB resident", rss / 1024));
         }
@@ -100,20 +100,44 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let rss_end = resident_kib().unwrap_or(0);
     let first = rss_start.unwrap_or(rss_end);
     println!(
-        "soak: {} frames of the {} scene in {:.1} s, no error; resident memory {} MiB after frame \
-         {}, {} MiB at the end (peak {} MiB, growth {:+} KiB)",
-        args.frames,
+        "soak: {} of the {} scene in {:.1} s, no error; resident memory {} MiB {}, {} MiB at \
+         the end (peak {} MiB, growth {:+} KiB)",
+        count(args.frames),
         scene.name,
         start.elapsed().as_secs_f64(),
         first / 1024,
-        if args.frames > WARM_FRAMES {
-            WARM_FRAMES
-        } else {
-            100
-        },
+        baseline_words(baseline),
         rss_end / 1024,
         rss_peak.max(rss_end) / 1024,
         rss_end as i64 - first as i64
     );
     Ok(())
+}
+
+/// The frame before which memory is first taken: the end of the first full cycle (12
+/// steps x 4 map sizes, 50 frames each), which fills the driver's and the allocator's
+/// caches; in a shorter run frame 100, and in one of 100 frames or fewer the start.
+fn baseline_frame(frames: u64) -> u64 {
+    match frames {
+        f if f > WARM_FRAMES => WARM_FRAMES,
+        f if f > 100 => 100,
+        _ => 0,
+    }
+}
+
+/// When the first memory figure was taken, in words.
+fn baseline_words(baseline: u64) -> String {
+    match baseline {
+        0 => "before the first frame".into(),
+        WARM_FRAMES => format!("after {WARM_FRAMES} frames (the first full cycle)"),
+        n => format!("after {n} frames"),
+    }
+}
+
+/// "1 frame", "300 frames".
+fn count(frames: u64) -> String {
+    match frames {
+        1 => "1 frame".into(),
+        n => format!("{n} frames"),
+    }
 }

@@ -23,6 +23,25 @@ pub struct OrthoCoords {
     pub far: f32,
 }
 
+/// As a scene file writes it (`{ left = -10, right = 10, ... }`), for messages.
+impl std::fmt::Display for OrthoCoords {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        let OrthoCoords {
+            left,
+            right,
+            bottom,
+            top,
+            near,
+            far,
+        } = self;
+        write!(
+            f,
+            "{{ left = {left}, right = {right}, bottom = {bottom}, top = {top}, near = {near}, \
+             far = {far} }}"
+        )
+    }
+}
+
 impl Default for OrthoCoords {
     /// The DummyGame's box: +-10 across, near -1, far 20.
     fn default() -> Self {
@@ -70,6 +89,14 @@ pub struct DirectionalLight {
 }
 
 impl DirectionalLight {
+    /// Why `angle_deg` cannot be a light's angle, if it cannot: degrees from 0 to 180 (90
+    /// overhead). The scene file's `angle` and the `--light-angle` flag share this rule
+    /// and its words, so neither turns a light the other refuses (450 is not silently 90).
+    pub fn angle_problem(angle_deg: f32) -> Option<String> {
+        (!(0.0..=180.0).contains(&angle_deg))
+            .then(|| format!("{angle_deg}: expected degrees from 0 to 180 (90 = overhead)"))
+    }
+
     /// The DummyGame's direction for a light angle in degrees: (0, sin a, cos a), so 90 is
     /// overhead, 0 and 180 are at the horizon along +Z and -Z. The book's light turns
     /// about the X axis; this is [`Self::direction_about`] with the azimuth +Z.

@@ -157,10 +157,16 @@ impl Scene {
             Some((n, text)) => {
                 file::parse(text, std::path::Path::new(&format!("<built-in {n}>")), None)
             }
-            None => Err(Error::Invalid(format!(
-                "unknown scene '{name}': expected one of {} or a path to a .toml scene file",
-                Self::builtin_names().join(", ")
-            ))),
+            None => {
+                let names = Self::builtin_names();
+                let guess = crate::settings::suggest::did_you_mean(name, names.iter().copied())
+                    .map_or(String::new(), |g| format!(" (did you mean '{g}'?)"));
+                Err(Error::Invalid(format!(
+                    "unknown scene '{name}'{guess}: expected one of {} or a path to a .toml \
+                     scene file",
+                    names.join(", ")
+                )))
+            }
         }
     }
 

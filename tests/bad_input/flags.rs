@@ -67,7 +67,10 @@ fn bad_cli_values_give_one_clear_error() {
         cli(
             "--frames 0",
             &["--size", "64x36", "--frames", "0"],
-            &["'0' for '--frames", "0 is not in 1.."],
+            &[
+                "'0' for '--frames",
+                "expected a whole number of frames from 1 to 4294967295",
+            ],
         ),
         cli(
             "--light-angle nan",

@@ -32,6 +32,44 @@ fn fallback_line(frames: &str, path: &Path, replacing: bool) -> String {
     )
 }
 
+/// `--require-window` (the window tests pass it) refuses the headless fallback: with no
+/// display, or a display with no X server behind it, the demo fails and writes nothing.
+#[test]
+fn require_window_refuses_the_fallback() {
+    let dir = case_dir("require-window").canonicalize().unwrap();
+    let args = [
+        "demo",
+        "--require-window",
+        "--exit-after-frames",
+        "2",
+        "--size",
+        "64x36",
+    ];
+    let out = demo_without_display(&dir, &args);
+    assert!(!out.status.success());
+    assert_eq!(String::from_utf8_lossy(&out.stdout), "");
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --require-window: no window (DISPLAY and WAYLAND_DISPLAY are not set); \
+         nothing rendered\n"
+    );
+    // A display number no X server listens on.
+    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+        .args(args)
+        .current_dir(&dir)
+        .env("DISPLAY", ":97")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "error: --require-window: no window (the X server at DISPLAY=:97 refused the \
+         connection); nothing rendered\n"
+    );
+    assert!(!dir.join("shadowmap-demo.png").exists());
+}
+
 #[test]
 fn no_display_falls_back_to_a_headless_picture() {
     let dir = case_dir("no-display").canonicalize().unwrap();
@@ -131,21 +169,34 @@ fn a_bad_screenshot_path_is_refused_before_anything_opens() {
     }
 }
 
+/// A short soak reports memory, and says truly how many frames it drew and when it took
+/// its first figure (never a frame the run did not reach).
 #[test]
 fn a_short_soak_reports_memory_and_no_error() {
-    let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
-        .args(["soak", "--frames", "300", "--size", "64x36"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(
-        stdout.starts_with("soak: 300 frames of the dummy scene"),
-        "{stdout}"
-    );
-    assert!(stdout.contains("no error; resident memory"), "{stdout}");
+    for (frames, drawn, first) in [
+        ("300", "300 frames", "after 100 frames"),
+        ("50", "50 frames", "before the first frame"),
+        ("1", "1 frame", "before the first frame"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_shadowmap"))
+            .args(["soak", "--frames", frames, "--size", "64x36"])
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            stdout.starts_with(&format!("soak: {drawn} of the dummy scene in ")),
+            "{stdout}"
+        );
+        assert!(stdout.contains("no error; resident memory "), "{stdout}");
+        assert!(
+            stdout.contains(&format!(" MiB {first}, ")),
+            "{frames}: {stdout}"
+        );
+        assert!(!stdout.contains("frame 100"), "{stdout}");
+    }
 }

@@ -115,7 +115,7 @@ fn bad_scene_files_give_one_clear_error() {
             "toml_ortho_near_far.toml",
             &[
                 "light.ortho: ",
-                "near: 5.0, far: 5.0",
+                "near = 5, far = 5 }: near = 5 is not below far = 5",
                 "expected",
                 "near < far",
             ],

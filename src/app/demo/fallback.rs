@@ -16,7 +16,7 @@ const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 
 /// Why there is no window, from the environment winit read (its own error names a source
 /// file of winit's, not the cause).
-fn no_display_reason() -> String {
+pub(super) fn no_display_reason() -> String {
     let var = |name| std::env::var(name).ok().filter(|v| !v.is_empty());
     match (var("DISPLAY"), var("WAYLAND_DISPLAY")) {
         (None, None) => "DISPLAY and WAYLAND_DISPLAY are not set".to_string(),

@@ -276,7 +276,13 @@ fn read_light(value: Option<&Spanned<DeValue>>, prefix: &str, cx: &Context) -> R
     match kind {
         "spot" => spot(cx.read(value, prefix).map_err(refused)?, prefix, cx),
         "point" => point(cx.read(value, prefix).map_err(refused)?, prefix, cx),
-        _ => directional(cx.read(value, prefix).map_err(refused)?, prefix, cx),
+        _ => {
+            let l: DirectionalFile = cx.read(value, prefix).map_err(refused)?;
+            if let (Some(angle), Some(at)) = (l.angle, value.get_ref().get("angle")) {
+                check_angle(angle, at.span().start, prefix, cx)?;
+            }
+            directional(l, prefix, cx)
+        }
     }
 }
 
@@ -291,13 +297,18 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
         .as_ref()
         .map_or(String::new(), |s| format!("{}: ", cx.at(s.start)));
     if let Some(key) = own("unknown field `") {
-        let takes = light_fields(kind).join(", ");
+        let fields = light_fields(kind);
+        let takes = fields.join(", ");
+        let guess = crate::settings::suggest::did_you_mean(key, fields.iter().map(String::as_str));
         let message = match LIGHT_KINDS
             .iter()
             .any(|k| light_fields(k).iter().any(|f| f == key))
         {
             true => format!("{at}not used by a {kind} light; it takes {takes}"),
-            false => format!("{at}unknown field; a {kind} light takes {takes}"),
+            false => match guess {
+                Some(g) => format!("{at}unknown field `{key}`: did you mean `{g}`?"),
+                None => format!("{at}unknown field; a {kind} light takes {takes}"),
+            },
         };
         return cx.bad(r.field.clone(), message);
     }
@@ -329,6 +340,18 @@ pub(super) fn light_fields(kind: &str) -> Vec<String> {
         .step_by(2)
         .map(String::from)
         .collect()
+}
+
+/// A directional light's `angle` (at byte `at` of the file), refused by the rule and in
+/// the words of `--light-angle`: 450 is not silently 90.
+fn check_angle(angle: f32, at: usize, prefix: &str, cx: &Context) -> Result<()> {
+    match DirectionalLight::angle_problem(angle) {
+        Some(problem) => Err(cx.bad(
+            format!("{prefix}.angle"),
+            format!("{}: {problem}", cx.at(at)),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Colour and intensity, checked alike for every kind.
@@ -410,10 +433,21 @@ fn directional(l: DirectionalFile, prefix: &str, cx: &Context) -> Result<Light> 
 /// An ortho box must be ordered, and not so wide that its width overflows f32
 /// (left = -3e38, right = 3e38 is ordered, but the projection divides by an infinity).
 fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
-    if !(o.left < o.right && o.bottom < o.top && o.near < o.far) {
+    let pairs = [
+        ("left", o.left, "right", o.right),
+        ("bottom", o.bottom, "top", o.top),
+        ("near", o.near, "far", o.far),
+    ];
+    if let Some((a, va, b, vb)) = pairs
+        .iter()
+        .find(|(_, va, _, vb)| va.partial_cmp(vb) != Some(std::cmp::Ordering::Less))
+    {
         return Err(cx.bad(
             field,
-            format!("{o:?}: expected left < right, bottom < top and near < far"),
+            format!(
+                "{o}: {a} = {va} is not below {b} = {vb} (expected left < right, bottom < top \
+                 and near < far)"
+            ),
         ));
     }
     for (name, a, b) in [
@@ -425,7 +459,7 @@ fn check_ortho(o: &OrthoCoords, field: &str, cx: &Context) -> Result<()> {
             return Err(cx.bad(
                 field,
                 format!(
-                    "{o:?}: {name} overflows 32-bit floats: expected a box less than {:e} across",
+                    "{o}: {name} overflows 32-bit floats: expected a box less than {:e} across",
                     f32::MAX
                 ),
             ));

@@ -177,6 +177,19 @@ pub(super) fn backticked<'m>(message: &'m str, prefix: &str) -> Option<&'m str> 
     rest.split('`').next()
 }
 
+/// serde's "unknown field `mapsize`, expected one of `technique`, ..." (every field of
+/// the table) as "unknown field `mapsize`: did you mean `map_size`?" when one name is a
+/// slip away; likewise for an unknown value ("unknown variant").
+fn near_name(message: &str) -> Option<String> {
+    let (head, list) = message.split_once(", expected ")?;
+    let (what, given) = [("unknown field `", "field"), ("unknown variant `", "value")]
+        .iter()
+        .find_map(|(prefix, what)| Some((*what, backticked(head, prefix)?)))?;
+    let names = list.split('`').skip(1).step_by(2);
+    let guess = crate::settings::suggest::did_you_mean(given, names)?;
+    Some(format!("unknown {what} `{given}`: did you mean `{guess}`?"))
+}
+
 /// serde names Rust types ("expected f32"); say what to write instead.
 fn friendly(message: &str) -> String {
     let named = [
@@ -195,6 +208,9 @@ fn friendly(message: &str) -> String {
             "expected a table { left, right, bottom, top, near, far }",
         ),
     ];
+    if let Some(short) = near_name(message) {
+        return short;
+    }
     let mut m = named
         .iter()
         .fold(message.to_string(), |m, (from, to)| m.replace(from, to));

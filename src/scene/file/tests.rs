@@ -285,6 +285,11 @@ fn each_light_kind_takes_its_own_fields() {
     refuses(
         "[light]\nangle = 45.0\nshadow_pos_multi = 5.0\n",
         "light.shadow_pos_multi",
+        "line 3, column 1: unknown field `shadow_pos_multi`: did you mean `shadow_pos_mult`?",
+    );
+    refuses(
+        "[light]\nangle = 45.0\nbrightness = 5.0\n",
+        "light.brightness",
         "line 3, column 1: unknown field; a directional light takes kind, colour",
     );
     refuses(
