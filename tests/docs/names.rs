@@ -571,11 +571,18 @@ Flags and settings are not names: `--map-size 512`, `shadow_cache`, `bias = 0.05
 }
 
 /// The reading guide maps every function of the two one-file examples onto the engine, but
-/// their plumbing (reading the frame back, writing it, `main`).
+/// their plumbing (reading the frame back, writing it, `main` and its arguments).
 #[test]
 fn the_reading_guide_maps_every_function_of_the_examples() {
     let guide = std::fs::read_to_string(root().join("docs/reading-guide.md")).unwrap();
-    let plumbing = ["main", "render_to", "read_colour", "read_depth", "finish"];
+    let plumbing = [
+        "main",
+        "check_args",
+        "render_to",
+        "read_colour",
+        "read_depth",
+        "finish",
+    ];
     let function = regex::Regex::new(r"(?m)^\s*(?:pub )?fn ([a-z_0-9]+)").unwrap();
     let mut missing = Vec::new();
     for example in ["lwjgl_dummygame", "learnopengl_3_1_3"] {
