@@ -63,7 +63,7 @@ translucent casters (--volumetric), on the scene's own settings:
         markdown.push_str(&bench::volumetric::to_markdown(&rows));
     }
     let title = format!(
-        "{}: shadow error against frame time ({width}x{height})",
+        "{}: shadow error against shadow overhead ({width}x{height})",
         scene.name
     );
     let files = [
