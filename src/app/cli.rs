@@ -310,18 +310,14 @@ pub struct BenchArgs {
     /// are not used.
     #[arg(long)]
     pub scale: bool,
-    /// Timed frames per block; each configuration gets two blocks (one per pass over the
-    /// sweep) and the quieter block's median and p95 are reported.
-    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
-    pub frames: u32,
-    /// Untimed frames before them.
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 10,
-        allow_negative_numbers = true
-    )]
-    pub warmup: u32,
+    /// Timed frames per block [default: 100, 40 with --quick]; each configuration gets two
+    /// blocks (one per pass over the sweep) and the quieter block's median and p95 are
+    /// reported.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
+    pub frames: Option<u32>,
+    /// Untimed frames before them [default: 10, 4 with --quick].
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub warmup: Option<u32>,
     /// Sub-pixel rays per side for the MAE reference (1 = no MAE).
     #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,
