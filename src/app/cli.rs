@@ -20,7 +20,7 @@ use super::quality::Quality;
         With no command, opens the DummyGame demo in a window (or, with no display, renders it \
         headless to shadowmap-demo.png). `render` draws frames headless through EGL and writes \
         PNGs.\n\nScenes: a built-in name (dummy, learnopengl, slides, playground, point-shadows, \
-        large, three-lights, overlap, penumbra, smoke) or a path to a .toml scene file (see docs/scene-format.md).",
+        large, three-lights, overlap, penumbra, smoke, ramp) or a path to a .toml scene file (see docs/scene-format.md).",
     after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
         shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
         shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope\n  \
@@ -61,7 +61,7 @@ pub enum Command {
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
     /// A built-in scene (dummy, learnopengl, slides, playground, point-shadows, large,
-    /// three-lights, overlap, penumbra, smoke) or a .toml scene file.
+    /// three-lights, overlap, penumbra, smoke, ramp) or a .toml scene file.
     #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
     pub scene: String,
     /// The first light's angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
