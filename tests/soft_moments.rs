@@ -141,12 +141,17 @@ fn worst_float_box_error(values: &[f32], size: MapSize, side: u32, offset: f32) 
     worst
 }
 
-/// Fixed point rounds each moment to the nearest 1 / SAT_SCALE and sums exactly: a box's
-/// mean is within half a unit whatever the map's size or the box's place.
-const TABLE_TOLERANCE: f64 = 0.5 / SAT_SCALE as f64 + 1e-9;
+/// What the filters need of a box's mean moment, whatever the table's scale: msm-soft pulls
+/// every moment toward a fixed vector by its moment bias (3e-5 by default) so that the
+/// reconstruction stays well posed; an error of the table's as large as that bias would
+/// undo it, so the table must read each mean within a quarter of it (7.5e-6). Measured at
+/// 2^17 units a moment: at most 1.9e-6 (the 3^2 boxes); 2^12 units give 3.8e-5.
+fn table_tolerance() -> f64 {
+    f64::from(ShadowSettings::default().msm_bias) / 4.0
+}
 
 #[test]
-fn a_box_mean_read_from_the_table_is_the_direct_sum_within_half_a_unit() {
+fn a_box_mean_read_from_the_table_is_within_a_quarter_of_the_moment_bias() {
     let ctx = context();
     let gl = ctx.gl();
     let triangle = FullScreenTriangle::new(gl).unwrap();
@@ -164,7 +169,7 @@ fn a_box_mean_read_from_the_table_is_the_direct_sum_within_half_a_unit() {
             eprintln!(
                 "{side}^2, {bx}^2 box: integer {int:.2e}, float {float:.2e}, float - 0.5 {offset:.2e}"
             );
-            assert!(int <= TABLE_TOLERANCE, "{side}^2, box {bx}: {int:e}");
+            assert!(int <= table_tolerance(), "{side}^2, box {bx}: {int:e}");
         }
     }
     shadowmap::engine::check::check_gl(gl, "summed-area table").unwrap();

@@ -20,7 +20,7 @@ use super::quality::Quality;
         With no command, opens the DummyGame demo in a window (or, with no display, renders it \
         headless to shadowmap-demo.png). `render` draws frames headless through EGL and writes \
         PNGs.\n\nScenes: a built-in name (dummy, learnopengl, slides, playground, point-shadows, \
-        large, three-lights, overlap, penumbra, smoke) or a path to a .toml scene file (see docs/scene-format.md).",
+        large, three-lights, overlap, penumbra, smoke, ramp) or a path to a .toml scene file (see docs/scene-format.md).",
     after_help = "Examples:\n  shadowmap\n  shadowmap render --scene dummy --out frame.png --shadow-out shadow.png\n  \
         shadowmap render --light-angle 90 --map-size 2048 --filter single --out overhead.png\n  \
         shadowmap compare --scene dummy --out-dir cmp --filter hw2x2 --bias-mode slope\n  \
@@ -65,7 +65,7 @@ pub enum Command {
 #[derive(Args, Debug, Clone)]
 pub struct SceneArgs {
     /// A built-in scene (dummy, learnopengl, slides, playground, point-shadows, large,
-    /// three-lights, overlap, penumbra, smoke) or a .toml scene file.
+    /// three-lights, overlap, penumbra, smoke, ramp) or a .toml scene file.
     #[arg(long, default_value = "dummy", value_name = "NAME|FILE")]
     pub scene: String,
     /// The first light's angle in degrees, 0 to 180 (90 = overhead); replaces the scene's.
@@ -340,18 +340,14 @@ pub struct BenchArgs {
     /// are not used.
     #[arg(long)]
     pub scale: bool,
-    /// Timed frames per block; each configuration gets two blocks (one per pass over the
-    /// sweep) and the quieter block's median and p95 are reported.
-    #[arg(long, value_name = "N", default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
-    pub frames: u32,
-    /// Untimed frames before them.
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 10,
-        allow_negative_numbers = true
-    )]
-    pub warmup: u32,
+    /// Timed frames per block [default: 100, 40 with --quick]; each configuration gets two
+    /// blocks (one per pass over the sweep) and the quieter block's median and p95 are
+    /// reported.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..), allow_negative_numbers = true)]
+    pub frames: Option<u32>,
+    /// Untimed frames before them [default: 10, 4 with --quick].
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    pub warmup: Option<u32>,
     /// Sub-pixel rays per side for the MAE reference (1 = no MAE).
     #[arg(long, value_name = "N", default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=8), allow_negative_numbers = true)]
     pub supersample: u32,

@@ -196,14 +196,17 @@ pub fn choose_for_target(
         configs.len(),
         opts.frames
     );
-    let mut counter = Counter::new(configs.len() as u64);
+    let mut counter = Counter::new(2 * configs.len() as u64);
     let rows = bench::run(gl, &scene, &configs, &reference, &opts, |row| {
-        counter.step(&format!(
-            "{}: {:.2} ms, {:.3}% wrong",
-            row.label(),
-            row.wall_ms.median,
-            row.error() * 100.0
-        ))
+        counter.step(&match row {
+            None => "timing pass 1 of 2".to_string(),
+            Some(row) => format!(
+                "{}: {:.2} ms, {:.3}% wrong",
+                row.label(),
+                row.wall_ms.median,
+                row.error() * 100.0
+            ),
+        })
     })?;
     counter.finish();
     let chosen = cheapest_or_error(&rows, target)?;

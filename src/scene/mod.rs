@@ -52,6 +52,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         include_str!("../../assets/scenes/penumbra.toml"),
     ),
     ("smoke", include_str!("../../assets/scenes/smoke.toml")),
+    ("ramp", include_str!("../../assets/scenes/ramp.toml")),
 ];
 
 /// The lighting equation of the scene pass.

@@ -35,14 +35,16 @@ pub fn bench_reference(
     )
 }
 
-/// Times and scores every configuration; `progress` is told after each one.
+/// Times and scores every configuration; `progress` is told after each of the
+/// 2 x `configs.len()` blocks: `None` after a block of the first pass, the finished row after
+/// one of the second (so that a progress bar can count, and estimate, both passes).
 pub fn run(
     gl: &Gl,
     scene: &Scene,
     configs: &[BenchConfig],
     reference: &Reference,
     opts: &BenchOptions,
-    mut progress: impl FnMut(&BenchRow),
+    mut progress: impl FnMut(Option<&BenchRow>),
 ) -> Result<Vec<BenchRow>> {
     let Some(first) = configs.first() else {
         return Ok(Vec::new());
@@ -91,6 +93,7 @@ pub fn run(
         };
         if step < configs.len() {
             best[i] = Some(quieter);
+            progress(None);
             continue;
         }
         // Second pass: score the frame and finish the row.
@@ -99,7 +102,7 @@ pub fn run(
         let metrics = reference.score(&visibility, opts.band);
         let mut row = timed_row(config, &quieter, metrics, reference.score_soft(&visibility));
         row.transmittance = reference.score_transmittance(&visibility);
-        progress(&row);
+        progress(Some(&row));
         rows[i] = Some(row);
     }
     let mut rows: Vec<BenchRow> = rows.into_iter().flatten().collect();
