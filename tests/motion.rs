@@ -65,6 +65,18 @@ fn bad_paths_frames_and_steps_are_named() {
         out,
     ]);
     assert!(e.contains("'0'") && e.contains("--frames"), "{e}");
+    // A light the scene lacks: refused before any work, nothing written.
+    let e = refused(&[
+        "compare",
+        "--motion",
+        "still",
+        "--light",
+        "5",
+        "--out-dir",
+        out,
+    ]);
+    assert!(e.starts_with("error: --light 5: the scene"), "{e}");
+    assert!(!dir.path().join("cmp").exists());
     let e = refused(&["compare", "--motion", "wobble", "--out-dir", out]);
     assert!(e.contains("'wobble'") && e.contains("light-sweep"), "{e}");
     for step in ["nan", "inf", "-inf"] {

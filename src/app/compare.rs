@@ -317,7 +317,7 @@ pub const ERROR_COLOURS: &str = "the error images: red = false shadow (shadowed 
     reference), blue = false light (lit here, shadowed in the reference), grey = agrees";
 
 /// The measured light must exist and cast shadows; checked before any work.
-fn check_light(scene: &Scene, light: usize) -> Result<()> {
+pub(super) fn check_light(scene: &Scene, light: usize) -> Result<()> {
     match scene.lights.get(light) {
         None => Err(Error::Invalid(format!(
             "--light {light}: the scene {} has {} light(s), numbered from 0",

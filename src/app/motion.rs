@@ -26,6 +26,7 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
     let (width, height) = args.scene.size(&scene);
     let dir = &args.out_dir;
     args.settings.check_values(&scene, &settings)?;
+    super::compare::check_light(&scene, args.light)?;
     check_output_dir("--out-dir", dir)?;
     let context = HeadlessContext::new()?;
     let plan = args.settings.check(context.gl(), &scene, &settings)?;
