@@ -491,7 +491,7 @@ fn a_near_miss_gets_a_did_you_mean() {
             &["render", "--scene", "dumy"],
             "error: unknown scene 'dumy' (did you mean 'dummy'?): expected one of dummy, \
              learnopengl, slides, playground, point-shadows, large, three-lights, overlap, \
-             penumbra, smoke or a path to a .toml scene file\n"
+             penumbra, smoke, ramp or a path to a .toml scene file\n"
                 .into(),
         ),
         (
