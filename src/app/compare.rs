@@ -3,10 +3,10 @@
 use std::path::Path;
 
 use shadowmap::compare::{compute_reference, render_visibility, CompareOptions, Reference};
-use shadowmap::engine::{Gl, HeadlessContext};
+use shadowmap::engine::Gl;
 use shadowmap::frame::Frame;
 use shadowmap::image_data::ImageData;
-use shadowmap::output::{check_output_dir, write_into, Activity};
+use shadowmap::output::{write_into, Activity};
 use shadowmap::reference::{
     error_image, npy_bytes_f32_hw3, transmittance_error_image, Metrics, RefPixel,
     TransmittanceMetrics,
@@ -15,29 +15,20 @@ use shadowmap::settings::ShadowTechnique;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
 use super::cli::{CompareArgs, Truth};
+use super::compare_setup::CompareSetup;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
     if let Some(path) = super::motion::compare_path(args)? {
         return super::motion::run_compare(args, path);
     }
-    let (scene, settings) = args.scene.load_with(&args.settings)?;
-    let (width, height) = args.scene.size(&scene);
-    let dir = &args.out_dir;
-    // Everything that can be checked without the driver, before any GL work or file.
-    args.settings.check_values(&scene, &settings)?;
-    check_light(&scene, args.light)?;
-    check_output_dir("--out-dir", dir)?;
-    let context = HeadlessContext::new()?;
-    let plan = args.settings.check(context.gl(), &scene, &settings)?;
-    args.scene.check_size(context.gl(), &scene)?;
-    let opts = CompareOptions {
-        width,
-        height,
-        supersample: args.supersample,
-        band: args.band,
-        light: args.light,
-        rays: args.rays,
-    };
+    let CompareSetup {
+        scene,
+        settings,
+        context,
+        plan,
+        opts,
+    } = CompareSetup::prepare(args)?;
+    let (width, height, dir) = (opts.width, opts.height, &args.out_dir);
     // The steps of `shadowmap::compare::compare`, one at a time so each can be shown.
     let (reference, agreement) = trace_truth(context.gl(), args, &scene, &settings, &opts)?;
     let activity = Activity::start(format!(
@@ -315,23 +306,6 @@ fn print_agreement(agreement: Option<&Metrics>, band: usize) {
 /// name: each file is named once, on the line that says it was written).
 pub const ERROR_COLOURS: &str = "the error images: red = false shadow (shadowed here, lit in the \
     reference), blue = false light (lit here, shadowed in the reference), grey = agrees";
-
-/// The measured light must exist and cast shadows; checked before any work.
-pub(super) fn check_light(scene: &Scene, light: usize) -> Result<()> {
-    match scene.lights.get(light) {
-        None => Err(Error::Invalid(format!(
-            "--light {light}: the scene {} has {} light(s), numbered from 0",
-            scene.source.display(),
-            scene.lights.len()
-        ))),
-        Some(l) if !l.casts_shadows() => Err(Error::Invalid(format!(
-            "--light {light}: that light of {} does not cast shadows (casts_shadows = false); \
-             expected a light that casts",
-            scene.source.display()
-        ))),
-        Some(_) => Ok(()),
-    }
-}
 
 /// The one-line summary printed by `compare`.
 pub fn summary(scene: &str, settings: &str, m: &Metrics, band: usize) -> String {

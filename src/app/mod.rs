@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod cli;
 pub mod compare;
+pub mod compare_setup;
 pub mod demo;
 pub mod gallery;
 pub mod hud;

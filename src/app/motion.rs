@@ -3,14 +3,14 @@
 //! ([`shadowmap::motion`]) with an animation of the error and a plot of the flicker.
 
 use shadowmap::compare::CompareOptions;
-use shadowmap::engine::HeadlessContext;
 use shadowmap::motion::score_path;
-use shadowmap::output::{check_output_dir, write_into, Activity};
+use shadowmap::output::{write_into, Activity};
 use shadowmap::reference::error_image;
 use shadowmap::scene::motion::{MotionPath, PathKind};
 use shadowmap::{Error, Result, Scene};
 
 use super::cli::CompareArgs;
+use super::compare_setup::CompareSetup;
 
 /// What a path is, in words: "strafe, 0.05 world units a frame".
 pub fn describe(path: &MotionPath) -> String {
@@ -22,23 +22,14 @@ pub fn describe(path: &MotionPath) -> String {
 
 /// `compare --motion`: each frame of the path traced, rendered and scored.
 pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
-    let (scene, settings) = args.scene.load_with(&args.settings)?;
-    let (width, height) = args.scene.size(&scene);
-    let dir = &args.out_dir;
-    args.settings.check_values(&scene, &settings)?;
-    super::compare::check_light(&scene, args.light)?;
-    check_output_dir("--out-dir", dir)?;
-    let context = HeadlessContext::new()?;
-    let plan = args.settings.check(context.gl(), &scene, &settings)?;
-    args.scene.check_size(context.gl(), &scene)?;
-    let opts = CompareOptions {
-        width,
-        height,
-        supersample: args.supersample,
-        band: args.band,
-        light: args.light,
-        rays: args.rays,
-    };
+    let CompareSetup {
+        scene,
+        settings,
+        context,
+        plan,
+        opts,
+    } = CompareSetup::prepare(args)?;
+    let (width, height, dir) = (opts.width, opts.height, &args.out_dir);
     let gl = context.gl();
     let mut pictures = Vec::new();
     let activity = Activity::start(format!(

@@ -2,12 +2,13 @@
 //! the code the GPU runs for a scene and its settings (the lights' tests and their
 //! arguments included). No GL: the text is made as the renderer makes it.
 
+use shadowmap::compare::check_light;
 use shadowmap::engine::Outputs;
 use shadowmap::shaders;
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::program::slots::{self, LightPart, MaskMode};
 use shadowmap::shadows::program::ProgramKey;
-use shadowmap::{Error, Result, Scene, ShadowSettings};
+use shadowmap::{Result, Scene, ShadowSettings};
 
 use super::cli::ShadersArgs;
 
@@ -19,7 +20,7 @@ pub fn run(args: &ShadersArgs) -> Result<()> {
     let settings = args.settings.apply(&mut scene)?;
     args.settings.check_values(&scene, &settings)?;
     if let Some(light) = args.light {
-        check_light(&scene, light)?;
+        check_light(&scene, light, "--light", false)?;
     }
     print!("{}", text(&scene, &settings, args.light)?);
     Ok(())
@@ -75,16 +76,4 @@ fn light_text(scene: &Scene, i: usize, part: &LightPart) -> Result<String> {
         out.push_str(&format!("    {line}\n"));
     }
     Ok(out)
-}
-
-/// `--light I` must name one of the scene's lights.
-fn check_light(scene: &Scene, light: usize) -> Result<()> {
-    match light < scene.lights.len() {
-        true => Ok(()),
-        false => Err(Error::Invalid(format!(
-            "--light {light}: the scene {} has {} light(s), numbered from 0",
-            scene.source.display(),
-            scene.lights.len()
-        ))),
-    }
 }

@@ -218,7 +218,7 @@ pub fn compute_reference(
     if let Some(hi) = hi.as_mut() {
         hi.face_normals = face_normals(surfaces, hi, eye);
     }
-    check_light(scene, opts.light)?;
+    check_light(scene, opts.light, "light", true)?;
     // The rays of the light's own map: its own table over the scene's settings.
     let own = ShadowPlan::decide(&scene.lights, settings).lights[opts.light].settings;
     let light = light_kind(scene, opts.light, &own, origin);
@@ -397,7 +397,7 @@ pub fn render_visibility(
     height: u32,
     light: usize,
 ) -> Result<Frame> {
-    check_light(scene, light)?;
+    check_light(scene, light, "light", true)?;
     let outputs = Outputs {
         visibility: true,
         gbuffer: true,
@@ -414,16 +414,19 @@ pub fn render_visibility(
     )
 }
 
-/// A light that does not cast has nothing to measure; one past the end is a user's typo.
-fn check_light(scene: &Scene, light: usize) -> Result<()> {
+/// The measured light must exist and, when `casting`, cast shadows: a light that does not
+/// cast has nothing to measure, and one past the end is a user's typo. `name` is how the
+/// caller's user names the number (`--light` on the command line).
+pub fn check_light(scene: &Scene, light: usize, name: &str, casting: bool) -> Result<()> {
     match scene.lights.get(light) {
         None => Err(Error::Invalid(format!(
-            "light {light}: the scene {} has {} light(s), numbered from 0",
+            "{name} {light}: the scene {} has {} light(s), numbered from 0",
             scene.source.display(),
             scene.lights.len()
         ))),
-        Some(l) if !l.casts_shadows() => Err(Error::Invalid(format!(
-            "light {light} of {} does not cast shadows (casts_shadows = false): nothing to measure",
+        Some(l) if casting && !l.casts_shadows() => Err(Error::Invalid(format!(
+            "{name} {light}: that light of {} does not cast shadows (casts_shadows = false); \
+             expected a light that casts",
             scene.source.display()
         ))),
         Some(_) => Ok(()),
