@@ -163,6 +163,15 @@ fn snapped_cascades_strafing_flicker_at_most_a_quarter_of_unsnapped() {
 }
 
 #[test]
+fn a_snapped_fitted_box_dollying_flickers_at_most_a_quarter_of_unsnapped() {
+    let fit = ["--scene", "large", "--fit", "scene", "--motion", "dolly"];
+    let on = false_flicker(&[&fit[..], &["--snap", "on"]].concat());
+    let off = false_flicker(&[&fit[..], &["--snap", "off"]].concat());
+    assert!(off > 0.0, "the unsnapped fitted box did not flicker");
+    assert!(on <= off / 4.0, "snapped {on} against unsnapped {off}");
+}
+
+#[test]
 fn render_moves_along_the_path() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("f.png");
