@@ -5,7 +5,7 @@
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
 //! are `engine::text`'s. The status panel sits in the top-left corner and the key panel
-//! under it; the bottom-right corner holds the shadow-map inset ([`inset_rect`]: the
+//! under it (in the top-right corner when the left would cover the translucent items); the bottom-right corner holds the shadow-map inset ([`inset_rect`]: the
 //! light's map beside the shadows it makes, LearnOpenGL's debug quad made small), which
 //! the renderer draws (`Renderer::render_depth_inset`) after the scene and before the HUD.
 
@@ -162,55 +162,112 @@ fn upper_first(s: &str) -> String {
     }
 }
 
-/// The quads of the whole HUD (pixels from the frame's top-left corner, y down).
-pub fn layout(atlas: &FontAtlas, info: &HudInfo) -> Vec<TextQuad> {
+/// The quads of the whole HUD for a `size` frame (pixels from its top-left corner, y down).
+pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQuad> {
     let mut quads = Vec::new();
     let line = atlas.line_height();
     let status = status_lines(info);
-    let status_width = status
-        .iter()
-        .map(|l| atlas.text_width(l))
-        .fold(0.0, f32::max);
+    let widest = |texts: &mut dyn Iterator<Item = &str>| {
+        texts.map(|t| atlas.text_width(t)).fold(0.0, f32::max)
+    };
+    let status_width = widest(&mut status.iter().map(String::as_str));
+    let keys = info.keys.filter(|_| info.show_keys);
+    let key_width = keys.map_or(0.0, |k| widest(&mut k.iter().map(|(k, _)| *k)).ceil());
+    let keys_width = keys.map_or(0.0, |k| {
+        key_width + COLUMN_GAP + widest(&mut k.iter().map(|(_, d)| *d))
+    });
+    let key_lines = keys.map_or(0, <[_]>::len);
+    let keys_height = match keys {
+        Some(_) => MARGIN + line * key_lines as f32 + 2.0 * PADDING,
+        None => 0.0,
+    };
+    let column = (
+        status_width.max(keys_width) + 2.0 * PADDING,
+        line * status.len() as f32 + 2.0 * PADDING + keys_height,
+    );
+    let right = on_the_right(info.scene, size, column);
+    // Each panel against the frame's left edge, or its right edge.
+    let x_of = |text_width: f32| match right {
+        true => (size.0 as f32 - MARGIN - text_width - 2.0 * PADDING).floor(),
+        false => MARGIN,
+    };
+    let x = x_of(status_width);
     let bottom = panel(
         atlas,
         &mut quads,
-        (MARGIN, MARGIN),
+        (x, MARGIN),
         (status_width, line * status.len() as f32),
     );
     let mut y = MARGIN + PADDING;
     for text in &status {
-        atlas.push_text(&mut quads, text, MARGIN + PADDING, y, TEXT_COLOUR);
+        atlas.push_text(&mut quads, text, x + PADDING, y, TEXT_COLOUR);
         y += line;
     }
-    if let (true, Some(keys)) = (info.show_keys, info.keys) {
-        let key_width = keys
-            .iter()
-            .map(|(k, _)| atlas.text_width(k))
-            .fold(0.0, f32::max)
-            .ceil();
-        let text_width = keys
-            .iter()
-            .map(|(_, d)| atlas.text_width(d))
-            .fold(0.0, f32::max);
+    if let Some(keys) = keys {
         let top = bottom + MARGIN;
+        let x = x_of(keys_width);
         panel(
             atlas,
             &mut quads,
-            (MARGIN, top),
-            (
-                key_width + COLUMN_GAP + text_width,
-                line * keys.len() as f32,
-            ),
+            (x, top),
+            (keys_width, line * keys.len() as f32),
         );
         let mut y = top + PADDING;
-        let x = MARGIN + PADDING;
         for (key, does) in keys {
-            atlas.push_text(&mut quads, key, x, y, KEY_COLOUR);
-            atlas.push_text(&mut quads, does, x + key_width + COLUMN_GAP, y, TEXT_COLOUR);
+            atlas.push_text(&mut quads, key, x + PADDING, y, KEY_COLOUR);
+            let x = x + PADDING + key_width + COLUMN_GAP;
+            atlas.push_text(&mut quads, does, x, y, TEXT_COLOUR);
             y += line;
         }
     }
     quads
+}
+
+/// Whether the panels (a `column` wide and tall) go to the top-right corner: when in the
+/// top-left they would lie over the scene's translucent items and in the top-right they
+/// would not. Those items are what a scene with them is about (the smoke), and a panel's
+/// dark ground dims what is under it.
+fn on_the_right(scene: &Scene, size: (u32, u32), column: (f32, f32)) -> bool {
+    let items = translucent_on_screen(scene, size);
+    let (w, h) = column;
+    let overlaps = |x0: f32| {
+        (items.iter()).any(|r| r[0] < x0 + w && r[2] > x0 && r[1] < MARGIN + h && r[3] > MARGIN)
+    };
+    overlaps(MARGIN) && !overlaps(size.0 as f32 - MARGIN - w)
+}
+
+/// Where each translucent item falls on a `size` frame from the scene's camera: the box of
+/// its mesh box's corners in front of the camera (pixels from the top-left, y down).
+fn translucent_on_screen(scene: &Scene, size: (u32, u32)) -> Vec<[f32; 4]> {
+    let to_clip = shadowmap::motion::view_projection(&scene.camera, size.0, size.1);
+    let (w, h) = (f64::from(size.0), f64::from(size.1));
+    let mut rects = Vec::new();
+    for item in scene.items.iter().filter(|i| i.is_translucent()) {
+        let (lo, hi) = scene.meshes[item.mesh].bounds();
+        let model = item.model_matrix64();
+        let mut rect: Option<[f32; 4]> = None;
+        for corner in 0..8 {
+            let pick =
+                |bit: usize, l: f32, h: f32| f64::from(if corner & bit == 0 { l } else { h });
+            let local = glam::DVec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            );
+            let clip = to_clip * model.transform_point3(local).extend(1.0);
+            if clip.w <= 1e-9 {
+                continue;
+            }
+            let px = ((clip.x / clip.w * 0.5 + 0.5) * w) as f32;
+            let py = ((0.5 - clip.y / clip.w * 0.5) * h) as f32;
+            rect = Some(match rect {
+                None => [px, py, px, py],
+                Some([x0, y0, x1, y1]) => [x0.min(px), y0.min(py), x1.max(px), y1.max(py)],
+            });
+        }
+        rects.extend(rect);
+    }
+    rects
 }
 
 /// A panel around text of the given size whose top-left corner is `at`; returns its bottom.
@@ -236,7 +293,7 @@ impl Hud {
 
     /// Draws the HUD over the frame in the bound framebuffer.
     pub fn draw(&mut self, info: &HudInfo, width: u32, height: u32) -> Result<()> {
-        let quads = layout(&self.atlas, info);
+        let quads = layout(&self.atlas, info, (width, height));
         self.text.draw(&quads, width, height)
     }
 }
@@ -537,9 +594,9 @@ mod tests {
         let scene = dummy_at(45.0);
         let own = plan_own(&scene);
         let mut hud = info(&scene, &own, None);
-        let closed = layout(&atlas, &hud);
+        let closed = layout(&atlas, &hud, (640, 360));
         hud.show_keys = true;
-        let open = layout(&atlas, &hud);
+        let open = layout(&atlas, &hud, (640, 360));
         assert!(open.len() > closed.len());
         // The key panel replaces the hint with the keys and their descriptions.
         let glyphs = |s: &str| s.chars().filter(|c| !c.is_whitespace()).count();
@@ -552,5 +609,27 @@ mod tests {
                 "{q:?}"
             );
         }
+    }
+
+    #[test]
+    fn panels_keep_off_the_smoke_and_stay_left_where_nothing_is_translucent() {
+        let atlas = FontAtlas::new(FONT, FONT_PX).unwrap();
+        let status_x = |scene: &Scene| {
+            let own = plan_own(scene);
+            let quads = layout(&atlas, &info(scene, &own, None), (1280, 720));
+            quads[0].rect[0]
+        };
+        assert_eq!(status_x(&dummy_at(45.0)), MARGIN);
+        let smoke = Scene::load("smoke").unwrap();
+        let items = translucent_on_screen(&smoke, (1280, 720));
+        assert!(
+            items.iter().any(|r| r[0] < 420.0 && r[1] < 160.0),
+            "{items:?}"
+        );
+        let x = status_x(&smoke);
+        assert!(
+            x > 640.0,
+            "the status panel starts at x = {x}, over the smoke"
+        );
     }
 }
