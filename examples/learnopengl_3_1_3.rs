@@ -348,7 +348,7 @@ fn main() -> ExitCode {
          renders LearnOpenGL's shadow_mapping 3.1.3 frame ({SCR_WIDTH}x{SCR_HEIGHT}) headless \
          and writes it as a PNG"
     );
-    if let Err(code) = check_args(&args, 1..=1, &usage) {
+    if let Err(code) = shadowmap::input::check_args(&args, 1..=1, &usage) {
         return code;
     }
     let out = &args[0];
@@ -363,35 +363,4 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-/// `--help` (or `-h`) prints the usage and succeeds; an option this program does not take,
-/// or a wrong count of arguments (`count`), is refused with the usage, before any work.
-fn check_args(
-    args: &[String],
-    count: std::ops::RangeInclusive<usize>,
-    usage: &str,
-) -> std::result::Result<(), ExitCode> {
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        println!("{usage}");
-        return Err(ExitCode::SUCCESS);
-    }
-    let problem = match args
-        .iter()
-        .find(|a| a.starts_with('-') && a.parse::<f64>().is_err())
-    {
-        Some(option) => format!("unknown option '{option}'"),
-        None if !count.contains(&args.len()) => format!(
-            "expected {} argument{}, got {}",
-            match count.start() == count.end() {
-                true => count.start().to_string(),
-                false => format!("{} to {}", count.start(), count.end()),
-            },
-            if *count.end() == 1 { "" } else { "s" },
-            args.len()
-        ),
-        None => return Ok(()),
-    };
-    eprintln!("error: {problem}\n\n{usage}");
-    Err(ExitCode::from(2))
 }

@@ -68,7 +68,7 @@ fn main() -> ExitCode {
                  PORT-VISIBILITY.png [DIFF.png]\nscores a shadow-playground picture against \
                  this program's visibility for the same step (IoU of the shadow masks, the \
                  penumbra band's difference)";
-    if let Err(code) = check_args(&args, 2..=3, usage) {
+    if let Err(code) = shadowmap::input::check_args(&args, 2..=3, usage) {
         return code;
     }
     let (a, b) = (&args[0], &args[1]);
@@ -121,35 +121,4 @@ fn main() -> ExitCode {
     }
     println!("{iou:8.4} {mean:8.4} {band:8}");
     ExitCode::SUCCESS
-}
-
-/// `--help` (or `-h`) prints the usage and succeeds; an option this program does not take,
-/// or a wrong count of arguments (`count`), is refused with the usage, before any work.
-fn check_args(
-    args: &[String],
-    count: std::ops::RangeInclusive<usize>,
-    usage: &str,
-) -> std::result::Result<(), ExitCode> {
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        println!("{usage}");
-        return Err(ExitCode::SUCCESS);
-    }
-    let problem = match args
-        .iter()
-        .find(|a| a.starts_with('-') && a.parse::<f64>().is_err())
-    {
-        Some(option) => format!("unknown option '{option}'"),
-        None if !count.contains(&args.len()) => format!(
-            "expected {} argument{}, got {}",
-            match count.start() == count.end() {
-                true => count.start().to_string(),
-                false => format!("{} to {}", count.start(), count.end()),
-            },
-            if *count.end() == 1 { "" } else { "s" },
-            args.len()
-        ),
-        None => return Ok(()),
-    };
-    eprintln!("error: {problem}\n\n{usage}");
-    Err(ExitCode::from(2))
 }

@@ -17,7 +17,7 @@ fn main() -> ExitCode {
     let usage = "usage: cargo run --release --example render_diff -- BEFORE_DIR AFTER_DIR \
                  [MAX_PERCENT]\ncompares two folders of renders file by file; fails when a file \
                  is missing or more than MAX_PERCENT (default 0.1) of its pixels differ";
-    if let Err(code) = check_args(&args, 2..=3, usage) {
+    if let Err(code) = shadowmap::input::check_args(&args, 2..=3, usage) {
         return code;
     }
     let (a, b) = (&args[0], &args[1]);
@@ -99,35 +99,4 @@ fn compare(a: &Path, b: &Path, limit: f64) -> Result<bool, String> {
         if ok { "within" } else { "EXCEEDED" }
     );
     Ok(ok)
-}
-
-/// `--help` (or `-h`) prints the usage and succeeds; an option this program does not take,
-/// or a wrong count of arguments (`count`), is refused with the usage, before any work.
-fn check_args(
-    args: &[String],
-    count: std::ops::RangeInclusive<usize>,
-    usage: &str,
-) -> std::result::Result<(), ExitCode> {
-    if args.iter().any(|a| a == "--help" || a == "-h") {
-        println!("{usage}");
-        return Err(ExitCode::SUCCESS);
-    }
-    let problem = match args
-        .iter()
-        .find(|a| a.starts_with('-') && a.parse::<f64>().is_err())
-    {
-        Some(option) => format!("unknown option '{option}'"),
-        None if !count.contains(&args.len()) => format!(
-            "expected {} argument{}, got {}",
-            match count.start() == count.end() {
-                true => count.start().to_string(),
-                false => format!("{} to {}", count.start(), count.end()),
-            },
-            if *count.end() == 1 { "" } else { "s" },
-            args.len()
-        ),
-        None => return Ok(()),
-    };
-    eprintln!("error: {problem}\n\n{usage}");
-    Err(ExitCode::from(2))
 }

@@ -5,6 +5,7 @@
 
 use std::io::Read;
 use std::path::Path;
+use std::process::ExitCode;
 
 use crate::error::{Error, Result};
 
@@ -115,6 +116,38 @@ fn kind_of(t: &std::fs::FileType) -> &'static str {
     } else {
         "something else"
     }
+}
+
+/// The examples' command lines, before any work: `--help` (or `-h`) prints the usage and
+/// succeeds; an option the example does not take, or a wrong count of arguments (`count`),
+/// is refused with the usage and exit status 2.
+pub fn check_args(
+    args: &[String],
+    count: std::ops::RangeInclusive<usize>,
+    usage: &str,
+) -> std::result::Result<(), ExitCode> {
+    if args.iter().any(|a| a == "--help" || a == "-h") {
+        println!("{usage}");
+        return Err(ExitCode::SUCCESS);
+    }
+    let problem = match args
+        .iter()
+        .find(|a| a.starts_with('-') && a.parse::<f64>().is_err())
+    {
+        Some(option) => format!("unknown option '{option}'"),
+        None if !count.contains(&args.len()) => format!(
+            "expected {} argument{}, got {}",
+            match count.start() == count.end() {
+                true => count.start().to_string(),
+                false => format!("{} to {}", count.start(), count.end()),
+            },
+            if *count.end() == 1 { "" } else { "s" },
+            args.len()
+        ),
+        None => return Ok(()),
+    };
+    eprintln!("error: {problem}\n\n{usage}");
+    Err(ExitCode::from(2))
 }
 
 #[cfg(test)]
