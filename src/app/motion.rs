@@ -22,28 +22,23 @@ pub fn describe(path: &MotionPath) -> String {
 
 /// `compare --motion`: each frame of the path traced, rendered and scored.
 pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
-    let CompareSetup {
-        scene,
-        settings,
-        context,
-        plan,
-        opts,
-    } = CompareSetup::prepare(args)?;
+    let setup = CompareSetup::prepare(args)?;
+    let (scene, settings, opts) = (&setup.scene, &setup.settings, &setup.opts);
     let (width, height, dir) = (opts.width, opts.height, &args.out_dir);
-    let gl = context.gl();
+    let gl = setup.context.gl();
     let mut pictures = Vec::new();
     let activity = Activity::start(format!(
         "compare: {} frames of {} ({}): tracing and rendering each",
         args.frames,
         describe(&path),
-        plan.in_use().summary()
+        setup.plan.in_use().summary()
     ));
     let score = score_path(
         gl,
-        &scene,
-        &settings,
+        scene,
+        settings,
         (&path, args.frames),
-        &opts,
+        opts,
         |frame, reference| {
             let vis = frame.visibility.as_deref().unwrap_or_default();
             let grey: Vec<u8> = (frame.colour.rgba.chunks_exact(4))
