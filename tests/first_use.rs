@@ -276,6 +276,20 @@ fn compare_scores_the_binary_line_against_the_opaque_casters() {
     // Measured 0.010% at 320x180 (1.888% when translucent shadow counted as misclassified).
     assert!(rate < 0.1, "{line}");
     assert!(stdout.contains("transmittance: MAE 0.00"), "{stdout}");
+    // error.png shows what the line scores: the translucent shadow is not painted as false
+    // shadow (painted so, 0.7% of the frame was red).
+    let error = image::open(dir.join("c/error.png")).unwrap().to_rgb8();
+    // The frame's 320 x 180 pixels, above the legend.
+    let red = (0..180)
+        .flat_map(|y| (0..320).map(move |x| (x, y)))
+        .filter(|&(x, y)| error.get_pixel(x, y).0 == [255, 0, 0])
+        .count();
+    let share = red as f64 / (320.0 * 180.0);
+    assert!(
+        share < 0.001,
+        "{:.3}% of error.png's frame is red",
+        share * 100.0
+    );
 }
 
 /// The smoke demo starts with its translucent shadows on (the scene's own setting, off,

@@ -38,13 +38,17 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     ));
     let frame = render_visibility(context.gl(), &scene, &settings, width, height, args.light)?;
     let vis = frame.visibility.as_deref().unwrap_or_default();
-    let (metrics, opaque_only) =
+    let (metrics, opaque_vis) =
         binary_metrics(context.gl(), args, &scene, &settings, &reference, vis)?;
+    let opaque_only = opaque_vis.is_some();
     let area = reference.score_area(vis);
     let transmittance = reference.score_transmittance(vis);
     activity.done("");
 
-    let mut files = picture_files(&frame, &reference, width, height)?;
+    // error.png shows what the binary line scores: with translucent casters, the opaque
+    // casters' own shadow test.
+    let binary_vis = opaque_vis.as_deref().unwrap_or(vis);
+    let mut files = picture_files(&frame, binary_vis, &reference, width, height)?;
     if args.arrays {
         files.extend(gbuffer_files(&reference)?);
     }
@@ -110,7 +114,7 @@ pub fn run(args: &CompareArgs) -> Result<()> {
 /// The binary figures. With translucent casters the hard truth is the opaque casters'
 /// alone, while the rendered light is also dimmed by the translucent ones (that is scored
 /// against the transmittance truth): the binary line scores the opaque casters' own
-/// shadow test, a frame with `volumetric` off, and says so (`true`).
+/// shadow test, a frame with `volumetric` off, and gives that frame's visibility.
 fn binary_metrics(
     gl: &Gl,
     args: &CompareArgs,
@@ -118,10 +122,10 @@ fn binary_metrics(
     settings: &ShadowSettings,
     reference: &Reference,
     vis: &[Option<f32>],
-) -> Result<(Metrics, bool)> {
+) -> Result<(Metrics, Option<Vec<Option<f32>>>)> {
     use shadowmap::settings::Volumetric;
     if reference.transmittance.is_none() || settings.volumetric == Volumetric::Off {
-        return Ok((reference.score(vis, args.band), false));
+        return Ok((reference.score(vis, args.band), None));
     }
     let opaque = ShadowSettings {
         volumetric: Volumetric::Off,
@@ -129,8 +133,8 @@ fn binary_metrics(
     };
     let (w, h) = (reference.width, reference.height);
     let frame = render_visibility(gl, scene, &opaque, w, h, args.light)?;
-    let vis = frame.visibility.as_deref().unwrap_or_default();
-    Ok((reference.score(vis, args.band), true))
+    let vis = frame.visibility.unwrap_or_default();
+    Ok((reference.score(&vis, args.band), Some(vis)))
 }
 
 /// Traces the exact reference, and with `--truth volumes` swaps in the stencil shadow
@@ -189,15 +193,17 @@ fn trace_truth(
     })
 }
 
-/// visibility.png, reference.png and error.png, and for a light with a size
-/// reference-area.png and error-area.png.
+/// visibility.png, reference.png and error.png (of `binary_vis`, the visibility the binary
+/// line scores), and for a light with a size reference-area.png and error-area.png.
 fn picture_files(
     frame: &Frame,
+    binary_vis: &[Option<f32>],
     reference: &Reference,
     width: u32,
     height: u32,
 ) -> Result<Vec<(&'static str, Vec<u8>)>> {
     let vis = frame.visibility.as_deref().unwrap_or_default();
+    let (w, h) = (width as usize, height as usize);
     let mut files: Vec<(&str, Vec<u8>)> = Vec::new();
     if let Some(image) = frame.visibility_image() {
         files.push(("visibility.png", image.encode_png()?));
@@ -212,7 +218,7 @@ fn picture_files(
         .chunks_exact(4)
         .map(|p| ((u32::from(p[0]) * 3 + u32::from(p[1]) * 6 + u32::from(p[2])) / 10) as u8)
         .collect();
-    let error = error_image(width as usize, height as usize, vis, &reference.hard, &grey);
+    let error = error_image(w, h, binary_vis, &reference.hard, &grey);
     let error = super::plot::with_error_legend(ImageData {
         width,
         height,
