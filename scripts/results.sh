@@ -15,7 +15,7 @@ out="${OUT:-assets/readme}"
 # name | arguments | files the command writes -> names kept in $out
 jobs=(
   "dummy|bench --scene dummy|bench.csv->bench-dummy.csv bench.md->bench-dummy.md pareto.png->pareto-dummy.png"
-  "learnopengl|bench --scene learnopengl --quick --fit scene|bench.md->bench-learnopengl.md pareto.png->pareto-learnopengl.png"
+  "learnopengl|bench --scene learnopengl --view code --quick --fit scene|bench.md->bench-learnopengl.md pareto.png->pareto-learnopengl.png"
   "large|bench --scene large --quick --size 640x360 --frames 40|bench.md->bench-large.md pareto.png->pareto-large.png"
   "volumes|bench --scene dummy --quick --size 640x360|bench.csv->bench-volumes-dummy.csv pareto.png->pareto-volumes-dummy.png"
   "scale|bench --scale|scale.csv->scale.csv scale-fit.csv->scale-fit.csv scale.png->scale.png"

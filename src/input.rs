@@ -2,6 +2,8 @@
 //! regular files, and never more than a stated number of bytes. A FIFO would block the
 //! loader forever and `/dev/zero` would grow memory until the machine gives up; both are
 //! refused before they are opened.
+//!
+//! Also here: [`check_args`], the examples' command lines checked before any work.
 
 use std::io::Read;
 use std::path::Path;
