@@ -256,17 +256,11 @@ fn the_readme_names_every_built_in_scene_and_installs_locked() {
 #[test]
 fn compare_scores_the_binary_line_against_the_opaque_casters() {
     let dir = case_dir("compare_opaque");
-    let out = common::bin()
-        .current_dir(&dir)
-        .args(["compare", "--scene", "smoke", "--volumetric", "osm"])
-        .args(["--size", "320x180", "--supersample", "1", "--out-dir", "c"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = common::stdout_of(
+        common::bin()
+            .current_dir(&dir)
+            .args(["compare", "--scene", "smoke", "--volumetric", "osm"])
+            .args(["--size", "320x180", "--supersample", "1", "--out-dir", "c"]),
     );
     let line = stdout.lines().find(|l| l.starts_with("smoke [")).unwrap();
     let (_, after) = line

@@ -131,17 +131,11 @@ fn spot_and_point_lights_have_no_angle() {
 fn light_angle_flag_turns_learnopengls_light_and_says_where() {
     let dir = std::env::temp_dir().join(format!("shadowmap-angle-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let out = bin()
-        .args(["render", "--scene", "learnopengl", "--size", "80x60"])
-        .args(["--light-angle", "30", "--out"])
-        .arg(dir.join("a.png"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let stdout = common::stdout_of(
+        bin()
+            .args(["render", "--scene", "learnopengl", "--size", "80x60"])
+            .args(["--light-angle", "30", "--out"])
+            .arg(dir.join("a.png")),
     );
     assert!(
         stdout.contains("light 30.0 deg over azimuth [-0.89, 0.00, -0.45]"),
