@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{bin, hud_difference, stdout_of};
+use common::{bin, hud_difference, stdout_of, window_stdout_of};
 
 fn load(path: &std::path::Path) -> image::RgbaImage {
     image::open(path)
@@ -41,7 +41,7 @@ fn window_shows_the_scene_and_its_shadow() {
     let shot = dir.join("window.png");
     let headless = dir.join("headless.png");
 
-    let out = stdout_of(
+    let out = window_stdout_of(
         bin()
             .args([
                 "demo",
@@ -98,7 +98,7 @@ fn window_shows_the_scene_and_its_shadow() {
 fn window_survives_a_resize_storm_and_a_minimise() {
     let dir = display_and_dir("storm");
     let shot = dir.join("after-storm.png");
-    let stdout = stdout_of(
+    let stdout = window_stdout_of(
         bin()
             .args([
                 "demo",
@@ -146,7 +146,7 @@ fn window_draws_several_lights_and_cascades_as_headless_does() {
     {
         let shot = dir.join(format!("{i}-{name}-window.png"));
         let headless = dir.join(format!("{i}-{name}-headless.png"));
-        stdout_of(
+        window_stdout_of(
             bin()
                 .args([
                     "demo",
@@ -189,7 +189,7 @@ fn window_screenshots_carry_the_hud_in_the_top_left_corner() {
     let dir = display_and_dir("hud");
     let shot = |name: &str, extra: &[&str]| {
         let path = dir.join(name);
-        stdout_of(
+        window_stdout_of(
             bin()
                 .args([
                     "demo",
@@ -220,7 +220,7 @@ fn window_draws_the_shadow_map_inset_in_its_corner_as_headless_does() {
     let dir = display_and_dir("inset");
     let shot = |name: &str, extra: &[&str]| {
         let path = dir.join(name);
-        stdout_of(
+        window_stdout_of(
             bin()
                 .args([
                     "demo",
@@ -278,7 +278,7 @@ fn window_draws_the_same_frame_through_glx_and_through_egl() {
     let head = load(&headless);
     for (flag, api) in [("auto", "GLX"), ("glx", "GLX"), ("egl", "EGL")] {
         let shot = dir.join(format!("{flag}.png"));
-        let out = stdout_of(
+        let out = window_stdout_of(
             bin()
                 .args([
                     "demo",
@@ -313,7 +313,7 @@ fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
     let dir = display_and_dir("target");
     let shot = dir.join("window.png");
     let headless = dir.join("headless.png");
-    let out = stdout_of(
+    let out = window_stdout_of(
         bin()
             .args([
                 "demo",
@@ -344,7 +344,7 @@ fn window_runs_the_configuration_target_error_chose_and_the_quality_preset() {
     );
     let mean = mean_difference(&load(&shot), &load(&headless));
     assert!(mean < 1.0, "window and headless differ by {mean} ({flags})");
-    let out = stdout_of(bin().args([
+    let out = window_stdout_of(bin().args([
         "demo",
         "--require-window",
         "--no-animation",

@@ -93,6 +93,30 @@ pub fn stdout_of(cmd: &mut std::process::Command) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
+/// [`stdout_of`] for a demo run with `--require-window`. An X server under load can refuse
+/// one connection among many; a refusal is tried again twice, half a second apart, and any
+/// other failure fails at once.
+pub fn window_stdout_of(cmd: &mut std::process::Command) -> String {
+    for attempt in 1..=3 {
+        let out = cmd
+            .output()
+            .unwrap_or_else(|e| panic!("cannot run {cmd:?}: {e}"));
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        if out.status.success() {
+            assert!(!stderr.contains("panicked"), "{stderr}");
+            return String::from_utf8_lossy(&out.stdout).into_owned();
+        }
+        let refused = stderr.contains("--require-window: no window");
+        assert!(
+            refused && attempt < 3,
+            "{cmd:?} failed (attempt {attempt}): {stderr}"
+        );
+        eprintln!("attempt {attempt}: {stderr}");
+        std::thread::sleep(std::time::Duration::from_millis(500));
+    }
+    unreachable!("the third attempt returns or fails")
+}
+
 /// The largest fraction of receiver pixels whose visibility changes when only the camera a
 /// light's box (or cascades) is fitted to moves by `step`, 2`step`, ... (`steps` moves,
 /// each along (1, 0, 0.5)), the view itself staying put: what shimmer would show.

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use shadowmap::{steps, Scene};
 
-use super::{bin, stdout_of};
+use super::{bin, stdout_of, window_stdout_of};
 
 /// The share of pixels whose colour differs by more than 8 levels in any channel.
 pub fn differing_share(a: &Path, b: &Path) -> f64 {
@@ -39,25 +39,32 @@ pub fn staged_steps() -> Vec<(&'static str, &'static str)> {
 }
 
 /// The demo's frame and render's of `step` on `scene`, in `dir`; `display`: whether the
-/// demo may open a window (else it runs without one and renders headless).
+/// demo opens a window (`--require-window`; else it runs without a display and renders
+/// headless).
 pub fn demo_and_render(dir: &Path, scene: &str, step: &str, display: bool) -> (PathBuf, PathBuf) {
     let (demo, render) = (
         dir.join(format!("{scene}-{step}-demo.png")),
         dir.join(format!("{scene}-{step}-render.png")),
     );
     let common = ["--scene", scene, "--step", step, "--size", "320x180"];
-    let mut cmd = bin();
-    if !display {
-        cmd.env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY");
-    }
-    let out = stdout_of(
+    let demo_cmd = || {
+        let mut cmd = bin();
         cmd.arg("demo")
             .args(common)
             .args(["--no-hud", "--no-animation", "--exit-after-frames", "2"])
             .arg("--screenshot")
-            .arg(&demo),
-    );
-    // The window's frame where a display is asked for, the fallback's where not.
+            .arg(&demo);
+        match display {
+            true => cmd.arg("--require-window"),
+            false => cmd.env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY"),
+        };
+        cmd
+    };
+    let out = match display {
+        true => window_stdout_of(&mut demo_cmd()),
+        false => stdout_of(&mut demo_cmd()),
+    };
+    // The fallback's frame where no display is asked for.
     assert_eq!(out.contains("No display for a window"), !display, "{out}");
     stdout_of(bin().arg("render").args(common).arg("--out").arg(&render));
     (demo, render)
