@@ -223,9 +223,9 @@ pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQu
     quads
 }
 
-/// Whether the panels (a `column` wide and tall) go to the top-right corner: when in the
-/// top-left they would lie over the scene's translucent items and in the top-right they
-/// would not. Those items are what a scene with them is about (the smoke), and a panel's
+/// Whether the panels (a `column` wide and tall) go to the top-right corner: when the frame
+/// has room for them there, and in the top-left they would lie over the scene's translucent
+/// items and in the top-right they would not. Those items are what a scene with them is about (the smoke), and a panel's
 /// dark ground dims what is under it.
 fn on_the_right(scene: &Scene, size: (u32, u32), column: (f32, f32)) -> bool {
     let items = translucent_on_screen(scene, size);
@@ -233,7 +233,8 @@ fn on_the_right(scene: &Scene, size: (u32, u32), column: (f32, f32)) -> bool {
     let overlaps = |x0: f32| {
         (items.iter()).any(|r| r[0] < x0 + w && r[2] > x0 && r[1] < MARGIN + h && r[3] > MARGIN)
     };
-    overlaps(MARGIN) && !overlaps(size.0 as f32 - MARGIN - w)
+    let right = size.0 as f32 - MARGIN - w;
+    right > MARGIN && overlaps(MARGIN) && !overlaps(right)
 }
 
 /// Where each translucent item falls on a `size` frame from the scene's camera: the box of
