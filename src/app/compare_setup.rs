@@ -1,8 +1,6 @@
 //! What `compare` and `compare --motion` share before any frame: the scene, its settings,
 //! every check that needs no driver, then the context and the light's shadow plan.
 
-use std::path::Path;
-
 use shadowmap::compare::{check_light, CompareOptions};
 use shadowmap::engine::HeadlessContext;
 use shadowmap::output::check_output_dir;
@@ -28,7 +26,7 @@ impl CompareSetup {
         let (width, height) = args.scene.size(&scene);
         args.settings.check_values(&scene, &settings)?;
         check_light(&scene, args.light, "--light", true)?;
-        check_output_dir("--out-dir", Path::new(&args.out_dir))?;
+        check_output_dir("--out-dir", &args.out_dir)?;
         let context = HeadlessContext::new()?;
         let plan = args.settings.check(context.gl(), &scene, &settings)?;
         args.scene.check_size(context.gl(), &scene)?;

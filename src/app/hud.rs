@@ -5,9 +5,10 @@
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
 //! are `engine::text`'s. The status panel sits in the top-left corner and the key panel
-//! under it (in the top-right corner when the left would cover the translucent items); the bottom-right corner holds the shadow-map inset ([`inset_rect`]: the
-//! light's map beside the shadows it makes, LearnOpenGL's debug quad made small), which
-//! the renderer draws (`Renderer::render_depth_inset`) after the scene and before the HUD.
+//! under it (in the top-right corner when the left would cover the translucent items); the
+//! bottom-right corner holds the shadow-map inset ([`inset_rect`]: the light's map beside
+//! the shadows it makes, LearnOpenGL's debug quad made small), which the renderer draws
+//! (`Renderer::render_depth_inset`) after the scene and before the HUD.
 
 use glam::Vec3;
 use shadowmap::engine::text::{FontAtlas, TextQuad, TextRenderer};
@@ -225,8 +226,8 @@ pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQu
 
 /// Whether the panels (a `column` wide and tall) go to the top-right corner: when the frame
 /// has room for them there, and in the top-left they would lie over the scene's translucent
-/// items and in the top-right they would not. Those items are what a scene with them is about (the smoke), and a panel's
-/// dark ground dims what is under it.
+/// items and in the top-right they would not. Those items are what a scene with them is
+/// about (the smoke), and a panel's dark ground dims what is under it.
 fn on_the_right(scene: &Scene, size: (u32, u32), column: (f32, f32)) -> bool {
     let items = translucent_on_screen(scene, size);
     let (w, h) = column;
@@ -243,8 +244,10 @@ fn translucent_on_screen(scene: &Scene, size: (u32, u32)) -> Vec<[f32; 4]> {
     let to_clip = shadowmap::motion::view_projection(&scene.camera, size.0, size.1);
     let (w, h) = (f64::from(size.0), f64::from(size.1));
     let mut rects = Vec::new();
+    // Each mesh's bounds once, for the items that share it (the smoke's puffs).
+    let mut bounds = vec![None; scene.meshes.len()];
     for item in scene.items.iter().filter(|i| i.is_translucent()) {
-        let (lo, hi) = scene.meshes[item.mesh].bounds();
+        let (lo, hi) = *bounds[item.mesh].get_or_insert_with(|| scene.meshes[item.mesh].bounds());
         let model = item.model_matrix64();
         let mut rect: Option<[f32; 4]> = None;
         for corner in 0..8 {
