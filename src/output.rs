@@ -88,17 +88,18 @@ fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 /// persisted) and makes sure they reached the disk: some file systems report a full disk
 /// only when the data is synced.
 fn write_new(target: &Path, bytes: &[u8]) -> std::io::Result<tempfile::NamedTempFile> {
-    use std::os::unix::fs::PermissionsExt;
     let name = target
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
-    let mut file = tempfile::Builder::new()
-        .prefix(&format!(".{name}."))
-        .suffix(".tmp")
-        // As a file made by `File::create`: the umask decides (not tempfile's owner-only).
-        .permissions(std::fs::Permissions::from_mode(0o666))
-        .tempfile_in(parent_of(target))?;
+    let prefix = format!(".{name}.");
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(&prefix).suffix(".tmp");
+    // As a file made by `File::create`: the umask decides (not tempfile's owner-only).
+    if let Some(permissions) = crate::engine::context::new_file_permissions() {
+        builder.permissions(permissions);
+    }
+    let mut file = builder.tempfile_in(parent_of(target))?;
     file.write_all(bytes)?;
     file.flush()?;
     file.as_file().sync_all()?;
@@ -405,6 +406,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(unix)]
     fn a_written_file_gets_the_permissions_of_any_new_file() {
         use std::os::unix::fs::PermissionsExt;
         let dir = scratch("mode");
@@ -417,6 +419,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(unix)]
     fn a_full_device_is_an_error_naming_the_path() {
         let err = write_file(Path::new("/dev/full"), "the image", &[0u8; 70_000]).unwrap_err();
         let text = err.to_string();
@@ -427,6 +430,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg(unix)]
     fn a_link_keeps_pointing_at_the_file_it_names() {
         let dir = scratch("link");
         let link = dir.join("link.png");

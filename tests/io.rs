@@ -87,6 +87,7 @@ fn entries(dir: &Path) -> Vec<String> {
 }
 
 #[test]
+#[cfg(unix)] // /dev/full, /dev/stdout, FIFOs
 fn a_failed_write_is_an_error_naming_the_path() {
     let dir = case_dir("failed-write");
     let plain = dir.join("plain-file");
@@ -161,6 +162,7 @@ fn a_failed_write_is_an_error_naming_the_path() {
 }
 
 #[test]
+#[cfg(unix)] // /dev/full, /dev/stdout, FIFOs
 fn a_device_that_takes_bytes_is_written_in_place() {
     let dir = case_dir("device");
     let r = run(&dir, &["render", "--size", "16x16", "--out", "/dev/null"]);
@@ -197,6 +199,7 @@ fn huge_png(side: u32) -> Vec<u8> {
 }
 
 #[test]
+#[cfg(unix)] // /dev/full, /dev/stdout, FIFOs
 fn png_inputs_are_regular_files_of_bounded_size_and_memory() {
     let mut cases = Vec::new();
     let mut check = |case: &str, texture: &str, prepare: &dyn Fn(&Path), needles: &[&str]| {

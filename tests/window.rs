@@ -293,7 +293,7 @@ fn window_draws_the_same_frame_through_glx_and_through_egl() {
                 .arg(&shot),
         );
         assert!(
-            out.contains(&format!("swap included; window through {api})")),
+            out.contains(&format!("swap included; window through {api} on X11)")),
             "--gl-api {flag}: {out}"
         );
         let win = load(&shot);
@@ -373,4 +373,160 @@ fn the_window_draws_each_staged_step_as_render_does() {
             share * 100.0
         );
     }
+}
+
+/// The environment variable `.ci/run` sets for a platform test, or a failure that says how
+/// to run the test (these tests must not pass by skipping).
+fn required_env(name: &str, what: &str) -> String {
+    std::env::var(name)
+        .ok()
+        .filter(|v| !v.is_empty())
+        .unwrap_or_else(|| panic!("{name} is not set: {what} (see .ci/run)"))
+}
+
+/// `--size 640x360 --no-animation --no-hud`: the still DummyGame, for comparing platforms.
+fn still_dummy(cmd: &mut std::process::Command) -> &mut std::process::Command {
+    cmd.args(["--no-animation", "--no-hud", "--size", "640x360"])
+}
+
+/// The headless Linux frame of the still DummyGame (what every platform must draw).
+fn linux_headless_dummy(dir: &std::path::Path) -> std::path::PathBuf {
+    let path = dir.join("linux-headless.png");
+    stdout_of(
+        bin()
+            .args(["render", "--size", "640x360", "--out"])
+            .arg(&path),
+    );
+    path
+}
+
+/// Asserts that at most 1% of the pixels of `shot` differ from `reference`.
+fn within_one_percent(what: &str, shot: &std::path::Path, reference: &std::path::Path) {
+    let share = common::step_frames::differing_share(shot, reference);
+    assert!(
+        share <= 0.01,
+        "{what}: {:.2}% of the pixels differ from {}",
+        share * 100.0,
+        reference.display()
+    );
+}
+
+#[test]
+#[ignore = "needs a Wayland compositor: .ci/run starts weston's headless backend"]
+fn wayland_window_draws_the_frame_x11_and_headless_draw() {
+    let socket = required_env(
+        "SHADOWMAP_WAYLAND_DISPLAY",
+        "the name of a Wayland compositor's socket, such as weston --backend=headless-backend.so",
+    );
+    let dir = display_and_dir("wayland");
+    let headless = linux_headless_dummy(&dir);
+    let x11 = dir.join("x11.png");
+    let out = window_stdout_of(
+        still_dummy(bin().args(["demo", "--require-window"]))
+            .args(["--exit-after-frames", "5", "--screenshot"])
+            .arg(&x11),
+    );
+    assert!(out.contains("window through GLX on X11)"), "{out}");
+    let wayland = dir.join("wayland.png");
+    let wayland_demo = |extra: &[&str]| {
+        let mut cmd = bin();
+        cmd.env_remove("DISPLAY")
+            .env("WAYLAND_DISPLAY", &socket)
+            .args(["demo", "--require-window"])
+            .args(extra);
+        cmd
+    };
+    let out = window_stdout_of(
+        still_dummy(&mut wayland_demo(&[]))
+            .args(["--exit-after-frames", "5", "--screenshot"])
+            .arg(&wayland),
+    );
+    // The demo's own report: a Wayland window's EGL context, not X11 and not the fallback.
+    assert!(out.contains("window through EGL on Wayland)"), "{out}");
+    assert_eq!(load(&wayland).dimensions(), (640, 360));
+    within_one_percent("the Wayland window", &wayland, &x11);
+    within_one_percent("the Wayland window", &wayland, &headless);
+
+    // GLX is X11's: on Wayland it is refused with the list of what there is.
+    let refused = wayland_demo(&["--gl-api", "glx", "--exit-after-frames", "2"])
+        .output()
+        .unwrap();
+    assert!(!refused.status.success());
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains(
+            "--gl-api glx: a window on Wayland gets its OpenGL context through EGL; \
+             expected one of: auto, egl"
+        ),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Runs the Windows build under Wine in `dir` (its relative paths are Windows paths there).
+fn wine(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    let exe = required_env(
+        "SHADOWMAP_WINDOWS_EXE",
+        "the x86_64-pc-windows-gnu build of shadowmap.exe, run under wine",
+    );
+    std::process::Command::new("wine")
+        .arg(&exe)
+        .args(args)
+        .current_dir(dir)
+        .env("WINEDEBUG", "-all")
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run wine {exe}: {e}"))
+}
+
+/// stdout of a successful run under Wine.
+fn wine_stdout(dir: &std::path::Path, args: &[&str]) -> String {
+    let out = wine(dir, args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.success(),
+        "wine {args:?}: {:?}\n{stderr}",
+        out.status
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+#[test]
+#[ignore = "needs Wine and an X display: .ci/run builds the Windows program and runs it"]
+fn windows_build_under_wine_draws_the_linux_frame_through_wgl() {
+    let dir = display_and_dir("wine");
+    let headless = linux_headless_dummy(&dir);
+    let still = ["--no-animation", "--no-hud", "--size", "640x360"];
+
+    // The demo in a window: WGL (Wine hands it to the X server's GLX), 30 frames.
+    let args = [&["demo", "--require-window"][..], &still[..]].concat();
+    let args = [
+        &args[..],
+        &["--exit-after-frames", "30", "--screenshot", "demo.png"],
+    ]
+    .concat();
+    let out = wine_stdout(&dir, &args);
+    assert!(out.contains("window through WGL on Windows)"), "{out}");
+    assert_eq!(load(&dir.join("demo.png")).dimensions(), (640, 360));
+    within_one_percent("the demo under Wine", &dir.join("demo.png"), &headless);
+
+    // Headless: an invisible window's context drawing into the program's own framebuffer.
+    wine_stdout(
+        &dir,
+        &["render", "--size", "640x360", "--out", "render.png"],
+    );
+    within_one_percent("render under Wine", &dir.join("render.png"), &headless);
+
+    // GLX is X11's: refused on Windows with the list of what there is.
+    let out = wine(&dir, &["demo", "--require-window", "--gl-api", "glx"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(
+            "--gl-api glx: a window on Windows gets its OpenGL context through WGL or EGL; \
+             expected one of: auto, wgl, egl"
+        ),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use shadowmap::engine::window_context::WindowApi;
+use shadowmap::engine::WindowApi;
 use shadowmap::settings::ShadowPatch;
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::steps;
@@ -167,9 +167,11 @@ pub struct DemoArgs {
     /// no-display fallback.
     #[arg(long)]
     pub inset: bool,
-    /// Where the window's OpenGL context comes from: glx (X11's own; the frame reaches the X
-    /// server through shared memory), egl (Mesa's; on X11 with a software driver the frame
-    /// goes down the socket, 1.2 to 1.35 times slower here), or auto (GLX, else EGL).
+    /// Where the window's OpenGL context comes from: auto (the platform's own: GLX on X11,
+    /// WGL on Windows, CGL on macOS, EGL on Wayland; else EGL), glx (X11's; the frame reaches
+    /// the X server through shared memory), egl (Mesa's on Linux; on X11 with a software
+    /// driver the frame goes down the socket, 1.2 to 1.35 times slower), wgl (Windows) or cgl
+    /// (macOS). An API the platform lacks is refused with the list of those it has.
     #[arg(long, value_enum, default_value_t = GlApi::Auto, value_name = "API")]
     pub gl_api: GlApi,
 }
@@ -181,6 +183,8 @@ pub enum GlApi {
     Auto,
     Glx,
     Egl,
+    Wgl,
+    Cgl,
 }
 
 impl From<GlApi> for WindowApi {
@@ -189,6 +193,8 @@ impl From<GlApi> for WindowApi {
             GlApi::Auto => WindowApi::Auto,
             GlApi::Glx => WindowApi::Glx,
             GlApi::Egl => WindowApi::Egl,
+            GlApi::Wgl => WindowApi::Wgl,
+            GlApi::Cgl => WindowApi::Cgl,
         }
     }
 }

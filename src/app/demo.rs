@@ -5,14 +5,14 @@ use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
-use shadowmap::engine::window_context::WindowContext;
+use shadowmap::engine::context::{self, WindowContext};
 use shadowmap::output::check_output_image;
 use shadowmap::settings::{ShadowTechnique, MAX_CASCADES};
 use shadowmap::{steps, Error, Renderer, Result, Scene, ShadowSettings};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
@@ -67,17 +67,15 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     if let Some(line) = args.settings.quality_summary()? {
         println!("{line}");
     }
-    let event_loop = match EventLoop::new() {
-        Ok(l) => l,
-        // winit's own error names its source file and line: the fallback says what it means.
-        Err(_) if args.require_window => {
+    match context::window_system() {
+        Ok(()) => {}
+        Err(reason) if args.require_window => {
             return Err(Error::Context(format!(
-                "--require-window: no window ({}); nothing rendered",
-                fallback::no_display_reason()
+                "--require-window: no window ({reason}); nothing rendered"
             )))
         }
-        Err(_) => return headless_fallback(args, scene, &settings),
-    };
+        Err(reason) => return headless_fallback(args, scene, &settings, &reason),
+    }
     let size = args.scene.size(&scene);
     let step = args
         .settings
@@ -88,9 +86,7 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     let mut demo = Demo::new(args, (loaded, scene), settings, size, step);
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
-    event_loop
-        .run_app(&mut demo)
-        .map_err(|e| Error::Context(format!("window event loop: {e}")))?;
+    context::run_app(&mut demo)?;
     if args.stress_window {
         println!(
             "stress: {} frames drawn, {} redraws skipped while minimised",

@@ -8,10 +8,10 @@
 pub mod bindings;
 pub mod blend;
 pub mod check;
+pub mod context;
 pub mod counters;
 pub mod depth_peel;
 pub mod framebuffer;
-pub mod headless;
 pub mod instances;
 pub mod mesh;
 pub mod moment_map;
@@ -28,7 +28,6 @@ pub mod timer;
 pub mod translucent_map;
 pub mod vertex_capture;
 pub mod volume;
-pub mod window_context;
 
 use std::rc::Rc;
 
@@ -37,8 +36,8 @@ pub type Gl = Rc<bindings::GlContext>;
 
 pub use blend::TranslucentBlend;
 pub use check::{check_gl, gl_limits, GlLimits};
+pub use context::{HeadlessContext, WindowApi, WindowContext};
 pub use depth_peel::{DepthPeel, PeelPass};
-pub use headless::HeadlessContext;
 pub use instances::{InstanceBuffer, Instanced};
 pub use mesh::{FullScreenTriangle, Mesh};
 pub use moment_map::MomentMap;

@@ -12,6 +12,8 @@ mod flags;
 mod models;
 mod no_display;
 mod scene_files;
+// FIFOs, links to /dev/zero: Unix files.
+#[cfg(unix)]
 mod unreadable;
 
 use std::path::{Path, PathBuf};

@@ -104,7 +104,14 @@ pub fn window_stdout_of(cmd: &mut std::process::Command) -> String {
         let stderr = String::from_utf8_lossy(&out.stderr);
         if out.status.success() {
             assert!(!stderr.contains("panicked"), "{stderr}");
-            return String::from_utf8_lossy(&out.stdout).into_owned();
+            let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+            // The demo's own report that a window drew the frames (the headless fallback
+            // prints no such line): "... window through GLX on X11)".
+            assert!(
+                stdout.contains("; window through "),
+                "{cmd:?} drew no window: {stdout}"
+            );
+            return stdout;
         }
         let refused = stderr.contains("--require-window: no window");
         assert!(

@@ -14,17 +14,6 @@ use super::super::hud::{render_frames_with_overlays, Overlays};
 /// Where the no-display fallback writes its picture.
 const FALLBACK_IMAGE: &str = "shadowmap-demo.png";
 
-/// Why there is no window, from the environment winit read (its own error names a source
-/// file of winit's, not the cause).
-pub(super) fn no_display_reason() -> String {
-    let var = |name| std::env::var(name).ok().filter(|v| !v.is_empty());
-    match (var("DISPLAY"), var("WAYLAND_DISPLAY")) {
-        (None, None) => "DISPLAY and WAYLAND_DISPLAY are not set".to_string(),
-        (Some(d), _) => format!("the X server at DISPLAY={d} refused the connection"),
-        (None, Some(w)) => format!("the Wayland compositor at WAYLAND_DISPLAY={w} refused"),
-    }
-}
-
 /// The one line the no-display fallback prints: why, what was written, how to get a window.
 pub fn fallback_message(
     reason: &str,
@@ -35,8 +24,7 @@ pub fn fallback_message(
 ) -> String {
     format!(
         "No display for a window ({reason}): rendered {frames} frame{} of the {scene} scene \
-         headless to {}{} instead. For a window, run under X11: `apt-get install xvfb`, \
-         `Xvfb :99 &`, then `DISPLAY=:99 shadowmap`.",
+         headless to {}{} instead. {}",
         if frames == 1 { "" } else { "s" },
         path.display(),
         if replaced {
@@ -44,6 +32,7 @@ pub fn fallback_message(
         } else {
             ""
         },
+        shadowmap::engine::context::no_display_hint(),
     )
 }
 
@@ -55,6 +44,7 @@ pub(super) fn headless_fallback(
     args: &DemoArgs,
     mut scene: Scene,
     settings: &ShadowSettings,
+    reason: &str,
 ) -> Result<()> {
     let path = args
         .screenshot
@@ -111,7 +101,7 @@ pub(super) fn headless_fallback(
     let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
     println!(
         "{}",
-        fallback_message(&no_display_reason(), &scene.name, frames, &shown, replaced)
+        fallback_message(reason, &scene.name, frames, &shown, replaced)
     );
     Ok(())
 }
