@@ -7,6 +7,7 @@
 mod common;
 
 use std::path::{Path, PathBuf};
+#[cfg(unix)]
 use std::process::Command;
 use std::time::Duration;
 
@@ -182,6 +183,7 @@ fn a_device_that_takes_bytes_is_written_in_place() {
 }
 
 /// A scene whose cube wears the texture at `texture` (absolute, or relative to the scene).
+#[cfg(unix)]
 fn textured_scene(dir: &Path, texture: &str) -> PathBuf {
     let path = dir.join("scene.toml");
     std::fs::write(
@@ -194,6 +196,7 @@ fn textured_scene(dir: &Path, texture: &str) -> PathBuf {
 
 /// A PNG header claiming `side` x `side` RGBA pixels (inside the side limit, over the
 /// memory budget), with a few bytes of data.
+#[cfg(unix)]
 fn huge_png(side: u32) -> Vec<u8> {
     common::png_claiming(side, side)
 }

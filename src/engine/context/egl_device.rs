@@ -12,7 +12,7 @@ use glutin::context::{ContextApi, ContextAttributesBuilder, GlProfile, Version};
 use glutin::display::GlDisplay;
 
 use super::super::Gl;
-use super::headless::DEBIAN_PACKAGES;
+use super::platform::DEBIAN_PACKAGES;
 use crate::error::{Error, Result};
 
 /// What keeps the context alive: the context, then its display (fields drop in order).

@@ -11,9 +11,6 @@ use super::egl_device::Backing;
 #[cfg(not(all(unix, not(target_vendor = "apple"), not(target_os = "android"))))]
 use super::hidden_window::Backing;
 
-/// The packages that provide EGL and a software GL driver on Debian and Ubuntu.
-pub const DEBIAN_PACKAGES: &str = "libegl1 libegl-mesa0 libgl1-mesa-dri";
-
 /// A current context. Keep it alive as long as any GL object made with it.
 pub struct HeadlessContext {
     gl: Gl,

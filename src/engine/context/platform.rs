@@ -53,6 +53,9 @@ impl Platform {
     }
 }
 
+/// The packages that provide EGL and a software GL driver on Debian and Ubuntu.
+pub const DEBIAN_PACKAGES: &str = "libegl1 libegl-mesa0 libgl1-mesa-dri";
+
 /// How to get a window when there is none, said the same way on every platform.
 pub fn no_display_hint() -> &'static str {
     #[cfg(all(unix, not(target_vendor = "apple"), not(target_os = "android")))]
