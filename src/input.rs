@@ -97,8 +97,21 @@ fn size_text(bytes: u64) -> String {
 }
 
 fn kind_of(t: &std::fs::FileType) -> &'static str {
-    if let Some(kind) = crate::engine::context::special_file_kind(t) {
-        return kind;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO (named pipe)";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
     }
     if t.is_dir() {
         "a folder"

@@ -84,6 +84,20 @@ fn write_in_place(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     file.flush()
 }
 
+/// The permissions of any new file (the umask decides), where the platform has Unix modes;
+/// elsewhere the temporary file's default already is.
+fn new_file_permissions() -> Option<std::fs::Permissions> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        Some(std::fs::Permissions::from_mode(0o666))
+    }
+    #[cfg(not(unix))]
+    {
+        None
+    }
+}
+
 /// Writes `bytes` to a new hidden file beside `target` (removed when dropped, unless
 /// persisted) and makes sure they reached the disk: some file systems report a full disk
 /// only when the data is synced.
@@ -96,7 +110,7 @@ fn write_new(target: &Path, bytes: &[u8]) -> std::io::Result<tempfile::NamedTemp
     let mut builder = tempfile::Builder::new();
     builder.prefix(&prefix).suffix(".tmp");
     // As a file made by `File::create`: the umask decides (not tempfile's owner-only).
-    if let Some(permissions) = crate::engine::context::new_file_permissions() {
+    if let Some(permissions) = new_file_permissions() {
         builder.permissions(permissions);
     }
     let mut file = builder.tempfile_in(parent_of(target))?;

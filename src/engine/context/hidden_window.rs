@@ -12,7 +12,8 @@ use winit::window::{Window, WindowId};
 
 use super::super::Gl;
 use super::event_loop::with_event_loop;
-use super::window::{WindowApi, WindowContext};
+use super::platform::WindowApi;
+use super::window::WindowContext;
 use crate::error::{Error, Result};
 
 /// The invisible window whose context is current.

@@ -22,7 +22,5 @@ mod window;
 
 pub use event_loop::{no_display_reason, run_app, window_system};
 pub use headless::HeadlessContext;
-pub use platform::{
-    new_file_permissions, no_display_hint, special_file_kind, Platform, DEBIAN_PACKAGES,
-};
-pub use window::{WindowApi, WindowContext};
+pub use platform::{no_display_hint, Platform, WindowApi, DEBIAN_PACKAGES};
+pub use window::WindowContext;

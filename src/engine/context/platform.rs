@@ -1,10 +1,80 @@
 //! What differs between the desktops, named once: which window system a display is, which
-//! GL platform APIs it offers, the words of the no-display hint, and the two file-system
-//! details the output and input code need (a new file's mode, a special file's kind).
+//! GL platform APIs it offers (`--gl-api`), and the words of the no-display hint.
 
+use glutin::display::GlDisplay;
+use glutin_winit::ApiPreference;
 use raw_window_handle::RawDisplayHandle;
 
-use super::window::WindowApi;
+use crate::error::{Error, Result};
+
+/// Which platform API the window's context comes from (`--gl-api`). On X11 with a software
+/// driver GLX and EGL swap differently: GLX hands the frame to the X server through shared
+/// memory (MIT-SHM), while Mesa's EGL (22.x) sends it down the socket, which made the window
+/// 1.2 to 1.35 times slower than headless.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum WindowApi {
+    /// The platform's own (GLX, WGL, CGL; EGL on Wayland), else EGL.
+    #[default]
+    Auto,
+    Glx,
+    Egl,
+    Wgl,
+    Cgl,
+}
+
+impl WindowApi {
+    /// The name `--gl-api` takes, lower case.
+    pub fn flag(self) -> &'static str {
+        match self {
+            WindowApi::Auto => "auto",
+            WindowApi::Glx => "glx",
+            WindowApi::Egl => "egl",
+            WindowApi::Wgl => "wgl",
+            WindowApi::Cgl => "cgl",
+        }
+    }
+
+    /// The API a glutin display is, from its version string ("GLX 1.4", "EGL 1.5", "WGL",
+    /// "Apple CGL"): the one thing every backend's display says of itself.
+    pub(super) fn of_display(display: &glutin::display::Display) -> WindowApi {
+        let version = display.version_string();
+        [WindowApi::Glx, WindowApi::Wgl, WindowApi::Cgl]
+            .into_iter()
+            .find(|api| version.contains(&api.flag().to_uppercase()))
+            .unwrap_or(WindowApi::Egl)
+    }
+
+    /// glutin-winit's preference for this choice on `platform`, or the refusal that lists
+    /// what the platform has.
+    pub(super) fn preference(self, platform: Platform) -> Result<ApiPreference> {
+        let apis = platform.apis();
+        if self != WindowApi::Auto && !apis.contains(&self) {
+            let mut names = vec!["auto"];
+            names.extend(apis.iter().map(|a| a.flag()));
+            return Err(Error::Invalid(format!(
+                "--gl-api {}: a window on {} gets its OpenGL context through {}; expected \
+                 one of: {}",
+                self.flag(),
+                platform.name(),
+                match apis {
+                    [] => "none of the APIs this program knows".to_string(),
+                    _ => apis
+                        .iter()
+                        .map(|a| a.flag().to_uppercase())
+                        .collect::<Vec<_>>()
+                        .join(" or "),
+                },
+                names.join(", ")
+            )));
+        }
+        Ok(match self {
+            WindowApi::Egl => ApiPreference::PreferEgl,
+            WindowApi::Auto | WindowApi::Glx | WindowApi::Wgl | WindowApi::Cgl => {
+                ApiPreference::FallbackEgl
+            }
+        })
+    }
+}
 
 /// The window system the event loop is connected to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -66,47 +136,5 @@ pub fn no_display_hint() -> &'static str {
     #[cfg(not(all(unix, not(target_vendor = "apple"), not(target_os = "android"))))]
     {
         "For a window, run it from the desktop session (not a service or a remote shell)."
-    }
-}
-
-/// The permissions of a file that the output code writes through a temporary file: those
-/// of any new file (the umask decides; tempfile's own default is owner-only). `None` where
-/// the platform has no Unix modes: there the default is already that of a new file.
-pub fn new_file_permissions() -> Option<std::fs::Permissions> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        Some(std::fs::Permissions::from_mode(0o666))
-    }
-    #[cfg(not(unix))]
-    {
-        None
-    }
-}
-
-/// A Unix special file's kind in words (FIFO, device, socket), for "cannot read …" messages;
-/// `None` for a plain file or a directory, and everywhere without such files.
-pub fn special_file_kind(t: &std::fs::FileType) -> Option<&'static str> {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_fifo() {
-            return Some("a FIFO (named pipe)");
-        }
-        if t.is_char_device() {
-            return Some("a character device");
-        }
-        if t.is_block_device() {
-            return Some("a block device");
-        }
-        if t.is_socket() {
-            return Some("a socket");
-        }
-        None
-    }
-    #[cfg(not(unix))]
-    {
-        let _ = t;
-        None
     }
 }

@@ -12,84 +12,15 @@ use glutin::context::{
 };
 use glutin::display::{GetGlDisplay, GlDisplay};
 use glutin::surface::{GlSurface, Surface, SwapInterval, WindowSurface};
-use glutin_winit::{ApiPreference, DisplayBuilder, GlWindow};
+use glutin_winit::{DisplayBuilder, GlWindow};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::event_loop::ActiveEventLoop;
 use winit::window::{Window, WindowAttributes};
 
 use super::super::render_target::read_rgba8;
 use super::super::Gl;
-use super::platform::Platform;
+use super::platform::{Platform, WindowApi};
 use crate::error::{Error, Result};
-
-/// Which platform API the window's context comes from (`--gl-api`). On X11 with a software
-/// driver GLX and EGL swap differently: GLX hands the frame to the X server through shared
-/// memory (MIT-SHM), while Mesa's EGL (22.x) sends it down the socket, which made the window
-/// 1.2 to 1.35 times slower than headless.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum WindowApi {
-    /// The platform's own (GLX, WGL, CGL; EGL on Wayland), else EGL.
-    #[default]
-    Auto,
-    Glx,
-    Egl,
-    Wgl,
-    Cgl,
-}
-
-impl WindowApi {
-    /// The name `--gl-api` takes, lower case.
-    pub fn flag(self) -> &'static str {
-        match self {
-            WindowApi::Auto => "auto",
-            WindowApi::Glx => "glx",
-            WindowApi::Egl => "egl",
-            WindowApi::Wgl => "wgl",
-            WindowApi::Cgl => "cgl",
-        }
-    }
-
-    /// The API a glutin display is, from its version string ("GLX 1.4", "EGL 1.5", "WGL",
-    /// "Apple CGL"): the one thing every backend's display says of itself.
-    fn of_display(display: &glutin::display::Display) -> WindowApi {
-        let version = display.version_string();
-        [WindowApi::Glx, WindowApi::Wgl, WindowApi::Cgl]
-            .into_iter()
-            .find(|api| version.contains(&api.flag().to_uppercase()))
-            .unwrap_or(WindowApi::Egl)
-    }
-
-    /// glutin-winit's preference for this choice on `platform`, or the refusal that lists
-    /// what the platform has.
-    fn preference(self, platform: Platform) -> Result<ApiPreference> {
-        let apis = platform.apis();
-        if self != WindowApi::Auto && !apis.contains(&self) {
-            let mut names = vec!["auto"];
-            names.extend(apis.iter().map(|a| a.flag()));
-            return Err(Error::Invalid(format!(
-                "--gl-api {}: a window on {} gets its OpenGL context through {}; expected \
-                 one of: {}",
-                self.flag(),
-                platform.name(),
-                match apis {
-                    [] => "none of the APIs this program knows".to_string(),
-                    _ => apis
-                        .iter()
-                        .map(|a| a.flag().to_uppercase())
-                        .collect::<Vec<_>>()
-                        .join(" or "),
-                },
-                names.join(", ")
-            )));
-        }
-        Ok(match self {
-            WindowApi::Egl => ApiPreference::PreferEgl,
-            WindowApi::Auto | WindowApi::Glx | WindowApi::Wgl | WindowApi::Cgl => {
-                ApiPreference::FallbackEgl
-            }
-        })
-    }
-}
 
 /// A window, its GL surface and its current context.
 pub struct WindowContext {
