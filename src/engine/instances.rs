@@ -9,6 +9,7 @@
 //! float math and the pictures stay the same.
 
 use std::cell::{Cell, RefCell};
+use std::sync::OnceLock;
 
 use glam::{Mat3, Mat4, Vec4};
 use glow::HasContext;
@@ -219,12 +220,43 @@ pub struct Batch<K> {
     pub count: usize,
 }
 
-/// The runs of equal keys in `keys`, in order: the draw order is kept, only neighbours join.
+/// Whether items sharing a mesh are drawn with one instanced call (the default), or each
+/// with a call of its own through its per-item uniforms, as the chapters draw them: with
+/// `SHADOWMAP_INSTANCING=off` in the environment (read once), for measuring what
+/// instancing saves on a driver. The pictures are the same either way.
+pub fn instancing() -> bool {
+    static ON: OnceLock<bool> = OnceLock::new();
+    *ON.get_or_init(|| {
+        let value = std::env::var("SHADOWMAP_INSTANCING").unwrap_or_default();
+        match value.as_str() {
+            "" | "on" => true,
+            "off" => false,
+            other => {
+                eprintln!(
+                    "warning: SHADOWMAP_INSTANCING={other}: expected on or off; instancing \
+                     stays on"
+                );
+                true
+            }
+        }
+    })
+}
+
+/// The runs of equal keys in `keys`, in order: the draw order is kept, only neighbours
+/// join; with [`instancing`] off every key is a run of its own.
 pub fn batches<K: PartialEq + Copy>(keys: impl IntoIterator<Item = K>) -> Vec<Batch<K>> {
+    batches_joined(keys, instancing())
+}
+
+/// [`batches`], neighbours with equal keys joined only when `join`.
+fn batches_joined<K: PartialEq + Copy>(
+    keys: impl IntoIterator<Item = K>,
+    join: bool,
+) -> Vec<Batch<K>> {
     let mut out: Vec<Batch<K>> = Vec::new();
     for (i, key) in keys.into_iter().enumerate() {
         match out.last_mut() {
-            Some(b) if b.key == key => b.count += 1,
+            Some(b) if join && b.key == key => b.count += 1,
             _ => out.push(Batch {
                 key,
                 first: i,
@@ -257,9 +289,21 @@ mod tests {
 
     #[test]
     fn batches_join_only_neighbours() {
-        let b = batches([0, 0, 1, 1, 1, 0]);
+        let b = batches_joined([0, 0, 1, 1, 1, 0], true);
         let got: Vec<_> = b.iter().map(|b| (b.key, b.first, b.count)).collect();
         assert_eq!(got, vec![(0, 0, 2), (1, 2, 3), (0, 5, 1)]);
-        assert!(batches(std::iter::empty::<u8>()).is_empty());
+        assert!(batches_joined(std::iter::empty::<u8>(), true).is_empty());
+    }
+
+    #[test]
+    fn without_instancing_every_item_is_a_run_of_one() {
+        let b = batches_joined([0, 0, 1, 1, 1, 0], false);
+        let got: Vec<_> = b.iter().map(|b| (b.key, b.first, b.count)).collect();
+        assert_eq!(
+            got,
+            (0..6)
+                .map(|i| ([0, 0, 1, 1, 1, 0][i], i, 1))
+                .collect::<Vec<_>>()
+        );
     }
 }
