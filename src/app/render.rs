@@ -84,7 +84,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if plan.has(ShadowKind::Volume) {
         print_open_meshes(&scene);
     }
-    print_frame_stats(&frame, &settings);
+    if !shadowmap::engine::instances::instancing() {
+        println!(
+            "instancing off (SHADOWMAP_INSTANCING=off): every item drawn with a call of its \
+             own, through its uniforms"
+        );
+    }
+    let gl_renderer = shadowmap::engine::check::renderer_name(context.gl());
+    print_frame_stats(&frame, &settings, &gl_renderer);
     Ok(())
 }
 
@@ -211,8 +218,9 @@ fn print_open_meshes(scene: &Scene) {
     }
 }
 
-/// Frame times and what the shadow passes did, for a run of more than one frame.
-fn print_frame_stats(frame: &Frame, settings: &ShadowSettings) {
+/// Frame times (wall and GPU) and what the shadow passes did, for a run of more than one
+/// frame; `gl_renderer` names the driver the GPU times are from.
+fn print_frame_stats(frame: &Frame, settings: &ShadowSettings, gl_renderer: &str) {
     let Some((median, p95)) = frame.frame_time_stats() else {
         return;
     };
@@ -227,6 +235,17 @@ fn print_frame_stats(frame: &Frame, settings: &ShadowSettings) {
         at + 1,
         slowest / median
     );
+    if let Some(g) = frame.gpu_time_stats() {
+        println!(
+            "GPU time over {} frames after the first: median {:.3} ms a frame (depth passes \
+             {:.3} ms, scene pass {:.3} ms), p95 {:.3} ms (timer queries; {gl_renderer})",
+            frame.gpu_ms.len() - 1,
+            g.frame,
+            g.depth,
+            g.scene,
+            g.frame_p95
+        );
+    }
     let p = frame.depth_passes;
     println!(
         "shadow-map passes over {} frames: {} drawn whole, {} patched where casters moved ({} \

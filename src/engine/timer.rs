@@ -36,20 +36,26 @@ impl PassTimer {
 
     /// The last measured time of every pass in milliseconds (waits for the results).
     pub fn read_ms(&self) -> Vec<f64> {
-        self.queries
-            .iter()
-            .map(|q| {
-                let mut ns: u64 = 0;
-                // With no query buffer bound, the "offset" is the address to write to.
-                unsafe {
-                    self.gl.get_query_parameter_u64_with_offset(
-                        q.raw(),
-                        glow::QUERY_RESULT,
-                        &mut ns as *mut u64 as usize,
-                    )
-                };
-                ns as f64 / 1.0e6
-            })
+        (0..self.queries.len())
+            .map(|i| self.read_pass_ms(i))
             .collect()
+    }
+
+    /// The last measured time of pass `i` in milliseconds (waits for it); 0 for a pass
+    /// there is no query for. Only a pass timed at least once has a result to read.
+    pub fn read_pass_ms(&self, i: usize) -> f64 {
+        let Some(q) = self.queries.get(i) else {
+            return 0.0;
+        };
+        let mut ns: u64 = 0;
+        // With no query buffer bound, the "offset" is the address to write to.
+        unsafe {
+            self.gl.get_query_parameter_u64_with_offset(
+                q.raw(),
+                glow::QUERY_RESULT,
+                &mut ns as *mut u64 as usize,
+            )
+        };
+        ns as f64 / 1.0e6
     }
 }

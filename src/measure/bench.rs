@@ -64,6 +64,9 @@ pub struct BenchRow {
     /// shadows drawn just before it (the figure a technique can change; the scene pass'
     /// shading is in both).
     pub overhead_ms: f64,
+    /// The same by the GL timer queries: the median of each frame's two passes' GPU time
+    /// minus the frame without shadows' (see the note in [`run`] on software drivers).
+    pub overhead_gpu_ms: f64,
     /// Wall time of each pass, with glFinish between them. All timings come from the
     /// quieter of two blocks of frames (see [`run`]).
     pub depth_wall_ms: Stat,
@@ -268,6 +271,8 @@ pub(super) struct Timings {
     pub wall: Vec<f64>,
     /// Frames without shadows, one before each frame of the block.
     pub plain: Vec<f64>,
+    /// Their GPU time, both passes together.
+    pub plain_gpu: Vec<f64>,
     pub depth_wall: Vec<f64>,
     pub scene_wall: Vec<f64>,
     pub depth_gpu: Vec<f64>,
@@ -323,6 +328,7 @@ mod tests {
             },
             wall_ms: stat,
             overhead_ms: overhead,
+            overhead_gpu_ms: overhead,
             depth_wall_ms: stat,
             scene_wall_ms: stat,
             depth_gpu_ms: stat,

@@ -1,7 +1,11 @@
 //! Headless frames: render a scene into an offscreen target and read back what the caller
 //! wants (colour, shadow-test visibility, world positions and normals, the depth map).
 
+use std::rc::Rc;
+
 use glam::DVec3;
+
+use super::timing::GpuPassTimes;
 
 use crate::engine::render_target::Outputs;
 use crate::engine::{Gl, RenderTarget};
@@ -34,6 +38,9 @@ pub struct Frame {
     pub depth_linear: bool,
     /// Wall time of each frame in milliseconds, measured to glFinish.
     pub frame_ms: Vec<f64>,
+    /// GPU time of each frame's depth passes (every map drawn, translucent ones too) and
+    /// scene pass in milliseconds, from `GL_TIME_ELAPSED` queries ([`GpuPassTimes`]).
+    pub gpu_ms: Vec<[f64; 2]>,
     /// The camera position the G-buffer positions are relative to.
     pub origin: DVec3,
     /// Depth passes drawn and skipped over the frames (the shadow cache).
@@ -92,6 +99,23 @@ impl Frame {
         median_p95(self.frame_ms.get(1..).unwrap_or_default())
     }
 
+    /// The GPU times after the first frame (timer queries): each pass' median and the
+    /// frame's (the two passes together) median and 95th percentile.
+    pub fn gpu_time_stats(&self) -> Option<GpuTimeStats> {
+        let after = self.gpu_ms.get(1..).unwrap_or_default();
+        let pass = |i: usize| median_p95(&after.iter().map(|t| t[i]).collect::<Vec<_>>());
+        let (depth, _) = pass(0)?;
+        let (scene, _) = pass(1)?;
+        let frames: Vec<f64> = after.iter().map(|t| t[0] + t[1]).collect();
+        let (frame, frame_p95) = median_p95(&frames)?;
+        Some(GpuTimeStats {
+            depth,
+            scene,
+            frame,
+            frame_p95,
+        })
+    }
+
     /// The depth map as 8-bit grey (0 = the light's near plane, 255 = its far plane). A
     /// perspective map is linearised first, as the depth view does, or all but the surfaces
     /// next to the light would be white.
@@ -109,6 +133,18 @@ impl Frame {
             .collect();
         Some((*size, grey))
     }
+}
+
+/// GPU milliseconds over a run's frames after the first ([`Frame::gpu_time_stats`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GpuTimeStats {
+    /// The depth passes' median.
+    pub depth: f64,
+    /// The scene pass' median.
+    pub scene: f64,
+    /// The median and 95th percentile of each frame's two passes together.
+    pub frame: f64,
+    pub frame_p95: f64,
 }
 
 /// A perspective depth in [0, 1] back to eye distance, then scaled to [0, 1] over
@@ -182,9 +218,14 @@ pub fn render_frames_with(
     scene.size = [width, height];
     let mut renderer = Renderer::new(gl, scene, settings)?;
     renderer.set_visibility_light(light);
+    // Each pass' GPU time beside the wall time (read once the frame is finished, so the
+    // queries wait for nothing more than glFinish did).
+    let timer = Rc::new(GpuPassTimes::new(gl)?);
+    renderer.set_hooks(timer.clone());
     let target = RenderTarget::new(gl, width, height, outputs)?;
     renderer.prepare_frame(scene, Target::Offscreen(&target))?;
     let mut frame_ms = Vec::with_capacity(frames as usize);
+    let mut gpu_ms = Vec::with_capacity(frames as usize);
     for i in 0..frames.max(1) {
         if i > 0 {
             scene.update();
@@ -194,6 +235,7 @@ pub fn render_frames_with(
         after_scene(&mut renderer, &target, scene, frame_ms.last().copied())?;
         renderer.finish();
         frame_ms.push(start.elapsed().as_secs_f64() * 1000.0);
+        gpu_ms.push(timer.read_ms());
     }
     let colour = ImageData {
         width,
@@ -230,6 +272,7 @@ pub fn render_frames_with(
         depth_view_range: renderer.depth_view_range(),
         depth_linear,
         frame_ms,
+        gpu_ms,
         origin: scene.camera.position.as_dvec3(),
         depth_passes: renderer.depth_passes(),
         mask_uses: renderer.mask_uses(),

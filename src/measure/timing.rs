@@ -1,5 +1,7 @@
 //! GPU time per pass, attached to a renderer as its [`PassHooks`].
 
+use std::cell::Cell;
+
 use crate::engine::{Gl, PassTimer};
 use crate::error::Result;
 use crate::renderer::{Pass, PassHooks};
@@ -7,19 +9,27 @@ use crate::renderer::{Pass, PassHooks};
 /// A timer query for the depth pass and one for the scene pass.
 pub struct GpuPassTimes {
     timer: PassTimer,
+    /// Which passes were timed since the last read: a frame may have no scene pass (the
+    /// depth view draws a map instead), and a query never begun has no result to read.
+    timed: Cell<[bool; 2]>,
 }
 
 impl GpuPassTimes {
     pub fn new(gl: &Gl) -> Result<GpuPassTimes> {
         Ok(GpuPassTimes {
             timer: PassTimer::new(gl, 2)?,
+            timed: Cell::new([false; 2]),
         })
     }
 
-    /// GPU milliseconds of the last frame's depth and scene passes (waits for them).
+    /// GPU milliseconds of the last frame's depth and scene passes (waits for them); 0 for
+    /// a pass the frame did not draw.
     pub fn read_ms(&self) -> [f64; 2] {
-        let t = self.timer.read_ms();
-        [t[0], t[1]]
+        let timed = self.timed.replace([false; 2]);
+        [0, 1].map(|i| match timed[i] {
+            true => self.timer.read_pass_ms(i),
+            false => 0.0,
+        })
     }
 }
 
@@ -32,6 +42,9 @@ fn index(pass: Pass) -> usize {
 
 impl PassHooks for GpuPassTimes {
     fn begin(&self, pass: Pass) {
+        let mut timed = self.timed.get();
+        timed[index(pass)] = true;
+        self.timed.set(timed);
         self.timer.begin(index(pass));
     }
 

@@ -94,6 +94,8 @@ struct BenchLine {
     map_bytes: u64,
     /// With `bench --motion` (else `-`): false flicker, a share of receivers a frame.
     false_flicker: String,
+    /// The shadow overhead by the GL timer queries ([`BenchRow::overhead_gpu_ms`]).
+    overhead_gpu_ms: Fixed<4>,
 }
 
 /// A lowercased `Debug` name, as the first tables spelled families and point passes.
@@ -155,6 +157,7 @@ impl BenchLine {
             blur_taps: cost.blur_taps,
             map_bytes: r.map_bytes(),
             false_flicker: r.false_flicker.map_or("-".into(), |f| format!("{f:.6}")),
+            overhead_gpu_ms: Fixed(r.overhead_gpu_ms),
         }
     }
 }

@@ -61,6 +61,7 @@ pub fn run(
     )?;
     let timer = std::rc::Rc::new(GpuPassTimes::new(gl)?);
     renderer.set_hooks(timer.clone());
+    plain.set_hooks(timer.clone());
     let target = RenderTarget::new(gl, opts.width, opts.height, Outputs::default())?;
     let scored = RenderTarget::new(
         gl,
@@ -139,6 +140,7 @@ fn time_block(
         plain.render(scene, Target::Offscreen(target))?;
         plain.finish();
         t.plain.push(ms(start.elapsed()));
+        t.plain_gpu.push(timer.read_ms().iter().sum());
         time_passes(renderer, scene, target, timer, 1, &mut t)?;
     }
     Ok(t)
@@ -160,6 +162,13 @@ fn timed_row(
                 .iter()
                 .zip(&quieter.plain)
                 .map(|(w, p)| w - p)
+                .collect::<Vec<_>>(),
+        )
+        .median,
+        overhead_gpu_ms: Stat::of(
+            &(quieter.depth_gpu.iter().zip(&quieter.scene_gpu))
+                .zip(&quieter.plain_gpu)
+                .map(|((d, s), p)| d + s - p)
                 .collect::<Vec<_>>(),
         )
         .median,
