@@ -218,7 +218,7 @@ render_side() {
       if (wall == "" || frame == "") exit 1
       printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", side, round, wall, frame, depth, scene,
         drawn + 0, kept + 0, tdrawn + 0, tkept + 0
-    }' "$log" >>"$runs" || die "render $name printed no frame or GPU time (see its output above)"
+    }' "$log" >>"$runs" || { tail -n 20 "$log" >&2; die "render $name printed no frame or GPU time (its output above)"; }
 }
 for round in $(seq 1 "$rounds"); do
   for group in "${groups[@]}"; do
