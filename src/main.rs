@@ -5,9 +5,19 @@ mod app;
 use std::process::ExitCode;
 
 use clap::Parser;
+use shadowmap::engine::context;
 
 fn main() -> ExitCode {
-    let cli = app::cli::Cli::try_parse().unwrap_or_else(|e| app::cli::nearer_suggestion(e).exit());
+    context::start();
+    let cli = match app::cli::Cli::try_parse_from(context::args()) {
+        Ok(cli) => cli,
+        Err(e) if context::HAS_TERMINAL => app::cli::nearer_suggestion(e).exit(),
+        Err(e) => {
+            let text = app::cli::nearer_suggestion(e).render().to_string();
+            context::report_error(text.trim().trim_start_matches("error: "));
+            return ExitCode::FAILURE;
+        }
+    };
     let result = match cli.command {
         None => app::demo::run(&cli.demo),
         Some(app::cli::Command::Demo(args)) => app::demo::run(&args),
@@ -21,7 +31,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            context::report_error(&e.to_string());
             ExitCode::FAILURE
         }
     }

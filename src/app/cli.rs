@@ -256,6 +256,27 @@ pub struct ShadersArgs {
     /// call of its test with its settings, and its light times that test.
     #[arg(long, value_name = "I")]
     pub light: Option<usize>,
+    /// The GLSL dialect to print: desktop (`#version 330 core`, what every desktop driver
+    /// gets) or es (`#version 300 es` with its precision statements, what the browser's
+    /// WebGL2 gets). The same files and the same program either way.
+    #[arg(long, value_enum, default_value_t = ShaderDialect::Desktop, value_name = "DIALECT")]
+    pub dialect: ShaderDialect,
+}
+
+/// `shaders --dialect`.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ShaderDialect {
+    Desktop,
+    Es,
+}
+
+impl From<ShaderDialect> for shadowmap::engine::Dialect {
+    fn from(d: ShaderDialect) -> shadowmap::engine::Dialect {
+        match d {
+            ShaderDialect::Desktop => shadowmap::engine::Dialect::Desktop,
+            ShaderDialect::Es => shadowmap::engine::Dialect::Es,
+        }
+    }
 }
 
 #[derive(Args, Debug, Clone)]

@@ -2,7 +2,7 @@
 //! Without a display it renders the same scene headless to `shadowmap-demo.png`.
 
 use std::collections::HashSet;
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use glam::Vec3;
 use shadowmap::engine::context::{self, WindowContext};
@@ -86,7 +86,10 @@ pub fn run(args: &DemoArgs) -> Result<()> {
     let mut demo = Demo::new(args, (loaded, scene), settings, size, step);
     // Taken once: past the overhead a light's own horizontal part points the other way.
     demo.azimuth = demo.scene.light_azimuth();
-    context::run_app(&mut demo)?;
+    // In the browser the page runs the demo after this returns, and shows its errors.
+    let Some(demo) = context::run_app(demo)? else {
+        return Ok(());
+    };
     if args.stress_window {
         println!(
             "stress: {} frames drawn, {} redraws skipped while minimised",
@@ -224,6 +227,9 @@ impl Demo {
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: Error) {
+        if !context::HAS_TERMINAL {
+            context::report_error(&e.to_string());
+        }
         self.error.get_or_insert(e);
         self.running = None;
         event_loop.exit();
@@ -278,7 +284,9 @@ impl Demo {
             shown_ms: None,
             show_keys: false,
             show_stats: false,
-            last_title: Instant::now() - Duration::from_secs(1),
+            last_title: Instant::now()
+                .checked_sub(Duration::from_secs(1))
+                .unwrap_or_else(Instant::now),
             screenshot_requested: false,
             screenshots: 0,
             step,

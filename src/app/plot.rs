@@ -13,13 +13,17 @@ const HEIGHT: u32 = 700;
 /// Errors are drawn on a log axis; zero is drawn at this floor (in percent).
 const ERROR_FLOOR_PCT: f64 = 0.001;
 
-static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-
 /// Makes the embedded font the plots' "sans-serif" (no system fonts are needed).
 pub(super) fn register_font() -> std::result::Result<(), String> {
-    // Registering twice is harmless.
-    plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
-        .map_err(|_| "the embedded font is not readable".to_string())
+    // Registering twice is harmless. In the browser plotters draws with the page's fonts
+    // and has no registry (nothing is plotted there).
+    #[cfg(not(target_family = "wasm"))]
+    {
+        static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+        plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
+            .map_err(|_| "the embedded font is not readable".to_string())?;
+    }
+    Ok(())
 }
 
 /// The Pareto plot's axes: log scales with our own ticks.

@@ -3,7 +3,7 @@
 //! arguments included). No GL: the text is made as the renderer makes it.
 
 use shadowmap::compare::check_light;
-use shadowmap::engine::Outputs;
+use shadowmap::engine::{Dialect, Outputs};
 use shadowmap::shaders;
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::program::slots::{self, LightPart, MaskMode};
@@ -22,18 +22,28 @@ pub fn run(args: &ShadersArgs) -> Result<()> {
     if let Some(light) = args.light {
         check_light(&scene, light, "--light", false)?;
     }
-    print!("{}", text(&scene, &settings, args.light)?);
+    let dialect = shadowmap::engine::Dialect::from(args.dialect);
+    print!("{}", text(&scene, &settings, args.light, dialect)?);
     Ok(())
 }
 
-/// The printed text: the whole program, or with `light` that light's part of it.
-pub fn text(scene: &Scene, settings: &ShadowSettings, light: Option<usize>) -> Result<String> {
+/// The printed text: the whole program in `dialect`, or with `light` that light's part of
+/// it (snippets, which have no `#version` of their own).
+pub fn text(
+    scene: &Scene,
+    settings: &ShadowSettings,
+    light: Option<usize>,
+    dialect: Dialect,
+) -> Result<String> {
     let key = key(scene, settings)?;
     let Some(i) = light else {
         let [vertex, fragment] = key.sources()?;
         return Ok(format!(
             "{HEADER}vertex shader: {} ====\n{}{HEADER}fragment shader: {} ====\n{}",
-            vertex.name, vertex.text, fragment.name, fragment.text
+            vertex.name,
+            dialect.apply(&vertex.text),
+            fragment.name,
+            dialect.apply(&fragment.text)
         ));
     };
     let part = &slots::light_parts(&key.slots(), MaskMode::Off)[i];

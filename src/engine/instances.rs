@@ -42,11 +42,28 @@ impl InstanceBuffer {
     pub fn new(gl: &Gl) -> Result<InstanceBuffer> {
         let buffer = OwnedBuffer::new(gl, "instance buffer")?;
         let align = unsafe { gl.get_parameter_i32(glow::UNIFORM_BUFFER_OFFSET_ALIGNMENT) };
+        let align = usize::try_from(align).unwrap_or(256).max(16);
+        // One block's room, bound from the start: a program that draws an item through its
+        // uniforms still declares the block, and OpenGL ES (WebGL2) refuses a draw whose
+        // declared block has no buffer (desktop GL reads zeros).
+        let bytes = (BLOCK_VEC4S * 16 + align).next_power_of_two();
+        unsafe {
+            gl.bind_buffer(glow::UNIFORM_BUFFER, Some(buffer.raw()));
+            gl.buffer_data_size(glow::UNIFORM_BUFFER, bytes as i32, glow::STREAM_DRAW);
+            gl.bind_buffer(glow::UNIFORM_BUFFER, None);
+            gl.bind_buffer_range(
+                glow::UNIFORM_BUFFER,
+                INSTANCE_BINDING,
+                Some(buffer.raw()),
+                0,
+                (BLOCK_VEC4S * 16) as i32,
+            );
+        }
         Ok(InstanceBuffer {
             gl: gl.clone(),
             buffer,
-            bytes: Cell::new(0),
-            align: usize::try_from(align).unwrap_or(256).max(16),
+            bytes: Cell::new(bytes),
+            align,
             values: RefCell::new(Vec::new()),
         })
     }

@@ -43,7 +43,7 @@ pub use mesh::{FullScreenTriangle, Mesh};
 pub use moment_map::MomentMap;
 pub use render_target::{Outputs, RenderTarget};
 pub use sampler::{BoundSampler, Sampler, Samplers, Sampling};
-pub use shader_program::{ShaderProgram, ShaderSource};
+pub use shader_program::{Dialect, ShaderProgram, ShaderSource};
 pub use shadow_map::{CascadeShadowMap, CubeShadowMap, ShadowMap};
 pub use state::{DepthPassGuard, DepthState, OverlayViewport, PixelRect};
 pub use summed_area::SummedAreaTable;

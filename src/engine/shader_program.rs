@@ -14,6 +14,48 @@ use crate::error::{Error, Result};
 /// file K's line L is `K * LINE_BLOCK + L` (the main file keeps its own numbers).
 pub const LINE_BLOCK: u32 = 100_000;
 
+/// The GLSL a driver takes. The project's files are written once, for desktop GL 3.3 core
+/// (`#version 330 core`); OpenGL ES 3.0, which WebGL2 is, gets the same text under
+/// `#version 300 es` with the precision every type must state there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dialect {
+    Desktop,
+    Es,
+}
+
+/// What an ES shader states after its `#version`: full precision for everything the
+/// project's shaders read (ES's defaults are lower, or none for the shadow samplers).
+const ES_PRECISION: &str = "precision highp float;\nprecision highp int;\n\
+    precision highp sampler2D;\nprecision highp sampler2DShadow;\n\
+    precision highp sampler2DArray;\nprecision highp sampler2DArrayShadow;\n\
+    precision highp samplerCube;\nprecision highp samplerCubeShadow;\n\
+    precision highp sampler3D;\n";
+
+impl Dialect {
+    /// The dialect of the current context.
+    pub fn of(gl: &Gl) -> Dialect {
+        match gl.version().is_embedded {
+            true => Dialect::Es,
+            false => Dialect::Desktop,
+        }
+    }
+
+    /// `text` in this dialect: the desktop's unchanged; for ES its `#version 330 core` line
+    /// becomes `#version 300 es` and the precision statements, and `#line 2` keeps the
+    /// file's own line numbers in the driver's messages.
+    pub fn apply(self, text: &str) -> std::borrow::Cow<'_, str> {
+        match self {
+            Dialect::Desktop => text.into(),
+            Dialect::Es => match text.split_once('\n') {
+                Some((first, rest)) if first.trim() == "#version 330 core" => {
+                    format!("#version 300 es\n{ES_PRECISION}#line 2\n{rest}").into()
+                }
+                _ => text.into(),
+            },
+        }
+    }
+}
+
 /// A shader's text and the files it came from, so errors can name them.
 #[derive(Debug, Clone)]
 pub struct ShaderSource {
@@ -251,7 +293,9 @@ impl ShaderProgram {
         let slot = self.slot(name);
         let mut u = self.uniforms.borrow_mut();
         let (loc, held) = &mut u.slots[slot];
-        let loc = (*loc)?;
+        // A clone: WebGL's locations are JavaScript objects (on the desktop, a copy).
+        #[allow(clippy::clone_on_copy)]
+        let loc = loc.clone()?;
         if held.as_slice() == bits {
             return None;
         }
@@ -406,7 +450,8 @@ fn compile(
     let owned = OwnedShader::with(gl, &format!("shader {}", source.name), kind)?;
     let shader = owned.raw();
     unsafe {
-        gl.shader_source(shader, &source.with_defines(defines));
+        let text = source.with_defines(defines);
+        gl.shader_source(shader, &Dialect::of(gl).apply(&text));
         gl.compile_shader(shader);
         if !gl.get_shader_compile_status(shader) {
             let log = gl.get_shader_info_log(shader);

@@ -242,8 +242,9 @@ impl TextRenderer {
         let vao = OwnedVertexArray::new(gl, "text vertex array")?;
         let vbo = OwnedBuffer::new(gl, "text vertex buffer")?;
         unsafe {
-            let previous_vao = gl.get_parameter_vertex_array(glow::VERTEX_ARRAY_BINDING);
-            let previous_buffer = gl.get_parameter_buffer(glow::ARRAY_BUFFER_BINDING);
+            let previous_vao =
+                binding(|| gl.get_parameter_vertex_array(glow::VERTEX_ARRAY_BINDING));
+            let previous_buffer = binding(|| gl.get_parameter_buffer(glow::ARRAY_BUFFER_BINDING));
             gl.bind_vertex_array(Some(vao.raw()));
             gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo.raw()));
             let stride = (FLOATS_PER_VERTEX * 4) as i32;
@@ -341,6 +342,16 @@ impl TextRenderer {
     }
 }
 
+/// A binding as the context reports it, where it can: glow's WebGL backend cannot report an
+/// empty binding (WebGL's `null`), so in the browser the text takes nothing to be bound, which
+/// is so where it draws (last in the frame, after the passes unbind).
+fn binding<T>(query: impl FnOnce() -> Option<T>) -> Option<T> {
+    match super::context::CAN_QUERY_BINDINGS {
+        true => query(),
+        false => None,
+    }
+}
+
 /// The atlas as an R8 texture on unit 0, leaving unit 0's binding, the active unit and the
 /// unpack alignment as they were. Glyphs are placed on whole pixels, one texel to a pixel,
 /// so nearest sampling reads what linear would, at a fraction of the cost on a software
@@ -349,7 +360,7 @@ fn upload_atlas(gl: &Gl, atlas: &FontAtlas) -> Result<Texture> {
     unsafe {
         let previous_unit = gl.get_parameter_i32(glow::ACTIVE_TEXTURE) as u32;
         gl.active_texture(glow::TEXTURE0);
-        let previous_texture = gl.get_parameter_texture(glow::TEXTURE_BINDING_2D);
+        let previous_texture = binding(|| gl.get_parameter_texture(glow::TEXTURE_BINDING_2D));
         let previous_alignment = gl.get_parameter_i32(glow::UNPACK_ALIGNMENT);
         let texels = Texels {
             internal: glow::R8,
@@ -397,15 +408,20 @@ impl SavedState {
         let mut viewport = [0i32; 4];
         gl.get_parameter_i32_slice(glow::VIEWPORT, &mut viewport);
         let max_buffers = gl.get_parameter_i32(glow::MAX_DRAW_BUFFERS).clamp(1, 16) as u32;
-        let mut draw_buffers: Vec<u32> = (0..max_buffers)
-            .map(|i| int(glow::DRAW_BUFFER0 + i))
-            .collect();
+        // In the browser the text draws on the canvas's framebuffer, which has one buffer.
+        let queried = if super::context::CAN_QUERY_BINDINGS {
+            max_buffers
+        } else {
+            0
+        };
+        let mut draw_buffers: Vec<u32> =
+            (0..queried).map(|i| int(glow::DRAW_BUFFER0 + i)).collect();
         while draw_buffers.last() == Some(&glow::NONE) {
             draw_buffers.pop();
         }
         let active_texture = int(glow::ACTIVE_TEXTURE);
         gl.active_texture(glow::TEXTURE0);
-        let texture = gl.get_parameter_texture(glow::TEXTURE_BINDING_2D);
+        let texture = binding(|| gl.get_parameter_texture(glow::TEXTURE_BINDING_2D));
         gl.active_texture(active_texture);
         SavedState {
             caps: Self::CAPS.map(|cap| gl.is_enabled(cap)),
@@ -421,9 +437,9 @@ impl SavedState {
             ],
             viewport,
             draw_buffers,
-            program: gl.get_parameter_program(glow::CURRENT_PROGRAM),
-            vao: gl.get_parameter_vertex_array(glow::VERTEX_ARRAY_BINDING),
-            array_buffer: gl.get_parameter_buffer(glow::ARRAY_BUFFER_BINDING),
+            program: binding(|| gl.get_parameter_program(glow::CURRENT_PROGRAM)),
+            vao: binding(|| gl.get_parameter_vertex_array(glow::VERTEX_ARRAY_BINDING)),
+            array_buffer: binding(|| gl.get_parameter_buffer(glow::ARRAY_BUFFER_BINDING)),
             active_texture,
             texture,
         }

@@ -95,11 +95,17 @@ impl Texels {
         ty: glow::UNSIGNED_BYTE,
     };
 
+    /// No texels are sent, but OpenGL ES (WebGL2) still takes only the type that matches
+    /// the internal format; desktop GL takes any.
     fn depth(format: DepthFormat) -> Texels {
         Texels {
             internal: depth_internal_format(format),
             format: glow::DEPTH_COMPONENT,
-            ty: glow::FLOAT,
+            ty: match format {
+                DepthFormat::D16 => glow::UNSIGNED_SHORT,
+                DepthFormat::D24 => glow::UNSIGNED_INT,
+                DepthFormat::D32F => glow::FLOAT,
+            },
         }
     }
 

@@ -1,7 +1,7 @@
 //! The demo's controls: the chapter steps and settings its keys pick, and the book's fixed
 //! update (the held keys turn the light and move the camera).
 
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use glam::Vec3;
 use shadowmap::shadows::plan::ShadowPlan;
@@ -45,7 +45,9 @@ impl Demo {
         match result {
             Ok(()) => {
                 self.step = step;
-                self.last_title = Instant::now() - Duration::from_secs(1);
+                self.last_title = Instant::now()
+                    .checked_sub(Duration::from_secs(1))
+                    .unwrap_or_else(Instant::now);
             }
             Err(e) => self.fail(event_loop, e),
         }
@@ -71,7 +73,9 @@ impl Demo {
             }
         }
         self.settings = s;
-        self.last_title = Instant::now() - Duration::from_secs(1);
+        self.last_title = Instant::now()
+            .checked_sub(Duration::from_secs(1))
+            .unwrap_or_else(Instant::now);
     }
 
     /// M: the first casting light's shadow map instead of the scene, then the next light's,

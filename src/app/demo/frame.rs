@@ -2,7 +2,7 @@
 //! drawn, screenshots, and the frame time in the title.
 
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use web_time::{Duration, Instant};
 
 use shadowmap::image_data::ImageData;
 use shadowmap::{Result, Target};
@@ -211,8 +211,8 @@ impl Demo {
 }
 
 fn screenshot_path(n: u32) -> PathBuf {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
+    let secs = web_time::SystemTime::now()
+        .duration_since(web_time::UNIX_EPOCH)
         .map(|d| d.as_secs())
         .unwrap_or(0);
     PathBuf::from(format!("shadowmap-screenshot-{secs}-{n}.png"))

@@ -8,8 +8,10 @@ use crate::error::Result;
 
 #[cfg(all(unix, not(target_vendor = "apple"), not(target_os = "android")))]
 use super::egl_device::Backing;
-#[cfg(not(all(unix, not(target_vendor = "apple"), not(target_os = "android"))))]
+#[cfg(any(windows, target_os = "macos"))]
 use super::hidden_window::Backing;
+#[cfg(target_family = "wasm")]
+use super::web::Backing;
 
 /// A current context. Keep it alive as long as any GL object made with it.
 pub struct HeadlessContext {

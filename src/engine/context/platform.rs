@@ -1,8 +1,6 @@
 //! What differs between the desktops, named once: which window system a display is, which
 //! GL platform APIs it offers (`--gl-api`), and the words of the no-display hint.
 
-use glutin::display::GlDisplay;
-use glutin_winit::ApiPreference;
 use raw_window_handle::RawDisplayHandle;
 
 use crate::error::{Error, Result};
@@ -34,19 +32,8 @@ impl WindowApi {
         }
     }
 
-    /// The API a glutin display is, from its version string ("GLX 1.4", "EGL 1.5", "WGL",
-    /// "Apple CGL"): the one thing every backend's display says of itself.
-    pub(super) fn of_display(display: &glutin::display::Display) -> WindowApi {
-        let version = display.version_string();
-        [WindowApi::Glx, WindowApi::Wgl, WindowApi::Cgl]
-            .into_iter()
-            .find(|api| version.contains(&api.flag().to_uppercase()))
-            .unwrap_or(WindowApi::Egl)
-    }
-
-    /// glutin-winit's preference for this choice on `platform`, or the refusal that lists
-    /// what the platform has.
-    pub(super) fn preference(self, platform: Platform) -> Result<ApiPreference> {
+    /// Refuses a choice `platform` lacks, with the list of what it has.
+    pub(super) fn check(self, platform: Platform) -> Result<()> {
         let apis = platform.apis();
         if self != WindowApi::Auto && !apis.contains(&self) {
             let mut names = vec!["auto"];
@@ -57,6 +44,7 @@ impl WindowApi {
                 self.flag(),
                 platform.name(),
                 match apis {
+                    [] if platform == Platform::Web => "WebGL2".to_string(),
                     [] => "none of the APIs this program knows".to_string(),
                     _ => apis
                         .iter()
@@ -67,12 +55,7 @@ impl WindowApi {
                 names.join(", ")
             )));
         }
-        Ok(match self {
-            WindowApi::Egl => ApiPreference::PreferEgl,
-            WindowApi::Auto | WindowApi::Glx | WindowApi::Wgl | WindowApi::Cgl => {
-                ApiPreference::FallbackEgl
-            }
-        })
+        Ok(())
     }
 }
 
@@ -83,6 +66,8 @@ pub enum Platform {
     Wayland,
     Windows,
     MacOs,
+    /// A browser's page (WebGL2 only).
+    Web,
     /// A window system the project has not been built for (named by winit's handle).
     Other(&'static str),
 }
@@ -95,6 +80,7 @@ impl Platform {
             RawDisplayHandle::Wayland(_) => Platform::Wayland,
             RawDisplayHandle::Windows(_) => Platform::Windows,
             RawDisplayHandle::AppKit(_) => Platform::MacOs,
+            RawDisplayHandle::Web(_) => Platform::Web,
             // raw-window-handle's enum is non-exhaustive: what is not listed has no GL here.
             _ => Platform::Other("an unsupported window system"),
         }
@@ -106,6 +92,7 @@ impl Platform {
             Platform::Wayland => "Wayland",
             Platform::Windows => "Windows",
             Platform::MacOs => "macOS",
+            Platform::Web => "the web",
             Platform::Other(name) => name,
         }
     }
@@ -118,6 +105,7 @@ impl Platform {
             Platform::Wayland => &[WindowApi::Egl],
             Platform::Windows => &[WindowApi::Wgl, WindowApi::Egl],
             Platform::MacOs => &[WindowApi::Cgl],
+            Platform::Web => &[],
             Platform::Other(_) => &[],
         }
     }

@@ -12,7 +12,7 @@ use glutin::context::{
 };
 use glutin::display::{GetGlDisplay, GlDisplay};
 use glutin::surface::{GlSurface, Surface, SwapInterval, WindowSurface};
-use glutin_winit::{DisplayBuilder, GlWindow};
+use glutin_winit::{ApiPreference, DisplayBuilder, GlWindow};
 use raw_window_handle::{HasDisplayHandle, HasWindowHandle};
 use winit::event_loop::ActiveEventLoop;
 use winit::window::{Window, WindowAttributes};
@@ -21,6 +21,28 @@ use super::super::render_target::read_rgba8;
 use super::super::Gl;
 use super::platform::{Platform, WindowApi};
 use crate::error::{Error, Result};
+
+/// The API a glutin display is, from its version string ("GLX 1.4", "EGL 1.5", "WGL",
+/// "Apple CGL"): the one thing every backend's display says of itself.
+fn api_of(display: &glutin::display::Display) -> WindowApi {
+    let version = display.version_string();
+    [WindowApi::Glx, WindowApi::Wgl, WindowApi::Cgl]
+        .into_iter()
+        .find(|api| version.contains(&api.flag().to_uppercase()))
+        .unwrap_or(WindowApi::Egl)
+}
+
+/// glutin-winit's preference for a choice on `platform`, or the refusal that lists what the
+/// platform has.
+fn preference(api: WindowApi, platform: Platform) -> Result<ApiPreference> {
+    api.check(platform)?;
+    Ok(match api {
+        WindowApi::Egl => ApiPreference::PreferEgl,
+        WindowApi::Auto | WindowApi::Glx | WindowApi::Wgl | WindowApi::Cgl => {
+            ApiPreference::FallbackEgl
+        }
+    })
+}
 
 /// A window, its GL surface and its current context.
 pub struct WindowContext {
@@ -79,13 +101,13 @@ impl WindowContext {
             .with_depth_size(24)
             .with_stencil_size(8);
         let (window, config) = DisplayBuilder::new()
-            .with_preference(api.preference(platform)?)
+            .with_preference(preference(api, platform)?)
             .with_window_attributes(Some(attributes))
             .build(event_loop, template, pick_config)
             .map_err(|e| no_gl(&e))?;
         let window = window.ok_or_else(|| no_gl(&"the display builder made no window"))?;
         let display = config.display();
-        let got = WindowApi::of_display(&display);
+        let got = api_of(&display);
         if api != WindowApi::Auto && got != api {
             return Err(Error::Context(format!(
                 "--gl-api {}: the {} display could not give one; it gave {} (try --gl-api auto)",
