@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Lints the crate, every target (tests, benches, examples) included, for the desktops it
 # opens on: Windows (MSVC and GNU), macOS (Apple silicon), and Linux with Wayland only
-# (no X11). `clippy -D warnings` must be clean on each.
+# (no X11); and the library and program for the browser (wasm32: what scripts/web.sh
+# builds). `clippy -D warnings` must be clean on each.
 #
 # rustup's targets cannot be downloaded everywhere, so the cross targets use Debian's
 # rustc-web toolchain (Rust 1.96 and std's source), which builds std for any target with
@@ -12,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all_targets="x86_64-pc-windows-msvc x86_64-pc-windows-gnu aarch64-apple-darwin linux-wayland"
+all_targets="x86_64-pc-windows-msvc x86_64-pc-windows-gnu aarch64-apple-darwin linux-wayland wasm32-unknown-unknown"
 targets="${*:-$all_targets}"
 
 packages="rustc-web cargo-web rust-web-src rust-web-clippy lld-22"
@@ -50,6 +51,12 @@ for t in $targets; do
       echo "== clippy: x86_64-unknown-linux-gnu, Wayland only (no X11)"
       cargo clippy --all-targets \
         --no-default-features --features wayland -- -D warnings
+      ;;
+    wasm32-unknown-unknown)
+      # The tests and benches run on the desktop (they need EGL); the page is the program.
+      echo "== clippy: $t (the library and the program, as scripts/web.sh builds them)"
+      cross -Zbuild-std=std,panic_abort --target "$t" --lib --bins \
+        --no-default-features -- $lints
       ;;
     *)
       echo "== clippy: $t"

@@ -8,7 +8,7 @@ use glow::HasContext;
 use super::owned::OwnedSampler;
 use super::texture::Filtering;
 use super::Gl;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::settings::Wrap;
 
 /// What a sampler does.
@@ -48,6 +48,13 @@ pub struct Sampler {
 
 impl Sampler {
     pub fn new(gl: &Gl, sampling: Sampling) -> Result<Sampler> {
+        if sampling.wrap == Wrap::ClampToBorder && gl.version().is_embedded {
+            return Err(Error::Invalid(
+                "this picture needs the shadow map clamped to a lit border (--wrap clamp-to-border, \
+                 the chapters' over-sampling fix), which OpenGL ES and WebGL2 lack"
+                    .into(),
+            ));
+        }
         let name = OwnedSampler::new(gl, "sampler")?;
         let id = name.raw();
         let filter = if sampling.linear {
