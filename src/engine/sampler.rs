@@ -40,6 +40,22 @@ fn wrap_mode(wrap: Wrap) -> u32 {
     }
 }
 
+/// Refuses a way of reading `texture` that OpenGL ES (WebGL2) cannot do, with what it is:
+/// depth texels interpolated without a comparison (the shadow-playground's `depth_lookup =
+/// "linear"`; ES leaves such a texture incomplete, so every lookup would read 0). Desktop GL
+/// reads both.
+pub fn check_readable(gl: &Gl, texture: &super::Texture, sampling: Sampling) -> Result<()> {
+    if sampling.linear && !sampling.compare && texture.is_depth() && gl.version().is_embedded {
+        return Err(Error::Invalid(
+            "this picture reads the shadow map's depths interpolated (depth_lookup = \
+             \"linear\", the playground's colour map), which OpenGL ES and WebGL2 cannot \
+             filter without a comparison"
+                .into(),
+        ));
+    }
+    Ok(())
+}
+
 /// An owned sampler object; deleted with its name.
 pub struct Sampler {
     name: OwnedSampler,

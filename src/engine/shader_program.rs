@@ -447,6 +447,13 @@ fn compile(
     source: &ShaderSource,
     defines: &[(String, String)],
 ) -> Result<OwnedShader> {
+    if kind == glow::GEOMETRY_SHADER && gl.version().is_embedded {
+        return Err(Error::Invalid(format!(
+            "{}: this picture needs a geometry shader (stencil shadow volumes' silhouettes, a \
+             point light's six faces in one pass), which OpenGL ES 3.0 and WebGL2 lack",
+            source.name
+        )));
+    }
     let owned = OwnedShader::with(gl, &format!("shader {}", source.name), kind)?;
     let shader = owned.raw();
     unsafe {

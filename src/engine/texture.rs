@@ -152,6 +152,8 @@ pub struct Texture {
     target: u32,
     width: u32,
     height: u32,
+    /// Depth texels (a shadow map): what OpenGL ES cannot filter without a comparison.
+    depth: bool,
 }
 
 impl Texture {
@@ -377,7 +379,15 @@ impl Texture {
             }
         }
         texture.sampling(filtering);
-        Ok(texture)
+        Ok(Texture {
+            depth: format == glow::DEPTH_COMPONENT,
+            ..texture
+        })
+    }
+
+    /// Whether the texels are depths (a shadow map's).
+    pub fn is_depth(&self) -> bool {
+        self.depth
     }
 
     /// Sets how the texture filters and wraps ([`Filtering::apply`]).
@@ -404,6 +414,7 @@ impl Texture {
             target,
             width,
             height,
+            depth: false,
         })
     }
 

@@ -204,8 +204,10 @@ pub(super) fn bind_maps_from(
         if let Some(name) = t.kind().sampler(i) {
             let unit = crate::shadows::units::texture_unit(i);
             p.set_i32(name, unit as i32);
+            let sampling = t.sampling(settings);
+            crate::engine::sampler::check_readable(gl, t.texture(), sampling)?;
             t.texture().bind(unit);
-            bound.push(samplers.get(gl, t.sampling(settings))?.bind(unit));
+            bound.push(samplers.get(gl, sampling)?.bind(unit));
         }
     }
     if inputs.mask.is_none() {

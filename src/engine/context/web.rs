@@ -165,7 +165,8 @@ impl Backing {
 
 /// The page's address as the command line: `?scene=dummy&step=pcf&size=800x450&still=1&hud=0`
 /// is `shadowmap demo --scene dummy --step pcf --size 800x450 --no-animation --no-hud`, so
-/// that a bad name gets the command line's own message. Other keys pass as `--key value`.
+/// that a bad name gets the command line's own message. Other keys pass as `--key value`
+/// (`--key` alone without a value).
 pub fn args() -> Vec<String> {
     let mut args = vec!["shadowmap".to_string(), "demo".to_string()];
     let search = web_sys::window()
@@ -191,6 +192,8 @@ pub fn args() -> Vec<String> {
             ("still", "1") => args.push("--no-animation".into()),
             ("hud", "0") => args.push("--no-hud".into()),
             ("still" | "hud", _) => {}
+            // `&show-depth-map` (no value): a flag.
+            (_, "") => args.push(format!("--{key}")),
             _ => args.extend([format!("--{key}"), value]),
         }
     }
