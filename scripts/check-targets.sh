@@ -16,18 +16,8 @@ cd "$(dirname "$0")/.."
 all_targets="x86_64-pc-windows-msvc x86_64-pc-windows-gnu aarch64-apple-darwin linux-wayland wasm32-unknown-unknown"
 targets="${*:-$all_targets}"
 
-packages="rustc-web cargo-web rust-web-src rust-web-clippy lld-22"
-missing=""
-for p in $packages; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  echo "== installing:$missing"
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq $missing
-fi
+. scripts/need-packages.sh
+need_packages rustc-web cargo-web rust-web-src rust-web-clippy lld-22
 
 # Debian's cargo, rustc and clippy, called by path: rustup's come first on PATH, and cargo
 # looks for `cargo-clippy` in ~/.cargo/bin (rustup's proxy) before PATH. A target folder of

@@ -11,20 +11,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+. scripts/need-packages.sh
+
 usage() { sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; }
 
 build() {
-  local packages="rustc-web cargo-web rust-web-src lld-22" missing="" p
-  for p in $packages; do
-    dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
-  done
-  if [ -n "$missing" ]; then
-    echo "== installing:$missing" >&2
-    local sudo_cmd=""
-    [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-    $sudo_cmd apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq $missing
-  fi
+  need_packages rustc-web cargo-web rust-web-src lld-22
   local version
   version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
   local bindgen="${CARGO_HOME:-$HOME/.cargo}/bin/wasm-bindgen"

@@ -8,18 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages="rustc-web cargo-web rust-web-src lld-22 gcc-mingw-w64-x86-64"
-missing=""
-for p in $packages; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  echo "== installing:$missing" >&2
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq $missing
-fi
+. scripts/need-packages.sh
+need_packages rustc-web cargo-web rust-web-src lld-22 gcc-mingw-w64-x86-64
 
 target=x86_64-pc-windows-gnu
 out="$PWD/target/windows"

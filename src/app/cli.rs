@@ -172,31 +172,8 @@ pub struct DemoArgs {
     /// the X server through shared memory), egl (Mesa's on Linux; on X11 with a software
     /// driver the frame goes down the socket, 1.2 to 1.35 times slower), wgl (Windows) or cgl
     /// (macOS). An API the platform lacks is refused with the list of those it has.
-    #[arg(long, value_enum, default_value_t = GlApi::Auto, value_name = "API")]
-    pub gl_api: GlApi,
-}
-
-/// The window's GL platform API (`--gl-api`).
-#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum GlApi {
-    #[default]
-    Auto,
-    Glx,
-    Egl,
-    Wgl,
-    Cgl,
-}
-
-impl From<GlApi> for WindowApi {
-    fn from(api: GlApi) -> WindowApi {
-        match api {
-            GlApi::Auto => WindowApi::Auto,
-            GlApi::Glx => WindowApi::Glx,
-            GlApi::Egl => WindowApi::Egl,
-            GlApi::Wgl => WindowApi::Wgl,
-            GlApi::Cgl => WindowApi::Cgl,
-        }
-    }
+    #[arg(long, value_enum, default_value_t = WindowApi::Auto, value_name = "API")]
+    pub gl_api: WindowApi,
 }
 
 #[derive(Args, Debug, Clone)]

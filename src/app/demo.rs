@@ -239,7 +239,7 @@ impl Demo {
         let attributes = Window::default_attributes()
             .with_title("shadowmap")
             .with_inner_size(PhysicalSize::new(self.size.0.max(1), self.size.1.max(1)));
-        let context = WindowContext::new(event_loop, attributes, self.args.gl_api.into())?;
+        let context = WindowContext::new(event_loop, attributes, self.args.gl_api)?;
         self.args
             .settings
             .check(context.gl(), &self.scene, &self.settings)?;

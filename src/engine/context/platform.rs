@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 /// driver GLX and EGL swap differently: GLX hands the frame to the X server through shared
 /// memory (MIT-SHM), while Mesa's EGL (22.x) sends it down the socket, which made the window
 /// 1.2 to 1.35 times slower than headless.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum WindowApi {
     /// The platform's own (GLX, WGL, CGL; EGL on Wayland), else EGL.
     #[default]
