@@ -127,6 +127,8 @@ struct Page {
     title: String,
     png: Option<PathBuf>,
     ms: f64,
+    /// The window's title after each key the query asked for (`#keys=`).
+    titles: Vec<String>,
 }
 
 /// Opens every query in one browser; the pages' reports in order.
@@ -149,6 +151,14 @@ fn shoot(url: &str, dir: &Path, queries: &[String]) -> Vec<Page> {
                 title: v["title"].as_str().unwrap_or_default().to_string(),
                 png: v["png"].as_str().map(PathBuf::from),
                 ms: v["ms"].as_f64().unwrap_or(f64::NAN),
+                titles: v["titles"]
+                    .as_array()
+                    .map(|t| {
+                        t.iter()
+                            .filter_map(|t| t.as_str().map(String::from))
+                            .collect()
+                    })
+                    .unwrap_or_default(),
             }
         })
         .collect();
@@ -264,4 +274,27 @@ fn a_bad_name_in_the_address_gets_the_command_lines_message() {
         "the page says '{}', the command line '{first}'",
         pages[1].title
     );
+}
+
+#[test]
+#[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
+fn the_step_keys_walk_the_chapter_in_the_page() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("web-keys");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let server = Server::start(&root.join("web/dist"));
+    let query = format!("scene=dummy&size={SIZE}&hud=0#keys=KeyN,KeyN,PageUp");
+    let pages = shoot(&server.url, &dir, &[query]);
+    assert_eq!(pages[0].title, "ready");
+    let list = steps::of(&Scene::load("dummy").unwrap());
+    // N: the first step, N: the second, PageUp: the first again (as in the demo's window).
+    let expected = [list[0].name, list[1].name, list[0].name];
+    assert_eq!(pages[0].titles.len(), 3, "{:?}", pages[0].titles);
+    for (title, step) in pages[0].titles.iter().zip(expected) {
+        assert!(
+            title.contains(&format!("| step {step} |")),
+            "expected step {step}: {title}"
+        );
+    }
 }

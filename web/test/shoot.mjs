@@ -3,8 +3,12 @@
 //
 //   node shoot.mjs BASE_URL OUT_DIR QUERY...    (QUERY: "scene=dummy&step=pcf&size=320x180")
 //
-// Prints one JSON line per page: {"query", "title", "png", "ms"}; "ms" is the time from
-// navigation to the first frame on the canvas.
+// A query may end in `#keys=KeyN,KeyN`: those keys are pressed on the canvas in turn once
+// the first frame is there, and the window's title (winit keeps it in the canvas's `alt`)
+// is read after each.
+//
+// Prints one JSON line per page: {"query", "title", "png", "ms", "titles"}; "ms" is the time
+// from navigation to the first frame on the canvas.
 import puppeteer from "puppeteer-core";
 import { writeFileSync } from "node:fs";
 import { join } from "node:path";
@@ -20,7 +24,9 @@ const browser = await puppeteer.launch({
   ],
 });
 try {
-  for (const [i, query] of queries.entries()) {
+  for (const [i, whole] of queries.entries()) {
+    const [query, keyPart] = whole.split("#keys=");
+    const keys = keyPart ? keyPart.split(",") : [];
     const page = await browser.newPage();
     const logs = [];
     page.on("console", (m) => logs.push(m.text()));
@@ -44,7 +50,16 @@ try {
       png = join(outDir, `page-${i}.png`);
       writeFileSync(png, Buffer.from(data.split(",")[1], "base64"));
     }
-    console.log(JSON.stringify({ query, title, png, ms, logs }));
+    const titles = [];
+    if (title === "ready") {
+      await page.focus("#shadowmap");
+      for (const key of keys) {
+        await page.keyboard.press(key);
+        await new Promise((r) => setTimeout(r, 700));
+        titles.push(await page.evaluate(() => document.getElementById("shadowmap").getAttribute("alt")));
+      }
+    }
+    console.log(JSON.stringify({ query: whole, title, png, ms, titles, logs }));
     await page.close();
   }
 } finally {
