@@ -57,6 +57,10 @@ const LIBRARY: &[(&str, &str)] = &[
         include_str!("../shaders/lib/lighting.glsl"),
     ),
     ("lib/bias.glsl", include_str!("../shaders/lib/bias.glsl")),
+    (
+        "lib/shadow_border.glsl",
+        include_str!("../shaders/lib/shadow_border.glsl"),
+    ),
     ("lib/avsm.glsl", include_str!("../shaders/lib/avsm.glsl")),
     (
         "lib/linear_depth.glsl",

@@ -10,7 +10,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
-use shadowmap::settings::{BiasMode, DepthLookup, ShadowTechnique, Wrap};
+use shadowmap::settings::{BiasMode, DepthLookup, ShadowTechnique};
 use shadowmap::{steps, Scene};
 
 const SIZE: &str = "320x180";
@@ -25,9 +25,6 @@ fn lacks(scene: &str, step: &str) -> Option<&'static str> {
     }
     if s.technique == ShadowTechnique::Volumes {
         return Some("needs a geometry shader");
-    }
-    if s.wrap == Wrap::ClampToBorder {
-        return Some("needs the shadow map clamped to a lit border");
     }
     if s.depth_lookup == DepthLookup::Linear && !s.filter.hardware() && !s.filter.moments() {
         return Some("reads the shadow map's depths interpolated");

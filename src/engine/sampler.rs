@@ -21,6 +21,9 @@ pub struct Sampling {
     pub linear: bool,
     /// Outside [0, 1]. A border is depth 1 (LearnOpenGL's fix: "far away", so lit).
     pub wrap: Wrap,
+    /// The program draws the border itself where the sampler has none (OpenGL ES:
+    /// shaders/lib/shadow_border.glsl): there the sampler clamps to the edge instead.
+    pub border_in_shader: bool,
 }
 
 impl Sampling {
@@ -29,6 +32,7 @@ impl Sampling {
         compare: false,
         linear: false,
         wrap: Wrap::ClampToEdge,
+        border_in_shader: false,
     };
 }
 
@@ -64,7 +68,12 @@ pub struct Sampler {
 
 impl Sampler {
     pub fn new(gl: &Gl, sampling: Sampling) -> Result<Sampler> {
-        if sampling.wrap == Wrap::ClampToBorder && gl.version().is_embedded {
+        let es = gl.version().is_embedded;
+        let wrap = match sampling.wrap {
+            Wrap::ClampToBorder if es && sampling.border_in_shader => Wrap::ClampToEdge,
+            wrap => wrap,
+        };
+        if wrap == Wrap::ClampToBorder && es {
             return Err(Error::Invalid(
                 "this picture needs the shadow map clamped to a lit border (--wrap clamp-to-border, \
                  the chapters' over-sampling fix), which OpenGL ES and WebGL2 lack"
@@ -80,8 +89,8 @@ impl Sampler {
         };
         unsafe {
             let p = |k, v: u32| gl.sampler_parameter_i32(id, k, v as i32);
-            Filtering::new(filter, wrap_mode(sampling.wrap)).apply(p);
-            if sampling.wrap == Wrap::ClampToBorder {
+            Filtering::new(filter, wrap_mode(wrap)).apply(p);
+            if wrap == Wrap::ClampToBorder {
                 gl.sampler_parameter_f32_slice(id, glow::TEXTURE_BORDER_COLOR, &[1.0; 4]);
             }
             if sampling.compare {

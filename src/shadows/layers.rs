@@ -125,6 +125,7 @@ impl<L: Layout> Technique for Layered<L> {
             compare: hardware,
             linear: hardware,
             wrap: Wrap::ClampToBorder,
+            border_in_shader: false,
         }
     }
 

@@ -31,6 +31,15 @@ use glam::Mat4;
 pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
     ["shadowMap0", "shadowMap1", "shadowMap2", "shadowMap3"];
 
+/// Whether its map has a lit border, per light, where the shader draws it
+/// (shaders/lib/shadow_border.glsl: OpenGL ES only; the desktop's sampler has the border).
+pub const BORDER_LIT: [&str; crate::scene::MAX_LIGHTS] = [
+    "shadowBorderLit[0]",
+    "shadowBorderLit[1]",
+    "shadowBorderLit[2]",
+    "shadowBorderLit[3]",
+];
+
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
 pub struct Map2d {
     map: ShadowMap,

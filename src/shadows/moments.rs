@@ -324,6 +324,7 @@ impl Technique for Moments {
             compare: false,
             linear: self.summed.is_none(),
             wrap: Wrap::ClampToEdge,
+            border_in_shader: false,
         }
     }
 

@@ -55,8 +55,13 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         MapDepth::Projected => None,
         _ => Some("lib/linear_depth.glsl"),
     };
+    // The map's lit border, in the shader where the sampler has none (lib/shadow_border.glsl).
+    let test = format!("SHADOW_BORDER({i}, mlightviewVertexPos[{p}], {far}, {test})");
     LightGlsl {
-        snippets: linear.into_iter().chain(snippets.iter().copied()).collect(),
+        snippets: std::iter::once("lib/shadow_border.glsl")
+            .chain(linear)
+            .chain(snippets.iter().copied())
+            .collect(),
         sampler_type,
         test,
         defines: Vec::new(),

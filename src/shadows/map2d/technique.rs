@@ -47,13 +47,15 @@ impl Technique for Map2d {
     }
 
     /// LINEAR for the hardware's 2 x 2 comparison, or for `depth_lookup = "linear"` (each
-    /// lookup an interpolated depth, the shadow-playground's colour map).
+    /// lookup an interpolated depth, the shadow-playground's colour map). A lit border can be
+    /// the shader's (lib/shadow_border.glsl) where the sampler has none.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling {
         let s = settings.effective();
         Sampling {
             compare: s.filter.hardware(),
             linear: s.filter.hardware() || s.depth_lookup == DepthLookup::Linear,
             wrap: s.wrap,
+            border_in_shader: s.wrap == crate::settings::Wrap::ClampToBorder,
         }
     }
 
