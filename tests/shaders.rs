@@ -38,8 +38,9 @@ fn the_printed_program_is_the_compiled_one_and_compiles() {
     assert!(fragment.starts_with("#version 330 core\n#define LIGHT_COUNT 1\n"));
     assert!(fragment.contains("\nfloat calcShadow(sampler2D shadowMap, vec4 position,"));
     assert!(fragment.contains(
-        "    float lit0 = calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
-         vec2(0.0009765625, 0.0009765625), 1, false);\n"
+        "    float lit0 = SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
+         calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
+         vec2(0.0009765625, 0.0009765625), 1, false));\n"
     ));
     assert!(
         !fragment.contains("pcss("),
@@ -98,7 +99,10 @@ fn one_lights_part_is_its_sampler_its_library_and_its_call() {
     assert!(out.contains("\nuniform sampler2D shadowMap0;\n"), "{out}");
     assert!(out.contains("// ==== shaders/lib/soft_filters.glsl ====\n"));
     assert!(out.contains("\nfloat pcss(sampler2D shadowMap, vec4 position,"));
-    assert!(out.contains("    float lit0 = pcss(shadowMap0, mlightviewVertexPos[0], "));
+    assert!(out.contains(
+        "    float lit0 = SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
+         pcss(shadowMap0, mlightviewVertexPos[0], "
+    ));
     assert!(!out.contains("void main()"), "its part, not the program");
 }
 
@@ -137,4 +141,36 @@ fn the_depth_pass_reads_positions_alone_and_the_scene_pass_does_not() {
     )
     .unwrap();
     assert!(!scene.reads_positions_only());
+}
+
+#[test]
+fn the_es_dialect_is_the_same_program_under_its_version_and_precision() {
+    let desktop = common::stdout_of(common::bin().args(["shaders", "--scene", "learnopengl"]));
+    let es = common::stdout_of(common::bin().args([
+        "shaders",
+        "--scene",
+        "learnopengl",
+        "--dialect",
+        "es",
+    ]));
+    assert_eq!(es.matches("#version 300 es\n").count(), 2, "{es}");
+    assert!(!es.contains("#version 330"));
+    assert!(es.contains("precision highp sampler2DShadow;\n"));
+    assert!(es.contains("#define SHADOW_BORDER_IN_SHADER 1\n"));
+    // Past each shader's prelude (up to its `#line 2`), the desktop's text line for line.
+    let mut back = Vec::new();
+    let mut lines = es.lines();
+    while let Some(line) = lines.next() {
+        if line == "#version 300 es" {
+            back.push("#version 330 core");
+            for l in lines.by_ref() {
+                if l == "#line 2" {
+                    break;
+                }
+            }
+        } else {
+            back.push(line);
+        }
+    }
+    assert_eq!(back.join("\n"), desktop.trim_end_matches('\n'));
 }
