@@ -119,6 +119,19 @@ impl Drop for Server {
     }
 }
 
+/// The built page served, and a fresh folder for the case's pictures.
+fn served(case: &str) -> (Server, PathBuf) {
+    let dist = Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist");
+    assert!(
+        dist.join("shadowmap_bg.wasm").is_file(),
+        "web/dist is not built: run scripts/web.sh build"
+    );
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(case);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    (Server::start(&dist), dir)
+}
+
 /// One page as `shoot.mjs` reports it.
 struct Page {
     title: String,
@@ -166,15 +179,7 @@ fn shoot(url: &str, dir: &Path, queries: &[String]) -> Vec<Page> {
 #[test]
 #[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
 fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dist = root.join("web/dist");
-    assert!(
-        dist.join("shadowmap_bg.wasm").is_file(),
-        "web/dist is not built: run scripts/web.sh build"
-    );
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("web");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let (server, dir) = served("web");
 
     let mut cases: Vec<(&str, &str)> = Vec::new();
     for scene in ["dummy", "learnopengl"] {
@@ -188,7 +193,6 @@ fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
         .iter()
         .map(|(scene, step)| format!("scene={scene}&step={step}&size={SIZE}&still=1&hud=0"))
         .collect();
-    let server = Server::start(&dist);
     let pages = shoot(&server.url, &dir, &queries);
     let mut drawn = 0;
     for ((scene, step), page) in cases.iter().zip(&pages) {
@@ -235,11 +239,7 @@ fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
 #[test]
 #[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
 fn a_bad_name_in_the_address_gets_the_command_lines_message() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("web-bad");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let server = Server::start(&root.join("web/dist"));
+    let (server, dir) = served("web-bad");
     let pages = shoot(
         &server.url,
         &dir,
@@ -276,11 +276,7 @@ fn a_bad_name_in_the_address_gets_the_command_lines_message() {
 #[test]
 #[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
 fn the_step_keys_walk_the_chapter_in_the_page() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("web-keys");
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let server = Server::start(&root.join("web/dist"));
+    let (server, dir) = served("web-keys");
     let query = format!("scene=dummy&size={SIZE}&hud=0#keys=KeyN,KeyN,PageUp");
     let pages = shoot(&server.url, &dir, &[query]);
     assert_eq!(pages[0].title, "ready");

@@ -206,9 +206,12 @@ pub(super) fn bind_maps_from(
             p.set_i32(name, unit as i32);
             let sampling = t.sampling(settings);
             crate::engine::sampler::check_readable(gl, t.texture(), sampling)?;
-            // Only an ES program declares it (lib/shadow_border.glsl); elsewhere a no-op.
-            let border = i32::from(sampling.border_in_shader);
-            p.set_i32(crate::shadows::map2d::BORDER_LIT[i], border);
+            // Only an ES program declares it (lib/shadow_border.glsl): nothing to do on the
+            // desktop's hot path.
+            if crate::engine::Dialect::of(gl) == crate::engine::Dialect::Es {
+                let border = i32::from(sampling.border_in_shader);
+                p.set_i32(crate::shadows::map2d::BORDER_LIT[i], border);
+            }
             t.texture().bind(unit);
             bound.push(samplers.get(gl, sampling)?.bind(unit));
         }
