@@ -246,6 +246,7 @@ impl ShadowMapping {
             wrap: Wrap::ClampToBorder,
             // The tutorial's own fragment shader: the sampler's border, as on the desktop.
             border_in_shader: false,
+            interpolate_in_shader: false,
         };
         // glEnable(GL_DEPTH_TEST): the tutorial's one piece of global state.
         state::enable_depth_test(gl);

@@ -61,6 +61,10 @@ const LIBRARY: &[(&str, &str)] = &[
         "lib/shadow_border.glsl",
         include_str!("../shaders/lib/shadow_border.glsl"),
     ),
+    (
+        "lib/shadow_depth.glsl",
+        include_str!("../shaders/lib/shadow_depth.glsl"),
+    ),
     ("lib/avsm.glsl", include_str!("../shaders/lib/avsm.glsl")),
     (
         "lib/linear_depth.glsl",

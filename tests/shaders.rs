@@ -38,9 +38,9 @@ fn the_printed_program_is_the_compiled_one_and_compiles() {
     assert!(fragment.starts_with("#version 330 core\n#define LIGHT_COUNT 1\n"));
     assert!(fragment.contains("\nfloat calcShadow(sampler2D shadowMap, vec4 position,"));
     assert!(fragment.contains(
-        "    float lit0 = SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
+        "    float lit0 = SHADOW_DEPTH_OF(0, SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
          calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
-         vec2(0.0009765625, 0.0009765625), 1, false));\n"
+         vec2(0.0009765625, 0.0009765625), 1, false)));\n"
     ));
     assert!(
         !fragment.contains("pcss("),
@@ -100,7 +100,7 @@ fn one_lights_part_is_its_sampler_its_library_and_its_call() {
     assert!(out.contains("// ==== shaders/lib/soft_filters.glsl ====\n"));
     assert!(out.contains("\nfloat pcss(sampler2D shadowMap, vec4 position,"));
     assert!(out.contains(
-        "    float lit0 = SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
+        "    float lit0 = SHADOW_DEPTH_OF(0, SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
          pcss(shadowMap0, mlightviewVertexPos[0], "
     ));
     assert!(!out.contains("void main()"), "its part, not the program");

@@ -10,36 +10,82 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 
-use shadowmap::settings::{BiasMode, DepthLookup, ShadowTechnique};
+use shadowmap::settings::{BiasMode, ShadowTechnique};
 use shadowmap::{steps, Scene};
 
 const SIZE: &str = "320x180";
 
 /// What WebGL2 cannot draw of a step, from its settings: the refusal the page must show.
-fn lacks(scene: &str, step: &str) -> Option<&'static str> {
-    let scene = Scene::load(scene).unwrap();
-    let s = steps::settings_for(&scene, step).unwrap().effective();
+/// (Its lit border and interpolated depths are the shader's there, its cube maps drawn
+/// face by face.)
+fn lacks(scene: &str, step: Option<&str>) -> Option<&'static str> {
+    let s = settings_of(scene, step);
     // A depth-map view draws the map itself, through no shadow test.
     if s.show_depth_map {
         return None;
     }
-    if s.technique == ShadowTechnique::Volumes {
-        return Some("needs a geometry shader");
+    (s.technique == ShadowTechnique::Volumes).then_some("needs a geometry shader")
+}
+
+fn settings_of(scene: &str, step: Option<&str>) -> shadowmap::ShadowSettings {
+    let scene = Scene::load(scene).unwrap();
+    match step {
+        Some(step) => steps::settings_for(&scene, step).unwrap().effective(),
+        None => scene.shadow.effective(),
     }
-    if s.depth_lookup == DepthLookup::Linear && !s.filter.hardware() && !s.filter.moments() {
-        return Some("reads the shadow map's depths interpolated");
+}
+
+/// The shadowed pixels of a visibility picture: `render --shadow-out`'s (grey, transparent
+/// off the geometry) or the page's `&view=visibility` (grey, a blue off the geometry).
+fn shadowed(png: &Path) -> Vec<bool> {
+    let img = image::open(png).unwrap().to_rgba8();
+    img.pixels()
+        .map(|p| {
+            let [r, g, b, a] = p.0;
+            let grey = r.abs_diff(g) <= 4 && g.abs_diff(b) <= 4;
+            a > 0 && grey && r < 128
+        })
+        .collect()
+}
+
+/// Intersection over union of two pictures' shadowed regions (1 when neither has any).
+fn shadow_iou(a: &Path, b: &Path) -> f64 {
+    let (a, b) = (shadowed(a), shadowed(b));
+    assert_eq!(a.len(), b.len());
+    let both = a.iter().zip(&b).filter(|(x, y)| **x && **y).count();
+    let either = a.iter().zip(&b).filter(|(x, y)| **x || **y).count();
+    match either {
+        0 => 1.0,
+        n => both as f64 / n as f64,
     }
-    None
 }
 
 /// Whether the step has no bias at all, so that its picture is shadow acne.
-fn acne(scene: &str, step: &str) -> bool {
-    let scene = Scene::load(scene).unwrap();
-    steps::settings_for(&scene, step)
-        .unwrap()
-        .effective()
-        .bias_mode
-        == BiasMode::None
+fn acne(scene: &str, step: Option<&str>) -> bool {
+    settings_of(scene, step).bias_mode == BiasMode::None
+}
+
+/// The share of 16 x 16 blocks whose shadowed fraction differs by more than a tenth.
+fn shadow_block_share(a: &Path, b: &Path) -> f64 {
+    let w = image::open(a).unwrap().width() as usize;
+    let (a, b) = (shadowed(a), shadowed(b));
+    let h = a.len() / w;
+    let (bw, bh) = (w / 16, h / 16);
+    let fraction = |m: &[bool], bx: usize, by: usize| {
+        let mut n = 0;
+        for y in by * 16..by * 16 + 16 {
+            n += m[y * w + bx * 16..y * w + bx * 16 + 16]
+                .iter()
+                .filter(|s| **s)
+                .count();
+        }
+        n as f64 / 256.0
+    };
+    let differ = (0..bh)
+        .flat_map(|by| (0..bw).map(move |bx| (bx, by)))
+        .filter(|&(bx, by)| (fraction(&a, bx, by) - fraction(&b, bx, by)).abs() > 0.1)
+        .count();
+    differ as f64 / (bw * bh) as f64
 }
 
 /// The share of 16 x 16 blocks whose mean colour differs by more than 16 levels in a channel.
@@ -176,74 +222,137 @@ fn shoot(url: &str, dir: &Path, queries: &[String]) -> Vec<Page> {
     pages
 }
 
-#[test]
-#[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
-fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
-    let (server, dir) = served("web");
-
-    let mut cases: Vec<(&str, &str)> = Vec::new();
+/// Every chapter step of `dummy` and `learnopengl`, the playground's five pages, and
+/// `point-shadows` (cube maps, face by face on WebGL2).
+fn cases() -> Vec<(&'static str, Option<&'static str>)> {
+    let mut cases: Vec<(&str, Option<&str>)> = Vec::new();
     for scene in ["dummy", "learnopengl"] {
         let s = Scene::load(scene).unwrap();
-        cases.extend(steps::of(&s).iter().map(|step| (scene, step.name)));
+        cases.extend(steps::of(&s).iter().map(|step| (scene, Some(step.name))));
     }
     for step in ["basic", "pcf", "soft-pcf", "variance", "moment"] {
-        cases.push(("playground", step));
+        cases.push(("playground", Some(step)));
     }
-    let queries: Vec<String> = cases
-        .iter()
-        .map(|(scene, step)| format!("scene={scene}&step={step}&size={SIZE}&still=1&hud=0"))
-        .collect();
-    let pages = shoot(&server.url, &dir, &queries);
-    let mut drawn = 0;
-    for ((scene, step), page) in cases.iter().zip(&pages) {
-        match (lacks(scene, step), &page.png) {
-            (None, Some(png)) => {
-                let native = dir.join(format!("{scene}-{step}-render.png"));
-                common::stdout_of(
-                    common::bin()
-                        .args(["render", "--scene", scene, "--step", step, "--size", SIZE])
-                        .arg("--out")
-                        .arg(&native),
-                );
-                // Without a bias the picture is acne, a moiré of each rasteriser's depth
-                // precision: there its density must agree (16 x 16 blocks), not each pixel.
-                let (share, what) = match acne(scene, step) {
-                    false => (common::step_frames::differing_share(png, &native), "pixels"),
-                    true => (block_share(png, &native), "16 x 16 blocks"),
-                };
-                assert!(
-                    share <= 0.02,
-                    "{scene} {step}: {:.2}% of the page's {what} differ from render's",
-                    share * 100.0
-                );
-                drawn += 1;
-                println!("{scene} {step}: drawn, first frame {:.0} ms", page.ms);
-            }
-            (Some(reason), None) => {
-                assert!(
-                    page.title.starts_with("error: ") && page.title.contains(reason),
-                    "{scene} {step}: expected the refusal '{reason}', the page says '{}'",
-                    page.title
-                );
-                println!("{scene} {step}: refused ({reason})");
-            }
-            (None, None) => panic!("{scene} {step}: not drawn: {}", page.title),
-            (Some(reason), Some(_)) => {
-                panic!("{scene} {step}: drawn, though WebGL2 {reason}")
-            }
-        }
+    cases.push(("point-shadows", None));
+    cases
+}
+
+fn query((scene, step): (&str, Option<&str>), extra: &str) -> String {
+    let step = step.map(|s| format!("&step={s}")).unwrap_or_default();
+    format!("scene={scene}{step}&size={SIZE}&still=1&hud=0{extra}")
+}
+
+/// `shadowmap render` of the case, its frame (and with `visibility`, its `--shadow-out`).
+fn native(dir: &Path, (scene, step): (&str, Option<&str>), visibility: bool) -> PathBuf {
+    let name = format!("{scene}-{}", step.unwrap_or("scene"));
+    let out = dir.join(format!("{name}-render.png"));
+    let shadow = dir.join(format!("{name}-render-visibility.png"));
+    let mut cmd = common::bin();
+    cmd.args(["render", "--scene", scene, "--size", SIZE]);
+    if let Some(step) = step {
+        cmd.args(["--step", step]);
     }
-    assert!(drawn >= 12, "only {drawn} steps drawn");
+    cmd.arg("--out").arg(&out);
+    if visibility {
+        cmd.arg("--shadow-out").arg(&shadow);
+    }
+    common::stdout_of(&mut cmd);
+    match visibility {
+        true => shadow,
+        false => out,
+    }
 }
 
 #[test]
 #[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
-fn a_bad_name_in_the_address_gets_the_command_lines_message() {
+fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
+    let (server, dir) = served("web");
+    let cases = cases();
+    let mut queries: Vec<String> = cases.iter().map(|&c| query(c, "")).collect();
+    queries.extend(cases.iter().map(|&c| query(c, "&view=visibility")));
+    let pages = shoot(&server.url, &dir, &queries);
+    let (frames, visibility) = pages.split_at(cases.len());
+    let mut drawn = 0;
+    for ((&case, page), seen) in cases.iter().zip(frames).zip(visibility) {
+        let (scene, step) = case;
+        let name = format!("{scene} {}", step.unwrap_or("(scene)"));
+        match (lacks(scene, step), &page.png, &seen.png) {
+            (None, Some(png), Some(seen)) => {
+                let native_frame = native(&dir, case, false);
+                // Without a bias the picture is acne, a moiré of each rasteriser's depth
+                // precision: there its density must agree (16 x 16 blocks), not each pixel.
+                let (share, what) = match acne(scene, step) {
+                    false => (
+                        common::step_frames::differing_share(png, &native_frame),
+                        "pixels",
+                    ),
+                    true => (block_share(png, &native_frame), "16 x 16 blocks"),
+                };
+                assert!(
+                    share <= 0.02,
+                    "{name}: {:.2}% of the page's {what} differ from render's",
+                    share * 100.0
+                );
+                let native_seen = native(&dir, case, true);
+                let iou = shadow_iou(seen, &native_seen);
+                match acne(scene, step) {
+                    // Acne's shadowed pixels are the moiré: its density must agree.
+                    true => {
+                        let blocks = shadow_block_share(seen, &native_seen);
+                        assert!(
+                            blocks <= 0.02,
+                            "{name}: the shadow's density differs in {:.2}% of 16 x 16 blocks",
+                            blocks * 100.0
+                        );
+                    }
+                    false => assert!(
+                        iou >= 0.99,
+                        "{name}: the page's shadowed region against render's: IoU {iou:.4}"
+                    ),
+                }
+                drawn += 1;
+                println!(
+                    "{name}: drawn, first frame {:.0} ms; {:.2}% of the {what} differ; shadow \
+                     IoU {iou:.4}",
+                    page.ms,
+                    share * 100.0
+                );
+            }
+            (Some(reason), None, None) => {
+                assert!(
+                    page.title.starts_with("error: ") && page.title.contains(reason),
+                    "{name}: expected the refusal '{reason}', the page says '{}'",
+                    page.title
+                );
+                println!("{name}: refused ({reason})");
+            }
+            (None, _, _) => panic!("{name}: not drawn: {} / {}", page.title, seen.title),
+            (Some(reason), _, _) => panic!("{name}: drawn, though WebGL2 {reason}"),
+        }
+    }
+    assert_eq!(drawn, cases.len(), "every case is drawn");
+}
+
+#[test]
+#[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
+fn a_bad_name_or_what_webgl2_lacks_gets_a_message_on_the_page() {
     let (server, dir) = served("web-bad");
     let pages = shoot(
         &server.url,
         &dir,
-        &["scene=dumy".into(), "scene=dummy&step=pfc".into()],
+        &[
+            "scene=dumy".into(),
+            "scene=dummy&step=pfc".into(),
+            "scene=dummy&technique=volumes&still=1".into(),
+        ],
+    );
+    // What WebGL2 cannot do is refused by name on the page, not drawn blank.
+    assert!(
+        pages[2].title.starts_with("error: ")
+            && pages[2].title.contains("geometry shader")
+            && pages[2].png.is_none(),
+        "{}",
+        pages[2].title
     );
     assert!(
         pages[0]

@@ -23,10 +23,11 @@ float calcShadow(sampler2D shadowMap, vec4 position, float bias, vec2 texel, int
     float currentDepth = projCoords.z - bias;
 
     // Percentage-closer filtering: the lit fraction of a grid of lookups one texel apart.
+    // shadowDepth(shadowMap, uv) is the book's texture(shadowMap, uv).r (lib/shadow_depth.glsl).
     float lit = 0.0;
     for (int row = -radius; row <= radius; ++row) {
         for (int col = -radius; col <= radius; ++col) {
-            float textDepth = texture(shadowMap, projCoords.xy + vec2(row, col) * texel).r;
+            float textDepth = shadowDepth(shadowMap, projCoords.xy + vec2(row, col) * texel);
             lit += currentDepth > textDepth ? 0.0 : 1.0;
         }
     }

@@ -20,7 +20,7 @@ float pcf4x4Weighted(sampler2D shadowMap, vec4 position, float bias, vec2 texel,
     for (int row = 0; row < 4; ++row) {
         for (int col = 0; col < 4; ++col) {
             vec2 offset = vec2(col, row) - 1.5;
-            float diff = texture(shadowMap, projCoords.xy + offset * texel).r - currentDepth;
+            float diff = shadowDepth(shadowMap, projCoords.xy + offset * texel) - currentDepth;
             lit += playgroundWeight(offset) * step(0.0, diff);
         }
     }
@@ -37,7 +37,7 @@ float softPcf(sampler2D shadowMap, vec4 position, float bias, vec2 texel, bool b
     for (int row = 0; row < 4; ++row) {
         for (int col = 0; col < 4; ++col) {
             vec2 offset = vec2(col, row) - 1.5;
-            float diff = texture(shadowMap, projCoords.xy + offset * texel).r - currentDepth;
+            float diff = shadowDepth(shadowMap, projCoords.xy + offset * texel) - currentDepth;
             lit += playgroundWeight(offset) / (1.0 + exp(-1000.0 * diff));
         }
     }
@@ -126,7 +126,7 @@ float pcss(sampler2D shadowMap, vec4 position, float bias, vec2 texel, vec4 ligh
     float blockerDepth = 0.0;
     for (int k = 0; k < blockerTaps; ++k) {
         vec2 offset = rotation * PCSS_DISK[k] * search;
-        float d = texture(shadowMap, uv + offset).r;
+        float d = shadowDepth(shadowMap, uv + offset);
         float nearer = d < current + dot(slope, offset) ? 1.0 : 0.0;
         blockers += nearer;
         blockerDepth += nearer * d;
@@ -140,7 +140,7 @@ float pcss(sampler2D shadowMap, vec4 position, float bias, vec2 texel, vec4 ligh
     float lit = 0.0;
     for (int k = 0; k < filterTaps; ++k) {
         vec2 offset = rotation * PCSS_DISK[k] * radius;
-        lit += step(current + dot(slope, offset), texture(shadowMap, uv + offset).r);
+        lit += step(current + dot(slope, offset), shadowDepth(shadowMap, uv + offset));
     }
     return beyondFarLit && projCoords.z > 1.0 ? 1.0 : lit / float(filterTaps);
 }

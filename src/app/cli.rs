@@ -167,6 +167,11 @@ pub struct DemoArgs {
     /// no-display fallback.
     #[arg(long)]
     pub inset: bool,
+    /// Show the shadow test's visibility instead of the colour frame, as `render
+    /// --shadow-out` writes it: grey 255 lit .. 0 shadowed; blue where no geometry was drawn.
+    /// The page's `&view=visibility`.
+    #[arg(long)]
+    pub show_visibility: bool,
     /// Where the window's OpenGL context comes from: auto (the platform's own: GLX on X11,
     /// WGL on Windows, CGL on macOS, EGL on Wayland; else EGL), glx (X11's; the frame reaches
     /// the X server through shared memory), egl (Mesa's on Linux; on X11 with a software

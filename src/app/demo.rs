@@ -130,6 +130,8 @@ fn translucent_start(
 /// before the context.
 struct Running {
     renderer: Renderer,
+    /// `--show-visibility`'s frame: drawn with the visibility output, its greys shown.
+    visibility: Option<shadowmap::engine::RenderTarget>,
     /// `None` with `--no-hud`.
     hud: Option<Hud>,
     context: WindowContext,
@@ -178,6 +180,16 @@ struct Demo {
     loaded: Scene,
     /// Wall time of each frame after the first, frame to frame (printed at a scripted exit).
     frame_times: Vec<f64>,
+    /// What a key changed, until a frame is drawn with the change: one that cannot be
+    /// drawn (what WebGL2 lacks) goes back to it, said, and the demo goes on.
+    undo: Option<Undo>,
+}
+
+/// The scene, settings and step before a key changed them.
+struct Undo {
+    scene: Scene,
+    settings: ShadowSettings,
+    step: Option<&'static str>,
 }
 
 impl Demo {
@@ -252,6 +264,7 @@ impl Demo {
         };
         Ok(Running {
             renderer,
+            visibility: None,
             hud,
             context,
         })
@@ -298,6 +311,7 @@ impl Demo {
             show_inset: args.inset,
             loaded,
             frame_times: Vec::new(),
+            undo: None,
         }
     }
 

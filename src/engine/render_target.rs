@@ -185,11 +185,70 @@ impl RenderTarget {
                 "render target has no visibility output".into(),
             ));
         }
-        let raw = self.read(1, glow::RG, glow::UNSIGNED_BYTE, 2);
+        // RGBA: the one format OpenGL ES (WebGL2) reads from every 8-bit target.
+        let raw = self.read(1, glow::RGBA, glow::UNSIGNED_BYTE, 4);
         Ok(raw
-            .chunks_exact(2)
+            .chunks_exact(4)
             .map(|p| (p[1] > 127).then_some(p[0] as f32 / 255.0))
             .collect())
+    }
+
+    /// Replaces the colour image with `rgba` (RGBA8, rows top to bottom, the target's size):
+    /// a picture made from what was drawn (the demo's visibility view) shown through it.
+    pub fn write_colour(&self, rgba: &[u8]) -> Result<()> {
+        let row = self.width as usize * 4;
+        if rgba.len() != row * self.height as usize {
+            return Err(Error::Invalid(format!(
+                "{} bytes of RGBA for a {}x{} target",
+                rgba.len(),
+                self.width,
+                self.height
+            )));
+        }
+        let mut rows = rgba.to_vec();
+        flip_rows(&mut rows, row);
+        unsafe {
+            self.gl
+                .bind_texture(glow::TEXTURE_2D, Some(self.colour.id()));
+            self.gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
+            self.gl.tex_sub_image_2d(
+                glow::TEXTURE_2D,
+                0,
+                0,
+                0,
+                self.width as i32,
+                self.height as i32,
+                glow::RGBA,
+                glow::UNSIGNED_BYTE,
+                glow::PixelUnpackData::Slice(Some(&rows)),
+            );
+            self.gl.bind_texture(glow::TEXTURE_2D, None);
+        }
+        Ok(())
+    }
+
+    /// Copies the colour image onto the window's framebuffer at its origin, pixel for pixel.
+    pub fn blit_colour_to_window(&self) {
+        let (w, h) = (self.width as i32, self.height as i32);
+        unsafe {
+            self.gl
+                .bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.fbo.raw()));
+            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
+            self.gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, None);
+            self.gl.blit_framebuffer(
+                0,
+                0,
+                w,
+                h,
+                0,
+                0,
+                w,
+                h,
+                glow::COLOR_BUFFER_BIT,
+                glow::NEAREST,
+            );
+            self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+        }
     }
 
     /// World positions and normals, rows top to bottom; NaN where no geometry was drawn.

@@ -24,6 +24,9 @@ pub struct Sampling {
     /// The program draws the border itself where the sampler has none (OpenGL ES:
     /// shaders/lib/shadow_border.glsl): there the sampler clamps to the edge instead.
     pub border_in_shader: bool,
+    /// The program interpolates depths itself where the sampler cannot (OpenGL ES, `linear`
+    /// without `compare`: shaders/lib/shadow_depth.glsl): there the sampler reads NEAREST.
+    pub interpolate_in_shader: bool,
 }
 
 impl Sampling {
@@ -33,6 +36,7 @@ impl Sampling {
         linear: false,
         wrap: Wrap::ClampToEdge,
         border_in_shader: false,
+        interpolate_in_shader: false,
     };
 }
 
@@ -46,10 +50,16 @@ fn wrap_mode(wrap: Wrap) -> u32 {
 
 /// Refuses a way of reading `texture` that OpenGL ES (WebGL2) cannot do, with what it is:
 /// depth texels interpolated without a comparison (the shadow-playground's `depth_lookup =
-/// "linear"`; ES leaves such a texture incomplete, so every lookup would read 0). Desktop GL
-/// reads both.
+/// "linear"`; ES leaves such a texture incomplete, so every lookup would read 0), unless the
+/// program interpolates them itself. Desktop GL reads both.
 pub fn check_readable(gl: &Gl, texture: &super::Texture, sampling: Sampling) -> Result<()> {
-    if sampling.linear && !sampling.compare && texture.is_depth() && gl.version().is_embedded {
+    let es = gl.version().is_embedded;
+    if sampling.linear
+        && !sampling.compare
+        && !sampling.interpolate_in_shader
+        && es
+        && texture.is_depth()
+    {
         return Err(Error::Invalid(
             "this picture reads the shadow map's depths interpolated (depth_lookup = \
              \"linear\", the playground's colour map), which OpenGL ES and WebGL2 cannot \
@@ -82,7 +92,7 @@ impl Sampler {
         }
         let name = OwnedSampler::new(gl, "sampler")?;
         let id = name.raw();
-        let filter = if sampling.linear {
+        let filter = if sampling.linear && !(es && sampling.interpolate_in_shader) {
             glow::LINEAR
         } else {
             glow::NEAREST

@@ -25,9 +25,10 @@ pub enum Dialect {
 
 /// What an ES shader states after its `#version`: full precision for everything the
 /// project's shaders read (ES's defaults are lower, or none for the shadow samplers), and
-/// that a map's lit border is the shader's to draw (shaders/lib/shadow_border.glsl).
+/// that a map's lit border and its interpolated depths are the shader's to draw
+/// (shaders/lib/shadow_border.glsl, shaders/lib/shadow_depth.glsl).
 const ES_PRECISION: &str = "precision highp float;\nprecision highp int;\n\
-    #define SHADOW_BORDER_IN_SHADER 1\n\
+    #define SHADOW_BORDER_IN_SHADER 1\n#define SHADOW_DEPTH_IN_SHADER 1\n\
     precision highp sampler2D;\nprecision highp sampler2DShadow;\n\
     precision highp sampler2DArray;\nprecision highp sampler2DArrayShadow;\n\
     precision highp samplerCube;\nprecision highp samplerCubeShadow;\n\

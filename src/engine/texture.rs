@@ -347,6 +347,9 @@ impl Texture {
         filtering: Filtering,
     ) -> Result<Texture> {
         let target = shape.target();
+        if texels.ty == glow::FLOAT && texels.format != glow::DEPTH_COMPONENT && pixels.is_none() {
+            check_float_targets(gl, what)?;
+        }
         let texture = Texture::create(gl, target, width, height, what)?;
         let (w, h) = (width as i32, height as i32);
         let Texels {
@@ -441,4 +444,19 @@ impl Texture {
     pub fn height(&self) -> u32 {
         self.height
     }
+}
+
+/// An empty float colour texture is a render target (moment maps, translucent layers, the
+/// shadow mask). Desktop GL 3.3 renders into 32-bit floats; OpenGL ES 3.0 and WebGL2 only
+/// with EXT_color_buffer_float (glow enables every extension the browser offers), so
+/// without it such a picture is refused by name instead of drawn from an incomplete target.
+fn check_float_targets(gl: &Gl, what: &str) -> Result<()> {
+    const EXTENSION: &str = "EXT_color_buffer_float";
+    if gl.version().is_embedded && !gl.supported_extensions().contains(EXTENSION) {
+        return Err(Error::Invalid(format!(
+            "this picture renders into 32-bit floats ({what}), which OpenGL ES and WebGL2 \
+             do only with {EXTENSION}, and this browser or driver lacks it"
+        )));
+    }
+    Ok(())
 }

@@ -77,20 +77,10 @@ impl Frame {
     /// The visibility as an RGBA image: grey 255 lit, 0 shadowed, alpha 0 where no geometry.
     pub fn visibility_image(&self) -> Option<ImageData> {
         let vis = self.visibility.as_ref()?;
-        let mut rgba = Vec::with_capacity(vis.len() * 4);
-        for v in vis {
-            match v {
-                Some(v) => {
-                    let g = (v * 255.0).round() as u8;
-                    rgba.extend_from_slice(&[g, g, g, 255]);
-                }
-                None => rgba.extend_from_slice(&[0, 0, 0, 0]),
-            }
-        }
         Some(ImageData {
             width: self.width,
             height: self.height,
-            rgba,
+            rgba: visibility_rgba(vis, [0, 0, 0, 0]),
         })
     }
 
@@ -153,6 +143,22 @@ pub fn linear_depth(depth: f32, near: f32, far: f32) -> f32 {
     let z = depth * 2.0 - 1.0;
     let eye = (2.0 * near * far) / (far + near - z * (far - near));
     (eye - near) / (far - near)
+}
+
+/// Visibility as greys, RGBA8: 255 lit .. 0 shadowed, `off` where no geometry was drawn
+/// (`--shadow-out`: transparent; the demo's visibility view: a blue no grey can be).
+pub fn visibility_rgba(visibility: &[Option<f32>], off: [u8; 4]) -> Vec<u8> {
+    let mut rgba = Vec::with_capacity(visibility.len() * 4);
+    for v in visibility {
+        match v {
+            Some(v) => {
+                let g = (v * 255.0).round() as u8;
+                rgba.extend_from_slice(&[g, g, g, 255]);
+            }
+            None => rgba.extend_from_slice(&off),
+        }
+    }
+    rgba
 }
 
 /// Renders `frames` frames (updating the scene before each one after the first) at

@@ -206,11 +206,13 @@ pub(super) fn bind_maps_from(
             p.set_i32(name, unit as i32);
             let sampling = t.sampling(settings);
             crate::engine::sampler::check_readable(gl, t.texture(), sampling)?;
-            // Only an ES program declares it (lib/shadow_border.glsl): nothing to do on the
-            // desktop's hot path.
+            // Only an ES program declares them (lib/shadow_border.glsl,
+            // lib/shadow_depth.glsl): nothing to do on the desktop's hot path.
             if crate::engine::Dialect::of(gl) == crate::engine::Dialect::Es {
                 let border = i32::from(sampling.border_in_shader);
                 p.set_i32(crate::shadows::map2d::BORDER_LIT[i], border);
+                let interpolated = i32::from(sampling.interpolate_in_shader);
+                p.set_i32(crate::shadows::map2d::DEPTH_INTERPOLATED[i], interpolated);
             }
             t.texture().bind(unit);
             bound.push(samplers.get(gl, sampling)?.bind(unit));

@@ -84,7 +84,11 @@ impl Technique for Cube {
                 "light {index} has a cube map but is not a point light"
             )));
         };
-        let point_pass = pass.settings.point_pass;
+        // OpenGL ES (WebGL2) has no geometry shader: there the six faces are drawn in turn.
+        let point_pass = match crate::engine::Dialect::of(pass.gl) {
+            crate::engine::Dialect::Desktop => pass.settings.point_pass,
+            crate::engine::Dialect::Es => PointPass::SixPasses,
+        };
         let gpu = pass.gpu();
         let program = pass.programs.point(pass.gl, point_pass)?;
         let projection = Mat4::perspective_rh_gl(90f32.to_radians(), 1.0, light.near, light.far);

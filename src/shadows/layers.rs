@@ -126,6 +126,7 @@ impl<L: Layout> Technique for Layered<L> {
             linear: hardware,
             wrap: Wrap::ClampToBorder,
             border_in_shader: false,
+            interpolate_in_shader: false,
         }
     }
 

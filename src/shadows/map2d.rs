@@ -40,6 +40,15 @@ pub const BORDER_LIT: [&str; crate::scene::MAX_LIGHTS] = [
     "shadowBorderLit[3]",
 ];
 
+/// Whether its map's depths are interpolated, per light, where the shader does it
+/// (shaders/lib/shadow_depth.glsl: OpenGL ES only; the desktop's sampler interpolates).
+pub const DEPTH_INTERPOLATED: [&str; crate::scene::MAX_LIGHTS] = [
+    "shadowDepthInterpolated[0]",
+    "shadowDepthInterpolated[1]",
+    "shadowDepthInterpolated[2]",
+    "shadowDepthInterpolated[3]",
+];
+
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
 pub struct Map2d {
     map: ShadowMap,

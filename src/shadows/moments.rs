@@ -325,6 +325,7 @@ impl Technique for Moments {
             linear: self.summed.is_none(),
             wrap: Wrap::ClampToEdge,
             border_in_shader: false,
+            interpolate_in_shader: false,
         }
     }
 

@@ -144,6 +144,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     };
     Some(LightGlsl {
         snippets: vec![
+            "lib/shadow_depth.glsl",
             "lib/soft_filters.glsl",
             "lib/shadow_moments.glsl",
             "lib/soft_moments.glsl",

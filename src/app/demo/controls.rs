@@ -9,8 +9,10 @@ use shadowmap::ShadowSettings;
 use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::KeyCode;
 
-use super::Demo;
+use super::{Demo, Undo};
 use crate::app::cli::SettingsArgs;
+use shadowmap::engine::context;
+use shadowmap::Error;
 
 /// Camera step per update (DummyGame's CAMERA_POS_STEP).
 const CAMERA_POS_STEP: f32 = 0.05;
@@ -31,6 +33,7 @@ impl Demo {
             ..self.args.settings.clone()
         };
         let settings = flags.resolve(&self.args.scene, &mut scene);
+        let undo = self.undo_point();
         if settings.is_ok() {
             (self.scene.camera, self.scene.lights) = (scene.camera, scene.lights);
             self.scene.items = scene.items;
@@ -44,6 +47,7 @@ impl Demo {
         });
         match result {
             Ok(()) => {
+                self.undo = Some(undo);
                 self.step = step;
                 self.last_title = Instant::now()
                     .checked_sub(Duration::from_secs(1))
@@ -64,18 +68,44 @@ impl Demo {
         // What a light cannot be drawn with (cascades with PCSS, a non-square map) is
         // said, and the key does nothing, rather than ending the demo.
         if let Err(e) = ShadowPlan::resolve(&self.scene.lights, &s, None) {
-            eprintln!("note: {e}; the settings stay as they were");
-            return;
+            return context::report_note(&format!("{e}; the settings stay as they were"));
         }
+        let undo = self.undo_point();
         if let Some(r) = &mut self.running {
             if let Err(e) = r.renderer.set_settings(&s) {
                 return self.fail(event_loop, e);
             }
         }
         self.settings = s;
+        self.undo = Some(undo);
         self.last_title = Instant::now()
             .checked_sub(Duration::from_secs(1))
             .unwrap_or_else(Instant::now);
+    }
+
+    fn undo_point(&self) -> Undo {
+        Undo {
+            scene: self.scene.clone(),
+            settings: self.settings,
+            step: self.step,
+        }
+    }
+
+    /// A frame after a key's change could not be drawn (a refusal: what WebGL2 lacks):
+    /// back to the scene and settings before it, `e` said, and the demo goes on. The
+    /// animation's clock and the frame's shape are kept.
+    pub(super) fn undo_change(&mut self, event_loop: &ActiveEventLoop, undo: Undo, e: Error) {
+        context::report_note(&format!("{e}; the settings stay as they were"));
+        let (time, size) = (self.scene.time, self.scene.size);
+        self.scene = undo.scene;
+        (self.scene.time, self.scene.size) = (time, size);
+        if let Some(r) = &mut self.running {
+            if let Err(e) = r.renderer.set_settings(&undo.settings) {
+                return self.fail(event_loop, e);
+            }
+            r.context.window().request_redraw();
+        }
+        (self.settings, self.step) = (undo.settings, undo.step);
     }
 
     /// M: the first casting light's shadow map instead of the scene, then the next light's,

@@ -4,7 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use shadowmap::engine::{HeadlessContext, Outputs};
-use shadowmap::frame::render_frames;
+use shadowmap::frame::{render_frames, visibility_rgba};
+use shadowmap::image_data::ImageData;
 use shadowmap::output::check_output_image;
 use shadowmap::{Error, Result, Scene, ShadowSettings};
 
@@ -75,6 +76,10 @@ pub(super) fn headless_fallback(
         hud: !args.no_hud,
         inset: args.inset,
     };
+    let outputs = Outputs {
+        visibility: args.show_visibility,
+        gbuffer: false,
+    };
     let frame = match overlays.hud || overlays.inset {
         true => render_frames_with_overlays(
             &context,
@@ -83,21 +88,22 @@ pub(super) fn headless_fallback(
             args.settings.step.as_deref(),
             (w, h),
             frames,
-            Outputs::default(),
+            outputs,
             overlays,
         )?,
-        false => render_frames(
-            context.gl(),
-            &mut scene,
-            settings,
-            w,
-            h,
-            frames,
-            Outputs::default(),
-        )?,
+        false => render_frames(context.gl(), &mut scene, settings, w, h, frames, outputs)?,
     };
     let replaced = std::fs::metadata(&path).is_ok_and(|m| m.is_file());
-    frame.colour.save_png(&path)?;
+    // `--show-visibility`: the visibility view's picture, as the window shows it.
+    match &frame.visibility {
+        Some(v) => ImageData {
+            width: frame.width,
+            height: frame.height,
+            rgba: visibility_rgba(v, super::frame::VISIBILITY_OFF),
+        }
+        .save_png(&path)?,
+        None => frame.colour.save_png(&path)?,
+    }
     let shown = std::fs::canonicalize(&path).unwrap_or_else(|_| path.clone());
     println!(
         "{}",

@@ -4,13 +4,15 @@
 use std::path::PathBuf;
 use web_time::{Duration, Instant};
 
+use shadowmap::engine::{Outputs, RenderTarget};
+use shadowmap::frame::visibility_rgba;
 use shadowmap::image_data::ImageData;
-use shadowmap::{Result, Target};
+use shadowmap::{Result, Scene, Target};
 use winit::dpi::PhysicalSize;
 use winit::event_loop::ActiveEventLoop;
 
 use super::super::hud::{inset_rect, HudInfo};
-use super::Demo;
+use super::{Demo, Running};
 
 /// The book's fixed update rate.
 const UPDATES_PER_SECOND: f64 = 30.0;
@@ -28,8 +30,12 @@ impl Demo {
             return self.skip_minimised();
         }
         if let Err(e) = self.draw(w, h) {
-            return self.fail(event_loop, e);
+            return match self.undo.take() {
+                Some(undo) => self.undo_change(event_loop, undo, e),
+                None => self.fail(event_loop, e),
+            };
         }
+        self.undo = None;
         self.frames += 1;
         let last = self
             .args
@@ -92,7 +98,10 @@ impl Demo {
             width: w,
             height: h,
         };
-        running.renderer.render(&self.scene, target)?;
+        match self.args.show_visibility {
+            false => running.renderer.render(&self.scene, target)?,
+            true => running.show_visibility(&self.scene, w, h)?,
+        }
         // The shadow-map inset, between the scene and the HUD (not over the map itself).
         if let (true, false, Some(rect)) = (
             self.show_inset,
@@ -216,4 +225,31 @@ fn screenshot_path(n: u32) -> PathBuf {
         .map(|d| d.as_secs())
         .unwrap_or(0);
     PathBuf::from(format!("shadowmap-screenshot-{secs}-{n}.png"))
+}
+
+/// Off the geometry in the visibility view: a blue that no grey of the test can be.
+pub(super) const VISIBILITY_OFF: [u8; 4] = [40, 70, 140, 255];
+
+impl Running {
+    /// `--show-visibility`: the frame drawn offscreen with the visibility output, its greys
+    /// (`render --shadow-out`'s) shown in the window. The target is made again only when
+    /// the window's size changes.
+    fn show_visibility(&mut self, scene: &Scene, w: u32, h: u32) -> Result<()> {
+        let gl = self.context.gl();
+        let fits = |t: &RenderTarget| t.width() == w && t.height() == h;
+        if !self.visibility.as_ref().is_some_and(fits) {
+            let outputs = Outputs {
+                visibility: true,
+                gbuffer: false,
+            };
+            self.visibility = Some(RenderTarget::new(gl, w, h, outputs)?);
+        }
+        let Some(target) = &self.visibility else {
+            return Ok(());
+        };
+        self.renderer.render(scene, Target::Offscreen(target))?;
+        target.write_colour(&visibility_rgba(&target.read_visibility()?, VISIBILITY_OFF))?;
+        target.blit_colour_to_window();
+        Ok(())
+    }
 }

@@ -30,7 +30,7 @@ pub use event_loop::{no_display_reason, run_app, window_system};
 pub use headless::HeadlessContext;
 pub use platform::{no_display_hint, Platform, WindowApi, DEBIAN_PACKAGES};
 #[cfg(target_family = "wasm")]
-pub use web::{args, report_error, start, WindowContext};
+pub use web::{args, report_error, report_note, start, WindowContext};
 #[cfg(not(target_family = "wasm"))]
 pub use window::WindowContext;
 
@@ -56,4 +56,10 @@ pub fn args() -> Vec<String> {
 #[cfg(not(target_family = "wasm"))]
 pub fn report_error(message: &str) {
     eprintln!("error: {message}");
+}
+
+/// Says what a key could not do while the program goes on, where the user will read it.
+#[cfg(not(target_family = "wasm"))]
+pub fn report_note(message: &str) {
+    eprintln!("note: {message}");
 }

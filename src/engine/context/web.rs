@@ -165,7 +165,8 @@ impl Backing {
 
 /// The page's address as the command line: `?scene=dummy&step=pcf&size=800x450&still=1&hud=0`
 /// is `shadowmap demo --scene dummy --step pcf --size 800x450 --no-animation --no-hud`, so
-/// that a bad name gets the command line's own message. Other keys pass as `--key value`
+/// that a bad name gets the command line's own message; `&view=visibility` is
+/// `--show-visibility` (other views are the scene's cameras, `--view NAME`). Other keys pass as `--key value`
 /// (`--key` alone without a value).
 pub fn args() -> Vec<String> {
     let mut args = vec!["shadowmap".to_string(), "demo".to_string()];
@@ -191,6 +192,7 @@ pub fn args() -> Vec<String> {
         match (key.as_str(), value.as_str()) {
             ("still", "1") => args.push("--no-animation".into()),
             ("hud", "0") => args.push("--no-hud".into()),
+            ("view", "visibility") => args.push("--show-visibility".into()),
             ("still" | "hud", _) => {}
             // `&show-depth-map` (no value): a flag.
             (_, "") => args.push(format!("--{key}")),
@@ -216,5 +218,12 @@ pub fn report_error(message: &str) {
     doc.set_title(&format!("error: {message}"));
     if let Some(element) = doc.get_element_by_id("error") {
         element.set_text_content(Some(message));
+    }
+}
+
+/// Shows what a key could not do on the page (the title stays: the demo goes on).
+pub fn report_note(message: &str) {
+    if let Some(element) = document().ok().and_then(|d| d.get_element_by_id("error")) {
+        element.set_text_content(Some(&format!("note: {message}")));
     }
 }

@@ -55,10 +55,13 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         MapDepth::Projected => None,
         _ => Some("lib/linear_depth.glsl"),
     };
-    // The map's lit border, in the shader where the sampler has none (lib/shadow_border.glsl).
+    // The map's lit border, and its interpolated depths, in the shader where the sampler
+    // has neither (lib/shadow_border.glsl, lib/shadow_depth.glsl).
     let test = format!("SHADOW_BORDER({i}, mlightviewVertexPos[{p}], {far}, {test})");
+    let test = format!("SHADOW_DEPTH_OF({i}, {test})");
     LightGlsl {
-        snippets: std::iter::once("lib/shadow_border.glsl")
+        snippets: ["lib/shadow_border.glsl", "lib/shadow_depth.glsl"]
+            .into_iter()
             .chain(linear)
             .chain(snippets.iter().copied())
             .collect(),

@@ -47,8 +47,9 @@ impl Technique for Map2d {
     }
 
     /// LINEAR for the hardware's 2 x 2 comparison, or for `depth_lookup = "linear"` (each
-    /// lookup an interpolated depth, the shadow-playground's colour map). A lit border can be
-    /// the shader's (lib/shadow_border.glsl) where the sampler has none.
+    /// lookup an interpolated depth, the shadow-playground's colour map). A lit border and
+    /// interpolated depths can be the shader's (lib/shadow_border.glsl,
+    /// lib/shadow_depth.glsl) where the sampler has neither.
     fn sampling(&self, settings: &ShadowSettings) -> Sampling {
         let s = settings.effective();
         Sampling {
@@ -56,6 +57,7 @@ impl Technique for Map2d {
             linear: s.filter.hardware() || s.depth_lookup == DepthLookup::Linear,
             wrap: s.wrap,
             border_in_shader: s.wrap == crate::settings::Wrap::ClampToBorder,
+            interpolate_in_shader: !s.filter.hardware() && s.depth_lookup == DepthLookup::Linear,
         }
     }
 

@@ -83,6 +83,7 @@ fn every_light_has_its_own_texture_unit_sampler_test_and_call() {
         lines(&lights),
         [
             "#include \"lib/shadow_border.glsl\"",
+            "#include \"lib/shadow_depth.glsl\"",
             "#include \"lib/shadow_2d.glsl\"",
             "#include \"lib/shadow_cube.glsl\"",
             "#define LAYER_SAMPLER sampler2DArrayShadow",
@@ -93,9 +94,9 @@ fn every_light_has_its_own_texture_unit_sampler_test_and_call() {
             "void addLights(inout Fragment f)",
             "{",
             "vec3 toLight0 = toLightOf(0, false);",
-            "float lit0 = SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
+            "float lit0 = SHADOW_DEPTH_OF(0, SHADOW_BORDER(0, mlightviewVertexPos[0], false, \
              calcShadow(shadowMap0, mlightviewVertexPos[0], 0.05, \
-             vec2(0.0009765625, 0.0009765625), 1, false));",
+             vec2(0.0009765625, 0.0009765625), 1, false)));",
             "addLight(0, toLight0, false, lit0, f);",
             "addLightUnshadowed(1, true, false, f);",
             "vec3 toLight2 = toLightOf(2, true);",
@@ -252,9 +253,11 @@ fn each_filter_calls_its_own_function() {
         (Cube, Filter::Single, "calcShadowCube("),
         (Cube, Filter::Pcf3x3, "calcShadowCubeSoft("),
     ] {
-        // A 2D map's test inside its lit border's (lib/shadow_border.glsl).
-        let line =
-            call(shadow, filter).replace("SHADOW_BORDER(0, mlightviewVertexPos[0], false, ", "");
+        // A 2D map's test inside its lit border's and its depths' (lib/shadow_border.glsl,
+        // lib/shadow_depth.glsl).
+        let line = call(shadow, filter)
+            .replace("SHADOW_DEPTH_OF(0, ", "")
+            .replace("SHADOW_BORDER(0, mlightviewVertexPos[0], false, ", "");
         assert!(
             line.starts_with(&format!("float lit0 = {function}")),
             "{filter:?}: {line}"
@@ -278,22 +281,22 @@ fn each_filter_calls_its_own_function() {
     assert!(linear.snippets.contains(&"lib/linear_depth.glsl"));
     assert_eq!(
         linear.lines[1],
-        "float lit1 = SHADOW_BORDER(1, mlightviewVertexPos[0], false, calcShadow(shadowMap1, \
-         linearDepthPosition(mlightviewVertexPos[0]), 0.05, vec2(0.0009765625, 0.0009765625), \
-         1, false));"
+        "float lit1 = SHADOW_DEPTH_OF(1, SHADOW_BORDER(1, mlightviewVertexPos[0], false, \
+         calcShadow(shadowMap1, linearDepthPosition(mlightviewVertexPos[0]), 0.05, \
+         vec2(0.0009765625, 0.0009765625), 1, false)));"
     );
     assert_eq!(
         depth(MapDepth::LinearBias).lines[1],
-        "float lit1 = SHADOW_BORDER(1, mlightviewVertexPos[0], false, calcShadow(shadowMap1, \
-         projectedBiasedPosition(mlightviewVertexPos[0], 0.05, lightDepthRange[1]), 0.0, \
-         vec2(0.0009765625, 0.0009765625), 1, false));"
+        "float lit1 = SHADOW_DEPTH_OF(1, SHADOW_BORDER(1, mlightviewVertexPos[0], false, \
+         calcShadow(shadowMap1, projectedBiasedPosition(mlightviewVertexPos[0], 0.05, \
+         lightDepthRange[1]), 0.0, vec2(0.0009765625, 0.0009765625), 1, false)));"
     );
     assert!(!depth(MapDepth::Projected)
         .snippets
         .contains(&"lib/linear_depth.glsl"));
     // The grid's radius is the filter's.
-    assert!(call(Map, Filter::Single).ends_with(", 0, false));"));
-    assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false));"));
+    assert!(call(Map, Filter::Single).ends_with(", 0, false)));"));
+    assert!(call(Map, Filter::Pcf5x5).ends_with(", 2, false)));"));
 }
 
 #[test]
