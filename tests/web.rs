@@ -293,6 +293,14 @@ fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
                     "{name}: {:.2}% of the page's {what} differ from render's",
                     share * 100.0
                 );
+                if settings_of(scene, step).show_depth_map {
+                    // No shadow test to show: the visibility view is the map's picture.
+                    let differ = common::step_frames::differing_share(seen, png);
+                    assert_eq!(differ, 0.0, "{name}: the visibility view is not the map");
+                    drawn += 1;
+                    println!("{name}: drawn, first frame {:.0} ms", page.ms);
+                    continue;
+                }
                 let native_seen = native(&dir, case, true);
                 let iou = shadow_iou(seen, &native_seen);
                 match acne(scene, step) {
@@ -330,7 +338,10 @@ fn the_page_draws_every_chapter_step_as_render_does_or_says_why_not() {
             (Some(reason), _, _) => panic!("{name}: drawn, though WebGL2 {reason}"),
         }
     }
-    assert_eq!(drawn, cases.len(), "every case is drawn");
+    // Each case is drawn, or refused for what WebGL2 lacks (matched above, case by case).
+    let refused = cases.iter().filter(|(s, t)| lacks(s, *t).is_some()).count();
+    assert_eq!(drawn, cases.len() - refused);
+    assert!(drawn >= 30, "only {drawn} cases drawn");
 }
 
 #[test]
@@ -399,4 +410,46 @@ fn the_step_keys_walk_the_chapter_in_the_page() {
             "expected step {step}: {title}"
         );
     }
+}
+
+/// The frame time a title shows: `... | 12.34 ms (WxH)`.
+fn title_ms(title: &str) -> Option<f64> {
+    let (head, _) = title.rsplit_once(" ms (")?;
+    head.rsplit(' ').next()?.parse().ok()
+}
+
+/// A benchmark's figure, printed: the DummyGame's frame time in the page (frame to frame, as
+/// its title shows it; requestAnimationFrame paces it, so a 60 Hz display's 16.7 ms is its
+/// floor) beside `render`'s native headless one, and the page's first frame. The test
+/// asserts only that both were measured: machines differ.
+#[test]
+#[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
+fn the_dummy_games_frame_time_in_the_page_beside_the_native_one() {
+    let (server, dir) = served("web-time");
+    let size = "640x360";
+    // Five waits of 0.7 s (a key that does nothing) while the scene animates.
+    let query = format!("scene=dummy&size={size}#keys=Shift,Shift,Shift,Shift,Shift");
+    let page = &shoot(&server.url, &dir, &[query])[0];
+    assert_eq!(page.title, "ready");
+    let ms = page.titles.last().and_then(|t| title_ms(t));
+    let ms = ms.unwrap_or_else(|| panic!("no frame time in {:?}", page.titles));
+    let out = common::stdout_of(
+        common::bin()
+            .args([
+                "render", "--scene", "dummy", "--size", size, "--frames", "30", "--out",
+            ])
+            .arg(dir.join("native.png")),
+    );
+    let native = out
+        .lines()
+        .find_map(|l| l.split_once("frame time over ").map(|(_, rest)| rest))
+        .and_then(|rest| rest.split_once("median ").map(|(_, m)| m))
+        .and_then(|m| m.split(' ').next()?.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no frame time in render's output: {out}"));
+    println!(
+        "dummy {size}: the page {ms:.2} ms a frame (frame to frame), native headless \
+         {native:.2} ms (median, glFinish per frame); the page's first frame {:.0} ms",
+        page.ms
+    );
+    assert!(ms > 0.0 && native > 0.0 && page.ms > 0.0);
 }

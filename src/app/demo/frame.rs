@@ -98,7 +98,8 @@ impl Demo {
             width: w,
             height: h,
         };
-        match self.args.show_visibility {
+        // A depth-map view has no shadow test to show: the map is shown as it is.
+        match self.args.show_visibility && !self.settings.show_depth_map {
             false => running.renderer.render(&self.scene, target)?,
             true => running.show_visibility(&self.scene, w, h)?,
         }
