@@ -185,6 +185,8 @@ struct Page {
     ms: f64,
     /// The window's title after each key the query asked for (`#keys=`).
     titles: Vec<String>,
+    /// The page's note after each key (what the key could not do).
+    notes: Vec<String>,
 }
 
 /// Opens every query in one browser; the pages' reports in order.
@@ -203,18 +205,22 @@ fn shoot(url: &str, dir: &Path, queries: &[String]) -> Vec<Page> {
         .lines()
         .map(|line| {
             let v: serde_json::Value = serde_json::from_str(line).unwrap();
-            Page {
-                title: v["title"].as_str().unwrap_or_default().to_string(),
-                png: v["png"].as_str().map(PathBuf::from),
-                ms: v["ms"].as_f64().unwrap_or(f64::NAN),
-                titles: v["titles"]
+            let strings = |key: &str| -> Vec<String> {
+                v[key]
                     .as_array()
                     .map(|t| {
                         t.iter()
                             .filter_map(|t| t.as_str().map(String::from))
                             .collect()
                     })
-                    .unwrap_or_default(),
+                    .unwrap_or_default()
+            };
+            Page {
+                title: v["title"].as_str().unwrap_or_default().to_string(),
+                png: v["png"].as_str().map(PathBuf::from),
+                ms: v["ms"].as_f64().unwrap_or(f64::NAN),
+                titles: strings("titles"),
+                notes: strings("notes"),
             }
         })
         .collect();
@@ -395,21 +401,35 @@ fn a_bad_name_or_what_webgl2_lacks_gets_a_message_on_the_page() {
 
 #[test]
 #[ignore = "needs web/dist, Node.js and Chromium: .ci/run builds and runs it"]
-fn the_step_keys_walk_the_chapter_in_the_page() {
+fn the_step_keys_walk_the_chapter_in_the_page_past_a_refused_key() {
     let (server, dir) = served("web-keys");
-    let query = format!("scene=dummy&size={SIZE}&hud=0#keys=KeyN,KeyN,PageUp");
+    let query = format!("scene=dummy&size={SIZE}&hud=0#keys=KeyN,KeyN,PageUp,KeyV,KeyN");
     let pages = shoot(&server.url, &dir, &[query]);
     assert_eq!(pages[0].title, "ready");
     let list = steps::of(&Scene::load("dummy").unwrap());
-    // N: the first step, N: the second, PageUp: the first again (as in the demo's window).
-    let expected = [list[0].name, list[1].name, list[0].name];
-    assert_eq!(pages[0].titles.len(), 3, "{:?}", pages[0].titles);
+    // N: the first step, N: the second, PageUp: the first again (as in the demo's window);
+    // V (shadow volumes, which need a geometry shader) is refused with a note and the page
+    // goes on: the same step, then N the second.
+    let expected = [
+        list[0].name,
+        list[1].name,
+        list[0].name,
+        list[0].name,
+        list[1].name,
+    ];
+    assert_eq!(pages[0].titles.len(), 5, "{:?}", pages[0].titles);
     for (title, step) in pages[0].titles.iter().zip(expected) {
         assert!(
             title.contains(&format!("| step {step} |")),
             "expected step {step}: {title}"
         );
     }
+    assert!(pages[0].notes[2].is_empty(), "{:?}", pages[0].notes);
+    assert!(
+        pages[0].notes[3].starts_with("note: ") && pages[0].notes[3].contains("geometry shader"),
+        "{:?}",
+        pages[0].notes
+    );
 }
 
 /// The frame time a title shows: `... | 12.34 ms (WxH)`.

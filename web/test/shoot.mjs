@@ -5,10 +5,10 @@
 //
 // A query may end in `#keys=KeyN,KeyN`: those keys are pressed on the canvas in turn once
 // the first frame is there, and the window's title (winit keeps it in the canvas's `alt`)
-// is read after each.
+// is read after each, with the page's note (`#error`: what a key could not do).
 //
-// Prints one JSON line per page: {"query", "title", "png", "ms", "titles"}; "ms" is the time
-// from navigation to the first frame on the canvas.
+// Prints one JSON line per page: {"query", "title", "png", "ms", "titles", "notes"}; "ms" is
+// the time from navigation to the first frame on the canvas.
 import puppeteer from "puppeteer-core";
 import { writeFileSync } from "node:fs";
 import { join } from "node:path";
@@ -51,15 +51,17 @@ try {
       writeFileSync(png, Buffer.from(data.split(",")[1], "base64"));
     }
     const titles = [];
+    const notes = [];
     if (title === "ready") {
       await page.focus("#shadowmap");
       for (const key of keys) {
         await page.keyboard.press(key);
         await new Promise((r) => setTimeout(r, 700));
         titles.push(await page.evaluate(() => document.getElementById("shadowmap").getAttribute("alt")));
+        notes.push(await page.evaluate(() => document.getElementById("error").textContent));
       }
     }
-    console.log(JSON.stringify({ query: whole, title, png, ms, titles, logs }));
+    console.log(JSON.stringify({ query: whole, title, png, ms, titles, notes, logs }));
     await page.close();
   }
 } finally {
