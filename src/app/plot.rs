@@ -15,15 +15,9 @@ const ERROR_FLOOR_PCT: f64 = 0.001;
 
 /// Makes the embedded font the plots' "sans-serif" (no system fonts are needed).
 pub(super) fn register_font() -> std::result::Result<(), String> {
-    // Registering twice is harmless. In the browser plotters draws with the page's fonts
-    // and has no registry (nothing is plotted there).
-    #[cfg(not(target_family = "wasm"))]
-    {
-        static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-        plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
-            .map_err(|_| "the embedded font is not readable".to_string())?;
-    }
-    Ok(())
+    // Registering twice is harmless.
+    static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+    shadowmap::engine::context::register_plot_font("sans-serif", FONT)
 }
 
 /// The Pareto plot's axes: log scales with our own ticks.

@@ -63,3 +63,14 @@ pub fn report_error(message: &str) {
 pub fn report_note(message: &str) {
     eprintln!("note: {message}");
 }
+
+/// Makes `font` the plots' `name` where the program draws a plot's text itself. In the
+/// browser plotters draws with the page's fonts and has no registry: nothing to do.
+pub fn register_plot_font(name: &str, font: &'static [u8]) -> Result<(), String> {
+    #[cfg(not(target_family = "wasm"))]
+    plotters::style::register_font(name, plotters::style::FontStyle::Normal, font)
+        .map_err(|_| "the embedded font is not readable".to_string())?;
+    #[cfg(target_family = "wasm")]
+    let _ = (name, font);
+    Ok(())
+}
