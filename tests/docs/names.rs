@@ -9,6 +9,9 @@
 //!   or benches/ must exist (`*` and `{a,b}` expanded). A bare source file name (`maps.rs`,
 //!   `volume.geom`) must end the path of some source file.
 //! - `A::b::C` paths: every segment must be a name the code defines; `{A, B}` lists are split.
+//!   A path whose first segment is a module of src/ (`shadows::plan`, `shadowmap::` and
+//!   `crate::` dropped) is walked as the compiler would: each segment a module (`x.rs`,
+//!   `x/mod.rs`) of the one before, until one the last module's file defines or re-exports.
 //! - A CONSTANT (`SHADOW_MASK_READ`), a camelCase name (a GLSL function or variable:
 //!   `calcShadow`), a PascalCase type and a `call()` must appear as a whole word in the
 //!   program: src/, shaders/, examples/, scripts/, comment lines and unit tests (`tests.rs`,
@@ -177,6 +180,46 @@ impl Code {
         }
     }
 
+    /// The file of the module at `path` (`src/shadows/plan`): `path.rs` or `path/mod.rs`.
+    fn module_file(&self, path: &str) -> Option<&(String, String)> {
+        let (file, folder) = (format!("{path}.rs"), format!("{path}/mod.rs"));
+        self.files.iter().find(|(f, _)| *f == file || *f == folder)
+    }
+
+    /// What is wrong with a `::` path that starts at a module of src/: a segment that is
+    /// neither a module of the one before nor an item its file defines or re-exports.
+    /// `None` for a path that does not start at a module (`Scene::load`).
+    fn module_path_error(&self, segments: &[String]) -> Option<String> {
+        let mut dir = String::from("src");
+        let mut file = None;
+        for (i, segment) in segments.iter().enumerate() {
+            let path = format!("{dir}/{segment}");
+            if let Some(module) = self.module_file(&path) {
+                (dir, file) = (path, Some(module));
+                continue;
+            }
+            let (name, text) = file?;
+            let defined = definitions_in(text).iter().any(|d| d == segment);
+            let word = regex::Regex::new(&format!(r"\b{segment}\b")).unwrap();
+            let uses = regex::Regex::new(r"\bpub(?:\([a-z ]+\))?\s+use\s+([^;]*);").unwrap();
+            // A `pub use` of the name, or a glob over the module's own folder.
+            let exported = uses.captures_iter(text).any(|c| {
+                let glob = c[1].contains('*') && self.defined_in(segment, &format!("{dir}/"));
+                word.is_match(&c[1]) || glob
+            });
+            if defined || exported {
+                return None;
+            }
+            return Some(format!(
+                "`{}`: `{segment}` is no module of `{}` (`{dir}/{segment}.rs`) nor defined in \
+                 `{name}`",
+                segments[..=i].join("::"),
+                segments[..i].join("::"),
+            ));
+        }
+        None
+    }
+
     /// Whether `name` is defined in `place`: a file (`src/a.rs`), a folder (`src/a/`) or a
     /// bare file name (`a.rs`, any file whose path ends so).
     fn defined_in(&self, name: &str, place: &str) -> bool {
@@ -211,6 +254,8 @@ enum Cited {
         all: Vec<String>,
         last: String,
         only_paired: bool,
+        /// The `::` paths cited (a `{A, B}` list gives one a name), segment by segment.
+        paths: Vec<Vec<String>>,
     },
     Skip,
 }
@@ -287,6 +332,7 @@ fn classify(token: &str) -> Cited {
             last: segments.last().unwrap().clone(),
             all: segments,
             only_paired: false,
+            paths: module_paths(t),
         };
     }
     if !is_identifier(t) || is_opengl(t) {
@@ -298,6 +344,28 @@ fn classify(token: &str) -> Cited {
         last: t.to_string(),
         // A plain lowercase word is a setting, a step or a name alike.
         only_paired: !upper && !call,
+        paths: Vec::new(),
+    }
+}
+
+/// The `::` paths of a token, `a::{b, c}` as `a::b` and `a::c`, each without its leading
+/// `crate`, `self`, `super` or `shadowmap`.
+fn module_paths(token: &str) -> Vec<Vec<String>> {
+    let split = |p: &str| -> Vec<String> {
+        let segments: Vec<String> = p.split("::").map(|s| s.trim().to_string()).collect();
+        let skip = segments
+            .iter()
+            .take_while(|s| ["crate", "self", "super", "shadowmap"].contains(&s.as_str()))
+            .count();
+        segments[skip..].to_vec()
+    };
+    match token.split_once('{') {
+        Some((head, list)) => list
+            .trim_end_matches('}')
+            .split(',')
+            .map(|alt| split(&format!("{head}{}", alt.trim())))
+            .collect(),
+        None => vec![split(token)],
     }
 }
 
@@ -467,7 +535,11 @@ fn citation_error(code: &Code, cited: &Cited, pair: Option<&str>) -> Option<Stri
             all,
             last,
             only_paired,
+            paths,
         } => {
+            if let Some(e) = paths.iter().find_map(|p| code.module_path_error(p)) {
+                return Some(e);
+            }
             let multi = all.len() > 1;
             let missing = all.iter().find(|n| match multi {
                 true => !code.definitions.contains_key(*n),
@@ -556,6 +628,7 @@ fn the_code_name_check_finds_stale_names() {
 `src/geometry.rs`: `MeshData::cube`, then `NoSuchType::new`; `src/no/such.rs`.
 `src/scene/camera.rs` (`MeshData::plane`, `Camera`).
 Flags and settings are not names: `--map-size 512`, `shadow_cache`, `bias = 0.05`, `GL_NONE`.
+Modules: `shadows::slots`, `shadows::program::slots::MaskMode`, `steps::{get, of}`, `engine::no_such`.
 ";
     let (checked, wrong) = check_doc(&code, "docs/test.md", doc);
     let expected = [
@@ -565,9 +638,13 @@ Flags and settings are not names: `--map-size 512`, `shadow_cache`, `bias = 0.05
         "docs/test.md:5: `NoSuchType` is not in the program",
         "docs/test.md:5: `src/no/such.rs` does not exist",
         "docs/test.md:5: `plane` is not defined in `src/scene/camera.rs`",
+        "docs/test.md:5: `shadows::slots`: `slots` is no module of `shadows` \
+         (`src/shadows/slots.rs`) nor defined in `src/shadows/mod.rs`",
+        "docs/test.md:5: `engine::no_such`: `no_such` is no module of `engine` \
+         (`src/engine/no_such.rs`) nor defined in `src/engine/mod.rs`",
     ];
     assert_eq!(wrong, expected);
-    assert_eq!(checked, 15, "{wrong:?}");
+    assert_eq!(checked, 18, "{wrong:?}");
 }
 
 /// The reading guide maps every function of the two one-file examples onto the engine, but
