@@ -224,6 +224,8 @@ impl RenderTarget {
             );
             self.gl.bind_texture(glow::TEXTURE_2D, None);
         }
+        // Bound past the context's record of its units (bindings.rs).
+        self.gl.forget_bindings();
         Ok(())
     }
 

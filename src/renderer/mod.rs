@@ -199,7 +199,7 @@ impl Renderer {
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
         self.after_depth_map(scene, "render_scene")?;
         self.prepare_frame(scene, target)?;
-        let plan = self.mask_plan(scene, target)?;
+        let plan = self.mask_plan(scene, target.size())?;
         self.hook(Pass::Scene, true);
         // The samplers leave the renderer for the pass, so the inputs can borrow the rest.
         let mut samplers = std::mem::take(&mut self.samplers);

@@ -10,7 +10,7 @@
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
-use super::{scene_pass, Renderer, Target};
+use super::{scene_pass, Renderer};
 use crate::engine::{Gl, Outputs, RenderTarget, Samplers, ShaderProgram, Texture};
 use crate::error::Result;
 use crate::scene::Scene;
@@ -148,11 +148,9 @@ pub fn frame_key(
 
 impl Renderer {
     /// What this frame does with the mask: with shadow volumes every light is tested (a
-    /// pass per light), as in a frame with measurement outputs (the visibility the mask
-    /// does not keep), else as [`ShadowMask::plan`] says for this frame's key.
-    pub(super) fn mask_plan(&mut self, scene: &Scene, target: Target) -> Result<Plan> {
-        let size = target.size();
-        if self.uses_volumes() || target.outputs() != Outputs::default() {
+    /// pass per light), else as [`ShadowMask::plan`] says for this frame's key.
+    pub(super) fn mask_plan(&mut self, scene: &Scene, size: (u32, u32)) -> Result<Plan> {
+        if self.uses_volumes() {
             return Ok(Plan::Test);
         }
         let key = self.mask_key(scene, size)?;
