@@ -6,7 +6,9 @@
 //   LAYER_SAMPLER  sampler2DArrayShadow for the hardware filters, else sampler2DArray
 //   LAYER_TEXEL    one texel of a layer, vec2(1 / width, 1 / height)
 //   LAYER_RADIUS   the PCF grid's half size, as calcShadow's radius
-//   LAYER_TAPS     0 = that grid, 1 = the playground's weighted 4 x 4, 2 = its soft PCF
+//   LAYER_TAPS_GRID, LAYER_TAPS_WEIGHTED_4X4 or LAYER_TAPS_SOFT_PCF: one of them, named by
+//                  the filter's Kernel (src/shadows/map2d.rs): that grid, the playground's
+//                  weighted 4 x 4, its soft PCF
 // (PCSS is refused for layers: src/scene/refusals.rs, filter_refusal.)
 
 // The layered light's position in each layer's clip space (scene.vert: one light is
@@ -37,24 +39,29 @@ float layerLookup(LAYER_SAMPLER map, int c, float bias)
     float layer = float(c);
     float current = projCoords.z - bias * cascadePos[c].w;
     float lit = 0.0;
-#if LAYER_TAPS == 0
+#if defined(LAYER_TAPS_GRID)
     for (int row = -LAYER_RADIUS; row <= LAYER_RADIUS; ++row) {
         for (int col = -LAYER_RADIUS; col <= LAYER_RADIUS; ++col) {
             lit += compareLayer(map, uv + vec2(row, col) * LAYER_TEXEL, layer, current);
         }
     }
     lit /= float((2 * LAYER_RADIUS + 1) * (2 * LAYER_RADIUS + 1));
-#else
+#elif defined(LAYER_TAPS_WEIGHTED_4X4) || defined(LAYER_TAPS_SOFT_PCF)
     // The playground's taps (soft_filters.glsl), in the layer.
     for (int row = 0; row < 4; ++row) {
         for (int col = 0; col < 4; ++col) {
             vec2 offset = vec2(col, row) - 1.5;
             float weight = abs(offset.x) < 1.0 && abs(offset.y) < 1.0 ? 0.6 / 4.0 : 0.4 / 12.0;
             float diff = texture(map, vec3(uv + offset * LAYER_TEXEL, layer)).r - current;
-            lit += LAYER_TAPS == 2 ? weight / (1.0 + exp(-1000.0 * diff))
-                                   : weight * step(0.0, diff);
+#if defined(LAYER_TAPS_SOFT_PCF)
+            lit += weight / (1.0 + exp(-1000.0 * diff));
+#else
+            lit += weight * step(0.0, diff);
+#endif
         }
     }
+#else
+#error expected one of the LAYER_TAPS defines of Kernel in src/shadows/map2d.rs
 #endif
     return projCoords.z > 1.0 ? 1.0 : lit;
 }

@@ -114,7 +114,7 @@ impl Filter {
     pub const SOFT_MOMENTS: [Filter; 2] = [Filter::Vssm, Filter::MsmSoft];
 
     /// Half the grid of lookups in texels (0 = one lookup); the soft filters have their
-    /// own taps ([`Filter::kernel`]) and no grid.
+    /// own taps (`crate::shadows::map2d::Kernel`) and no grid.
     pub fn radius(self) -> u32 {
         match self {
             Filter::Single | Filter::Hardware2x2 => 0,
@@ -125,18 +125,6 @@ impl Filter {
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 0,
             // Boxes of a summed-area table, as wide as the penumbra.
             Filter::Vssm | Filter::MsmSoft => 0,
-        }
-    }
-
-    /// The shader's kernel (which function a 2D map's test calls, `LAYER_TAPS` for a layered
-    /// light): 0 = the grid of [`Filter::radius`], 1 = the
-    /// playground's weighted 4 x 4, 2 = its soft PCF, 3 = PCSS.
-    pub fn kernel(self) -> u32 {
-        match self {
-            Filter::Pcf4x4Weighted => 1,
-            Filter::SoftPcf => 2,
-            Filter::Pcss => 3,
-            _ => 0,
         }
     }
 

@@ -224,7 +224,7 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
             ("LAYER_SAMPLER", sampler_type.to_string()),
             ("LAYER_TEXEL", test.texel_glsl()),
             ("LAYER_RADIUS", test.pcf_radius.to_string()),
-            ("LAYER_TAPS", test.kernel.to_string()),
+            (test.kernel.layer_define(), "1".to_string()),
         ],
     }
 }

@@ -283,8 +283,8 @@ pub struct ShadowTest {
     pub normal_offset: bool,
     /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
     pub map_size: MapSize,
-    /// [`Filter::kernel`]: the grid, or a soft filter (shaders/lib/soft_filters.glsl).
-    pub kernel: u32,
+    /// The grid, or a soft filter's taps (shaders/lib/soft_filters.glsl).
+    pub kernel: map2d::Kernel,
     /// PCSS's taps (0 for the other filters, so their key ignores them).
     pub pcss_blocker_taps: u32,
     pub pcss_filter_taps: u32,
@@ -320,7 +320,7 @@ impl ShadowTest {
             map_size: s.map_size,
             moments: MomentTest::of(&s),
             soft_cells: summed::SoftCells::of(&s),
-            kernel: s.filter.kernel(),
+            kernel: map2d::Kernel::of(s.filter),
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
@@ -354,7 +354,7 @@ impl ShadowTest {
     /// not).
     pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
         match kind {
-            ShadowKind::Map => self.kernel != 3,
+            ShadowKind::Map => self.kernel != map2d::Kernel::Pcss,
             ShadowKind::Moments => self
                 .moments
                 .is_some_and(|m| !summed::reads_table_mode(m.mode)),

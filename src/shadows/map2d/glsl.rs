@@ -2,7 +2,7 @@
 //! `calcShadow` (shaders/lib/shadow_2d.glsl, "Shadows": `calcShadow`), or of its filter's
 //! function, with the light's settings as literal arguments.
 
-use super::MapDepth;
+use super::{Kernel, MapDepth};
 use crate::shadows::{LightGlsl, ShadowTest};
 
 const SOFT: &[&str] = &["lib/soft_filters.glsl"];
@@ -30,14 +30,14 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
     let (r, far) = (test.pcf_radius, test.beyond_far_lit);
     let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
-        _ if test.hardware => (
+        Kernel::HardwareGrid => (
             &["lib/hardware_pcf.glsl"],
             "sampler2DShadow",
             format!("calcShadowHardware({head}, {r}, {far})"),
         ),
-        1 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
-        2 => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
-        3 => (
+        Kernel::Weighted4x4 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
+        Kernel::SoftPcf => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
+        Kernel::Pcss => (
             SOFT,
             "sampler2D",
             format!(
@@ -45,7 +45,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
                 test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
             ),
         ),
-        _ => (
+        Kernel::Grid => (
             &["lib/shadow_2d.glsl"],
             "sampler2D",
             format!("calcShadow({head}, {r}, {far})"),

@@ -89,7 +89,7 @@ fn every_light_has_its_own_texture_unit_sampler_test_and_call() {
             "#define LAYER_SAMPLER sampler2DArrayShadow",
             "#define LAYER_TEXEL vec2(0.0009765625, 0.0009765625)",
             "#define LAYER_RADIUS 0",
-            "#define LAYER_TAPS 0",
+            "#define LAYER_TAPS_GRID 1",
             "#include \"lib/shadow_cascades.glsl\"",
             "void addLights(inout Fragment f)",
             "{",
