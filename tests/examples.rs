@@ -143,23 +143,36 @@ fn learnopengl_example_matches_from_above_where_the_bias_shows() {
     );
 }
 
-/// An example's program, built as `cargo build --example` builds it (this test's cargo
-/// has released its lock by the time tests run).
+/// An example's program, built in the profile and target folder this test was built in
+/// (`cargo test --release` runs release examples, a plain `cargo test` debug ones), so the
+/// program run is the one just built, never a stale one from another profile. This test's
+/// cargo has released its lock by the time tests run.
 fn example_bin(name: &str) -> std::path::PathBuf {
+    // This test runs from <target>/<profile folder>/deps; the examples go beside deps.
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().and_then(|deps| deps.parent()).unwrap();
+    let folder = profile_dir.file_name().unwrap().to_str().unwrap();
+    // The dev profile's folder is `debug`; every other profile's is its own name.
+    let profile = match folder {
+        "debug" => "dev",
+        other => other,
+    };
     let status = std::process::Command::new(env!("CARGO"))
-        .args(["build", "--quiet", "--example", name])
+        .args(["build", "--quiet", "--example", name, "--profile", profile])
+        .arg("--target-dir")
+        .arg(profile_dir.parent().unwrap())
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .status()
         .unwrap();
-    assert!(status.success(), "cargo build --example {name}");
-    // This test runs from target/<profile>/deps; the examples sit beside it.
-    let deps = std::env::current_exe().unwrap();
-    deps.parent()
-        .unwrap()
-        .parent()
-        .unwrap()
+    assert!(
+        status.success(),
+        "cargo build --example {name} --profile {profile}"
+    );
+    let bin = profile_dir
         .join("examples")
-        .join(name)
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    assert!(bin.is_file(), "{} was not built", bin.display());
+    bin
 }
 
 /// Each example answers `--help` with its usage (and writes nothing), and refuses an
