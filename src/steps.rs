@@ -161,8 +161,8 @@ pub const STEPS: &[Step] = &[
         change: "Front faces are culled in the depth pass (LearnOpenGL's text, the slides), so \
                  closed objects store their back faces: a lit face no longer meets its own \
                  depth, so it cannot have acne whatever the bias.",
-        look_for: "With the bias kept, the floor beside a caster that rests on it now compares \
-                   against the caster's near back face: the shadow lifts off at the contact \
+        look_for: "The shadow lifts off where a caster rests on the floor. With the bias \
+                   kept, the floor beside the caster now compares against its near back face \
                    (LearnOpenGL warns of casters close to their receiver), so the step is shown \
                    at such a contact. Single-sided geometry still casts only if wound to face \
                    away from the light.",
@@ -178,9 +178,9 @@ pub const STEPS: &[Step] = &[
             },
             Stage {
                 scene: "learnopengl",
-                note: "Seen close up at the contact of the cube resting on the floor, from \
-                       the side of its shadow.",
-                camera: Some(([3.6, 0.9, 2.8], [2.0, -0.5, 1.0])),
+                note: "Seen at the contact of the cube resting on the floor, from the side \
+                       of its shadow and far enough back that the HUD covers no cube.",
+                camera: Some(([4.8, 2.4, 4.4], [1.5, -0.3, 1.1])),
                 light_box: None,
                 items: &[],
             },
@@ -234,7 +234,12 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "pcf",
         change: "Percentage-closer filtering: the average of a 3 x 3 block of comparisons.",
-        look_for: "Softer, less blocky shadow edges with intermediate values.",
+        look_for: "Softer, less blocky shadow edges with intermediate values. Against the \
+                   hard reference the error can rise: where the truth is 0 or 1, each grey of \
+                   the ramp PCF spreads a texel or so either side of the edge is wrong by part \
+                   of 1, on pixels the single lookup had right (the DummyGame at 640 x 360: \
+                   MAE 0.0026 to 0.0050, half of it off the edge's own pixels). With texels \
+                   no larger than pixels the ramp is under a pixel wide and PCF lowers it.",
         cumulative: true,
         stages: &[],
         same_picture: &[],
@@ -265,7 +270,11 @@ pub const STEPS: &[Step] = &[
     Step {
         name: "perspective-depth-map",
         change: "The perspective light's depth map, linearised for display.",
-        look_for: "Without linearising, everything past the nearest surfaces would be white.",
+        look_for: "Without linearising, everything past the nearest surfaces would be white. \
+                   Front faces are still culled (`cull-front` carries over), so the map holds \
+                   back faces: the cubes show their far faces, as if hollow, and a floor that \
+                   faces the light (the DummyGame's) is not in it at all, white; one wound \
+                   the other way (LearnOpenGL's) stays.",
         cumulative: false,
         stages: &[],
         same_picture: &[],

@@ -5,8 +5,8 @@
 //!
 //! This file decides what the lines say and where they go; the glyphs and the GL drawing
 //! are `engine::text`'s. The status panel sits in the top-left corner and the key panel
-//! under it (in the top-right corner when the left would cover the translucent items); the
-//! bottom-right corner holds the shadow-map inset ([`inset_rect`]: the light's map beside
+//! under it (in the top-right or bottom-left corner when the top-left would cover a caster
+//! or a translucent item and that corner would not: [`place`]); the bottom-right corner holds the shadow-map inset ([`inset_rect`]: the light's map beside
 //! the shadows it makes, LearnOpenGL's debug quad made small), which the renderer draws
 //! (`Renderer::render_depth_inset`) after the scene and before the HUD.
 
@@ -18,6 +18,7 @@ use shadowmap::renderer::{DepthPasses, DepthRange, MaskUses};
 use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::{shaders, steps, Renderer, Result, Scene, ShadowSettings, Target};
 
+mod place;
 mod words;
 
 /// The bundled font (DejaVu Sans; its licence is in `assets/fonts`).
@@ -186,9 +187,10 @@ pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQu
         status_width.max(keys_width) + 2.0 * PADDING,
         line * status.len() as f32 + 2.0 * PADDING + keys_height,
     );
-    let right = on_the_right(info.scene, size, column);
+    let corner = place::corner(info.scene, size, column);
+    let top = corner.origin(size, column).1;
     // Each panel against the frame's left edge, or its right edge.
-    let x_of = |text_width: f32| match right {
+    let x_of = |text_width: f32| match corner.right() {
         true => (size.0 as f32 - MARGIN - text_width - 2.0 * PADDING).floor(),
         false => MARGIN,
     };
@@ -196,10 +198,10 @@ pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQu
     let bottom = panel(
         atlas,
         &mut quads,
-        (x, MARGIN),
+        (x, top),
         (status_width, line * status.len() as f32),
     );
-    let mut y = MARGIN + PADDING;
+    let mut y = top + PADDING;
     for text in &status {
         atlas.push_text(&mut quads, text, x + PADDING, y, TEXT_COLOUR);
         y += line;
@@ -222,56 +224,6 @@ pub fn layout(atlas: &FontAtlas, info: &HudInfo, size: (u32, u32)) -> Vec<TextQu
         }
     }
     quads
-}
-
-/// Whether the panels (a `column` wide and tall) go to the top-right corner: when the frame
-/// has room for them there, and in the top-left they would lie over the scene's translucent
-/// items and in the top-right they would not. Those items are what a scene with them is
-/// about (the smoke), and a panel's dark ground dims what is under it.
-fn on_the_right(scene: &Scene, size: (u32, u32), column: (f32, f32)) -> bool {
-    let items = translucent_on_screen(scene, size);
-    let (w, h) = column;
-    let overlaps = |x0: f32| {
-        (items.iter()).any(|r| r[0] < x0 + w && r[2] > x0 && r[1] < MARGIN + h && r[3] > MARGIN)
-    };
-    let right = size.0 as f32 - MARGIN - w;
-    right > MARGIN && overlaps(MARGIN) && !overlaps(right)
-}
-
-/// Where each translucent item falls on a `size` frame from the scene's camera: the box of
-/// its mesh box's corners in front of the camera (pixels from the top-left, y down).
-fn translucent_on_screen(scene: &Scene, size: (u32, u32)) -> Vec<[f32; 4]> {
-    let to_clip = shadowmap::motion::view_projection(&scene.camera, size.0, size.1);
-    let (w, h) = (f64::from(size.0), f64::from(size.1));
-    let mut rects = Vec::new();
-    // Each mesh's bounds once, for the items that share it (the smoke's puffs).
-    let mut bounds = vec![None; scene.meshes.len()];
-    for item in scene.items.iter().filter(|i| i.is_translucent()) {
-        let (lo, hi) = *bounds[item.mesh].get_or_insert_with(|| scene.meshes[item.mesh].bounds());
-        let model = item.model_matrix64();
-        let mut rect: Option<[f32; 4]> = None;
-        for corner in 0..8 {
-            let pick =
-                |bit: usize, l: f32, h: f32| f64::from(if corner & bit == 0 { l } else { h });
-            let local = glam::DVec3::new(
-                pick(1, lo.x, hi.x),
-                pick(2, lo.y, hi.y),
-                pick(4, lo.z, hi.z),
-            );
-            let clip = to_clip * model.transform_point3(local).extend(1.0);
-            if clip.w <= 1e-9 {
-                continue;
-            }
-            let px = ((clip.x / clip.w * 0.5 + 0.5) * w) as f32;
-            let py = ((0.5 - clip.y / clip.w * 0.5) * h) as f32;
-            rect = Some(match rect {
-                None => [px, py, px, py],
-                Some([x0, y0, x1, y1]) => [x0.min(px), y0.min(py), x1.max(px), y1.max(py)],
-            });
-        }
-        rects.extend(rect);
-    }
-    rects
 }
 
 /// A panel around text of the given size whose top-left corner is `at`; returns its bottom.
@@ -615,25 +567,50 @@ mod tests {
         }
     }
 
-    #[test]
-    fn panels_keep_off_the_smoke_and_stay_left_where_nothing_is_translucent() {
+    /// The status panel's rectangle over `scene` at `size`, with `step`'s lesson; and
+    /// whether it covers any of the scene's casters or translucent items.
+    fn status_panel(scene: &Scene, step: Option<&str>, size: (u32, u32)) -> ([f32; 4], bool) {
         let atlas = FontAtlas::new(FONT, FONT_PX).unwrap();
-        let status_x = |scene: &Scene| {
-            let own = plan_own(scene);
-            let quads = layout(&atlas, &info(scene, &own, None), (1280, 720));
-            quads[0].rect[0]
-        };
-        assert_eq!(status_x(&dummy_at(45.0)), MARGIN);
+        let settings = step.map_or(scene.shadow, |s| steps::settings_for(scene, s).unwrap());
+        let plan = plan(scene, &settings);
+        let rect = layout(&atlas, &info(scene, &plan, step), size)[0].rect;
+        let shapes = place::silhouettes(scene, size);
+        (rect, shapes.iter().any(|(_, h)| place::overlaps(h, rect)))
+    }
+
+    #[test]
+    fn panels_keep_off_the_smoke_and_the_cubes_and_stay_left_where_they_can() {
+        let (rect, covers) = status_panel(&dummy_at(45.0), None, (1280, 720));
+        assert_eq!((rect[0], rect[1], covers), (MARGIN, MARGIN, false));
         let smoke = Scene::load("smoke").unwrap();
-        let items = translucent_on_screen(&smoke, (1280, 720));
+        let puffs = place::silhouettes(&smoke, (1280, 720));
+        let left = [MARGIN, MARGIN, 420.0, 160.0];
+        assert!(puffs.iter().any(|(t, h)| *t && place::overlaps(h, left)));
+        let (rect, covers) = status_panel(&smoke, None, (1280, 720));
         assert!(
-            items.iter().any(|r| r[0] < 420.0 && r[1] < 160.0),
-            "{items:?}"
+            rect[0] > 640.0 && !covers,
+            "the status panel at {rect:?}, over the smoke"
         );
-        let x = status_x(&smoke);
-        assert!(
-            x > 640.0,
-            "the status panel starts at x = {x}, over the smoke"
-        );
+        // LearnOpenGL's top cube stands where the top-left panel would go; the cull-front
+        // step's views show a cube close up.
+        for (name, step) in [
+            ("learnopengl", None),
+            ("learnopengl", Some("cull-front")),
+            ("dummy", Some("cull-front")),
+        ] {
+            let mut scene = Scene::load(name).unwrap();
+            if let Some(step) = step {
+                steps::get(&scene, step)
+                    .unwrap()
+                    .set_stage(&mut scene, false)
+                    .unwrap();
+            }
+            let size = (scene.size[0], scene.size[1]);
+            let (rect, covers) = status_panel(&scene, step, size);
+            assert!(
+                !covers,
+                "{name} {step:?}: the status panel at {rect:?} covers a cube"
+            );
+        }
     }
 }
