@@ -1,8 +1,9 @@
 #version 330 core
 // Depth pass of a filterable shadow map (src/shadows/moments.rs): instead of depth, the
 // moments of depth, which stay meaningful when averaged (blurred, filtered). Compiled with:
-//   MOMENT_MODE  1 = VSM (z, z^2), 2 = EVSM with 2 components, 3 = with 4, 4 = MSM
-//                (z, z^2, z^3, z^4)
+//   MOMENT_DEPTH_VSM, MOMENT_DEPTH_EVSM or MOMENT_DEPTH_MSM: one of them, named by the
+//                filter's MomentMode (src/shadows/moments.rs): VSM (z, z^2), EVSM (the
+//                exponentials and their squares), MSM (z, z^2, z^3, z^4)
 //   EVSM_POS, EVSM_NEG  EVSM's exponents, already clamped (src/settings.rs)
 // The vertex shader is the chapter's depth.vert.
 
@@ -11,17 +12,19 @@ out vec4 moments;
 void main()
 {
     float z = gl_FragCoord.z;
-#if MOMENT_MODE == 1
+#if defined(MOMENT_DEPTH_VSM)
     moments = vec4(z, z * z, 0.0, 0.0);
-#elif MOMENT_MODE == 4
+#elif defined(MOMENT_DEPTH_MSM)
     float z2 = z * z;
     moments = vec4(z, z2, z2 * z, z2 * z2);
-#else
+#elif defined(MOMENT_DEPTH_EVSM)
     // Depth warped to [-1, 1], then through both exponentials: a caster's e^(c z) dwarfs a
     // receiver's behind it, so Chebyshev's bound is tight where VSM's bleeds.
     float w = 2.0 * z - 1.0;
     float pos = exp(EVSM_POS * w);
     float neg = -exp(-EVSM_NEG * w);
     moments = vec4(pos, pos * pos, neg, neg * neg);
+#else
+#error expected one of the MOMENT_DEPTH defines of MomentMode in src/shadows/moments.rs
 #endif
 }

@@ -355,9 +355,7 @@ impl ShadowTest {
     pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
         match kind {
             ShadowKind::Map => self.kernel != map2d::Kernel::Pcss,
-            ShadowKind::Moments => self
-                .moments
-                .is_some_and(|m| !summed::reads_table_mode(m.mode)),
+            ShadowKind::Moments => self.moments.is_some_and(|m| !m.mode.reads_table()),
             _ => false,
         }
     }

@@ -32,26 +32,52 @@ use crate::scene::{Light, Scene};
 use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
 use crate::shaders;
 
-/// The shader's number for a moment filter (`MOMENT_MODE`); 0 for a depth filter.
-pub fn mode(filter: Filter) -> u32 {
-    match filter {
-        Filter::Vsm => 1,
-        Filter::Evsm2 => 2,
-        Filter::Evsm4 => 3,
-        Filter::Msm => 4,
-        Filter::Vssm => summed::MODE_VSSM,
-        Filter::MsmSoft => summed::MODE_MSM_SOFT,
-        _ => 0,
-    }
+/// A moment filter, by name: which moments its depth pass stores and which function tests
+/// them. A new one is a compile error at each place that must answer it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MomentMode {
+    Vsm,
+    Evsm2,
+    Evsm4,
+    Msm,
+    /// VSM's moments read from a summed-area table (src/shadows/summed.rs).
+    Vssm,
+    /// MSM's moments read from a summed-area table.
+    MsmSoft,
 }
 
-/// The depth pass' `MOMENT_MODE` (shaders/moments_depth.frag): the moments `filter` stores
-/// (the soft filters store VSM's and MSM's).
-fn depth_mode(filter: Filter) -> u32 {
-    match mode(filter) {
-        summed::MODE_VSSM => 1,
-        summed::MODE_MSM_SOFT => 4,
-        m => m,
+impl MomentMode {
+    /// The moment filter `filter` is, if it is one (a depth map's filters are not).
+    pub fn of(filter: Filter) -> Option<MomentMode> {
+        match filter {
+            Filter::Vsm => Some(MomentMode::Vsm),
+            Filter::Evsm2 => Some(MomentMode::Evsm2),
+            Filter::Evsm4 => Some(MomentMode::Evsm4),
+            Filter::Msm => Some(MomentMode::Msm),
+            Filter::Vssm => Some(MomentMode::Vssm),
+            Filter::MsmSoft => Some(MomentMode::MsmSoft),
+            Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => None,
+            Filter::Hardware2x2 | Filter::Hardware3x3 => None,
+            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => None,
+        }
+    }
+
+    /// The define the depth pass is compiled with (shaders/moments_depth.frag): the
+    /// moments it stores (the soft filters store VSM's and MSM's).
+    pub fn depth_define(self) -> &'static str {
+        match self {
+            MomentMode::Vsm | MomentMode::Vssm => "MOMENT_DEPTH_VSM",
+            MomentMode::Evsm2 | MomentMode::Evsm4 => "MOMENT_DEPTH_EVSM",
+            MomentMode::Msm | MomentMode::MsmSoft => "MOMENT_DEPTH_MSM",
+        }
+    }
+
+    /// Whether the test reads a summed-area table of the moments (src/shadows/summed.rs).
+    pub fn reads_table(self) -> bool {
+        match self {
+            MomentMode::Vssm | MomentMode::MsmSoft => true,
+            MomentMode::Vsm | MomentMode::Evsm2 | MomentMode::Evsm4 | MomentMode::Msm => false,
+        }
     }
 }
 
@@ -63,13 +89,13 @@ pub fn evsm_exponents(settings: &ShadowSettings) -> [f32; 2] {
 /// The moments of depth 1 (where no caster was drawn), which the map is cleared to.
 pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
     let [p, n] = evsm_exponents(settings);
-    match settings.filter {
-        Filter::Evsm2 | Filter::Evsm4 => {
+    match MomentMode::of(settings.filter) {
+        Some(MomentMode::Evsm2 | MomentMode::Evsm4) => {
             let (pos, neg) = (p.exp(), -(-n).exp());
             [pos, pos * pos, neg, neg * neg]
         }
-        Filter::Vsm | Filter::Vssm => [1.0, 1.0, 0.0, 0.0],
-        _ => [1.0; 4],
+        Some(MomentMode::Vsm | MomentMode::Vssm) => [1.0, 1.0, 0.0, 0.0],
+        Some(MomentMode::Msm | MomentMode::MsmSoft) | None => [1.0; 4],
     }
 }
 
@@ -77,7 +103,7 @@ pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
 /// [`super::ShadowTest`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct MomentTest {
-    pub mode: u32,
+    pub mode: MomentMode,
     pub min_variance_bits: u32,
     pub bleed_reduction_bits: u32,
     pub evsm_bits: [u32; 2],
@@ -90,8 +116,7 @@ impl MomentTest {
     /// The test under `settings` (as [`ShadowSettings::effective`] made them), if its filter
     /// is a moment one.
     pub fn of(s: &ShadowSettings) -> Option<MomentTest> {
-        let mode = mode(s.filter);
-        (mode > 0).then(|| MomentTest {
+        MomentMode::of(s.filter).map(|mode| MomentTest {
             mode,
             min_variance_bits: s.min_variance.to_bits(),
             bleed_reduction_bits: s.bleed_reduction.to_bits(),
@@ -103,13 +128,14 @@ impl MomentTest {
     }
 
     /// The call of its filter's function (shaders/lib/shadow_moments.glsl), its own
-    /// constants between `head` (map, position, bias) and `tail` (borderLit, beyondFarLit).
-    pub fn call(&self, head: &str, tail: &str) -> String {
+    /// constants between `head` (map, position, bias) and `tail` (borderLit, beyondFarLit);
+    /// `None` for a filter on a summed-area table (its call is [`summed::glsl`]'s).
+    pub fn call(&self, head: &str, tail: &str) -> Option<String> {
         let f = |bits: u32| glsl_float(f32::from_bits(bits));
         let (variance, bleed) = (f(self.min_variance_bits), f(self.bleed_reduction_bits));
-        match self.mode {
-            1 => format!("calcShadowVsm({head}, {variance}, {bleed}, {tail})"),
-            4 => {
+        Some(match self.mode {
+            MomentMode::Vsm => format!("calcShadowVsm({head}, {variance}, {bleed}, {tail})"),
+            MomentMode::Msm => {
                 let t = self.msm_toward_bits.map(f);
                 format!(
                     "calcShadowMsm({head}, {}, vec4({}, {}, {}, {}), {tail})",
@@ -120,13 +146,14 @@ impl MomentTest {
                     t[3]
                 )
             }
-            _ => format!(
+            MomentMode::Evsm2 | MomentMode::Evsm4 => format!(
                 "calcShadowEvsm({head}, {variance}, {bleed}, vec2({}, {}), {}, {tail})",
                 f(self.evsm_bits[0]),
                 f(self.evsm_bits[1]),
-                self.mode == 3
+                self.mode == MomentMode::Evsm4
             ),
-        }
+            MomentMode::Vssm | MomentMode::MsmSoft => return None,
+        })
     }
 }
 
@@ -181,7 +208,7 @@ pub fn caster_footprint(
 pub struct Moments {
     map: MomentMap,
     /// The depth program and the (mode, exponents) it was compiled for.
-    depth: Option<((u32, [u32; 2]), ShaderProgram)>,
+    depth: Option<((&'static str, [u32; 2]), ShaderProgram)>,
     /// The blur program and its kernel.
     blur: Option<(Blur, ShaderProgram)>,
     /// The summed-area table of a soft filter (vssm, msm-soft), which the scene pass reads.
@@ -218,10 +245,16 @@ impl Moments {
     /// Compiles the depth program for `s`' filter and exponents unless it is the one there.
     fn prepare_depth(&mut self, gl: &Gl, s: &ShadowSettings) -> Result<()> {
         let exponents = evsm_exponents(s);
-        let key = (depth_mode(s.filter), exponents.map(f32::to_bits));
+        let Some(mode) = MomentMode::of(s.filter) else {
+            return Err(Error::Invalid(format!(
+                "filter {} has no moment map",
+                s.filter.name()
+            )));
+        };
+        let key = (mode.depth_define(), exponents.map(f32::to_bits));
         if self.depth.as_ref().map(|(k, _)| *k) != Some(key) {
             let defines = vec![
-                ("MOMENT_MODE".to_string(), key.0.to_string()),
+                (key.0.to_string(), "1".to_string()),
                 ("EVSM_POS".to_string(), glsl_float(exponents[0])),
                 ("EVSM_NEG".to_string(), glsl_float(exponents[1])),
             ];
@@ -357,7 +390,7 @@ impl Technique for Moments {
 /// `sampler2D` (the moments are filtered, not compared).
 pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     let moments = test.moments?;
-    if summed::reads_table_mode(moments.mode) {
+    if moments.mode.reads_table() {
         return summed::glsl(i, p, test);
     }
     let head = format!(
@@ -369,7 +402,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     Some(LightGlsl {
         snippets: vec!["lib/shadow_moments.glsl"],
         sampler_type: "sampler2D",
-        test: moments.call(&head, &tail),
+        test: moments.call(&head, &tail)?,
         defines: Vec::new(),
     })
 }
@@ -426,7 +459,7 @@ mod tests {
         };
         let test = MomentTest::of(&vsm).unwrap();
         assert_eq!(
-            test.call("m", "false, false"),
+            test.call("m", "false, false").unwrap(),
             format!(
                 "calcShadowVsm(m, {}, 0.15, false, false)",
                 glsl_float(vsm.min_variance)
@@ -441,7 +474,8 @@ mod tests {
         assert_eq!(
             MomentTest::of(&playground)
                 .unwrap()
-                .call("m", "true, false"),
+                .call("m", "true, false")
+                .unwrap(),
             "calcShadowMsm(m, 0.0009, vec4(0.0, 0.63, 0.0, 0.63), true, false)"
         );
         let evsm4 = ShadowSettings {
@@ -449,7 +483,7 @@ mod tests {
             evsm_exponents: [40.0, 5.0],
             ..pcf
         };
-        let call = MomentTest::of(&evsm4).unwrap().call("m", "t");
+        let call = MomentTest::of(&evsm4).unwrap().call("m", "t").unwrap();
         assert!(call.ends_with(", vec2(40.0, 5.0), true, t)"), "{call}");
         // A border of depth 1 is lit through the shader, not the sampler.
         let fitted = ShadowSettings {

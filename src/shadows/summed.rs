@@ -13,6 +13,7 @@
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
 
+use super::moments::MomentMode;
 use super::{LightGlsl, ShadowTest};
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
@@ -91,16 +92,6 @@ impl SoftCells {
     }
 }
 
-/// Whether a moment test's mode ([`super::moments::mode`]) reads a table.
-pub fn reads_table_mode(mode: u32) -> bool {
-    mode == MODE_VSSM || mode == MODE_MSM_SOFT
-}
-
-/// The moment shader's number for `vssm` ([`super::moments::mode`]).
-pub const MODE_VSSM: u32 = 5;
-/// The moment shader's number for `msm-soft`.
-pub const MODE_MSM_SOFT: u32 = 6;
-
 /// A soft moment filter's test (src/shadows/summed.rs), light `i`, map slot `p`:
 /// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
 /// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
@@ -125,7 +116,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
         test.pcss_perspective, moments.border_lit, test.beyond_far_lit
     );
     let call = match moments.mode {
-        MODE_MSM_SOFT => {
+        MomentMode::MsmSoft => {
             let t = moments.msm_toward_bits.map(f);
             format!(
                 "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
@@ -136,11 +127,12 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
                 t[3]
             )
         }
-        _ => format!(
+        MomentMode::Vssm => format!(
             "vssm({head}, {}, {}, {tail})",
             f(moments.min_variance_bits),
             f(moments.bleed_reduction_bits)
         ),
+        MomentMode::Vsm | MomentMode::Evsm2 | MomentMode::Evsm4 | MomentMode::Msm => return None,
     };
     Some(LightGlsl {
         snippets: vec![
