@@ -138,7 +138,8 @@ impl Filter {
             Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => 1,
             // The blocker search and the filter, each a 5 x 5 lattice of the table's corners.
             Filter::Vssm | Filter::MsmSoft => 50,
-            _ => (2 * self.radius() + 1).pow(2),
+            Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => (2 * self.radius() + 1).pow(2),
+            Filter::Hardware2x2 | Filter::Hardware3x3 => (2 * self.radius() + 1).pow(2),
         }
     }
 
@@ -159,7 +160,9 @@ impl Filter {
         match self {
             Filter::Vsm | Filter::Evsm2 | Filter::Vssm => 2,
             Filter::Evsm4 | Filter::Msm | Filter::MsmSoft => 4,
-            _ => 0,
+            Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => 0,
+            Filter::Hardware2x2 | Filter::Hardware3x3 => 0,
+            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => 0,
         }
     }
 

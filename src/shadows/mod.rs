@@ -356,7 +356,9 @@ impl ShadowTest {
         match kind {
             ShadowKind::Map => self.kernel != map2d::Kernel::Pcss,
             ShadowKind::Moments => self.moments.is_some_and(|m| !m.mode.reads_table()),
-            _ => false,
+            // A cube map's and a layered light's tests read per pixel; no map, no test.
+            ShadowKind::Cube | ShadowKind::Cascades | ShadowKind::Groups => false,
+            ShadowKind::None | ShadowKind::Volume => false,
         }
     }
 

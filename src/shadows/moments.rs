@@ -376,11 +376,12 @@ impl Technique for Moments {
     }
 
     fn depth_view(&self) -> DepthViewKind {
-        match self.map_mode {
-            Filter::Evsm2 | Filter::Evsm4 => DepthViewKind::Exponential {
+        match MomentMode::of(self.map_mode) {
+            Some(MomentMode::Evsm2 | MomentMode::Evsm4) => DepthViewKind::Exponential {
                 exponent_bits: self.evsm_positive.to_bits(),
             },
-            _ => DepthViewKind::Flat,
+            Some(MomentMode::Vsm | MomentMode::Msm | MomentMode::Vssm | MomentMode::MsmSoft)
+            | None => DepthViewKind::Flat,
         }
     }
 }
