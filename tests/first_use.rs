@@ -333,3 +333,28 @@ fn the_smoke_demo_starts_with_translucent_shadows_on() {
     );
     eprintln!("{darker} pixels darker with translucent shadows on");
 }
+
+#[test]
+fn soak_in_a_pipe_says_how_far_it_is_every_hundred_frames() {
+    // Its standard error is a pipe here, as in a log: a line per 100 frames, not a bar.
+    let out = common::bin()
+        .args([
+            "soak", "--scene", "dummy", "--frames", "150", "--size", "96x64",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.contains(" of 150 frames"))
+        .collect();
+    assert_eq!(lines.len(), 2, "{err}");
+    assert!(lines[0].starts_with("[1/2] 100 of 150 frames, "), "{err}");
+    assert!(lines[1].starts_with("[2/2] 150 of 150 frames, "), "{err}");
+    assert!(lines.iter().all(|l| l.ends_with(" MiB resident")), "{err}");
+}

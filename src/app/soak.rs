@@ -3,8 +3,8 @@
 
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use shadowmap::engine::{HeadlessContext, Outputs, RenderTarget};
+use shadowmap::output::Counter;
 use shadowmap::{steps, Renderer, Result, Scene, ShadowSettings, Target};
 
 use super::cli::{SettingsArgs, SoakArgs};
@@ -50,11 +50,9 @@ pub fn run(args: &SoakArgs) -> Result<()> {
     let sizes = [256, 512, 1024, 2048];
     let start = Instant::now();
     let (mut rss_start, mut rss_peak) = (None, 0);
-    let bar = ProgressBar::new(args.frames);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} frames [{elapsed} < {eta}] {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    // A bar on a terminal; in a log or a pipe a line per 100 frames, so that a long run
+    // says how far it is.
+    let mut progress = Counter::new(args.frames.div_ceil(100));
     // Taken once: past the overhead a light's own horizontal part points the other way.
     let azimuth = scene.light_azimuth();
     let baseline = baseline_frame(args.frames);
@@ -91,12 +89,18 @@ pub fn run(args: &SoakArgs) -> Result<()> {
             renderer.finish();
             let rss = resident_kib().unwrap_or(0);
             rss_peak = rss_peak.max(rss);
-            bar.set_message(format!("{} MiB resident", rss / 1024));
         }
-        bar.inc(1);
+        if frame % 100 == 99 || frame + 1 == args.frames {
+            let rss = resident_kib().unwrap_or(0) / 1024;
+            let done = frame + 1;
+            progress.step(&format!(
+                "{done} of {} frames, {rss} MiB resident",
+                args.frames
+            ));
+        }
     }
     renderer.finish();
-    bar.finish_and_clear();
+    progress.finish();
     let rss_end = resident_kib().unwrap_or(0);
     let first = rss_start.unwrap_or(rss_end);
     println!(
