@@ -248,6 +248,52 @@ fn steps_takes_no_step_and_the_other_commands_do() {
     }
 }
 
+/// A steps page's figures by step: "false shadow F, false light L, MAE M", or "(depth map)"
+/// for a step without a table.
+fn page_figures(page: &str) -> Vec<(String, String)> {
+    let text = std::fs::read_to_string(root().join(page)).unwrap();
+    let row = regex::Regex::new(
+        r"<tr><td class=n>(false shadow|false light|MAE) <small>[^<]*</small></td><td>([^<]*)</td>",
+    )
+    .unwrap();
+    let mut out = Vec::new();
+    for section in text.split(r#"<section class="step" id=""#).skip(1) {
+        let (step, body) = section.split_once('"').unwrap();
+        let body = body.split("</section>").next().unwrap();
+        let cells: Vec<String> = row.captures_iter(body).map(|c| c[2].to_string()).collect();
+        let figures = match cells.as_slice() {
+            [] => "(depth map)".to_string(),
+            [shadow, light, .., mae] => {
+                format!("false shadow {shadow}, false light {light}, MAE {mae}")
+            }
+            _ => panic!("{page} {step}: {cells:?}"),
+        };
+        out.push((step.to_string(), figures));
+    }
+    out
+}
+
+/// The reading guide's table of the chapters' steps quotes each step's figures as its page
+/// (written by `scripts/results.sh steps`) gives them, for both scenes.
+#[test]
+fn the_reading_guides_step_figures_are_the_step_pages() {
+    let guide = std::fs::read_to_string(root().join("docs/reading-guide.md")).unwrap();
+    let dummy = page_figures("assets/readme/steps-dummy/index.html");
+    let learnopengl = page_figures("assets/readme/steps-learnopengl/index.html");
+    assert_eq!(dummy.len(), 13, "{dummy:?}");
+    for ((step, d), (step_l, l)) in dummy.iter().zip(&learnopengl) {
+        assert_eq!(step, step_l);
+        let row = guide
+            .lines()
+            .find(|line| line.contains(&format!(". `{step}` |")) && line.contains("steps-dummy"))
+            .unwrap_or_else(|| panic!("docs/reading-guide.md has no row for {step}"));
+        assert!(
+            row.ends_with(&format!("| {d} | {l} |")),
+            "docs/reading-guide.md, {step}: the pages say \"{d}\" and \"{l}\":\n{row}"
+        );
+    }
+}
+
 /// The code names the docs cite, against the code.
 #[path = "docs/names.rs"]
 mod names;
