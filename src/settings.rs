@@ -74,11 +74,44 @@ pub const MAX_AVSM_NODES: u32 = MAX_TRANSLUCENT_CHANNELS / 2;
 /// The most layers AVSM peels.
 pub const MAX_PEEL_LAYERS: u32 = 64;
 
+/// The most shadow-map texels a normal offset moves a lookup: a few texels keep acne away,
+/// and far more moves the lookup off its receiver altogether.
+pub const MAX_NORMAL_OFFSET: f32 = 16.0;
+
+/// The largest factor or units of `glPolygonOffset`: the chapters' offsets are a few units
+/// (1.1, 4), and far larger ones push every caster past its receivers.
+pub const MAX_POLYGON_OFFSET: f32 = 1000.0;
+
+/// The constant bias and the slope bias' ends: [0, 1] depth units (a cube map's: world
+/// units), for the `[shadow]` table, a light's own, the flags and the `[steps]` table alike.
+fn bias_range() -> Range<f32> {
+    Range::from_to(0.0, 1.0)
+}
+
+/// Why `bias` cannot be a bias ("7: expected 0 to 1"), or `None` where it can: for a table
+/// other than `[shadow]` that gives one (`[steps] bias`).
+pub fn bias_problem(bias: f32) -> Option<String> {
+    use range::Bounds;
+    let range = bias_range();
+    (!range.admits(bias)).then(|| format!("{bias}: expected {}", range.expected()))
+}
+
+/// A setting's `--help` text from its documentation lines and, where it has one, its
+/// range (what [`range::check`] refuses outside).
+macro_rules! setting_help {
+    ([$($doc:literal),*]) => {
+        range::help(&[$($doc),*], None)
+    };
+    ([$($doc:literal),*], $range:expr) => {
+        range::help(&[$($doc),*], Some(range::Bounds::expected(&$range)))
+    };
+}
+
 /// Declares every setting once: its group, its type, its default, its documentation, the
-/// numbers it takes ([`range::Range`]) and any flag options. From that one list come [`ShadowSettings`] (the scene file's
-/// `[shadow]` table), [`ShadowPatch`] (the same fields, each optional: a light's own
-/// `shadow` table and the command line's flags, with the groups as `--help` headings) and
-/// [`SETTING_GROUPS`].
+/// numbers it takes ([`range::Range`]) and any flag options. From that one list come
+/// [`ShadowSettings`] (the scene file's `[shadow]` table), [`ShadowPatch`] (the same fields,
+/// each optional: a light's own `shadow` table and the command line's flags, with the groups
+/// as `--help` headings and each range in its flag's help) and [`SETTING_GROUPS`].
 macro_rules! shadow_settings {
     ($(
         $(#[doc = $gdoc:literal])*
@@ -111,7 +144,8 @@ macro_rules! shadow_settings {
         pub struct ShadowPatch {
             $($(
                 $(#[doc = $doc])*
-                #[arg(long, help_heading = $group $(, $($arg)*)?)]
+                #[arg(long, help_heading = $group,
+                      help = setting_help!([$($doc),*] $(, $range)?) $(, $($arg)*)?)]
                 #[serde(default, skip_serializing_if = "Option::is_none")]
                 pub $field: Option<$ty>,
             )*)*
@@ -209,21 +243,22 @@ shadow_settings! {
         depth_lookup: DepthLookup = DepthLookup::Nearest;
         /// How the depth comparison is offset against acne.
         bias_mode: BiasMode = BiasMode::Constant;
-        /// Constant bias, or the slope bias' maximum, in [0, 1] depth units (a cube map:
-        /// world units).
-        bias: f32 = 0.05, range(Range::at_least(0.0)),
+        /// Constant bias, or the slope bias' ceiling (its most, at grazing light), in depth
+        /// units (a cube map: world units).
+        bias: f32 = 0.05, range(bias_range()),
             arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
-        /// The slope bias' floor (LearnOpenGL: 0.005).
-        bias_min: f32 = 0.005, range(Range::at_least(0.0)),
+        /// The slope bias' floor (LearnOpenGL: 0.005), at most `bias`, its ceiling.
+        bias_min: f32 = 0.005, range(bias_range()),
             arg(value_name = "B", value_parser = parse_finite, allow_negative_numbers = true);
         /// Normal-offset bias: the lookup moves this many shadow-map texels along the
         /// surface normal (0 = off); the same meaning for 2D, cube and cascade maps.
-        normal_offset: f32 = 0.0, range(Range::at_least(0.0)),
+        normal_offset: f32 = 0.0,
+            range(Range::from_to(0.0, MAX_NORMAL_OFFSET).low_means("off").note("texels")),
             arg(value_name = "TEXELS", value_parser = parse_finite, allow_negative_numbers = true);
-        /// PCSS: lookups of the blocker search (on a rotated Poisson disk, 1 to 32).
+        /// PCSS: lookups of the blocker search (on a rotated Poisson disk).
         pcss_blocker_taps: u32 = 16, range(poisson_taps()),
             arg(value_name = "N", allow_negative_numbers = true);
-        /// PCSS: lookups of the filter that follows the penumbra (1 to 32).
+        /// PCSS: lookups of the filter that follows the penumbra.
         pcss_filter_taps: u32 = 16, range(poisson_taps()),
             arg(value_name = "N", allow_negative_numbers = true);
         /// Shadow-map wrap mode for lookups outside [0, 1].
@@ -238,17 +273,17 @@ shadow_settings! {
         blur: Blur = Blur::Playground3x3;
         /// The least variance Chebyshev's bound assumes (VSM; EVSM scales it by each
         /// exponent's slope), against acne where the map is flat.
-        min_variance: f32 = 1e-6, range(Range::at_least(0.0)),
+        min_variance: f32 = 1e-6,
+            range(Range::from_to(0.0, 0.25).note("a depth in [0, 1] varies at most 0.25")),
             arg(value_name = "V", value_parser = parse_finite, allow_negative_numbers = true);
         /// Light-bleeding reduction (VSM, EVSM): bounds below this read as shadow, the rest
         /// stretch to [0, 1] (0 = off; Filament's default 0.15, MJP's comparisons 0.25).
         bleed_reduction: f32 = 0.15, range(Range::from_below(0.0, 1.0).low_means("off")),
             arg(value_name = "AMOUNT", value_parser = parse_finite, allow_negative_numbers = true);
-        /// EVSM's exponents [positive, negative] (40 and 5 by default); each is clamped to
-        /// 42 so exp(2c) stays inside 32-bit floats.
+        /// EVSM's exponents [positive, negative] (40 and 5 by default).
         evsm_exponents: [f32; 2] = [40.0, 5.0],
-            range(Range::above(0.0)
-                .note(format!("each is clamped to {EVSM_MAX_EXPONENT}"))
+            range(Range::above_to(0.0, EVSM_MAX_EXPONENT)
+                .note(format!("exp(2 x {EVSM_MAX_EXPONENT}) stays inside 32-bit floats"))
                 .pair("[positive, negative], like [40, 5]")),
             arg(value_name = "POS,NEG", value_parser = parse_pair, allow_hyphen_values = true);
         /// MSM's moment bias alpha: the moments move this far toward `msm_toward` (3e-5
@@ -270,7 +305,8 @@ shadow_settings! {
         /// Faces culled in the depth pass.
         cull: Cull = Cull::None;
         /// `glPolygonOffset(factor, units)` in the depth pass, e.g. 1.1,4 ([0, 0] = off).
-        polygon_offset: [f32; 2] = [0.0, 0.0], range(Range::any().pair("[factor, units]")),
+        polygon_offset: [f32; 2] = [0.0, 0.0],
+            range(Range::from_to(-MAX_POLYGON_OFFSET, MAX_POLYGON_OFFSET).pair("[factor, units]")),
             arg(value_name = "FACTOR,UNITS", value_parser = parse_pair, allow_hyphen_values = true);
         /// How a point light's six cube faces are drawn.
         point_pass: PointPass = PointPass::Layered;
@@ -302,7 +338,7 @@ shadow_settings! {
         cascade_lambda: f32 = 0.75, range(Range::from_to(0.0, 1.0)),
             arg(value_name = "LAMBDA", value_parser = parse_finite, allow_negative_numbers = true);
         /// The last fraction of each cascade's depth range that fades into the next
-        /// (0 = a hard seam at the split, at most 0.5).
+        /// (0 = a hard seam at the split).
         cascade_blend: f32 = 0.1, range(Range::from_to(0.0, 0.5)),
             arg(value_name = "FRACTION", value_parser = parse_finite, allow_negative_numbers = true);
         /// Where cascaded shadows end, in view depth (0 = the camera's far plane).
@@ -426,9 +462,30 @@ impl ShadowSettings {
         self.validate_values()
     }
 
-    /// Checks everything that needs no driver: each setting against its declared range.
+    /// Checks everything that needs no driver: each setting against its declared range,
+    /// then the settings that must be ordered against each other.
     pub fn validate_values(&self) -> crate::Result<()> {
-        self.check_ranges()
+        self.check_ranges()?;
+        self.check_order()
+    }
+
+    /// The ends of one range given as two settings: the slope bias grows from its floor
+    /// (`bias_min`) to its ceiling (`bias`), so a floor above the ceiling is no slope bias.
+    /// The message names every setting involved, so a flag among them is named.
+    fn check_order(&self) -> crate::Result<()> {
+        let slope = match self.bias_mode {
+            BiasMode::Slope => true,
+            BiasMode::None | BiasMode::Constant => false,
+        };
+        if slope && self.bias_min > self.bias {
+            return Err(crate::Error::Invalid(format!(
+                "shadow.bias_min = {} is above shadow.bias = {} with shadow.bias_mode = slope \
+                 (the slope bias grows from bias_min, its floor, to bias, its ceiling): \
+                 expected bias_min from 0 to {}, or bias from {} to 1",
+                self.bias_min, self.bias, self.bias, self.bias_min
+            )));
+        }
+        Ok(())
     }
 
     /// The settings as the renderer applies them: a fitted box covers exactly what can be

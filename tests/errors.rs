@@ -243,15 +243,15 @@ fn numeric_flags_take_negative_numbers_after_a_space() {
     let cases: &[(&[&str], &str)] = &[
         (
             &["render", "--bias", "-0.5"],
-            "--bias: shadow.bias = -0.5: expected a finite number >= 0",
+            "--bias: shadow.bias = -0.5: expected 0 to 1",
         ),
         (
             &["render", "--bias-min", "-1"],
-            "--bias-min: shadow.bias_min = -1: expected a finite number >= 0",
+            "--bias-min: shadow.bias_min = -1: expected 0 to 1",
         ),
         (
             &["render", "--normal-offset", "-2"],
-            "--normal-offset: shadow.normal_offset = -2: expected a finite number >= 0",
+            "--normal-offset: shadow.normal_offset = -2: expected 0 (off) to 16 (texels)",
         ),
         (
             &["render", "--perspective-fov", "-45"],

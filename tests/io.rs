@@ -298,7 +298,7 @@ fn nothing_is_rendered_or_written_before_every_argument_is_checked() {
         (
             "bench --bias -1",
             vec!["bench", "--bias", "-1", "--out-dir", s(&folder)],
-            vec!["--bias: shadow.bias = -1: expected a finite number >= 0"],
+            vec!["--bias: shadow.bias = -1: expected 0 to 1"],
         ),
         (
             "render --shadow-out in a missing folder",

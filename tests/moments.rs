@@ -278,8 +278,9 @@ fn bad_moment_settings_get_their_messages() {
         (
             "--evsm-exponents",
             "40,-5",
-            "error: --evsm-exponents: shadow.evsm_exponents = [40.0, -5.0]: expected two numbers \
-             > 0 [positive, negative], like [40, 5] (each is clamped to 42)",
+            "error: --evsm-exponents: shadow.evsm_exponents = [40.0, -5.0]: expected two numbers, \
+             each above 0, at most 42 [positive, negative], like [40, 5] (exp(2 x 42) stays \
+             inside 32-bit floats)",
         ),
         (
             "--msm-bias",
@@ -289,7 +290,8 @@ fn bad_moment_settings_get_their_messages() {
         (
             "--min-variance",
             "-1",
-            "error: --min-variance: shadow.min_variance = -1: expected a finite number >= 0",
+            "error: --min-variance: shadow.min_variance = -1: expected 0 to 0.25 (a depth in \
+             [0, 1] varies at most 0.25)",
         ),
     ] {
         let out = common::bin()

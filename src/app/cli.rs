@@ -80,9 +80,10 @@ pub struct SceneArgs {
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
     pub light_angle: Option<f32>,
     /// Every light's size, replacing the scene file's `size`: a directional light's
-    /// angular diameter in degrees (the sun: 0.53), a spot or point light's radius in world
-    /// units; 0 = a point (hard shadows). PCSS widens its penumbra with it, and `compare`
-    /// and `bench` measure against a light of that size (rays to its disc).
+    /// angular diameter in degrees (the sun: 0.53; under 90), a spot or point light's radius
+    /// in world units (under 1000); 0 = a point (hard shadows). PCSS widens its penumbra
+    /// with it, and `compare` and `bench` measure against a light of that size (rays to its
+    /// disc).
     #[arg(long, value_name = "SIZE", value_parser = shadowmap::settings::parse_finite, allow_negative_numbers = true)]
     pub light_size: Option<f32>,
     /// Frame size in pixels; default: the scene's size.
@@ -620,6 +621,7 @@ impl SettingsArgs {
         settings
             .validate(max)
             .and_then(|()| ShadowPlan::resolve(&scene.lights, settings, Some(max)))
+            .and_then(|plan| super::map_memory::check(gl, &plan, max).map(|()| plan))
             .map_err(|e| self.name_source(scene, e))
     }
 
@@ -652,17 +654,24 @@ impl SettingsArgs {
             .collect()
     }
 
-    /// Says where a bad setting came from: its flag, or the scene file.
+    /// Says where a bad setting came from: its flags, or the scene file.
     fn name_source(&self, scene: &Scene, e: shadowmap::Error) -> shadowmap::Error {
-        // Messages read "shadow.NAME = VALUE: ..."; NAME says which flag it would be.
+        // Messages read "shadow.NAME = VALUE: ..."; each NAME says which flag it would be
+        // (a pair that must be ordered names both settings).
         let text = e.to_string();
-        let name = text
-            .strip_prefix("shadow.")
-            .and_then(|t| t.split(' ').next())
-            .unwrap_or_default();
-        match self.flag_given(name) {
-            true => shadowmap::Error::Invalid(format!("--{}: {text}", name.replace('_', "-"))),
-            false => shadowmap::Error::file(&scene.source, text),
+        let mut flags: Vec<String> = Vec::new();
+        for name in mentioned_settings(&text) {
+            let flag = format!("--{}", name.replace('_', "-"));
+            if self.flag_given(name) && !flags.contains(&flag) {
+                flags.push(flag);
+            }
+        }
+        match flags.split_last() {
+            None => shadowmap::Error::file(&scene.source, text),
+            Some((last, [])) => shadowmap::Error::Invalid(format!("{last}: {text}")),
+            Some((last, rest)) => {
+                shadowmap::Error::Invalid(format!("{} and {last}: {text}", rest.join(", ")))
+            }
         }
     }
 
@@ -745,6 +754,17 @@ impl SettingsArgs {
         }
         Ok(s)
     }
+}
+
+/// The settings a message names as "shadow.NAME", in its order.
+fn mentioned_settings(text: &str) -> impl Iterator<Item = &str> {
+    text.match_indices("shadow.").map(move |(i, found)| {
+        let rest = &text[i + found.len()..];
+        let end = rest
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(rest.len());
+        &rest[..end]
+    })
 }
 
 /// A setting's value as its flag takes it (`4`, `six-passes`, `true`).

@@ -18,6 +18,7 @@ use super::cli::{CompareArgs, Truth};
 use super::compare_setup::CompareSetup;
 
 pub fn run(args: &CompareArgs) -> Result<()> {
+    check_motion_frames(args)?;
     if let Some(path) = super::motion::compare_path(args)? {
         return super::motion::run_compare(args, path);
     }
@@ -108,6 +109,19 @@ pub fn run(args: &CompareArgs) -> Result<()> {
         dir.display(),
         files.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
     );
+    Ok(())
+}
+
+/// `--motion` scores how the error changes from each frame to the next: one frame has no
+/// pair to score, so it is refused before the scene is loaded.
+fn check_motion_frames(args: &CompareArgs) -> Result<()> {
+    let frames = args.frames;
+    if args.motion.motion.is_some() && frames < 2 {
+        return Err(Error::Invalid(format!(
+            "--frames {frames}: compare --motion scores the change between consecutive \
+             frames, and {frames} frame has no pair; expected at least 2"
+        )));
+    }
     Ok(())
 }
 

@@ -8,6 +8,7 @@ pub mod demo;
 pub mod gallery;
 pub mod hud;
 pub mod keys;
+pub mod map_memory;
 pub mod motion;
 pub mod motion_args;
 pub mod motion_plot;

@@ -60,6 +60,11 @@ impl Default for OrthoCoords {
 /// angle under 45).
 pub const MAX_ANGULAR_DIAMETER: f32 = 90.0;
 
+/// A spot or point light's radius stays under this many world units: the built-in scenes
+/// are tens of units across, and a bulb far larger than its scene lights every receiver
+/// from inside itself.
+pub const MAX_LIGHT_RADIUS: f32 = 1000.0;
+
 /// The largest |x| of a (unit) direction the book's angle view represents: its two angles,
 /// x = acos(dir.z) and y = asin(dir.x), compose to the right orientation only in the YZ plane
 /// (`shadows::plan` refuses the view for other directions).
@@ -327,19 +332,20 @@ impl Light {
         }
     }
 
-    /// Why `size` cannot be this light's (named `name`), if it cannot: a finite number
-    /// >= 0, and a directional light's diameter under 90 degrees.
+    /// Why `size` cannot be this light's (named `name`), if it cannot: a finite number, at
+    /// least 0, a directional light's diameter under [`MAX_ANGULAR_DIAMETER`] degrees and a
+    /// spot or point light's radius under [`MAX_LIGHT_RADIUS`] world units.
     pub fn size_problem(&self, size: f32) -> Option<String> {
         let max = match self {
             Light::Directional(_) => MAX_ANGULAR_DIAMETER,
-            _ => f32::MAX,
+            Light::Spot(_) | Light::Point(_) => MAX_LIGHT_RADIUS,
         };
+        let unit = self.size_unit();
         (!(size.is_finite() && (0.0..max).contains(&size))).then(|| match self {
-            Light::Directional(_) => format!(
-                "{size}: expected {} under {MAX_ANGULAR_DIAMETER} (0 = a point)",
-                self.size_unit()
-            ),
-            _ => format!("{size}: expected {} >= 0 (0 = a point)", self.size_unit()),
+            Light::Directional(_) => format!("{size}: expected {unit} under {max} (0 = a point)"),
+            Light::Spot(_) | Light::Point(_) => {
+                format!("{size}: expected {unit} >= 0 and under {max} (0 = a point)")
+            }
         })
     }
 

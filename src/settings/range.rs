@@ -24,15 +24,15 @@ impl Number for u32 {
 
 #[derive(Debug, Clone, Copy)]
 enum Shape<T> {
-    Any,
     AtLeast(T),
-    Above(T),
     /// Both ends included.
     FromTo(T, T),
     /// The low end included, the high one not.
     FromBelow(T, T),
     /// Neither end included.
     Between(T, T),
+    /// The low end not included, the high one included.
+    AboveTo(T, T),
 }
 
 /// The finite numbers a setting takes, and the words its message says them with.
@@ -57,19 +57,9 @@ impl<T: Number> Range<T> {
         }
     }
 
-    /// Every finite number.
-    pub fn any() -> Range<T> {
-        Range::of(Shape::Any)
-    }
-
     /// `low` or more.
     pub fn at_least(low: T) -> Range<T> {
         Range::of(Shape::AtLeast(low))
-    }
-
-    /// More than `low`.
-    pub fn above(low: T) -> Range<T> {
-        Range::of(Shape::Above(low))
     }
 
     /// `low` to `high`, both included.
@@ -85,6 +75,11 @@ impl<T: Number> Range<T> {
     /// Strictly between `low` and `high`.
     pub fn between(low: T, high: T) -> Range<T> {
         Range::of(Shape::Between(low, high))
+    }
+
+    /// More than `low`, at most `high`.
+    pub fn above_to(low: T, high: T) -> Range<T> {
+        Range::of(Shape::AboveTo(low, high))
     }
 
     pub fn low_means(self, means: &'static str) -> Range<T> {
@@ -113,12 +108,11 @@ impl<T: Number> Range<T> {
     pub fn contains(&self, v: T) -> bool {
         v.finite()
             && match self.shape {
-                Shape::Any => true,
                 Shape::AtLeast(low) => v >= low,
-                Shape::Above(low) => v > low,
                 Shape::FromTo(low, high) => low <= v && v <= high,
                 Shape::FromBelow(low, high) => low <= v && v < high,
                 Shape::Between(low, high) => low < v && v < high,
+                Shape::AboveTo(low, high) => low < v && v <= high,
             }
     }
 
@@ -136,12 +130,11 @@ impl<T: Number> Range<T> {
         };
         let each = if plural { "numbers, each " } else { "" };
         match self.shape {
-            Shape::Any => format!("{a}finite number{s}"),
             Shape::AtLeast(low) => format!("{a}finite number{s} >= {low}"),
-            Shape::Above(low) => format!("{a}number{s} > {low}"),
             Shape::FromTo(low, high) => format!("{each}{low}{means} to {high}"),
             Shape::FromBelow(low, high) => format!("{each}{low}{means} to below {high}"),
             Shape::Between(low, high) => format!("{each}{unit}between {low} and {high}"),
+            Shape::AboveTo(low, high) => format!("{each}above {low}, at most {high}"),
         }
     }
 
@@ -198,6 +191,22 @@ impl<T: Number + Debug> Bounds<[T; 2]> for Pair<T> {
     }
 }
 
+/// A setting's `--help` text: its documentation as clap would show it (the lines joined,
+/// a last full stop dropped), then the numbers it takes, if they are bounded, so the help
+/// and the refusal say one range.
+pub fn help(doc: &[&str], takes: Option<String>) -> String {
+    let text: Vec<&str> = doc.iter().map(|line| line.trim()).collect();
+    let text = text.join(" ");
+    let text = match text.strip_suffix('.') {
+        Some(t) if !t.ends_with('.') => t,
+        _ => text.as_str(),
+    };
+    match takes {
+        Some(range) => format!("{text} [range: {range}]"),
+        None => text.to_string(),
+    }
+}
+
 /// Checks the setting `name`'s value against its bounds.
 pub fn check<V, B: Bounds<V>>(name: &str, v: V, bounds: &B) -> crate::Result<()>
 where
@@ -234,20 +243,39 @@ mod tests {
         assert_eq!(e, "shadow.bias = -1: expected a finite number >= 0");
         let taps = Range::from_to(1u32, 32).note("the points");
         assert_eq!(taps.expected(), "1 to 32 (the points)");
-        let pair = Range::above(0.0f32)
-            .note("each at most 42")
+        let pair = Range::above_to(0.0f32, 42.0)
+            .note("the floats' limit")
             .pair("[positive, negative]");
-        assert!(pair.admits([1.0, 2.0]) && !pair.admits([1.0, 0.0]));
+        assert!(pair.admits([42.0, 1e-3]) && !pair.admits([1.0, 0.0]));
+        assert!(!pair.admits([42.5, 5.0]) && !pair.admits([f32::NAN, 5.0]));
         let e = check("exponents", [40.0f32, -5.0], &pair)
             .unwrap_err()
             .to_string();
         assert_eq!(
             e,
-            "shadow.exponents = [40.0, -5.0]: expected two numbers > 0 [positive, negative] \
-             (each at most 42)"
+            "shadow.exponents = [40.0, -5.0]: expected two numbers, each above 0, at most 42 \
+             [positive, negative] (the floats' limit)"
         );
-        let any = Range::any().pair("[factor, units]");
-        assert!(any.admits([-1.0f32, 4.0]) && !any.admits([f32::NAN, 0.0]));
-        assert_eq!(any.expected(), "two finite numbers [factor, units]");
+        let offset = Range::from_to(-1000.0f32, 1000.0).pair("[factor, units]");
+        assert!(offset.admits([-1.0, 4.0]) && !offset.admits([1e9, 0.0]));
+        assert_eq!(
+            offset.expected(),
+            "two numbers, each -1000 to 1000 [factor, units]"
+        );
+    }
+
+    #[test]
+    fn the_help_is_the_documentation_then_the_range() {
+        let doc = [
+            " Where the cascades split: 0 = uniform,",
+            " 1 = logarithmic.",
+        ];
+        let lambda = Range::from_to(0.0f32, 1.0);
+        assert_eq!(
+            help(&doc, Some(lambda.expected())),
+            "Where the cascades split: 0 = uniform, 1 = logarithmic [range: 0 to 1]"
+        );
+        assert_eq!(help(&[" Faces culled."], None), "Faces culled");
+        assert_eq!(help(&[" Stops at 1.."], None), "Stops at 1..");
     }
 }

@@ -11,6 +11,7 @@ mod common;
 mod flags;
 mod models;
 mod no_display;
+mod ranges;
 mod scene_files;
 // FIFOs, links to /dev/zero: Unix files.
 #[cfg(unix)]

@@ -199,11 +199,9 @@ fn build_views(file: &SceneFile, cx: &Context) -> Result<(Views, Option<String>)
 }
 
 fn build_steps(s: &StepsFile, scene_camera: &CameraFile, cx: &Context) -> Result<StepContext> {
-    if !(s.bias.is_finite() && s.bias >= 0.0) {
-        return Err(cx.bad(
-            "steps.bias",
-            format!("{}: expected a finite number >= 0", s.bias),
-        ));
+    // The steps' bias becomes `shadow.bias`: the same range.
+    if let Some(problem) = crate::settings::bias_problem(s.bias) {
+        return Err(cx.bad("steps.bias", problem));
     }
     let camera = match &s.camera {
         Some(c) => Some(build_camera(&c.over(scene_camera), "steps.camera", cx)?),

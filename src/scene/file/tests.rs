@@ -41,7 +41,7 @@ fn a_lights_size_is_read_and_checked_for_its_kind() {
     refuses(
         "[light]\nkind = \"point\"\nposition = [0.0, 1.0, 0.0]\nsize = -0.5\n",
         "light.size",
-        "-0.5: expected a radius in world units >= 0 (0 = a point)",
+        "-0.5: expected a radius in world units >= 0 and under 1000 (0 = a point)",
     );
     refuses(
         "[light]\nangle = 45.0\n[steps]\nlight_size = 120.0\n",
@@ -192,7 +192,7 @@ fn numbers_no_field_takes_are_refused_anywhere() {
     refuses(
         &format!("{LIGHT}[steps]\nbias = -0.5\n"),
         "steps.bias",
-        "-0.5: expected a finite number >= 0",
+        "-0.5: expected 0 to 1",
     );
 }
 
