@@ -37,6 +37,7 @@ pub mod cube;
 pub mod groups;
 pub mod layers;
 pub mod map2d;
+pub mod moment_mode;
 pub mod moments;
 pub mod plan;
 pub mod program;

@@ -13,7 +13,7 @@
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
 
-use super::moments::MomentMode;
+use super::moment_mode::MomentMode;
 use super::{LightGlsl, ShadowTest};
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
