@@ -9,8 +9,10 @@ use shadowmap::{Result, Scene};
 pub struct MotionArgs {
     /// A scripted path, the same picture at the same frame every run: the camera moves
     /// (dolly: forward; strafe: to its right; orbit: about the point it looks at on the
-    /// ground, or nearest the origin on its view), the first light turns (light-sweep, as the DummyGame's UP/DOWN keys), or
-    /// the scene file's `[motion] keyframes`. Frame 0 is the scene's own view.
+    /// ground, or nearest the origin on its view), the first light turns (light-sweep, as
+    /// the DummyGame's UP/DOWN keys; a spot light rises about its target), or the scene
+    /// file's `[motion] keyframes`. Frame 0 is the scene's own view; the demo draws one
+    /// frame of the path a frame.
     #[arg(long, value_enum, value_name = "PATH")]
     pub motion: Option<PathKind>,
     /// The path's step a frame: world units for dolly and strafe (default 0.05, the

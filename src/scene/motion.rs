@@ -6,7 +6,7 @@
 use glam::Vec3;
 use serde::Deserialize;
 
-use super::{Camera, Scene};
+use super::{Camera, Light, Scene};
 use crate::error::{Error, Result};
 
 /// The path's kind (`--motion`).
@@ -23,7 +23,7 @@ pub enum PathKind {
     /// looking at it (degrees a frame).
     Orbit,
     /// The first light turns about its azimuth as the DummyGame's UP/DOWN keys turn it
-    /// (degrees a frame, up to 180).
+    /// (degrees a frame, up to 180); a spot light rises the same way about its target.
     LightSweep,
     /// The scene file's `[motion] keyframes`, interpolated linearly between them.
     Keyframes,
@@ -71,9 +71,37 @@ pub struct Keyframe {
     /// The book's angles: pitch, yaw, roll in degrees.
     #[serde(default)]
     pub rotation: Option<[f32; 3]>,
-    /// The first light's angle in degrees (a directional light only).
+    /// The first light's angle in degrees (a directional or spot light only).
     #[serde(default)]
     pub light_angle: Option<f32>,
+}
+
+/// What a light sweep turns: a directional light's direction, or a spot light's position
+/// about its target (its frame-0 offset from it turned in the azimuth's vertical plane),
+/// both by the angle above the azimuth's horizon, so the spot's shadows sweep as the
+/// sun's do.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Turned {
+    Direction,
+    Spot { target: Vec3, offset: Vec3 },
+}
+
+/// The first light's azimuth, angle and what turns, if it has an angle.
+fn light_turn(scene: &Scene) -> Option<(Vec3, f32, Turned)> {
+    match scene.lights.first()? {
+        Light::Directional(l) => {
+            let azimuth = l.azimuth();
+            Some((azimuth, l.angle_about(azimuth), Turned::Direction))
+        }
+        Light::Spot(l) => {
+            let o = l.position - l.target;
+            let azimuth = Vec3::new(o.x, 0.0, o.z).try_normalize()?;
+            let angle = o.y.atan2(o.dot(azimuth)).to_degrees();
+            let target = l.target;
+            Some((azimuth, angle, Turned::Spot { target, offset: o }))
+        }
+        Light::Point(_) => None,
+    }
 }
 
 /// A path from a scene's frame-0 pose.
@@ -83,8 +111,8 @@ pub struct MotionPath {
     /// World units or degrees a frame (see [`PathKind::unit`]).
     pub step: f32,
     camera: Camera,
-    /// The first light's azimuth and angle at frame 0 (a directional light).
-    light: Option<(Vec3, f32)>,
+    /// The first light's azimuth and angle at frame 0, and what turns.
+    light: Option<(Vec3, f32, Turned)>,
     pivot: Vec3,
     keyframes: Vec<Keyframe>,
     /// The frame the scene shows now (advanced by [`Scene::update`]).
@@ -102,12 +130,7 @@ impl MotionPath {
                 kind.unit()
             )));
         }
-        let light = scene.light_azimuth().map(|azimuth| {
-            let angle = scene.lights[0]
-                .as_directional()
-                .map(|l| l.angle_about(azimuth));
-            (azimuth, angle.unwrap_or(0.0))
-        });
+        let light = light_turn(scene);
         let keyed_angle = scene
             .motion_keyframes
             .iter()
@@ -120,7 +143,8 @@ impl MotionPath {
         if needs_angle && light.is_none() {
             return Err(Error::Invalid(format!(
                 "--motion {}: the {} scene's first light is a {}; only a directional light \
-                 has an angle to turn (the DummyGame's UP/DOWN keys)",
+                 has an angle to turn (the DummyGame's UP/DOWN keys), and a spot light a \
+                 height about its target",
                 kind.name(),
                 scene.name,
                 scene.light().describe()
@@ -148,7 +172,7 @@ impl MotionPath {
     pub fn pose(&self, scene: &mut Scene, frame: u32) {
         let t = frame as f32 * self.step;
         let mut camera = self.camera;
-        let mut angle = self.light.map(|(_, a)| a);
+        let mut angle = self.light.map(|(_, a, _)| a);
         match self.kind {
             PathKind::Still => {}
             PathKind::Dolly => camera.position += view_direction(&camera) * t,
@@ -167,8 +191,20 @@ impl MotionPath {
             }
         }
         scene.camera = camera;
-        if let (Some((azimuth, _)), Some(a)) = (self.light, angle) {
-            scene.set_light_angle_about(azimuth, a);
+        let (Some((azimuth, start, turned)), Some(a)) = (self.light, angle) else {
+            return;
+        };
+        match (turned, scene.lights.first_mut()) {
+            (Turned::Direction, _) => {
+                scene.set_light_angle_about(azimuth, a);
+            }
+            (Turned::Spot { target, offset }, Some(Light::Spot(l))) => {
+                // Turned from frame 0's offset, so frame 0 is the scene's exactly.
+                let turn = (a.clamp(0.0, 180.0) - start).to_radians();
+                let axis = azimuth.cross(Vec3::Y).normalize();
+                l.position = target + glam::Quat::from_axis_angle(axis, turn) * offset;
+            }
+            (Turned::Spot { .. }, _) => {}
         }
     }
 }
@@ -321,6 +357,29 @@ mod tests {
         let before = base.lights[0].as_directional().unwrap().angle_deg();
         let after = s.lights[0].as_directional().unwrap().angle_deg();
         assert!((after - before - 10.0).abs() < 1e-3, "{before} -> {after}");
+    }
+
+    #[test]
+    fn a_light_sweep_raises_a_spot_about_its_target_by_the_step() {
+        let base = Scene::load("penumbra").unwrap();
+        let path = MotionPath::new(PathKind::LightSweep, Some(2.0), &base).unwrap();
+        let mut s = base.clone();
+        path.pose(&mut s, 0);
+        assert_eq!(s.lights, base.lights, "frame 0 is the scene's");
+        path.pose(&mut s, 5);
+        let (Light::Spot(before), Light::Spot(after)) = (&base.lights[0], &s.lights[0]) else {
+            panic!("penumbra's first light is a spot");
+        };
+        let (o0, o1) = (
+            before.position - before.target,
+            after.position - after.target,
+        );
+        let turned = o0.angle_between(o1).to_degrees();
+        assert!((turned - 10.0).abs() < 1e-3, "turned {turned}");
+        assert!((o1.length() - o0.length()).abs() < 1e-4);
+        // It rises towards the overhead, in the vertical plane of its azimuth.
+        assert!(o1.y > o0.y);
+        assert!(o0.cross(o1).y.abs() < 1e-4);
     }
 
     #[test]
