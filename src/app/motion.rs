@@ -1,5 +1,5 @@
 //! `--motion`: a scripted path for `render`, `compare`, `bench` and `demo`, and `compare
-//! --motion`'s run: every frame traced and scored, and its false flicker
+//! --motion`'s run: every frame traced and scored, its flicker energy and false flicker
 //! ([`shadowmap::motion`]) with an animation of the error and a plot of the flicker.
 
 use shadowmap::compare::CompareOptions;
@@ -83,6 +83,15 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
             .collect::<Vec<_>>()
             .join(" ")
     );
+    if scene.lights.get(args.light).is_some_and(|l| l.size() > 0.0) {
+        println!(
+            "MAE against the area light per frame: {}",
+            (score.frames.iter())
+                .map(|f| format!("{:.4}", f.mae))
+                .collect::<Vec<_>>()
+                .join(" ")
+        );
+    }
     println!(
         "wrote {}: metrics.json, motion-error.png (the error over the path, animated: red = \
          false shadow, blue = false light, grey = agrees), motion-flicker.png (false flicker \
@@ -92,8 +101,9 @@ pub fn run_compare(args: &CompareArgs, path: MotionPath) -> Result<()> {
     Ok(())
 }
 
-/// `bench --motion`: each configuration's false flicker over `frames` of the path, into
-/// its row (each frame traced and drawn; no supersampling, which the flicker does not use).
+/// `bench --motion`: each configuration's flicker energy and false flicker over `frames`
+/// of the path, into its row (each frame traced and drawn; no supersampling, which the
+/// flicker does not use); the Pareto front is then marked again with the energy.
 pub fn bench_flicker(
     gl: &shadowmap::engine::Gl,
     scene: &Scene,
@@ -110,7 +120,7 @@ pub fn bench_flicker(
         rays,
     };
     eprintln!(
-        "bench: false flicker of {} configurations over {frames} frames of {}",
+        "bench: flicker energy of {} configurations over {frames} frames of {}",
         rows.len(),
         describe(path)
     );
@@ -118,14 +128,17 @@ pub fn bench_flicker(
     for row in rows.iter_mut() {
         let settings = row.config.settings;
         let score = score_path(gl, scene, &settings, (path, frames), &opts, |_, _| {})?;
+        row.flicker_energy = Some(score.energy);
         row.false_flicker = Some(score.false_flicker);
         counter.step(&format!(
-            "{}: false flicker {:.3}%",
+            "{}: flicker energy {:.4}, false flicker {:.3}%",
             row.label(),
+            score.energy,
             score.false_flicker * 100.0
         ));
     }
     counter.finish();
+    shadowmap::bench::mark_pareto(rows);
     Ok(())
 }
 

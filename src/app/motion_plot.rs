@@ -43,8 +43,9 @@ pub fn flicker_png(score: &MotionScore) -> Result<Vec<u8>> {
         let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let title = format!(
-            "{}: false flicker {:.3}% a frame (truth {:.3}%)",
+            "{}: flicker energy {:.4}; false flicker {:.3}% a frame (truth {:.3}%)",
             score.path,
+            score.energy,
             score.false_flicker * 100.0,
             score.truth_change * 100.0
         );

@@ -85,8 +85,11 @@ pub struct BenchRow {
     pub transmittance: Option<TransmittanceMetrics>,
     /// On the Pareto front of (wall median, error).
     pub pareto: bool,
-    /// With `bench --motion`: the false flicker over the path ([`crate::motion`]), the
-    /// share of receivers a frame.
+    /// With `bench --motion`: the flicker energy over the path ([`crate::motion`]), the
+    /// root mean square of the error's change a frame, in visibility units.
+    pub flicker_energy: Option<f64>,
+    /// With `bench --motion`: the false flicker over the path, the share of receivers a
+    /// frame whose binary state flipped against the truth's.
     pub false_flicker: Option<f64>,
 }
 
@@ -288,14 +291,18 @@ pub(super) fn ms(d: std::time::Duration) -> f64 {
 /// Marks the rows no other row beats on both shadow overhead and error: the quantity the
 /// comparison with the tutorials and the presets rank by, so that their picks are on the
 /// front the table shows (the frame time carries the scene pass' shading and more of the
-/// machine's load).
+/// machine's load). With `bench --motion` the flicker energy is a third term: a row that
+/// crawls less is on the front even if another is cheaper and as accurate when still.
 pub fn mark_pareto(rows: &mut [BenchRow]) {
-    let points: Vec<(f64, f64)> = rows.iter().map(|r| (r.overhead_ms, r.error())).collect();
+    let points: Vec<[f64; 3]> = rows
+        .iter()
+        .map(|r| [r.overhead_ms, r.error(), r.flicker_energy.unwrap_or(0.0)])
+        .collect();
     for (i, row) in rows.iter_mut().enumerate() {
-        let (t, e) = points[i];
+        let p = points[i];
         row.pareto = !points
             .iter()
-            .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e));
+            .any(|q| q.iter().zip(&p).all(|(a, b)| a <= b) && q.iter().zip(&p).any(|(a, b)| a < b));
     }
 }
 
@@ -338,6 +345,7 @@ mod tests {
             volume_pixels: 0,
             soft: super::super::reference::compute_soft_metrics(0, 0, &[], &[], 0),
             transmittance: None,
+            flicker_energy: None,
             false_flicker: None,
         }
     }
@@ -393,6 +401,29 @@ mod tests {
             .map(|l| l.split(" | ").nth(2).unwrap())
             .collect();
         assert_eq!(overheads, ["1.20", "1.30", "4.90"], "{table}");
+    }
+
+    #[test]
+    fn with_motion_a_row_that_crawls_less_stays_on_the_front() {
+        let mut rows = vec![
+            row(None, 7.0, 1.0, 0.010),
+            row(None, 8.0, 2.0, 0.010), // dearer, as accurate when still
+        ];
+        mark_pareto(&mut rows);
+        assert!(rows[0].pareto && !rows[1].pareto);
+        rows[0].flicker_energy = Some(0.04);
+        rows[1].flicker_energy = Some(0.03); // but steadier
+        mark_pareto(&mut rows);
+        assert!(rows[0].pareto && rows[1].pareto);
+        rows[1].flicker_energy = Some(0.04);
+        mark_pareto(&mut rows);
+        assert!(!rows[1].pareto, "beaten on every term");
+        let table = to_markdown(&rows);
+        assert!(
+            table.contains("flicker energy | false flicker a frame"),
+            "{table}"
+        );
+        assert!(table.contains(" 0.0400 | n/a |"), "{table}");
     }
 
     #[test]

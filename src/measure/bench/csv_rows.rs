@@ -92,6 +92,9 @@ struct BenchLine {
     passes: u32,
     blur_taps: u32,
     map_bytes: u64,
+    /// With `bench --motion` (else `-`): flicker energy, the root mean square of the
+    /// error's change a frame (visibility units; [`crate::motion`]).
+    flicker_energy: String,
     /// With `bench --motion` (else `-`): false flicker, a share of receivers a frame.
     false_flicker: String,
     /// The shadow overhead by the GL timer queries ([`BenchRow::overhead_gpu_ms`]).
@@ -156,6 +159,7 @@ impl BenchLine {
             passes: cost.passes,
             blur_taps: cost.blur_taps,
             map_bytes: r.map_bytes(),
+            flicker_energy: r.flicker_energy.map_or("-".into(), |f| format!("{f:.6}")),
             false_flicker: r.false_flicker.map_or("-".into(), |f| format!("{f:.6}")),
             overhead_gpu_ms: Fixed(r.overhead_gpu_ms),
         }

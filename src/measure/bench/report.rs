@@ -29,9 +29,9 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             "penumbra width error px",
         ]);
     }
-    let moving = rows.iter().any(|r| r.false_flicker.is_some());
+    let moving = rows.iter().any(|r| r.flicker_energy.is_some());
     if moving {
-        header.push("false flicker a frame");
+        header.extend(["flicker energy", "false flicker a frame"]);
     }
     // The delimiter row has as many cells as the header, or no viewer draws a table.
     let mut out = format!(
@@ -87,8 +87,9 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
             ));
         }
         if moving {
+            let e = r.flicker_energy.map_or("n/a".into(), |e| format!("{e:.4}"));
             let f = r.false_flicker.map_or("n/a".into(), pct);
-            out.push_str(&format!(" {f} |"));
+            out.push_str(&format!(" {e} | {f} |"));
         }
         out.push('\n');
     }

@@ -181,6 +181,7 @@ fn timed_row(
         soft,
         transmittance: None,
         pareto: false,
+        flicker_energy: None,
         false_flicker: None,
     }
 }

@@ -2,7 +2,7 @@
 //! again at frame i's pixels (its light, and its camera as the one the light's box or
 //! cascades are fitted to), so both are compared at the same world points.
 
-use super::{rendered_state, FlickerMeter, MotionFrame, MotionScore};
+use super::{Drawn, FlickerMeter, MotionFrame, MotionScore};
 use crate::compare::{compute_reference, render_visibility, CompareOptions, Reference};
 use crate::engine::Gl;
 use crate::error::Result;
@@ -28,8 +28,7 @@ pub fn score_path(
         let reference = compute_reference(gl, &s, settings, opts)?;
         let frame = render_visibility(gl, &s, settings, opts.width, opts.height, opts.light)?;
         each(&frame, &reference);
-        let vis = frame.visibility.as_deref().unwrap_or_default();
-        let rendered = vis.iter().map(|v| rendered_state(*v)).collect();
+        let rendered = frame.visibility.clone().unwrap_or_default();
         let here = MotionFrame::of_reference(&reference, &s.camera);
         let before = match i {
             0 => None,
@@ -50,7 +49,7 @@ fn previous_here(
     here: &MotionFrame,
     settings: &ShadowSettings,
     opts: &CompareOptions,
-) -> Result<(MotionFrame, Vec<Option<bool>>)> {
+) -> Result<Drawn> {
     let (mut now, mut before) = (scene.clone(), scene.clone());
     path.pose(&mut now, i);
     path.pose(&mut before, i - 1);
@@ -64,6 +63,5 @@ fn previous_here(
         }
     };
     let frame = render_visibility(gl, &before, settings, opts.width, opts.height, opts.light)?;
-    let vis = frame.visibility.as_deref().unwrap_or_default();
-    Ok((truth, vis.iter().map(|v| rendered_state(*v)).collect()))
+    Ok((truth, frame.visibility.unwrap_or_default()))
 }
