@@ -530,3 +530,61 @@ fn windows_build_under_wine_draws_the_linux_frame_through_wgl() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+#[ignore = "needs an X display: .ci/run runs it under Xvfb"]
+fn window_moves_along_a_path_by_frames_as_render_does() {
+    let dir = display_and_dir("motion");
+    let path = [
+        "--scene",
+        "dummy",
+        "--size",
+        "640x360",
+        "--motion",
+        "light-sweep",
+    ];
+    // Two runs of the window, however fast their frames came: the same picture.
+    let shots: Vec<image::RgbaImage> = (0..2)
+        .map(|run| {
+            let shot = dir.join(format!("demo-{run}.png"));
+            window_stdout_of(
+                bin()
+                    .args(["demo", "--require-window", "--no-hud"])
+                    .args(path)
+                    .args(["--exit-after-frames", "40", "--screenshot"])
+                    .arg(&shot),
+            );
+            load(&shot)
+        })
+        .collect();
+    assert!(shots[0] == shots[1], "two runs of 40 frames differ");
+    // The 40th frame drawn is the path's frame 39, as `render --frames 40` draws it: nearer
+    // it than the frames either side, and far from the same 40 frames without the path
+    // (the cube spun alike, the light still).
+    let render = |frames: &str, path: &[&str]| {
+        let out = dir.join(format!("render-{frames}-{}.png", path.len()));
+        stdout_of(
+            bin()
+                .arg("render")
+                .args(path)
+                .args(["--frames", frames, "--out"])
+                .arg(&out),
+        );
+        mean_difference(&shots[0], &load(&out))
+    };
+    let (at, before, after) = (
+        render("40", &path),
+        render("36", &path),
+        render("44", &path),
+    );
+    let still = render("40", &path[..4]);
+    assert!(
+        at < 1.0,
+        "the window's frame 39 differs from render's by {at}"
+    );
+    assert!(
+        at < before && at < after && at * 4.0 < still,
+        "frame 39 {at}, 35 {before}, 43 {after}, without the path {still}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

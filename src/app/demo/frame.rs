@@ -68,7 +68,15 @@ impl Demo {
     }
 
     /// Fixed updates at the book's rate, however fast frames come (at most 5 per frame).
+    /// On a `--motion` path one update a drawn frame instead, so the Nth frame drawn is
+    /// the path's frame N - 1, as `render --frames N` draws it, however fast it came.
     fn catch_up(&mut self, dt: f64) {
+        if let Some(path) = &self.scene.motion {
+            if u64::from(path.frame) < self.frames {
+                self.update();
+            }
+            return;
+        }
         self.update_debt = (self.update_debt + dt * UPDATES_PER_SECOND).min(5.0);
         while self.update_debt >= 1.0 {
             self.update_debt -= 1.0;
