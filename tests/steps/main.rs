@@ -334,6 +334,7 @@ fn every_scene_and_step_renders_without_gl_errors() {
     }
 }
 
+mod bias;
 mod lessons;
 mod page;
 mod playground;
