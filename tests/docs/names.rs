@@ -190,6 +190,7 @@ impl Code {
     /// neither a module of the one before nor an item its file defines or re-exports.
     /// `None` for a path that does not start at a module (`Scene::load`).
     fn module_path_error(&self, segments: &[String]) -> Option<String> {
+        let uses = regex::Regex::new(r"\bpub(?:\([a-z ]+\))?\s+use\s+([^;]*);").unwrap();
         let mut dir = String::from("src");
         let mut file = None;
         for (i, segment) in segments.iter().enumerate() {
@@ -201,7 +202,6 @@ impl Code {
             let (name, text) = file?;
             let defined = definitions_in(text).iter().any(|d| d == segment);
             let word = regex::Regex::new(&format!(r"\b{segment}\b")).unwrap();
-            let uses = regex::Regex::new(r"\bpub(?:\([a-z ]+\))?\s+use\s+([^;]*);").unwrap();
             // A `pub use` of the name, or a glob over the module's own folder.
             let exported = uses.captures_iter(text).any(|c| {
                 let glob = c[1].contains('*') && self.defined_in(segment, &format!("{dir}/"));
