@@ -286,52 +286,68 @@ fn compare_scores_the_binary_line_against_the_opaque_casters() {
     );
 }
 
-/// The smoke demo starts with its translucent shadows on (the scene's own setting, off,
-/// stays `render`'s and `compare`'s), says so, and shows it in the HUD; `--volumetric`
-/// keeps the user's choice.
+/// A scene with translucent casters starts alike in every command: the demo (here its
+/// no-display fallback) draws the picture `render` draws, pixel for pixel, under the scene's
+/// own `volumetric` (`off`) and under the user's `--volumetric osm`, and the two differ.
 #[test]
-fn the_smoke_demo_starts_with_translucent_shadows_on() {
-    let dir = case_dir("smoke_demo");
-    let demo = |extra: &[&str], png: &str| {
-        let out = common::bin()
-            .current_dir(&dir)
-            .env_remove("DISPLAY")
-            .env_remove("WAYLAND_DISPLAY")
-            .args(["--scene", "smoke", "--size", "320x180", "--no-animation"])
-            .args(["--exit-after-frames", "1", "--screenshot", png])
-            .args(extra)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let img = image::open(dir.join(png)).unwrap().to_rgb8();
-        (String::from_utf8_lossy(&out.stdout).into_owned(), img)
-    };
-    let (stdout, on) = demo(&["--no-hud"], "on.png");
-    assert!(
-        stdout.starts_with(
-            "demo: the smoke scene's 81 translucent casters start with their shadows on \
-             (volumetric osm; the scene's own setting is off: T cycles off, solid, osm, fom, \
-             avsm, or give --volumetric)\n"
-        ),
-        "{stdout}"
-    );
-    let (stdout, off) = demo(&["--no-hud", "--volumetric", "off"], "off.png");
-    assert!(!stdout.contains("translucent casters start"), "{stdout}");
-    // The smoke's shadow darkens the floor: many pixels darker with it on.
-    let darker = on
-        .pixels()
-        .zip(off.pixels())
-        .filter(|(a, b)| u32::from(a[2]) + 10 < u32::from(b[2]))
-        .count();
-    assert!(
-        darker > 300,
-        "{darker} pixels darker with translucent shadows on"
-    );
-    eprintln!("{darker} pixels darker with translucent shadows on");
+fn a_translucent_scene_starts_alike_in_render_and_the_demo() {
+    let dir = case_dir("translucent_start");
+    let translucent: Vec<&str> = Scene::builtin_names()
+        .into_iter()
+        .filter(|name| {
+            let scene = Scene::load(name).unwrap();
+            let any = shadowmap::shadows::volumetric::translucent_casters(&scene)
+                .next()
+                .is_some();
+            any
+        })
+        .collect();
+    assert!(translucent.contains(&"smoke"), "{translucent:?}");
+    for name in translucent {
+        let both = |extra: &[&str], tag: &str| {
+            let size = ["--scene", name, "--size", "320x180"];
+            let (demo, render) = (format!("{name}-{tag}-demo.png"), format!("{name}-{tag}.png"));
+            let demo_out = common::stdout_of(
+                common::bin()
+                    .current_dir(&dir)
+                    .env_remove("DISPLAY")
+                    .env_remove("WAYLAND_DISPLAY")
+                    .arg("demo")
+                    .args(size)
+                    .args(["--no-hud", "--no-animation", "--exit-after-frames", "1"])
+                    .args(["--screenshot", &demo])
+                    .args(extra),
+            );
+            assert!(demo_out.contains("No display for a window"), "{demo_out}");
+            let render_out = common::stdout_of(
+                common::bin()
+                    .current_dir(&dir)
+                    .arg("render")
+                    .args(size)
+                    .args(["--out", &render])
+                    .args(extra),
+            );
+            let open = |p: &str| image::open(dir.join(p)).unwrap().to_rgb8();
+            let (d, r) = (open(&demo), open(&render));
+            let differ = d.pixels().zip(r.pixels()).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                differ, 0,
+                "{name} {extra:?}: the demo's frame differs from render's in {differ} pixels\n\
+                 demo: {demo_out}\nrender: {render_out}"
+            );
+            r
+        };
+        let own = both(&[], "own");
+        let osm = both(&["--volumetric", "osm"], "osm");
+        // The translucent casters' shadow darkens the floor where they cast one.
+        let darker = osm
+            .pixels()
+            .zip(own.pixels())
+            .filter(|(a, b)| u32::from(a[2]) + 10 < u32::from(b[2]))
+            .count();
+        eprintln!("{name}: {darker} pixels darker under osm than under the scene's own setting");
+        assert!(darker > 300, "{name}: {darker} pixels darker under osm");
+    }
 }
 
 #[test]

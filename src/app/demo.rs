@@ -44,10 +44,7 @@ pub(super) fn scenes(args: &DemoArgs) -> Result<(Scene, Scene, ShadowSettings)> 
 }
 
 pub fn run(args: &DemoArgs) -> Result<()> {
-    let (loaded, mut scene, mut settings) = scenes(args)?;
-    if let Some(line) = translucent_start(args, &scene, &mut settings) {
-        println!("{line}");
-    }
+    let (loaded, mut scene, settings) = scenes(args)?;
     // What needs no window or driver is checked before anything opens.
     args.settings.check_values(&scene, &settings)?;
     args.motion.start(&mut scene)?;
@@ -100,30 +97,6 @@ pub fn run(args: &DemoArgs) -> Result<()> {
         Some(e) => Err(e),
         None => Ok(()),
     }
-}
-
-/// A scene with translucent casters whose own settings leave their shadows off (so that
-/// `render` and `compare` show the chapters' depth map first) starts the demo with them on,
-/// as opacity shadow maps, unless `--volumetric` or `--step` says otherwise; the line says
-/// so, and T still cycles through every choice.
-fn translucent_start(
-    args: &DemoArgs,
-    scene: &Scene,
-    settings: &mut ShadowSettings,
-) -> Option<String> {
-    use shadowmap::settings::Volumetric;
-    let translucent = shadowmap::shadows::volumetric::translucent_casters(scene).count();
-    let chosen = args.settings.patch.volumetric.is_some() || args.settings.step.is_some();
-    if translucent == 0 || chosen || settings.volumetric != Volumetric::Off {
-        return None;
-    }
-    settings.volumetric = Volumetric::Osm;
-    Some(format!(
-        "demo: the {} scene's {translucent} translucent casters start with their shadows on \
-         (volumetric osm; the scene's own setting is off: T cycles off, solid, osm, fom, \
-         avsm, or give --volumetric)",
-        scene.name
-    ))
 }
 
 /// Window, GL context, renderer and HUD; the GL users are declared first so they drop

@@ -1,5 +1,5 @@
 //! One vec4 a vertex, computed by a pass of its own and kept in a buffer for later draws
-//! (the translucent items' per-vertex light, `shadows::volumetric::vertex_light`). The
+//! (the translucent items' per-vertex light, `renderer::vertex_light`). The
 //! pass is transform feedback: a vertex-only program draws each mesh's vertices as points
 //! under `GL_RASTERIZER_DISCARD`, one after the other into the buffer; a draw reads them
 //! back as a vertex attribute at the mesh's first vertex there. (glow has no `glTexBuffer`
