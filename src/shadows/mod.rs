@@ -27,7 +27,7 @@
 //! A technique owns its storage (and says whether it still fits the settings), makes its
 //! light camera, runs its depth pass, writes its part of the scene program (its `glsl`:
 //! library files, sampler and call) and gives the scene pass its uniforms. [`ShadowKind`]'s
-//! one table (`room`) names each technique's constructor, GLSL and samplers.
+//! one table (`descriptor`) names each technique's constructor, GLSL and samplers.
 
 pub mod cache;
 pub mod camera;
@@ -87,29 +87,32 @@ impl ShadowKind {
     /// Makes the storage of this kind for `settings` (`None` for a light that does not cast,
     /// and for volumes, which need none).
     pub fn create(self, gl: &Gl, settings: &ShadowSettings) -> Result<Option<Box<dyn Technique>>> {
-        self.room().map(|r| (r.create)(gl, settings)).transpose()
+        self.descriptor()
+            .map(|r| (r.create)(gl, settings))
+            .transpose()
     }
 
     /// Light `i`'s test in the scene program, its light-space position (if any) in map slot
     /// `p`: the technique's library files, sampler type and call.
     pub fn glsl(self, i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
-        self.room().and_then(|r| (r.glsl)(i, p, test))
+        self.descriptor().and_then(|r| (r.glsl)(i, p, test))
     }
 
     /// The sampler uniform of light `index`'s map, if it has one.
     pub fn sampler(self, index: usize) -> Option<&'static str> {
-        self.room().and_then(|r| r.samplers.get(index).copied())
+        self.descriptor()
+            .and_then(|r| r.samplers.get(index).copied())
     }
 
     /// Whether the vertex shader gives the light a light-space position (a 2D or cube
     /// map's `mlightviewVertexPos` slot).
     pub fn map_slot(self) -> bool {
-        self.room().is_some_and(|r| r.map_slot)
+        self.descriptor().is_some_and(|r| r.map_slot)
     }
 
     /// The technique behind each kind: the one table a new technique joins.
-    fn room(self) -> Option<Room> {
-        let room = |create, glsl, samplers, map_slot| Room {
+    fn descriptor(self) -> Option<Descriptor> {
+        let descriptor = |create, glsl, samplers, map_slot| Descriptor {
             create,
             glsl,
             samplers,
@@ -117,31 +120,31 @@ impl ShadowKind {
         };
         Some(match self {
             ShadowKind::None | ShadowKind::Volume => return None,
-            ShadowKind::Map => room(
+            ShadowKind::Map => descriptor(
                 |gl, s| Ok(Box::new(map2d::Map2d::new(gl, s)?)),
                 |i, p, t| Some(map2d::glsl(i, p, t)),
                 &map2d::SAMPLERS,
                 true,
             ),
-            ShadowKind::Cube => room(
+            ShadowKind::Cube => descriptor(
                 |gl, s| Ok(Box::new(cube::Cube::new(gl, s)?)),
                 |i, p, t| Some(cube::glsl(i, p, t)),
                 &cube::SAMPLERS,
                 true,
             ),
-            ShadowKind::Cascades => room(
+            ShadowKind::Cascades => descriptor(
                 |gl, s| Ok(Box::new(layers::Layered::<cascades::Cascades>::new(gl, s)?)),
                 cascades::glsl,
                 &cascades::SAMPLERS,
                 false,
             ),
-            ShadowKind::Groups => room(
+            ShadowKind::Groups => descriptor(
                 |gl, s| Ok(Box::new(layers::Layered::<groups::Groups>::new(gl, s)?)),
                 groups::glsl,
                 &groups::SAMPLERS,
                 false,
             ),
-            ShadowKind::Moments => room(
+            ShadowKind::Moments => descriptor(
                 |gl, s| Ok(Box::new(moments::Moments::new(gl, s)?)),
                 moments::glsl,
                 &map2d::SAMPLERS,
@@ -151,8 +154,8 @@ impl ShadowKind {
     }
 }
 
-/// A technique's entries in the kind table ([`ShadowKind::room`]).
-struct Room {
+/// A technique's entries in the kind table ([`ShadowKind::descriptor`]).
+struct Descriptor {
     create: fn(&Gl, &ShadowSettings) -> Result<Box<dyn Technique>>,
     glsl: fn(usize, usize, &ShadowTest) -> Option<LightGlsl>,
     samplers: &'static [&'static str; crate::scene::MAX_LIGHTS],
