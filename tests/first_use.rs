@@ -306,7 +306,10 @@ fn a_translucent_scene_starts_alike_in_render_and_the_demo() {
     for name in translucent {
         let both = |extra: &[&str], tag: &str| {
             let size = ["--scene", name, "--size", "320x180"];
-            let (demo, render) = (format!("{name}-{tag}-demo.png"), format!("{name}-{tag}.png"));
+            let (demo, render) = (
+                format!("{name}-{tag}-demo.png"),
+                format!("{name}-{tag}.png"),
+            );
             let demo_out = common::stdout_of(
                 common::bin()
                     .current_dir(&dir)
