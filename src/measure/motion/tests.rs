@@ -153,7 +153,8 @@ fn a_point_hidden_in_the_previous_frame_is_not_matched() {
     assert_eq!(pair.energy(), 0.0);
 }
 
-/// How a filter reads a map whose texels `k < edge` are shadowed, texels `t` pixels wide.
+/// How a filter reads a map whose texels `k < edge` are shadowed, texels `t` pixels wide,
+/// its grid slid by `slide` texels.
 #[derive(Clone, Copy)]
 enum Lookup {
     /// The texel the point falls in.
@@ -164,7 +165,12 @@ enum Lookup {
     Bilinear,
 }
 
-fn filtered(frame: &MotionFrame, t: f64, edge: i64, lookup: Lookup) -> Vec<Option<f32>> {
+fn filtered(
+    frame: &MotionFrame,
+    (t, slide): (f64, f64),
+    edge: i64,
+    lookup: Lookup,
+) -> Vec<Option<f32>> {
     let texel = |k: i64| f64::from(lit(k < edge));
     let at = |x: f64| match lookup {
         Lookup::Single => texel((x / t).floor() as i64),
@@ -178,7 +184,8 @@ fn filtered(frame: &MotionFrame, t: f64, edge: i64, lookup: Lookup) -> Vec<Optio
             (1.0 - f) * texel(k) + f * texel(k + 1)
         }
     };
-    frame.world.iter().map(|w| Some(at(w.x) as f32)).collect()
+    let x = |w: &DVec3| w.x - slide * t;
+    frame.world.iter().map(|w| Some(at(x(w)) as f32)).collect()
 }
 
 /// The truth holds still; the map's edge moves by one texel (texel 12 turns shadowed, as
@@ -186,8 +193,8 @@ fn filtered(frame: &MotionFrame, t: f64, edge: i64, lookup: Lookup) -> Vec<Optio
 fn one_texel_step(lookup: Lookup) -> (PairScore, Vec<f64>) {
     let t = 8.0;
     let f = floor(0.0, |x| x < 100.3);
-    let r0 = filtered(&f, t, 12, lookup);
-    let r1 = filtered(&f, t, 13, lookup);
+    let r0 = filtered(&f, (t, 0.0), 12, lookup);
+    let r1 = filtered(&f, (t, 0.0), 13, lookup);
     let pair = score_pair(&f, &r0, &f, &r1);
     let mut de = vec![0.0; W * H];
     for &(i, dv, dt) in &pair.changes {
@@ -258,4 +265,34 @@ fn hardware_2x2_changes_as_the_linear_ramp_says() {
         (ratio - (4.0 * n * n - 1.0) / (6.0 * n * n)).abs() < 1e-6,
         "{ratio}"
     );
+}
+
+#[test]
+fn hardware_2x2_slid_by_part_of_a_texel_changes_by_that_part_not_by_a_step() {
+    // The map's grid slides by d texels under a still truth (an unsnapped map): each
+    // point's lookup moves by d. The single lookup and the boxes step (a share d of the
+    // points changes by 1 / n for an n-tap box); the bilinear ramp changes by d where it
+    // is, so its squares are d - d²/3 of the single lookup's (less 1 / 6m² at m pixels a
+    // texel): the smaller the step a frame, the steadier it is against the others.
+    let f = floor(0.0, |x| x < 100.3);
+    let m = 8.0;
+    for d in [0.25, 0.5, 1.0] {
+        let squares = |lookup| {
+            let r0 = filtered(&f, (m, 0.0), 12, lookup);
+            let r1 = filtered(&f, (m, d), 12, lookup);
+            score_pair(&f, &r0, &f, &r1).energy().powi(2)
+        };
+        let single = squares(Lookup::Single);
+        let ramp = squares(Lookup::Bilinear) / single;
+        let expected = d - d * d / 3.0 - 1.0 / (6.0 * m * m);
+        assert!(
+            (ramp - expected).abs() < 1e-6,
+            "slid {d}: {ramp} against {expected}"
+        );
+        let boxed = squares(Lookup::Box(3)) / single;
+        assert!(
+            (boxed - 1.0 / 3.0).abs() < 1e-6,
+            "slid {d}: 3 x 3 box {boxed}"
+        );
+    }
 }
