@@ -482,8 +482,9 @@ fn bench_reports_progress_from_the_start() {
     );
     for needle in [
         "bench: tracing the exact reference at 32x18 ...",
-        "[1/116] timing pass 1 of 2\n",
-        "[116/116] pass 2 of 2: ",
+        // Each line names its phase and the configuration.
+        "[1/116] pass 1 of 2, compiling and timing: ",
+        "[116/116] pass 2 of 2, timing and scoring against the reference: ",
     ] {
         assert!(r.stderr.contains(needle), "lacks {needle:?}: {}", r.stderr);
     }

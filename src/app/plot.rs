@@ -29,11 +29,15 @@ fn pareto_err(e: &dyn std::fmt::Display) -> Error {
     Error::Invalid(format!("cannot draw pareto.png: {e}"))
 }
 
+/// Where an overhead that is noise or below zero is drawn on the log axis (ms); such
+/// points are crossed out and the legend says so ([`draw_noise`]).
+const OVERHEAD_FLOOR_MS: f64 = 0.01;
+
 /// A row's place on the Pareto plot: (shadow overhead ms, error in percent), both kept
-/// above zero for the log axes (an overhead within noise of none is drawn at 0.01 ms).
+/// above zero for the log axes (an overhead at or below zero at [`OVERHEAD_FLOOR_MS`]).
 fn pareto_at(r: &BenchRow) -> (f64, f64) {
     (
-        r.overhead_ms.max(0.01),
+        r.overhead_ms.max(OVERHEAD_FLOOR_MS),
         (r.error() * 100.0).max(ERROR_FLOOR_PCT),
     )
 }
@@ -86,6 +90,7 @@ pub fn pareto_png(title: &str, rows: &[BenchRow]) -> Result<Vec<u8>> {
             .draw()
             .map_err(|e| err(&e))?;
         draw_families(&mut chart, rows)?;
+        draw_noise(&mut chart, rows)?;
         let mut labels = Labels::new(&chart, rows);
         draw_front(&mut chart, rows, &mut labels)?;
         draw_tutorials(&mut chart, rows, &mut labels)?;
@@ -132,6 +137,46 @@ fn draw_families(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<(
             .label(family.name())
             .legend(move |(x, y)| Circle::new((x, y), 3, colour.filled()));
     }
+    Ok(())
+}
+
+/// The rows whose overhead is noise ([`BenchRow::overhead_is_noise`]), crossed out, each
+/// with its spread as a bar along the overhead axis.
+fn draw_noise(chart: &mut ParetoChart<'_, '_>, rows: &[BenchRow]) -> Result<()> {
+    let noisy: Vec<&BenchRow> = rows.iter().filter(|r| r.overhead_is_noise()).collect();
+    if noisy.is_empty() {
+        return Ok(());
+    }
+    let colour = RGBColor(0, 0, 0);
+    let range = chart.x_range();
+    let (lo, hi) = (range.start, range.end);
+    for r in &noisy {
+        let (x, y) = pareto_at(r);
+        let spread = if r.overhead_spread_ms.is_finite() {
+            r.overhead_spread_ms
+        } else {
+            0.0
+        };
+        let from = (r.overhead_ms - spread).clamp(lo, hi);
+        let to = (r.overhead_ms + spread).clamp(lo, hi);
+        chart
+            .draw_series(std::iter::once(PathElement::new(
+                vec![(from.min(x), y), (to.max(x), y)],
+                colour.stroke_width(1),
+            )))
+            .map_err(|e| pareto_err(&e))?;
+    }
+    chart
+        .draw_series(
+            noisy
+                .iter()
+                .map(|r| Cross::new(pareto_at(r), 6, colour.stroke_width(2))),
+        )
+        .map_err(|e| pareto_err(&e))?
+        .label(format!(
+            "overhead within its noise (±spread; at or below 0 drawn at {OVERHEAD_FLOOR_MS} ms)"
+        ))
+        .legend(move |(x, y)| Cross::new((x, y), 5, colour.stroke_width(2)));
     Ok(())
 }
 

@@ -197,16 +197,8 @@ pub fn choose_for_target(
         opts.frames
     );
     let mut counter = Counter::new(2 * configs.len() as u64);
-    let rows = bench::run(gl, &scene, &configs, &reference, &opts, |row| {
-        counter.step(&match row {
-            None => "timing pass 1 of 2".to_string(),
-            Some(row) => format!(
-                "{}: {:.2} ms, {:.3}% wrong",
-                row.label(),
-                row.wall_ms.median,
-                row.error() * 100.0
-            ),
-        })
+    let rows = bench::run(gl, &scene, &configs, &reference, &opts, |p| {
+        counter.step(&super::bench::progress_line(p))
     })?;
     counter.finish();
     let chosen = cheapest_or_error(&rows, target)?;

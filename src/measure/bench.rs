@@ -9,6 +9,7 @@ use serde::Serialize;
 
 mod configs;
 mod csv_rows;
+pub mod noise;
 mod report;
 mod timed;
 pub mod volumetric;
@@ -17,7 +18,7 @@ pub use csv_rows::{csv_text, to_csv, Fixed, Shown};
 pub use report::{
     against_tutorials, against_tutorials_text, preset_choices, to_markdown, AgainstTutorial,
 };
-pub use timed::{bench_reference, run};
+pub use timed::{bench_reference, run, Progress};
 
 use super::reference::{Metrics, SoftMetrics, TransmittanceMetrics};
 use super::timing::GpuPassTimes;
@@ -64,6 +65,9 @@ pub struct BenchRow {
     /// shadows drawn just before it (the figure a technique can change; the scene pass'
     /// shading is in both).
     pub overhead_ms: f64,
+    /// The overhead's spread ([`noise::overhead_spread`]): an overhead not above it is
+    /// noise ([`BenchRow::overhead_is_noise`]).
+    pub overhead_spread_ms: f64,
     /// The same by the GL timer queries: the median of each frame's two passes' GPU time
     /// minus the frame without shadows' (see the note in [`run`] on software drivers).
     pub overhead_gpu_ms: f64,
@@ -94,6 +98,23 @@ pub struct BenchRow {
 }
 
 impl BenchRow {
+    /// Whether the shadow overhead is within its spread of zero (or below it): a figure
+    /// the table flags, the plot marks and the `--quality` rule leaves out.
+    pub fn overhead_is_noise(&self) -> bool {
+        noise::is_noise(self.overhead_ms, self.overhead_spread_ms)
+    }
+
+    /// The overhead as the table shows it: "1.72", or "-1.33 (noise, ±0.40)".
+    pub fn overhead_text(&self) -> String {
+        match self.overhead_is_noise() {
+            true => format!(
+                "{:.2} (noise, ±{:.2})",
+                self.overhead_ms, self.overhead_spread_ms
+            ),
+            false => format!("{:.2}", self.overhead_ms),
+        }
+    }
+
     /// The error the sweep optimises: the misclassified fraction of receiver pixels, or
     /// for a light with a size the visibility's MAE against its area truth (a soft shadow
     /// is right in between, where "misclassified" says nothing).
@@ -203,8 +224,19 @@ impl BenchRow {
     /// A short name: "2048 hw2x2 slope cull-none 24", "... fitted" (the box fitted to the
     /// view), "4x1024 ... cascades", "... six-passes".
     pub fn label(&self) -> String {
-        let s = &self.config.settings;
-        let (size, suffix) = match self.config.family {
+        self.config.label_with(Some(self.volume_pixels))
+    }
+}
+
+impl BenchConfig {
+    /// [`BenchRow::label`] before the configuration is measured (the volumes' fill unknown).
+    pub fn label(&self) -> String {
+        self.label_with(None)
+    }
+
+    fn label_with(&self, volume_pixels: Option<u64>) -> String {
+        let s = &self.settings;
+        let (size, suffix) = match self.family {
             Family::OneMap => (s.map_size.to_string(), ""),
             Family::Cascades => (format!("{}x{}", s.cascades, s.map_size), " cascades"),
             Family::Groups => (
@@ -214,23 +246,21 @@ impl BenchRow {
             Family::PointLayered => (s.map_size.to_string(), " cube layered"),
             Family::PointSixPasses => (s.map_size.to_string(), " cube six-passes"),
             Family::Volumes => {
-                return format!(
-                    "stencil shadow volumes ({} volume px/frame)",
-                    self.volume_pixels
-                )
+                return match volume_pixels {
+                    Some(px) => format!("stencil shadow volumes ({px} volume px/frame)"),
+                    None => "stencil shadow volumes".to_string(),
+                }
             }
             Family::Soft => (s.map_size.to_string(), ""),
         };
         let fitted = match s.fit {
-            Fit::Scene if !matches!(self.config.family, Family::Cascades | Family::Groups) => {
-                " fitted"
-            }
+            Fit::Scene if !matches!(self.family, Family::Cascades | Family::Groups) => " fitted",
             _ => "",
         };
         format!(
             "{size} {} {} cull-{} {}{fitted}{suffix}",
             s.filter.name(),
-            self.config.bias_preset.name(),
+            self.bias_preset.name(),
             s.cull.name(),
             s.depth_format.name()
         )
@@ -335,6 +365,7 @@ mod tests {
             },
             wall_ms: stat,
             overhead_ms: overhead,
+            overhead_spread_ms: 0.0,
             overhead_gpu_ms: overhead,
             depth_wall_ms: stat,
             scene_wall_ms: stat,
@@ -373,6 +404,36 @@ mod tests {
         assert_eq!(low.1.unwrap().overhead_ms, 0.5);
         assert_eq!(medium.1.unwrap().overhead_ms, 0.8);
         assert_eq!(high.1.unwrap().overhead_ms, 1.9);
+    }
+
+    #[test]
+    fn an_overhead_within_its_noise_is_flagged_and_no_preset_rests_on_it() {
+        let mut noisy = row(None, 5.0, -1.33, 0.005);
+        noisy.overhead_spread_ms = 0.4;
+        let mut rows = vec![
+            row(Some("learnopengl"), 7.0, 2.0, 0.010),
+            noisy,
+            row(None, 5.5, 0.5, 0.020),
+            row(None, 6.0, 0.8, 0.009),
+        ];
+        mark_pareto(&mut rows);
+        assert!(rows[1].overhead_is_noise() && !rows[2].overhead_is_noise());
+        let table = to_markdown(&rows);
+        assert!(table.contains("| -1.33 (noise, ±0.40) |"), "{table}");
+        assert!(table.contains(report::NOISE_NOTE), "{table}");
+        // The least overhead is the noise row's; low takes the least overhead above noise,
+        // and medium does not take the noise row for its -1.33 ms within a 1 ms budget.
+        let [low, medium, high] = preset_choices(&rows);
+        assert_eq!(low.1.unwrap().overhead_ms, 0.5);
+        assert_eq!(medium.1.unwrap().overhead_ms, 0.8);
+        assert_eq!(high.1.unwrap().overhead_ms, 0.8);
+        // A tutorial overhead lost in noise gives no budget.
+        rows[0].overhead_spread_ms = 3.0;
+        let [low, medium, high] = preset_choices(&rows);
+        assert!(low.1.is_some() && medium.1.is_none() && high.1.is_none());
+        // Without noise the table carries no flag and no note.
+        let clean = to_markdown(&rows[2..]);
+        assert!(!clean.contains("noise"), "{clean}");
     }
 
     #[test]

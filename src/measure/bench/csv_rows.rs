@@ -99,6 +99,10 @@ struct BenchLine {
     false_flicker: String,
     /// The shadow overhead by the GL timer queries ([`BenchRow::overhead_gpu_ms`]).
     overhead_gpu_ms: Fixed<4>,
+    /// The overhead's spread ([`BenchRow::overhead_spread_ms`]).
+    overhead_spread_ms: Fixed<4>,
+    /// Whether the overhead is within its spread of zero ([`BenchRow::overhead_is_noise`]).
+    overhead_noise: bool,
 }
 
 /// A lowercased `Debug` name, as the first tables spelled families and point passes.
@@ -162,6 +166,8 @@ impl BenchLine {
             flicker_energy: r.flicker_energy.map_or("-".into(), |f| format!("{f:.6}")),
             false_flicker: r.false_flicker.map_or("-".into(), |f| format!("{f:.6}")),
             overhead_gpu_ms: Fixed(r.overhead_gpu_ms),
+            overhead_spread_ms: Fixed(r.overhead_spread_ms),
+            overhead_noise: r.overhead_is_noise(),
         }
     }
 }

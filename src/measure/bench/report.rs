@@ -64,10 +64,10 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         let m = &r.metrics;
         let pct = |x: f64| format!("{:.3}%", x * 100.0);
         out.push_str(&format!(
-            "| {name} | {:.2} / {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {} | {} | {} |",
+            "| {name} | {:.2} / {:.2} | {} | {:.2} | {:.2} | {} | {} | {} | {} | {} | {} |",
             r.wall_ms.median,
             r.wall_ms.p95,
-            r.overhead_ms,
+            r.overhead_text(),
             r.depth_wall_ms.median,
             r.scene_wall_ms.median,
             pct(m.misclassified_rate),
@@ -93,8 +93,16 @@ pub fn to_markdown(rows: &[BenchRow]) -> String {
         }
         out.push('\n');
     }
+    if rows.iter().any(BenchRow::overhead_is_noise) {
+        out.push_str(NOISE_NOTE);
+    }
     out
 }
+
+/// Under a table with a row whose overhead is noise.
+pub const NOISE_NOTE: &str = "\n(noise, ±S): the shadow overhead is not above its spread S \
+     (the two blocks' medians' difference, or twice the median's standard error): the \
+     shadows' cost was lost in the machine's load; the --quality rule leaves the row out.\n";
 
 /// How a configuration compares with a tutorial's on two terms, from one run:
 /// the overhead at equal error and the error at equal overhead.
@@ -173,15 +181,22 @@ pub fn against_tutorials_text(rows: &[BenchRow]) -> String {
 /// configuration's: `low` the configuration with the least overhead; `medium` the most
 /// accurate with at most half the tutorial's overhead; `high` the most
 /// accurate with no more than the tutorial's. A preset serves every kind of light, so only
-/// one-map rows count. Absent where the sweep has no such row (or no tutorial row).
+/// one-map rows count, and only those whose overhead is above its noise. Absent where the
+/// sweep has no such row (or no tutorial row, or the tutorial's overhead is noise).
 pub fn preset_choices(rows: &[BenchRow]) -> [(&'static str, Option<&BenchRow>); 3] {
+    // A preset must not rest on a figure lost in noise: such rows are left out, and so is
+    // a budget taken from a tutorial overhead that is noise.
     let one_map = || {
-        rows.iter()
-            .filter(|r| r.config.tutorial.is_none() && r.config.family == Family::OneMap)
+        rows.iter().filter(|r| {
+            r.config.tutorial.is_none()
+                && r.config.family == Family::OneMap
+                && !r.overhead_is_noise()
+        })
     };
     let tutorial = rows
         .iter()
-        .find(|r| r.config.tutorial == Some("learnopengl"));
+        .find(|r| r.config.tutorial == Some("learnopengl"))
+        .filter(|t| !t.overhead_is_noise());
     let most_accurate_within = |budget: f64| {
         one_map()
             .filter(|r| r.overhead_ms <= budget)

@@ -6,6 +6,7 @@ use std::time::Instant;
 use super::super::compare::{compute_reference, CompareOptions, Reference};
 use super::super::reference::{Metrics, SoftMetrics};
 use super::super::timing::GpuPassTimes;
+use super::noise::{overhead_spread, per_frame};
 use super::{mark_pareto, ms, time_passes, BenchConfig, BenchOptions, BenchRow, Stat, Timings};
 use crate::engine::{Gl, Outputs, RenderTarget};
 use crate::error::Result;
@@ -35,16 +36,23 @@ pub fn bench_reference(
     )
 }
 
-/// Times and scores every configuration; `progress` is told after each of the
-/// 2 x `configs.len()` blocks: `None` after a block of the first pass, the finished row after
-/// one of the second (so that a progress bar can count, and estimate, both passes).
+/// Where [`run`] is, after each of its 2 x `configs.len()` blocks (so that a progress bar
+/// can count, and estimate, both passes, and name the phase and the configuration).
+pub enum Progress<'a> {
+    /// A block of the first pass timed (its first frames compiled the shaders).
+    Timed(&'a BenchConfig),
+    /// A block of the second pass timed and the frame scored: the finished row.
+    Scored(&'a BenchRow),
+}
+
+/// Times and scores every configuration; `progress` is told after each block.
 pub fn run(
     gl: &Gl,
     scene: &Scene,
     configs: &[BenchConfig],
     reference: &Reference,
     opts: &BenchOptions,
-    mut progress: impl FnMut(Option<&BenchRow>),
+    mut progress: impl FnMut(Progress<'_>),
 ) -> Result<Vec<BenchRow>> {
     let Some(first) = configs.first() else {
         return Ok(Vec::new());
@@ -84,26 +92,30 @@ pub fn run(
     let mut best: Vec<Option<Timings>> = (0..configs.len()).map(|_| None).collect();
     let mut rows: Vec<Option<BenchRow>> = (0..configs.len()).map(|_| None).collect();
     let order: Vec<usize> = (0..configs.len()).chain((0..configs.len()).rev()).collect();
-    for (step, &i) in order.iter().enumerate() {
+    for &i in &order {
         let config = &configs[i];
         renderer.set_settings(&uncached(&config.settings))?;
         let t = time_block(&mut renderer, &mut plain, scene, &target, &timer, opts)?;
-        let quieter = match best[i].take() {
-            Some(old) if Stat::of(&old.wall).median <= Stat::of(&t.wall).median => old,
-            _ => t,
-        };
-        if step < configs.len() {
-            best[i] = Some(quieter);
-            progress(None);
+        let Some(first) = best[i].take() else {
+            best[i] = Some(t);
+            progress(Progress::Timed(config));
             continue;
-        }
+        };
+        let (quieter, other) = match Stat::of(&first.wall).median <= Stat::of(&t.wall).median {
+            true => (first, t),
+            false => (t, first),
+        };
         // Second pass: score the frame and finish the row.
         renderer.render(scene, Target::Offscreen(&scored))?;
         let visibility = scored.read_visibility()?;
         let metrics = reference.score(&visibility, opts.band);
         let mut row = timed_row(config, &quieter, metrics, reference.score_soft(&visibility));
+        row.overhead_spread_ms = overhead_spread(
+            &per_frame(&quieter.wall, &quieter.plain),
+            &per_frame(&other.wall, &other.plain),
+        );
         row.transmittance = reference.score_transmittance(&visibility);
-        progress(Some(&row));
+        progress(Progress::Scored(&row));
         rows[i] = Some(row);
     }
     let mut rows: Vec<BenchRow> = rows.into_iter().flatten().collect();
@@ -156,15 +168,9 @@ fn timed_row(
     BenchRow {
         config: config.clone(),
         wall_ms: Stat::of(&quieter.wall),
-        overhead_ms: Stat::of(
-            &quieter
-                .wall
-                .iter()
-                .zip(&quieter.plain)
-                .map(|(w, p)| w - p)
-                .collect::<Vec<_>>(),
-        )
-        .median,
+        overhead_ms: Stat::of(&per_frame(&quieter.wall, &quieter.plain)).median,
+        // Set from both blocks by the caller.
+        overhead_spread_ms: f64::NAN,
         overhead_gpu_ms: Stat::of(
             &(quieter.depth_gpu.iter().zip(&quieter.scene_gpu))
                 .zip(&quieter.plain_gpu)
