@@ -7,12 +7,14 @@
 #
 # BIN is a built shadowmap (cargo build --release; target/release/shadowmap). The jobs:
 # dummy (the full sweep, about 12 minutes), learnopengl, large, volumes, scale, volumetric
-# (a few minutes each) and steps (seconds). OUT=DIR writes elsewhere than assets/readme.
+# (a few minutes each), motion (the flicker tables, scripts/motion-figures.py, about 10
+# minutes) and steps (seconds). OUT=DIR writes elsewhere than assets/readme.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-assets/readme}"
 
 # name | arguments | files the command writes -> names kept in $out
+# (arguments "script X" run scripts/X BIN DIR/X.md instead of shadowmap)
 jobs=(
   "dummy|bench --scene dummy|bench.csv->bench-dummy.csv bench.md->bench-dummy.md pareto.png->pareto-dummy.png"
   "learnopengl|bench --scene learnopengl --view code --quick --fit scene|bench.md->bench-learnopengl.md pareto.png->pareto-learnopengl.png"
@@ -20,6 +22,7 @@ jobs=(
   "volumes|bench --scene dummy --quick --size 640x360|bench.csv->bench-volumes-dummy.csv pareto.png->pareto-volumes-dummy.png"
   "scale|bench --scale|scale.csv->scale.csv scale-fit.csv->scale-fit.csv scale.png->scale.png"
   "volumetric|bench --scene smoke --quick --size 640x360 --frames 10 --warmup 3|bench.md->bench-smoke.md"
+  "motion|script motion-figures.py|motion-figures.py.md->motion.md"
   "steps-dummy|steps --scene dummy --size 640x360|*->steps-dummy/"
   "steps-learnopengl|steps --scene learnopengl --size 800x600|*->steps-learnopengl/"
   "steps-playground|steps --scene playground|*->steps-playground/"
@@ -36,7 +39,10 @@ commands_md() {
   for job in "${jobs[@]}"; do
     IFS='|' read -r _ args files <<<"$job"
     for f in $files; do
-      echo "| \`${f#*->}\` | \`shadowmap $args --out-dir DIR\` (its \`${f%%->*}\`) |"
+      case "$args" in
+        script\ *) echo "| \`${f#*->}\` | \`scripts/${args#script } BIN\` (its tables) |" ;;
+        *) echo "| \`${f#*->}\` | \`shadowmap $args --out-dir DIR\` (its \`${f%%->*}\`) |" ;;
+      esac
     done
   done
 }
@@ -44,7 +50,10 @@ commands_md() {
 if [ "${1:-}" = "--list" ]; then
   for job in "${jobs[@]}"; do
     IFS='|' read -r name args _ <<<"$job"
-    printf '%-18s shadowmap %s --out-dir DIR\n' "$name" "$args"
+    case "$args" in
+      script\ *) printf '%-18s scripts/%s BIN\n' "$name" "${args#script }" ;;
+      *) printf '%-18s shadowmap %s --out-dir DIR\n' "$name" "$args" ;;
+    esac
   done
   exit 0
 fi
@@ -67,9 +76,19 @@ for job in "${jobs[@]}"; do
     [ $match = 1 ] || continue
   fi
   dir="$scratch/$name"
-  echo "== $name: shadowmap $args --out-dir DIR"
-  # shellcheck disable=SC2086 # the arguments are words
-  "$bin" $args --out-dir "$dir"
+  case "$args" in
+    script\ *)
+      script="${args#script }"
+      echo "== $name: scripts/$script BIN"
+      mkdir -p "$dir"
+      python3 "scripts/$script" "$bin" "$dir/$script.md"
+      ;;
+    *)
+      echo "== $name: shadowmap $args --out-dir DIR"
+      # shellcheck disable=SC2086 # the arguments are words
+      "$bin" $args --out-dir "$dir"
+      ;;
+  esac
   for f in $files; do
     from="${f%%->*}" to="${f#*->}"
     if [ "$from" = "*" ]; then
