@@ -169,8 +169,8 @@ pub struct DemoArgs {
     #[arg(long)]
     pub inset: bool,
     /// Show the shadow test's visibility instead of the colour frame, as `render
-    /// --shadow-out` writes it: grey 255 lit .. 0 shadowed; blue where no geometry was drawn.
-    /// The page's `&view=visibility`.
+    /// --shadow-out` writes it: grey 255 lit .. 0 shadowed; blue where no geometry was drawn
+    /// (a depth-map view shows its map). The page's `&view=visibility`.
     #[arg(long)]
     pub show_visibility: bool,
     /// Where the window's OpenGL context comes from: auto (the platform's own: GLX on X11,

@@ -77,7 +77,8 @@ pub(super) fn headless_fallback(
         inset: args.inset,
     };
     let outputs = Outputs {
-        visibility: args.show_visibility,
+        // A depth-map view has no shadow test to show: the map is shown as it is.
+        visibility: args.show_visibility && !settings.show_depth_map,
         gbuffer: false,
     };
     let frame = match overlays.hud || overlays.inset {
