@@ -376,7 +376,8 @@ pub struct BenchArgs {
     #[arg(long, value_name = "N", default_value_t = shadowmap::compare::AREA_RAYS, value_parser = clap::value_parser!(u32).range(1..=4096), allow_negative_numbers = true)]
     pub rays: u32,
     /// With --motion: frames of the path each configuration is scored over for the
-    /// flicker column (each frame's reference traced once).
+    /// flicker columns, its energy and its false-flicker share (each frame's reference
+    /// traced once).
     #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(2..), allow_negative_numbers = true)]
     pub motion_frames: u32,
 }
