@@ -174,29 +174,10 @@ fn time_configs(
     // in reverse order, when it is also scored.
     let mut counter = Counter::new(2 * configs.len() as u64);
     let rows = bench::run(gl, scene, configs, reference, opts, |p| {
-        counter.step(&progress_line(p));
+        counter.step(&p.line());
     })?;
     counter.finish();
     Ok(rows)
-}
-
-/// The progress line after a block, naming the phase and the configuration.
-pub(super) fn progress_line(p: bench::Progress<'_>) -> String {
-    match p {
-        bench::Progress::Timed(config) => {
-            format!("pass 1 of 2, compiling and timing: {}", config.label())
-        }
-        bench::Progress::Scored(row) => format!(
-            "pass 2 of 2, timing and scoring against the reference: {}: {:.2} ms, overhead \
-             {} ms, {} {:.3}% (taps / passes / map MiB: {})",
-            row.label(),
-            row.wall_ms.median,
-            row.overhead_text(),
-            row.error_name(),
-            row.error() * 100.0,
-            row.cost_label()
-        ),
-    }
 }
 
 /// bench.md: the table, the comparison with the tutorials' settings and the presets the

@@ -198,7 +198,7 @@ pub fn choose_for_target(
     );
     let mut counter = Counter::new(2 * configs.len() as u64);
     let rows = bench::run(gl, &scene, &configs, &reference, &opts, |p| {
-        counter.step(&super::bench::progress_line(p))
+        counter.step(&p.line())
     })?;
     counter.finish();
     let chosen = cheapest_or_error(&rows, target)?;

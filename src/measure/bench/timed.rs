@@ -45,6 +45,27 @@ pub enum Progress<'a> {
     Scored(&'a BenchRow),
 }
 
+impl Progress<'_> {
+    /// The progress line after a block, naming the phase and the configuration.
+    pub fn line(&self) -> String {
+        match self {
+            Progress::Timed(config) => {
+                format!("pass 1 of 2, compiling and timing: {}", config.label())
+            }
+            Progress::Scored(row) => format!(
+                "pass 2 of 2, timing and scoring against the reference: {}: {:.2} ms, overhead \
+                 {} ms, {} {:.3}% (taps / passes / map MiB: {})",
+                row.label(),
+                row.wall_ms.median,
+                row.overhead_text(),
+                row.error_name(),
+                row.error() * 100.0,
+                row.cost_label()
+            ),
+        }
+    }
+}
+
 /// Times and scores every configuration; `progress` is told after each block.
 pub fn run(
     gl: &Gl,
