@@ -25,6 +25,6 @@ void main()
     float neg = -exp(-EVSM_NEG * w);
     moments = vec4(pos, pos * pos, neg, neg * neg);
 #else
-#error expected one of the MOMENT_DEPTH defines of MomentMode in src/shadows/moments.rs
+#error expected one of the MOMENT_DEPTH defines of MomentMode in src/shadows/moment_mode.rs
 #endif
 }

@@ -449,9 +449,11 @@ impl ShadowSettings {
     pub fn directional_layers(&self) -> Option<DirectionalLayers> {
         match self.light_projection {
             LightProjection::Perspective => None,
-            _ if self.cascades > 1 => Some(DirectionalLayers::Cascades),
-            _ if self.caster_groups > 1 => Some(DirectionalLayers::CasterGroups),
-            _ => None,
+            LightProjection::Ortho if self.cascades > 1 => Some(DirectionalLayers::Cascades),
+            LightProjection::Ortho if self.caster_groups > 1 => {
+                Some(DirectionalLayers::CasterGroups)
+            }
+            LightProjection::Ortho => None,
         }
     }
 
@@ -495,7 +497,7 @@ impl ShadowSettings {
     pub fn effective(&self) -> ShadowSettings {
         match self.fit {
             Fit::Manual => *self,
-            _ => ShadowSettings {
+            Fit::Scene => ShadowSettings {
                 wrap: Wrap::ClampToBorder,
                 beyond_far: BeyondFar::Lit,
                 ..*self

@@ -129,6 +129,9 @@ fn grouped_and_nested_imports_are_read() {
     let names: Vec<String> = names_after(&code, "super::").into_iter().collect();
     assert_eq!(names, ["a", "b", "d"]);
     assert_eq!(crate_refs("use crate::{g, i::j};").len(), 2);
+    // A group right after `super::` is read as its members' paths.
+    let paths = module_refs("use super::{a, b::c};", &["m".into(), "n".into()]);
+    assert_eq!(paths, [vec!["m", "a"], vec!["m", "b", "c"]]);
 }
 
 #[test]
@@ -138,6 +141,15 @@ fn no_module_uses_a_layer_of_its_rank_or_higher() {
     rust_files(&src, &mut files);
     let ranks = ranks();
     let rank = |m: &str| ranks.iter().find(|(n, _)| n == m).map(|(_, r)| *r);
+    // The crate root's re-exports (`crate::bench` is `measure`'s, `crate::Renderer` the
+    // renderer's) count as the layer they come from.
+    let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_path(&src, f)).collect();
+    let lib = code_of(&std::fs::read_to_string(src.join("lib.rs")).unwrap());
+    let exports = re_exports(&[(Vec::new(), lib)], &modules);
+    let top_of = |name: String| match exports.get(&(Vec::new(), name.clone())) {
+        Some(path) => path[0].clone(),
+        None => name,
+    };
     let mut wrong = Vec::new();
     let mut checked = 0;
     for file in &files {
@@ -155,7 +167,7 @@ fn no_module_uses_a_layer_of_its_rank_or_higher() {
         };
         checked += 1;
         let text = std::fs::read_to_string(file).unwrap();
-        for name in crate_refs(&text) {
+        for name in crate_refs(&text).into_iter().map(top_of) {
             match rank(&name) {
                 Some(r) if name != top && r >= own => {
                     wrong.push(format!("{} uses crate::{name}", rel.display()))
@@ -192,17 +204,8 @@ fn paths_at(code: &str) -> Vec<Vec<String>> {
         let mut path = prefix.to_vec();
         let mut rest = s;
         loop {
-            let name = ident(rest);
-            if name.is_empty() {
-                break;
-            }
-            rest = rest.trim_start()[name.len()..].trim_start();
-            path.push(name);
-            match rest.strip_prefix("::") {
-                Some(r) => rest = r.trim_start(),
-                None => break,
-            }
-            if let Some(group) = rest.strip_prefix('{') {
+            // A group, at the start (`super::{a, b}`) or after a segment.
+            if let Some(group) = rest.trim_start().strip_prefix('{') {
                 let (mut depth, mut start) = (0usize, 0usize);
                 for (k, c) in group.char_indices() {
                     match c {
@@ -220,6 +223,16 @@ fn paths_at(code: &str) -> Vec<Vec<String>> {
                     }
                 }
                 return;
+            }
+            let name = ident(rest);
+            if name.is_empty() {
+                break;
+            }
+            rest = rest.trim_start()[name.len()..].trim_start();
+            path.push(name);
+            match rest.strip_prefix("::") {
+                Some(r) => rest = r.trim_start(),
+                None => break,
             }
         }
         out.push(path);
@@ -271,20 +284,21 @@ fn circles(src: &Path) -> Vec<String> {
     rust_files(src, &mut files);
     let modules: BTreeSet<Vec<String>> = files.iter().map(|f| module_path(src, f)).collect();
     // Each file's module and the modules it names (the longest known prefix of each path).
+    let codes: Vec<(Vec<String>, String)> = files
+        .iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(f).unwrap();
+            (module_path(src, f), code_of(library_part(&text)))
+        })
+        .collect();
+    let exports = re_exports(&codes, &modules);
     let mut uses: Vec<(Vec<String>, BTreeSet<Vec<String>>)> = Vec::new();
-    for file in &files {
-        let own = module_path(src, file);
-        let code = code_of(&std::fs::read_to_string(file).unwrap());
-        let mut named = BTreeSet::new();
-        for path in module_refs(&code, &own) {
-            if let Some(n) = (1..=path.len())
-                .rev()
-                .find(|&n| modules.contains(&path[..n]))
-            {
-                named.insert(path[..n].to_vec());
-            }
-        }
-        uses.push((own, named));
+    for (own, code) in &codes {
+        let named = module_refs(code, own)
+            .iter()
+            .filter_map(|path| module_named(path, &modules, &exports))
+            .collect();
+        uses.push((own.clone(), named));
     }
     let mut found = Vec::new();
     for parent in modules.iter().filter(|m| !m.is_empty()) {
@@ -303,6 +317,86 @@ fn circles(src: &Path) -> Vec<String> {
         }
     }
     found
+}
+
+/// The part of a file the library is built from: up to its `#[cfg(test)] mod tests`
+/// (a unit test may open a context to test a part below it).
+fn library_part(text: &str) -> &str {
+    text.find("#[cfg(test)]\nmod ").map_or(text, |i| &text[..i])
+}
+
+/// What each module re-exports: (the module, the name it exports) to the path it names,
+/// from its `pub use` and `pub(crate) use` lines (`pub use camera::{camera, fit}` in
+/// `shadows::map2d` exports `camera` as `shadows::map2d::camera::camera`).
+fn re_exports(
+    codes: &[(Vec<String>, String)],
+    modules: &BTreeSet<Vec<String>>,
+) -> BTreeMap<(Vec<String>, String), Vec<String>> {
+    let mut out = BTreeMap::new();
+    for (own, code) in codes {
+        for keyword in ["pub use ", "pub(crate) use ", "pub(super) use "] {
+            for (at, _) in code.match_indices(keyword) {
+                let tree = &code[at + keyword.len()..];
+                let tree = &tree[..tree.find(';').unwrap_or(tree.len())];
+                for path in exported_paths(tree, own, modules) {
+                    let name = path.last().cloned().unwrap_or_default();
+                    out.insert((own.clone(), name), path);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The absolute paths a `pub use` tree of module `own` names: `crate::`, `super::` and
+/// `self::` as in [`module_refs`], and a bare first segment as a child module of `own`
+/// (or, when `own` has no such child, a crate from outside, left out).
+fn exported_paths(tree: &str, own: &[String], modules: &BTreeSet<Vec<String>>) -> Vec<Vec<String>> {
+    let mut base: Vec<String> = own.to_vec();
+    let mut rest = tree.trim_start();
+    if let Some(r) = rest.strip_prefix("crate::") {
+        base.clear();
+        rest = r;
+    } else if let Some(r) = rest.strip_prefix("self::") {
+        rest = r;
+    } else {
+        while let Some(r) = rest.strip_prefix("super::") {
+            base.pop();
+            rest = r.trim_start();
+        }
+    }
+    paths_at(rest)
+        .into_iter()
+        .map(|p| base.iter().cloned().chain(p).collect::<Vec<_>>())
+        .filter(|p| p.len() > own.len().min(base.len()) && modules.contains(&p[..p.len() - 1]))
+        .collect()
+}
+
+/// The module a path names: its longest prefix that is a module, followed through the
+/// re-exports of that module when the next segment is one (`engine::ShaderProgram` is
+/// `engine::shader_program`'s), so a `pub use` cannot hide a circle.
+fn module_named(
+    path: &[String],
+    modules: &BTreeSet<Vec<String>>,
+    exports: &BTreeMap<(Vec<String>, String), Vec<String>>,
+) -> Option<Vec<String>> {
+    let mut path = path.to_vec();
+    for _ in 0..16 {
+        let n = (1..=path.len())
+            .rev()
+            .find(|&n| modules.contains(&path[..n]))?;
+        let Some(next) = path.get(n) else {
+            return Some(path);
+        };
+        let Some(target) = exports.get(&(path[..n].to_vec(), next.clone())) else {
+            return Some(path[..n].to_vec());
+        };
+        if target[..] == path[..=n] {
+            return Some(path[..n].to_vec());
+        }
+        path = target.iter().chain(&path[n + 1..]).cloned().collect();
+    }
+    None
 }
 
 /// The first circle of a directed graph by depth-first search, as `a -> b -> a`.
@@ -393,6 +487,24 @@ fn a_circle_through_a_nested_folder_is_found() {
         "use super::super::program::light_part;",
     );
     assert_eq!(circles(src), ["shadows: program -> volumetric -> program"]);
+    // Through a re-export: `super::Program` is `program`'s, which the folder's own file
+    // re-exports, so the circle through it is seen.
+    write("shadows/volumetric/receivers.rs", "");
+    write(
+        "shadows/mod.rs",
+        "pub mod cache; pub mod casters; pub mod patch; pub mod program; \
+         pub use program::{Program, light_part};",
+    );
+    write("shadows/cache.rs", "use super::Program;");
+    write(
+        "shadows/program.rs",
+        "fn f() -> super::casters::X { todo!() }",
+    );
+    write("shadows/casters.rs", "use super::cache::Y;");
+    assert_eq!(
+        circles(src),
+        ["shadows: cache -> program -> casters -> cache"]
+    );
 }
 
 #[test]

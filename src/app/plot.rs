@@ -526,7 +526,8 @@ fn short_label(r: &BenchRow) -> String {
     let mut name = match r.config.family {
         Family::Cascades => format!("{}x{}", s.cascades, s.map_size),
         Family::Groups => format!("{}x{} groups", s.caster_groups, s.map_size),
-        _ => s.map_size.to_string(),
+        Family::OneMap | Family::Soft | Family::Volumes => s.map_size.to_string(),
+        Family::PointLayered | Family::PointSixPasses => s.map_size.to_string(),
     };
     name.push_str(&format!(
         " {} {}",
@@ -542,7 +543,8 @@ fn short_label(r: &BenchRow) -> String {
     match r.config.family {
         Family::PointSixPasses => name.push_str(" six-passes"),
         Family::PointLayered => name.push_str(" layered"),
-        _ => {}
+        Family::OneMap | Family::Soft | Family::Volumes => {}
+        Family::Cascades | Family::Groups => {}
     }
     name
 }

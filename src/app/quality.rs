@@ -108,7 +108,12 @@ pub fn describe_choice(r: &BenchRow, target: f64) -> String {
     let s = &r.config.settings;
     let flags = match r.config.family {
         Family::Volumes => "--technique volumes".to_string(),
-        _ => {
+        Family::OneMap
+        | Family::Soft
+        | Family::Cascades
+        | Family::Groups
+        | Family::PointLayered
+        | Family::PointSixPasses => {
             format!(
             "--map-size {} --filter {} --bias-mode {} --bias {} --bias-min {} --normal-offset {} \
              --polygon-offset {},{} --cull {} --depth-format {} --cascades {} --caster-groups {} \

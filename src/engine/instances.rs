@@ -18,9 +18,7 @@ use super::owned::OwnedBuffer;
 use super::{Gl, Mesh, ShaderProgram};
 use crate::error::Result;
 
-/// The uniform buffer binding point of the `Instances` block (every program that declares it
-/// is pointed here when it is linked).
-pub const INSTANCE_BINDING: u32 = 0;
+use super::mesh::INSTANCE_BINDING;
 
 /// The block's length in vec4s (the shaders' `INSTANCE_VEC4S`): 16 KiB, GL 3.3's minimum
 /// `GL_MAX_UNIFORM_BLOCK_SIZE`.

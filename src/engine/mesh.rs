@@ -15,6 +15,10 @@ use crate::geometry::MeshData;
 /// The first location of per-instance vertex attributes (after the three per-vertex ones).
 pub const INSTANCE_LOCATION: u32 = 3;
 
+/// The uniform buffer binding point of the `Instances` block (every program that declares it
+/// is pointed here when it is linked; [`super::instances`] fills it).
+pub const INSTANCE_BINDING: u32 = 0;
+
 /// An uploaded mesh; its VAOs and buffers are deleted on drop.
 pub struct Mesh {
     gl: Gl,

@@ -259,7 +259,7 @@ impl ShaderProgram {
             }
             // Instanced draws read their values from one uniform buffer binding.
             if let Some(block) = gl.get_uniform_block_index(program, "Instances") {
-                gl.uniform_block_binding(program, block, super::instances::INSTANCE_BINDING);
+                gl.uniform_block_binding(program, block, super::mesh::INSTANCE_BINDING);
             }
         }
         this.instance_attributes =

@@ -255,7 +255,7 @@ impl BenchConfig {
         };
         let fitted = match s.fit {
             Fit::Scene if !matches!(self.family, Family::Cascades | Family::Groups) => " fitted",
-            _ => "",
+            Fit::Scene | Fit::Manual => "",
         };
         format!(
             "{size} {} {} cull-{} {}{fitted}{suffix}",

@@ -147,7 +147,7 @@ impl DepthView {
         }
         let warp = match kind {
             DepthViewKind::Exponential { exponent_bits } => f32::from_bits(exponent_bits),
-            _ => 0.0,
+            DepthViewKind::Flat | DepthViewKind::Cube | DepthViewKind::Array { .. } => 0.0,
         };
         p.set_f32("warp", warp);
         p.set_f32("shownFrom", shown.0);

@@ -61,7 +61,7 @@ impl Renderer {
             pass_light: -1,
             mask: match mode {
                 MaskMode::Read => self.mask.texture(),
-                _ => None,
+                MaskMode::Off | MaskMode::Write | MaskMode::Vertex => None,
             },
             translucent: self.translucent_program(mode),
         }

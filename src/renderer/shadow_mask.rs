@@ -259,7 +259,7 @@ impl Renderer {
         }
         Ok(match plan {
             Plan::Test => MaskMode::Off,
-            _ => MaskMode::Read,
+            Plan::Write(_) | Plan::Read => MaskMode::Read,
         })
     }
 

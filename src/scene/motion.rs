@@ -138,7 +138,7 @@ impl MotionPath {
         let needs_angle = match kind {
             PathKind::LightSweep => true,
             PathKind::Keyframes => keyed_angle,
-            _ => false,
+            PathKind::Still | PathKind::Dolly | PathKind::Strafe | PathKind::Orbit => false,
         };
         if needs_angle && light.is_none() {
             return Err(Error::Invalid(format!(

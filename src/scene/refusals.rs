@@ -37,7 +37,7 @@ pub fn layers_asked(light: &Light, settings: &ShadowSettings) -> Option<Directio
         {
             settings.directional_layers()
         }
-        _ => None,
+        Light::Directional(_) | Light::Spot(_) | Light::Point(_) => None,
     }
 }
 
@@ -106,7 +106,7 @@ fn refusal(
     }
     let what = match light {
         Light::Point(_) => "a point light's cube map",
-        _ => match layers? {
+        Light::Directional(_) | Light::Spot(_) => match layers? {
             DirectionalLayers::Cascades => "cascades",
             DirectionalLayers::CasterGroups => "caster groups",
         },
@@ -216,6 +216,11 @@ pub fn filter_refusal(filter: Filter, cube: bool, layered: bool) -> Option<&'sta
              camera's units and cascades and caster groups have a box each; use cascades = 1 \
              and caster_groups = 1, or a depth filter (pcf3x3) for the light",
         ),
-        _ => None,
+        // Every filter where its light's map can hold it (a new filter answers here).
+        Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => None,
+        Filter::Hardware2x2 | Filter::Hardware3x3 => None,
+        Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => None,
+        Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => None,
+        Filter::Vssm | Filter::MsmSoft => None,
     }
 }

@@ -143,7 +143,9 @@ impl Map2d {
 pub fn slot_transform(view: &ShadowView, settings: &ShadowSettings) -> SlotTransform {
     let projection = match map_depth(view.perspective, settings) {
         MapDepth::Projected => view.projection,
-        _ => linear_depth_row(view.projection, view.near, view.far),
+        MapDepth::Linear | MapDepth::LinearBias => {
+            linear_depth_row(view.projection, view.near, view.far)
+        }
     };
     SlotTransform {
         from: view.view64,

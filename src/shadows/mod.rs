@@ -485,6 +485,6 @@ pub trait Technique {
 pub fn light_camera(scene: &Scene, index: usize, settings: &ShadowSettings) -> ShadowView {
     match &scene.lights[index] {
         Light::Point(p) => camera::point_camera(p, settings),
-        _ => map2d::camera(scene, index, settings),
+        Light::Directional(_) | Light::Spot(_) => map2d::camera(scene, index, settings),
     }
 }

@@ -183,7 +183,8 @@ pub fn rays(scene: &Scene, index: usize, settings: &ShadowSettings) -> Rays {
         (Light::Directional(l), crate::settings::LightProjection::Ortho) => Rays::Parallel {
             to_light: l.direction.normalize(),
         },
-        _ => super::light_camera(scene, index, settings).rays,
+        (Light::Directional(_), crate::settings::LightProjection::Perspective)
+        | (Light::Spot(_) | Light::Point(_), _) => super::light_camera(scene, index, settings).rays,
     }
 }
 

@@ -128,7 +128,7 @@ impl Family {
             (ShadowKind::Moments, _) if Filter::SOFT_MOMENTS.contains(&own.settings.filter) => {
                 Family::Soft
             }
-            _ => Family::OneMap,
+            (ShadowKind::Map | ShadowKind::Moments | ShadowKind::None, _) => Family::OneMap,
         }
     }
 
@@ -291,7 +291,10 @@ fn variants(light: &Light, c: &BenchConfig, quick: bool) -> Vec<ShadowSettings> 
                 ..s
             }]
         }
-        _ => Vec::new(),
+        // Every other row is its own only variant (a new family answers here).
+        (Family::OneMap | Family::PointLayered, _) => Vec::new(),
+        (Family::Cascades | Family::Groups | Family::PointSixPasses, _) => Vec::new(),
+        (Family::Volumes | Family::Soft, _) => Vec::new(),
     }
 }
 

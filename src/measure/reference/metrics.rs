@@ -126,7 +126,7 @@ pub fn compute_metrics(
                 m.false_light += 1;
                 m.false_light_outside_band += !banded as usize;
             }
-            _ => {}
+            Class::NotScored | Class::Correct => {}
         }
         if let (Some(ss), Some(v)) = (supersampled, rendered_at(rendered, i)) {
             if let Some(s) = ss.get(i).filter(|s| s.receiver) {
@@ -401,7 +401,7 @@ pub fn error_image(
         .map(|i| match classify(rendered, reference, i) {
             Class::FalseShadow => [255, 0, 0, 255],
             Class::FalseLight => [0, 0, 255, 255],
-            _ => {
+            Class::NotScored | Class::Correct => {
                 let g = base_grey.get(i).copied().unwrap_or(0);
                 [g, g, g, 255]
             }

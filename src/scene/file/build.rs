@@ -10,7 +10,7 @@ use toml::Spanned;
 use super::items::Items;
 use super::read::Context;
 use super::{
-    CameraFile, DirectionalFile, Fixed, PointFile, SceneFile, SpotFile, StepsFile, LIGHT_KINDS,
+    CameraFile, DirectionalFile, Fixed, LightKind, PointFile, SceneFile, SpotFile, StepsFile,
 };
 use crate::error::{Error, Result};
 use crate::scene::refusals;
@@ -254,10 +254,10 @@ fn build_lights(file: &SceneFile, cx: &Context) -> Result<Vec<Light>> {
 fn read_light(value: Option<&Spanned<DeValue>>, prefix: &str, cx: &Context) -> Result<Light> {
     let value = value.ok_or_else(|| Error::Internal(format!("{prefix} is not in the document")))?;
     let kind = match value.get_ref().get("kind") {
-        None => "directional",
-        Some(k) => match k.get_ref().as_str() {
-            Some(s) if LIGHT_KINDS.contains(&s) => s,
-            _ => {
+        None => LightKind::Directional,
+        Some(k) => match k.get_ref().as_str().and_then(LightKind::parse) {
+            Some(kind) => kind,
+            None => {
                 let written = &cx.text[k.span()];
                 return Err(cx.bad(
                     format!("{prefix}.kind"),
@@ -272,9 +272,9 @@ fn read_light(value: Option<&Spanned<DeValue>>, prefix: &str, cx: &Context) -> R
     };
     let refused = |r| light_error(r, kind, prefix, cx);
     match kind {
-        "spot" => spot(cx.read(value, prefix).map_err(refused)?, prefix, cx),
-        "point" => point(cx.read(value, prefix).map_err(refused)?, prefix, cx),
-        _ => {
+        LightKind::Spot => spot(cx.read(value, prefix).map_err(refused)?, prefix, cx),
+        LightKind::Point => point(cx.read(value, prefix).map_err(refused)?, prefix, cx),
+        LightKind::Directional => {
             let l: DirectionalFile = cx.read(value, prefix).map_err(refused)?;
             if let (Some(angle), Some(at)) = (l.angle, value.get_ref().get("angle")) {
                 check_angle(angle, at.span().start, prefix, cx)?;
@@ -286,7 +286,8 @@ fn read_light(value: Option<&Spanned<DeValue>>, prefix: &str, cx: &Context) -> R
 
 /// A key of the light's own table that its kind does not take, or lacks: said for the
 /// kind, with what it takes; anything else as serde says it.
-fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) -> Error {
+fn light_error(r: super::read::Refusal, kind: LightKind, prefix: &str, cx: &Context) -> Error {
+    let name = kind.name();
     use super::read::backticked;
     let own =
         |problem| backticked(&r.message, problem).filter(|k| r.field == format!("{prefix}.{k}"));
@@ -298,14 +299,14 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
         let fields = light_fields(kind);
         let takes = fields.join(", ");
         let guess = crate::settings::suggest::did_you_mean(key, fields.iter().map(String::as_str));
-        let message = match LIGHT_KINDS
-            .iter()
+        let message = match LightKind::ALL
+            .into_iter()
             .any(|k| light_fields(k).iter().any(|f| f == key))
         {
-            true => format!("{at}not used by a {kind} light; it takes {takes}"),
+            true => format!("{at}not used by a {name} light; it takes {takes}"),
             false => match guess {
                 Some(g) => format!("{at}unknown field `{key}`: did you mean `{g}`?"),
-                None => format!("{at}unknown field; a {kind} light takes {takes}"),
+                None => format!("{at}unknown field; a {name} light takes {takes}"),
             },
         };
         return cx.bad(r.field.clone(), message);
@@ -317,19 +318,19 @@ fn light_error(r: super::read::Refusal, kind: &str, prefix: &str, cx: &Context) 
                 super::read::line_col(cx.text, s.start).0
             )
         });
-        return cx.bad(r.field.clone(), format!("a {kind} light needs it{line}"));
+        return cx.bad(r.field.clone(), format!("a {name} light needs it{line}"));
     }
     r.error(cx)
 }
 
 /// The fields a light kind takes (`kind` first), as serde lists them when it refuses a key
 /// none of them has: the list cannot go stale.
-pub(super) fn light_fields(kind: &str) -> Vec<String> {
+pub(super) fn light_fields(kind: LightKind) -> Vec<String> {
     let probe = || MapDeserializer::<_, de::value::Error>::new(std::iter::once(("", ())));
     let refused = match kind {
-        "spot" => SpotFile::deserialize(probe()).err(),
-        "point" => PointFile::deserialize(probe()).err(),
-        _ => DirectionalFile::deserialize(probe()).err(),
+        LightKind::Spot => SpotFile::deserialize(probe()).err(),
+        LightKind::Point => PointFile::deserialize(probe()).err(),
+        LightKind::Directional => DirectionalFile::deserialize(probe()).err(),
     };
     let message = refused.map(|e| e.to_string()).unwrap_or_default();
     let list = message.split_once("expected one of").map_or("", |(_, l)| l);

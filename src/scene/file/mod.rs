@@ -192,8 +192,32 @@ fn yes() -> bool {
 /// reads it later.
 type LightTable = std::collections::BTreeMap<String, IgnoredAny>;
 
-/// The values `kind` takes, in the order messages list them.
-const LIGHT_KINDS: [&str; 3] = ["directional", "spot", "point"];
+/// The values a light's `kind` takes: each is its own struct of fields.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum LightKind {
+    Directional,
+    Spot,
+    Point,
+}
+
+impl LightKind {
+    /// Every kind, in the order messages list them.
+    const ALL: [LightKind; 3] = [LightKind::Directional, LightKind::Spot, LightKind::Point];
+
+    /// The kind's name in a scene file.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            LightKind::Directional => "directional",
+            LightKind::Spot => "spot",
+            LightKind::Point => "point",
+        }
+    }
+
+    /// The kind written `text`, if it is one.
+    fn parse(text: &str) -> Option<LightKind> {
+        LightKind::ALL.into_iter().find(|k| k.name() == text)
+    }
+}
 
 /// The book's light (an angle or a direction) or LearnOpenGL's (a position, towards the
 /// origin), with an orthographic shadow box.

@@ -324,7 +324,7 @@ fn each_light_kind_takes_its_own_fields() {
 #[test]
 fn light_fields_are_what_serde_derives() {
     assert_eq!(
-        build::light_fields("point"),
+        build::light_fields(LightKind::Point),
         [
             "kind",
             "colour",
@@ -338,8 +338,10 @@ fn light_fields_are_what_serde_derives() {
             "shadow"
         ]
     );
-    assert!(build::light_fields("spot").iter().any(|f| f == "target"));
-    assert!(!build::light_fields("directional")
+    assert!(build::light_fields(LightKind::Spot)
+        .iter()
+        .any(|f| f == "target"));
+    assert!(!build::light_fields(LightKind::Directional)
         .iter()
         .any(|f| f == "target"));
 }

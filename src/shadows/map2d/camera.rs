@@ -28,7 +28,9 @@ pub fn camera_and_casters(
                 fitted::fit_ortho_casters(scene, l.direction, settings.map_size, settings.snap);
             (fitted.shadow_view(l.direction), Some(casters))
         }
-        _ => (own_camera(light, settings), None),
+        (Light::Directional(_), LightProjection::Ortho, Fit::Manual)
+        | (Light::Directional(_), LightProjection::Perspective, _)
+        | (Light::Spot(_) | Light::Point(_), _, _) => (own_camera(light, settings), None),
     }
 }
 

@@ -53,7 +53,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     };
     let linear = match test_depth {
         MapDepth::Projected => None,
-        _ => Some("lib/linear_depth.glsl"),
+        MapDepth::Linear | MapDepth::LinearBias => Some("lib/linear_depth.glsl"),
     };
     // The map's lit border, and its interpolated depths, in the shader where the sampler
     // has neither (lib/shadow_border.glsl, lib/shadow_depth.glsl).

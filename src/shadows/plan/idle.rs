@@ -90,7 +90,10 @@ fn depth_lookup_idle(kind: ShadowKind, filter: Filter) -> Option<&'static str> {
         ShadowKind::Cube => {
             Some("it is for a 2D depth map; a point light's cube map is read NEAREST")
         }
-        _ => Some("it is for one 2D depth map; cascades and caster groups are read NEAREST"),
+        // (No map at all: `of_light` says so first.)
+        ShadowKind::Cascades | ShadowKind::Groups | ShadowKind::None | ShadowKind::Volume => {
+            Some("it is for one 2D depth map; cascades and caster groups are read NEAREST")
+        }
     }
 }
 
@@ -107,18 +110,19 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         ShadowKind::None if !light.casts_shadows() => Some("the light casts no shadow"),
         ShadowKind::None => Some("shadows are off"),
         ShadowKind::Volume => Some("the light has shadow volumes, which have no map"),
-        _ => None,
+        ShadowKind::Map | ShadowKind::Moments | ShadowKind::Cube => None,
+        ShadowKind::Cascades | ShadowKind::Groups => None,
     };
     if let Some(why) = none {
         idle.extend(MAP_SETTINGS.iter().map(|n| Idle::new(n, why)));
     }
     let directional = matches!(light, Light::Directional(_));
-    let layers = |what: &str| match kind {
-        _ if !directional => format!("only a directional light has {what}"),
-        _ if s.light_projection == LightProjection::Perspective => {
+    let layers = |what: &str| {
+        if !directional {
+            format!("only a directional light has {what}")
+        } else if s.light_projection == LightProjection::Perspective {
             format!("{what} need an orthographic light projection")
-        }
-        _ => {
+        } else {
             format!("only the first casting directional light gets {what}; this one keeps one map")
         }
     };
