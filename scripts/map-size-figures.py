@@ -5,7 +5,7 @@ its misclassified share read from metrics.json.
 
 map-size-figures.py BIN [OUT.md]: prints the Markdown table (or writes it to OUT.md, the
 interface of scripts/results.sh's script jobs). About half a minute on two cores of
-llvmpipe. tests/results_figures.rs holds docs/results.md to the table and re-runs two of
+llvmpipe. tests/measure/results_figures.rs holds docs/results.md to the table and re-runs two of
 its rows."""
 import json, subprocess, sys, tempfile
 

@@ -4,7 +4,7 @@
 //! ray-traced reference.
 //!
 //! The modules are layers, each using only those below it: `docs/architecture.md` describes
-//! them (and `tests/layers.rs` checks the source against its table); `docs/reading-guide.md`
+//! them (and `tests/project/layers.rs` checks the source against its table); `docs/reading-guide.md`
 //! names the module and function that ports each section of the chapters.
 
 pub mod engine;

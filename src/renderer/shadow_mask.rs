@@ -5,7 +5,7 @@
 //! scene shader's own tests (`SHADOW_MASK_WRITE`); from then on the scene pass reads them
 //! back (`SHADOW_MASK_READ`: one fetch a pixel instead of each light's filter) until
 //! something changes. The mask holds the very floats the tests give, so a frame drawn from
-//! it is the same, pixel for pixel, as one drawn without it (`tests/cache.rs`).
+//! it is the same, pixel for pixel, as one drawn without it (`tests/frame/cache.rs`).
 
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
