@@ -17,7 +17,13 @@ all_targets="x86_64-pc-windows-msvc x86_64-pc-windows-gnu aarch64-apple-darwin l
 targets="${*:-$all_targets}"
 
 . scripts/need-packages.sh
-need_packages rustc-web cargo-web rust-web-src rust-web-clippy lld-22
+packages="rustc-web cargo-web rust-web-src rust-web-clippy lld-22"
+# std for windows-gnu builds its import libraries with MinGW's dlltool.
+case " $targets " in
+  *" x86_64-pc-windows-gnu "*) packages="$packages binutils-mingw-w64-x86-64" ;;
+esac
+# shellcheck disable=SC2086
+need_packages $packages
 
 # Debian's cargo, rustc and clippy, called by path: rustup's come first on PATH, and cargo
 # looks for `cargo-clippy` in ~/.cargo/bin (rustup's proxy) before PATH. A target folder of
