@@ -31,12 +31,7 @@ fn data(name: &str) -> PathBuf {
 
 /// A fresh, empty folder for one case's generated files and output.
 fn case_dir(case: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("bad_input")
-        .join(case.replace(|c: char| !c.is_ascii_alphanumeric(), "_"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::case_dir("bad_input", case)
 }
 
 use common::Run;

@@ -11,14 +11,29 @@ use shadowmap::{Scene, ShadowSettings};
 /// Scoring a `width` x `height` frame of the first light against the exact reference:
 /// one sample a pixel, a one-pixel edge band.
 pub fn frame_options(width: u32, height: u32) -> shadowmap::compare::CompareOptions {
+    banded_options(width, height, 1)
+}
+
+/// The same with an edge band of `band` pixels (the area light traced with the usual rays).
+pub fn banded_options(width: u32, height: u32, band: usize) -> shadowmap::compare::CompareOptions {
     shadowmap::compare::CompareOptions {
         rays: shadowmap::compare::AREA_RAYS,
         width,
         height,
         supersample: 1,
-        band: 1,
+        band,
         light: 0,
     }
+}
+
+/// A fresh, empty folder for one case of an area's tests, under cargo's temporary folder.
+pub fn case_dir(area: &str, case: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(area)
+        .join(case.replace(|c: char| !c.is_ascii_alphanumeric(), "_"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
 
 /// A headless EGL context; every test that draws makes its own (contexts are per thread).

@@ -12,12 +12,7 @@ const HELP_WIDTH: usize = 100;
 
 /// A fresh folder for one case.
 fn case_dir(case: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("first_run")
-        .join(case);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::case_dir("first_run", case)
 }
 
 /// The subcommands the top-level help lists (without `help`).

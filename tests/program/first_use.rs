@@ -12,12 +12,7 @@ use shadowmap::{steps, Scene};
 
 /// A fresh folder for one case.
 fn case_dir(case: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("first_use")
-        .join(case);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::case_dir("first_use", case)
 }
 
 /// `shadowmap render` at a small size in `dir`, with `args`; must succeed without a panic.

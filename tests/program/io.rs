@@ -13,12 +13,7 @@ use std::time::Duration;
 
 /// A fresh folder for one case.
 fn case_dir(case: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("io")
-        .join(case.replace(|c: char| !c.is_ascii_alphanumeric(), "_"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::case_dir("io", case)
 }
 
 use common::Run;

@@ -6,21 +6,12 @@
 use crate::common;
 
 use common::{context, dummy};
-use shadowmap::compare::{CompareOptions, Comparison, AREA_RAYS};
+use shadowmap::compare::{CompareOptions, Comparison};
 use shadowmap::settings::{BiasMode, Filter, ShadowSettings};
 use shadowmap::shadows::plan::{filter_refusal, ShadowPlan};
 use shadowmap::Scene;
 
-fn opts(width: u32, height: u32, band: usize) -> CompareOptions {
-    CompareOptions {
-        width,
-        height,
-        supersample: 1,
-        band,
-        light: 0,
-        rays: AREA_RAYS,
-    }
-}
+use crate::common::banded_options as opts;
 
 /// `settings` with `filter` and LearnOpenGL's constant bias, 0.005: the book's 0.05 is a
 /// world unit in the DummyGame's box, which detaches the cube's shadow from its lower half

@@ -7,7 +7,7 @@
 use crate::common;
 
 use common::{context, dummy};
-use shadowmap::compare::{CompareOptions, Comparison, AREA_RAYS};
+use shadowmap::compare::{CompareOptions, Comparison};
 use shadowmap::engine::summed_area::{float_texture_from, SAT_SCALE};
 use shadowmap::engine::FullScreenTriangle;
 use shadowmap::settings::{BiasMode, Filter, MapSize, ShadowSettings};
@@ -16,16 +16,7 @@ use shadowmap::shadows::summed::Summed;
 use shadowmap::steps;
 use shadowmap::Scene;
 
-fn opts(width: u32, height: u32, band: usize) -> CompareOptions {
-    CompareOptions {
-        width,
-        height,
-        supersample: 1,
-        band,
-        light: 0,
-        rays: AREA_RAYS,
-    }
-}
+use crate::common::banded_options as opts;
 
 fn run(scene: &Scene, settings: &ShadowSettings, o: &CompareOptions) -> Comparison {
     common::compared(scene, settings, o)
