@@ -7,16 +7,18 @@ use range::Range;
 
 mod choices;
 mod describe;
+mod filter;
 mod map_size;
 mod names;
 mod range;
 pub mod suggest;
 
 pub use choices::{
-    BeyondFar, BiasMode, Blur, Cull, DepthFormat, DepthLookup, Filter, Fit, LightProjection,
-    LightView, MsmToward, OpaqueReceivers, PerspectiveDepth, PointPass, ShadowTechnique,
-    TranslucentReceivers, Volumetric, Wrap,
+    BeyondFar, BiasMode, Blur, Cull, DepthFormat, DepthLookup, Fit, LightProjection, LightView,
+    MsmToward, OpaqueReceivers, PerspectiveDepth, PointPass, ShadowTechnique, TranslucentReceivers,
+    Volumetric, Wrap,
 };
+pub use filter::{Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentMode, Taps};
 pub use map_size::{parse_map_size, MapSize};
 
 names::named_by_clap!(

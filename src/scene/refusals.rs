@@ -187,40 +187,10 @@ pub fn volumetric_refusal(
 /// a cube map has not; PCSS needs one light camera per map, which layers have not (each
 /// has its own box); the moment maps need one 2D map.
 pub fn filter_refusal(filter: Filter, cube: bool, layered: bool) -> Option<&'static str> {
-    match filter {
-        Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss if cube => Some(
-            "a point light's cube map takes single, pcf3x3, pcf5x5, hw2x2 or hw3x3 (the soft \
-             filters read a 2D map's texel grid)",
-        ),
-        Filter::Pcss if layered => Some(
-            "cascades and caster groups take every filter but pcss (its penumbra is measured \
-             in one light camera's units, and each layer has its own box)",
-        ),
-        Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if cube => Some(
-            "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a point light's \
-             shadow is a cube map; give the light a depth filter of its own (shadow = { \
-             filter = \"pcf3x3\" }) or use one for the scene",
-        ),
-        Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm if layered => Some(
-            "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and cascades and caster \
-             groups have a layer each; use cascades = 1 and caster_groups = 1, or a depth \
-             filter (pcf3x3) for the light",
-        ),
-        Filter::Vssm | Filter::MsmSoft if cube => Some(
-            "the soft moment filters (vssm, msm-soft) read summed-area tables of one 2D map and \
-             a point light's shadow is a cube map; give the light a depth filter of its own \
-             (shadow = { filter = \"pcf3x3\" }) or use one for the scene",
-        ),
-        Filter::Vssm | Filter::MsmSoft if layered => Some(
-            "the soft moment filters (vssm, msm-soft) measure the penumbra in one light \
-             camera's units and cascades and caster groups have a box each; use cascades = 1 \
-             and caster_groups = 1, or a depth filter (pcf3x3) for the light",
-        ),
-        // Every filter where its light's map can hold it (a new filter answers here).
-        Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => None,
-        Filter::Hardware2x2 | Filter::Hardware3x3 => None,
-        Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => None,
-        Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => None,
-        Filter::Vssm | Filter::MsmSoft => None,
+    let facts = filter.facts();
+    match (cube, layered) {
+        (true, _) => facts.on_cube,
+        (false, true) => facts.on_layers,
+        (false, false) => None,
     }
 }

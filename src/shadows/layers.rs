@@ -220,11 +220,20 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
             snippet.samplers[i],
             test.bias_glsl(i)
         ),
-        defines: vec![
+        // A kernel with no layered form is refused before (`FilterFacts::on_layers`);
+        // without its define shadow_layers.glsl stops at its #error.
+        defines: [
             ("LAYER_SAMPLER", sampler_type.to_string()),
             ("LAYER_TEXEL", test.texel_glsl()),
             ("LAYER_RADIUS", test.pcf_radius.to_string()),
-            (test.kernel.layer_define(), "1".to_string()),
-        ],
+        ]
+        .into_iter()
+        .chain(
+            test.kernel
+                .glsl()
+                .layer_define
+                .map(|d| (d, "1".to_string())),
+        )
+        .collect(),
     }
 }

@@ -15,6 +15,7 @@ mod glsl;
 mod technique;
 
 pub use super::casters::draw_map_casters;
+pub use crate::settings::Kernel;
 pub use camera::{camera, camera_and_casters};
 pub use glsl::glsl;
 
@@ -48,47 +49,6 @@ pub const DEPTH_INTERPOLATED: [&str; crate::scene::MAX_LIGHTS] = [
     "shadowDepthInterpolated[2]",
     "shadowDepthInterpolated[3]",
 ];
-
-/// Which taps a 2D map's test takes (the function its call names; for a layered light, the
-/// `LAYER_TAPS_*` define its lookup is compiled with: shaders/lib/shadow_layers.glsl).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Kernel {
-    /// The book's grid of depth comparisons, [`Filter::radius`] texels each way.
-    Grid,
-    /// The same grid of hardware 2 x 2 comparisons (`sampler2DShadow`).
-    HardwareGrid,
-    /// The playground's weighted 4 x 4 taps.
-    Weighted4x4,
-    /// The playground's 4 x 4 taps through its sigmoid.
-    SoftPcf,
-    /// Percentage-closer soft shadows (no layered form: refused on cascades).
-    Pcss,
-}
-
-impl Kernel {
-    /// The kernel of a 2D map's `filter`; a moment filter's map has its own test.
-    pub fn of(filter: Filter) -> Kernel {
-        match filter {
-            Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => Kernel::Grid,
-            Filter::Hardware2x2 | Filter::Hardware3x3 => Kernel::HardwareGrid,
-            Filter::Pcf4x4Weighted => Kernel::Weighted4x4,
-            Filter::SoftPcf => Kernel::SoftPcf,
-            Filter::Pcss => Kernel::Pcss,
-            Filter::Vsm | Filter::Evsm2 | Filter::Evsm4 | Filter::Msm => Kernel::Grid,
-            Filter::Vssm | Filter::MsmSoft => Kernel::Grid,
-        }
-    }
-
-    /// The define a layered light's lookup is compiled with (shaders/lib/shadow_layers.glsl).
-    pub fn layer_define(self) -> &'static str {
-        match self {
-            Kernel::Grid | Kernel::HardwareGrid => "LAYER_TAPS_GRID",
-            Kernel::Weighted4x4 => "LAYER_TAPS_WEIGHTED_4X4",
-            Kernel::SoftPcf => "LAYER_TAPS_SOFT_PCF",
-            Kernel::Pcss => "LAYER_TAPS_PCSS",
-        }
-    }
-}
 
 /// A light's one 2D map: the book's `ShadowMap` (an FBO and its depth texture).
 pub struct Map2d {

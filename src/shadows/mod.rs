@@ -324,7 +324,7 @@ impl ShadowTest {
             map_size: s.map_size,
             moments: MomentTest::of(&s),
             soft_cells: summed::SoftCells::of(&s),
-            kernel: map2d::Kernel::of(s.filter),
+            kernel: s.filter.facts().kernel,
             pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
             pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
@@ -358,7 +358,7 @@ impl ShadowTest {
     /// not).
     pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
         match kind {
-            ShadowKind::Map => self.kernel != map2d::Kernel::Pcss,
+            ShadowKind::Map => !self.kernel.glsl().per_pixel,
             ShadowKind::Moments => self.moments.is_some_and(|m| !m.mode.reads_table()),
             // A cube map's and a layered light's tests read per pixel; no map, no test.
             ShadowKind::Cube | ShadowKind::Cascades | ShadowKind::Groups => false,

@@ -4,34 +4,12 @@
 
 use crate::settings::Filter;
 
-/// A moment filter, by name: which moments its depth pass stores and which function tests
-/// them. A new one is a compile error at each place that must answer it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum MomentMode {
-    Vsm,
-    Evsm2,
-    Evsm4,
-    Msm,
-    /// VSM's moments read from a summed-area table (src/shadows/summed.rs).
-    Vssm,
-    /// MSM's moments read from a summed-area table.
-    MsmSoft,
-}
+pub use crate::settings::MomentMode;
 
 impl MomentMode {
     /// The moment filter `filter` is, if it is one (a depth map's filters are not).
     pub fn of(filter: Filter) -> Option<MomentMode> {
-        match filter {
-            Filter::Vsm => Some(MomentMode::Vsm),
-            Filter::Evsm2 => Some(MomentMode::Evsm2),
-            Filter::Evsm4 => Some(MomentMode::Evsm4),
-            Filter::Msm => Some(MomentMode::Msm),
-            Filter::Vssm => Some(MomentMode::Vssm),
-            Filter::MsmSoft => Some(MomentMode::MsmSoft),
-            Filter::Single | Filter::Pcf3x3 | Filter::Pcf5x5 => None,
-            Filter::Hardware2x2 | Filter::Hardware3x3 => None,
-            Filter::Pcf4x4Weighted | Filter::SoftPcf | Filter::Pcss => None,
-        }
+        filter.facts().moments
     }
 
     /// The define the depth pass is compiled with (shaders/moments_depth.frag): the

@@ -126,7 +126,7 @@ fn definitions_in(text: &str) -> Vec<String> {
     let patterns = PATTERNS.get_or_init(|| {
         [
             // Rust items.
-            r"\b(?:fn|struct|enum|trait|type|const|static|mod|union)\s+([A-Za-z_]\w*)",
+            r"\b(?:(?:const\s+)?fn|struct|enum|trait|type|const|static|mod|union)\s+([A-Za-z_]\w*)",
             r"macro_rules!\s*([A-Za-z_]\w*)",
             // Rust variants (`Name,` `Name(` `Name {` `Name =`) and fields (`name: T`).
             r"(?m)^\s*([A-Z]\w*)\s*(?:[,({]|=[^=])",

@@ -74,22 +74,7 @@ fn depth(f: DepthFormat) -> &'static str {
 
 /// What the filter does to each shaded pixel's test.
 fn filter(f: Filter) -> &'static str {
-    match f {
-        Filter::Single => "one depth test (hard edges)",
-        Filter::Pcf3x3 => "PCF, 3 x 3 depth tests averaged",
-        Filter::Pcf5x5 => "PCF, 5 x 5 depth tests averaged",
-        Filter::Hardware2x2 => "the GPU's depth compare, 2 x 2 blended",
-        Filter::Hardware3x3 => "the GPU's depth compare over 3 x 3 lookups",
-        Filter::Pcf4x4Weighted => "PCF, 4 x 4 depth tests weighted",
-        Filter::SoftPcf => "soft PCF, 16 depth tests",
-        Filter::Pcss => "PCSS, softer the farther from the caster",
-        Filter::Vsm => "VSM, variance of depth",
-        Filter::Evsm2 => "EVSM, exponential variance (2 moments)",
-        Filter::Evsm4 => "EVSM, exponential variance (4 moments)",
-        Filter::Msm => "MSM, 4 moments of depth",
-        Filter::Vssm => "VSSM, variance soft shadows on summed-area tables",
-        Filter::MsmSoft => "moment soft shadows on summed-area tables",
-    }
+    f.facts().words
 }
 
 /// The shadow cache's counters, each said with what it counts.

@@ -2,10 +2,9 @@
 //! `calcShadow` (shaders/lib/shadow_2d.glsl, "Shadows": `calcShadow`), or of its filter's
 //! function, with the light's settings as literal arguments.
 
-use super::{Kernel, MapDepth};
+use super::MapDepth;
+use crate::settings::KernelArgs;
 use crate::shadows::{LightGlsl, ShadowTest};
-
-const SOFT: &[&str] = &["lib/soft_filters.glsl"];
 
 /// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
 /// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
@@ -29,28 +28,16 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     };
     let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
     let (r, far) = (test.pcf_radius, test.beyond_far_lit);
-    let (snippets, sampler_type, test): (&[&str], _, _) = match test.kernel {
-        Kernel::HardwareGrid => (
-            &["lib/hardware_pcf.glsl"],
-            "sampler2DShadow",
-            format!("calcShadowHardware({head}, {r}, {far})"),
-        ),
-        Kernel::Weighted4x4 => (SOFT, "sampler2D", format!("pcf4x4Weighted({head}, {far})")),
-        Kernel::SoftPcf => (SOFT, "sampler2D", format!("softPcf({head}, {far})")),
-        Kernel::Pcss => (
-            SOFT,
-            "sampler2D",
-            format!(
-                "pcss({head}, lightPenumbra[{i}], {}, {}, {}, {far})",
-                test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
-            ),
-        ),
-        Kernel::Grid => (
-            &["lib/shadow_2d.glsl"],
-            "sampler2D",
-            format!("calcShadow({head}, {r}, {far})"),
+    let kernel = test.kernel.glsl();
+    let args = match kernel.args {
+        KernelArgs::Plain => String::new(),
+        KernelArgs::Radius => format!(", {r}"),
+        KernelArgs::Pcss => format!(
+            ", lightPenumbra[{i}], {}, {}, {}",
+            test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
         ),
     };
+    let test = format!("{}({head}{args}, {far})", kernel.function);
     let linear = match test_depth {
         MapDepth::Projected => None,
         MapDepth::Linear | MapDepth::LinearBias => Some("lib/linear_depth.glsl"),
@@ -63,9 +50,9 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         snippets: ["lib/shadow_border.glsl", "lib/shadow_depth.glsl"]
             .into_iter()
             .chain(linear)
-            .chain(snippets.iter().copied())
+            .chain([kernel.library])
             .collect(),
-        sampler_type,
+        sampler_type: kernel.sampler_type,
         test,
         defines: Vec::new(),
     }
