@@ -42,7 +42,7 @@ names::named_by_clap!(
     OpaqueReceivers,
 );
 
-/// The points of PCSS's Poisson disk (shaders/lib/soft_filters.glsl): the most taps each
+/// The points of PCSS's Poisson disk (shaders/lib/pcss.glsl): the most taps each
 /// of its two stages can take.
 pub const PCSS_MAX_TAPS: u32 = 32;
 /// EVSM's largest exponent: exp(2 x 42) ~ 3e36 stays below 32-bit floats' 3.4e38, so

@@ -82,6 +82,7 @@ const LIBRARY: &[(&str, &str)] = &[
         "lib/soft_filters.glsl",
         include_str!("../shaders/lib/soft_filters.glsl"),
     ),
+    ("lib/pcss.glsl", include_str!("../shaders/lib/pcss.glsl")),
     (
         "lib/shadow_cube.glsl",
         include_str!("../shaders/lib/shadow_cube.glsl"),

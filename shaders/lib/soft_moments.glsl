@@ -1,6 +1,6 @@
 // Soft shadows on summed-area tables of the moments (src/shadows/summed.rs): variance soft
 // shadow maps (Yang et al. 2010, on Lauritzen's summed-area variance shadow maps, GPU Gems 3
-// ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (soft_filters.glsl,
+// ch. 8) and moment soft shadow maps (Peters et al. 2016). Like PCSS (pcss.glsl,
 // whose lightPenumbra, pcssDistance and pcssPenumbra they share) a blocker search, then a
 // filter as wide as the penumbra; but each stage reads the table a fixed number of times
 // whatever its width (by default 25 integer reads, the corners of 4 x 4 cells), the same
@@ -35,7 +35,7 @@ vec2 softHalf(vec2 halfUv, vec2 size)
 }
 
 // The receiver's depth as a plane in the map, its slope (depth per uv) from the screen-space
-// derivatives of (uv, z), as PCSS's receiver-plane bias (soft_filters.glsl): none where the
+// derivatives of (uv, z), as PCSS's receiver-plane bias (pcss.glsl): none where the
 // 2 x 2 solve is singular, at most PCSS_MAX_SLOPE.
 vec2 softReceiverSlope(vec3 projCoords)
 {

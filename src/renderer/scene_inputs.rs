@@ -224,7 +224,7 @@ pub(super) fn bind_maps_from(
     Ok(bound)
 }
 
-/// PCSS's constants for a light's 2D map (shaders/lib/soft_filters.glsl): its size in the
+/// PCSS's constants for a light's 2D map (shaders/lib/pcss.glsl): its size in the
 /// map's units per distance, S = (size term) x (P[0][0], P[1][1]) / 2 with P the light's
 /// projection, and its near and far planes. The size term is a perspective map's light
 /// radius (a directional light's angular radius seen from its shadow position), or an

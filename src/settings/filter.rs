@@ -154,7 +154,7 @@ impl Kernel {
             ),
             Kernel::Pcss => KernelGlsl {
                 per_pixel: true,
-                ..call(SOFT, "pcss", KernelArgs::Pcss, None)
+                ..call("lib/pcss.glsl", "pcss", KernelArgs::Pcss, None)
             },
         }
     }

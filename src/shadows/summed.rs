@@ -1,7 +1,7 @@
 //! Soft shadows at a constant cost: summed-area tables of a moment map (`vssm`, two
 //! moments; `msm-soft`, four), for directional and spot lights with a sized light.
 //!
-//! PCSS (`shaders/lib/soft_filters.glsl`) finds the penumbra per pixel but pays a tap per
+//! PCSS (`shaders/lib/pcss.glsl`) finds the penumbra per pixel but pays a tap per
 //! point of its kernel; a blurred moment map costs one lookup but its blur is one width for
 //! every edge. A summed-area table of the moments gives the mean over any box in a handful
 //! of reads, so both PCSS stages cost the same at any width: the blockers' mean depth from
@@ -137,7 +137,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     Some(LightGlsl {
         snippets: vec![
             "lib/shadow_depth.glsl",
-            "lib/soft_filters.glsl",
+            "lib/pcss.glsl",
             "lib/shadow_moments.glsl",
             "lib/soft_moments.glsl",
         ],

@@ -97,7 +97,7 @@ fn one_lights_part_is_its_sampler_its_library_and_its_call() {
         "0",
     ]));
     assert!(out.contains("\nuniform sampler2D shadowMap0;\n"), "{out}");
-    assert!(out.contains("// ==== shaders/lib/soft_filters.glsl ====\n"));
+    assert!(out.contains("// ==== shaders/lib/pcss.glsl ====\n"));
     assert!(out.contains("\nfloat pcss(sampler2D shadowMap, vec4 position,"));
     assert!(out.contains(
         "    float lit0 = SHADOW_DEPTH_OF(0, SHADOW_BORDER(0, mlightviewVertexPos[0], false, \

@@ -126,3 +126,36 @@ fn translucent_receivers_says_where_it_does_nothing() {
         )
     );
 }
+
+#[test]
+fn every_filter_whose_test_runs_per_vertex_compiles_in_the_vertex_shader() {
+    let mut scene = covered_sheet();
+    let filters = Filter::ALL
+        .into_iter()
+        .chain(Filter::SOFT)
+        .chain(Filter::MOMENTS);
+    let mut per_vertex = 0;
+    for filter in filters {
+        scene.shadow.filter = filter;
+        let settings = ShadowSettings {
+            volumetric: Volumetric::Osm,
+            translucent_receivers: TranslucentReceivers::Vertex,
+            ..scene.shadow
+        };
+        if filter.moments() || idle_why(&scene, &settings).is_some() {
+            continue;
+        }
+        per_vertex += 1;
+        // The soft filters' library is a vertex shader's too: it compiles, and the sheet
+        // takes the cover's light per vertex as per pixel.
+        let pixel = frame(&mut scene, Volumetric::Osm, TranslucentReceivers::Pixel);
+        let vertex = frame(&mut scene, Volumetric::Osm, TranslucentReceivers::Vertex);
+        let (max, mean) = difference(&pixel, &vertex);
+        assert!(
+            max <= 2 && mean < 0.05,
+            "{}: max {max}, mean {mean}",
+            filter.name()
+        );
+    }
+    assert!(per_vertex >= 7, "{per_vertex} filters ran per vertex");
+}
