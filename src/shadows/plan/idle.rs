@@ -199,7 +199,7 @@ fn volumetric_idle(kind: ShadowKind, s: &ShadowSettings, idle: &mut Vec<Idle>) {
         push_once(idle, "opaque_receivers", NO_MAP_TO_RESOLVE.into());
     }
     if !vertex_capable(kind, s) {
-        push_once(idle, "translucent_receivers", NO_VERTEX_TEST.into());
+        push_once(idle, "translucent_receivers", no_vertex_test());
     }
     for (name, technique) in VOLUMETRIC_KNOBS {
         if !(kind == ShadowKind::Map && s.volumetric == technique) {
@@ -345,7 +345,7 @@ fn of_scene_volumetric(settings: &ShadowSettings, plans: &[LightPlan], idle: &mu
         idle.push(Idle::new("opaque_receivers", why));
     }
     if !plans.iter().any(|p| vertex_capable(p.kind, &p.settings)) {
-        let why = format!("no light's test can run per vertex: {NO_VERTEX_TEST}");
+        let why = format!("no light's test can run per vertex: {}", no_vertex_test());
         idle.push(Idle::new("translucent_receivers", why));
     }
 }
@@ -369,9 +369,24 @@ const NO_MAP_TO_RESOLVE: &str = "only a 2D depth map with volumetric = \"osm\", 
      \"avsm\" keeps a translucent map (--volumetric osm, fom or avsm, on a directional or spot \
      light)";
 
-/// Why `translucent_receivers` does nothing for a light.
-const NO_VERTEX_TEST: &str = "only a 2D depth or moment map's test runs per vertex, and not \
-     pcss's, vssm's or msm-soft's (they need the pixel's screen derivatives)";
+/// Why `translucent_receivers` does nothing for a light, naming the filters whose test
+/// reads the pixel itself (their kernel's `per_pixel`, or a summed-area table's box).
+fn no_vertex_test() -> String {
+    use clap::ValueEnum;
+    let per_pixel = |f: &&Filter| {
+        let facts = f.facts();
+        facts.kernel.glsl().per_pixel || facts.moments.is_some_and(|m| m.reads_table())
+    };
+    let names: Vec<&str> = (Filter::value_variants().iter())
+        .filter(per_pixel)
+        .map(|f| f.name())
+        .collect();
+    format!(
+        "only a 2D depth or moment map's test runs per vertex, and not one that reads the \
+         pixel itself ({}: its screen derivatives or its position)",
+        names.join(", ")
+    )
+}
 
 /// Whether a light whose shadow is `kind` under `s` can take its test per vertex.
 fn vertex_capable(kind: ShadowKind, s: &ShadowSettings) -> bool {
