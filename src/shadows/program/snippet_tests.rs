@@ -203,13 +203,18 @@ fn every_library_snippet_is_reachable_from_the_scene_shader() {
         MaskMode::Off,
     );
     let resolved_others = crate::shaders::scene_frag(&others).unwrap();
+    let soft = snippets(
+        &[slot(ShadowKind::Map, with(Filter::Pcf4x4Weighted))],
+        MaskMode::Off,
+    );
+    let resolved_soft = crate::shaders::scene_frag(&soft).unwrap();
     // The translucent items' tests per vertex, in the vertex shader.
     let vert = crate::shaders::scene_vert();
     let vertex = crate::shaders::resolve(&vert.files[0], &vert.text, &[vertex_snippet(&[])]);
     let vertex = vertex.unwrap();
     for name in crate::shaders::library() {
         let file = format!("shaders/{name}");
-        let programs = [&resolved, &resolved_others, &vertex];
+        let programs = [&resolved, &resolved_others, &resolved_soft, &vertex];
         assert!(
             programs.iter().any(|p| p.files.contains(&file)),
             "{name} is never included"
