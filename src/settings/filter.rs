@@ -39,6 +39,14 @@ pub enum Filter {
     /// blocker depth (contact hardening). A zero-size light gives a hard test.
     #[value(name = "pcss")]
     Pcss,
+    /// opengl-tutorial.org's Poisson-disk PCF: 16 taps of its fixed disk, spread over its
+    /// 1 / 700 of a 1024-texel map (1.46 texels), averaged. A fixed pattern bands.
+    #[value(name = "poisson")]
+    Poisson,
+    /// The same disk turned by a per-pixel angle (interleaved gradient noise), as the
+    /// tutorial suggests: the bands become fine noise.
+    #[value(name = "poisson-rotated")]
+    PoissonRotated,
     // Filterable maps (src/shadows/moments.rs): the map stores moments of depth, blurred,
     // and the test reconstructs a visibility from them.
     /// Variance shadow maps: (z, z^2), blurred, Chebyshev's upper bound.
@@ -74,6 +82,10 @@ pub enum Kernel {
     SoftPcf,
     /// Percentage-closer soft shadows (no layered form: refused on cascades).
     Pcss,
+    /// opengl-tutorial.org's fixed Poisson disk.
+    Poisson,
+    /// The same disk turned per pixel.
+    PoissonRotated,
 }
 
 /// What a kernel's test is in GLSL: its library, its sampler, its function and the
@@ -101,6 +113,8 @@ pub enum KernelArgs {
     Radius,
     /// PCSS': the light's penumbra uniform, its taps and whether its map is perspective.
     Pcss,
+    /// The fragment's pixel (`gl_FragCoord.xy`), which turns the taps.
+    Pixel,
 }
 
 /// A kernel's test on a `sampler2D`, in `library`, that a vertex shader can run too.
@@ -155,6 +169,11 @@ impl Kernel {
             Kernel::Pcss => KernelGlsl {
                 per_pixel: true,
                 ..call("lib/pcss.glsl", "pcss", KernelArgs::Pcss, None)
+            },
+            Kernel::Poisson => call(SOFT, "poissonPcf", KernelArgs::Plain, None),
+            Kernel::PoissonRotated => KernelGlsl {
+                per_pixel: true,
+                ..call(SOFT, "poissonPcfRotated", KernelArgs::Pixel, None)
             },
         }
     }
@@ -253,8 +272,10 @@ const fn soft_moments(mode: MomentMode, components: u32, words: &'static str) ->
 
 const SOFT_ON_CUBE: &str = "a point light's cube map takes single, pcf3x3, pcf5x5, hw2x2 or \
      hw3x3 (the soft filters read a 2D map's texel grid)";
-const PCSS_ON_LAYERS: &str = "cascades and caster groups take every filter but pcss (its \
+const PCSS_ON_LAYERS: &str = "cascades and caster groups do not take pcss (its \
      penumbra is measured in one light camera's units, and each layer has its own box)";
+const POISSON_ON_LAYERS: &str = "cascades and caster groups do not take the Poisson disk \
+     (poisson, poisson-rotated: it is a 2D map's filter); use pcf3x3 or pcf4x4-weighted";
 const MOMENTS_ON_CUBE: &str = "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a \
      point light's shadow is a cube map; give the light a depth filter of its own (shadow = \
      { filter = \"pcf3x3\" }) or use one for the scene";
@@ -281,7 +302,13 @@ impl Filter {
 
     /// The soft filters, for the 2D map (and, but for PCSS, cascades): see
     /// [`Filter::facts`]' refusals.
-    pub const SOFT: [Filter; 3] = [Filter::Pcf4x4Weighted, Filter::SoftPcf, Filter::Pcss];
+    pub const SOFT: [Filter; 5] = [
+        Filter::Pcf4x4Weighted,
+        Filter::SoftPcf,
+        Filter::Pcss,
+        Filter::Poisson,
+        Filter::PoissonRotated,
+    ];
 
     /// The moment maps' filters (a map of their own, `src/shadows/moments.rs`).
     pub const MOMENTS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
@@ -314,6 +341,22 @@ impl Filter {
                     Kernel::Pcss,
                     Taps::Pcss,
                     "PCSS, softer the farther from the caster",
+                )
+            },
+            Filter::Poisson => FilterFacts {
+                on_layers: Some(POISSON_ON_LAYERS),
+                ..soft(
+                    Kernel::Poisson,
+                    Taps::Fixed(16),
+                    "Poisson-disk PCF, 16 depth tests",
+                )
+            },
+            Filter::PoissonRotated => FilterFacts {
+                on_layers: Some(POISSON_ON_LAYERS),
+                ..soft(
+                    Kernel::PoissonRotated,
+                    Taps::Fixed(16),
+                    "Poisson-disk PCF turned per pixel, 16 depth tests",
                 )
             },
             Filter::Vsm => moments(MomentMode::Vsm, 2, "VSM, variance of depth"),

@@ -36,6 +36,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
             ", lightPenumbra[{i}], {}, {}, {}",
             test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
         ),
+        KernelArgs::Pixel => ", gl_FragCoord.xy".into(),
     };
     let test = format!("{}({head}{args}, {far})", kernel.function);
     let linear = match test_depth {
