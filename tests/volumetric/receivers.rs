@@ -121,8 +121,8 @@ fn translucent_receivers_says_where_it_does_nothing() {
         idle_why(&smoke, &vertex(&smoke, Filter::Pcss)).as_deref(),
         Some(
             "no light's test can run per vertex: only a 2D depth or moment map's test runs per \
-             vertex, and not pcss's, vssm's or msm-soft's (they need the pixel's screen \
-             derivatives)"
+             vertex, and not one that reads the pixel itself (pcss, poisson-rotated, vssm, \
+             msm-soft: its screen derivatives or its position)"
         )
     );
 }
