@@ -41,6 +41,7 @@ impl Renderer {
     pub fn set_settings(&mut self, settings: &ShadowSettings) -> Result<()> {
         settings.validate(self.max_texture_size)?;
         self.settings = *settings;
+        self.frame_keys.get_mut().clear();
         Ok(())
     }
 
@@ -48,6 +49,7 @@ impl Renderer {
     /// light at a time).
     pub fn set_visibility_light(&mut self, index: usize) {
         self.visibility_light = index;
+        self.frame_keys.get_mut().clear();
     }
 
     /// Which light's map the depth view shows.

@@ -70,6 +70,10 @@ pub struct Renderer {
     vertex_light: vertex_light_cache::VertexLight,
     /// Scene programs by what they were compiled for, the last used first.
     scene_programs: Vec<(ProgramKey, ShaderProgram)>,
+    /// This frame's scene-program keys by outputs: worked out once a frame
+    /// ([`Renderer::program_key`]), forgotten when a frame's depth pass begins or what
+    /// they follow (the plan, the settings, the visibility light) changes.
+    frame_keys: std::cell::RefCell<Vec<(Outputs, ProgramKey)>>,
     samplers: Samplers,
     /// Every pixel's shadow tests, kept while nothing changes ([`shadow_mask`]).
     mask: shadow_mask::ShadowMask,
@@ -111,6 +115,7 @@ impl Renderer {
             volumetric: Default::default(),
             vertex_light: Default::default(),
             scene_programs: Vec::new(),
+            frame_keys: Default::default(),
             samplers: Samplers::default(),
             mask: shadow_mask::ShadowMask::default(),
             volumes: None,
@@ -163,6 +168,7 @@ impl Renderer {
     /// light sees, or has only a patch of it drawn again.
     pub fn render_depth_map(&mut self, scene: &Scene) -> Result<()> {
         self.prepare_shadows(scene)?;
+        self.frame_keys.get_mut().clear();
         self.schedule
             .begin(scene, &self.shadows, self.settings.shadow_cache);
         for (index, shadow) in self.shadows.iter_mut().enumerate() {

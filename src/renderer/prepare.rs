@@ -32,6 +32,7 @@ impl Renderer {
         if !self.plan.fits(&scene.lights, &self.settings) {
             let max = Some(self.max_texture_size);
             self.plan = ShadowPlan::resolve(&scene.lights, &self.settings, max)?;
+            self.frame_keys.get_mut().clear();
         }
         let plan = &self.plan;
         if plan.has(ShadowKind::Volume) {

@@ -39,9 +39,21 @@ impl Renderer {
         Ok(())
     }
 
-    /// The scene program's key for this frame's lights and `outputs`, before the mask.
+    /// The scene program's key for this frame's lights and `outputs`, before the mask:
+    /// worked out once a frame per outputs, then read back.
     pub(super) fn program_key(&self, scene: &Scene, outputs: Outputs) -> Result<ProgramKey> {
-        ProgramKey::of(scene, &self.plan, self.visibility_light, outputs)
+        let known = self
+            .frame_keys
+            .borrow()
+            .iter()
+            .find(|(o, _)| *o == outputs)
+            .map(|k| k.1);
+        if let Some(key) = known {
+            return Ok(key);
+        }
+        let key = ProgramKey::of(scene, &self.plan, self.visibility_light, outputs)?;
+        self.frame_keys.borrow_mut().push((outputs, key));
+        Ok(key)
     }
 
     /// The scene pass' inputs: the program in front of the cache, the lights' techniques
