@@ -20,6 +20,7 @@ uniform sampler2D depthMap;
 #endif
 uniform int linearize;
 uniform float warp;
+uniform int warped;
 uniform float nearPlane;
 uniform float farPlane;
 // The greys' range as fractions of near..far: the casters' depths (depth_view.rs), 0..1 for
@@ -49,8 +50,10 @@ void main()
     float shown = texture(depthMap, vec3(x - layer, texCoords.y, layer)).r;
 #else
     float d = texture(depthMap, texCoords).r;
-    // An EVSM map stores exp(warp (2 z - 1)): back to z (warp 0: a plain depth).
-    d = warp > 0.0 ? (log(max(d, 1e-30)) / warp + 1.0) * 0.5 : d;
+    // An exponential map stores exp(warp w), w = 2 z - 1 when `warped` (EVSM), else z:
+    // back to z (warp 0: a plain depth).
+    float w = log(max(d, 1e-30)) / max(warp, 1e-30);
+    d = warp > 0.0 ? (warped == 1 ? (w + 1.0) * 0.5 : w) : d;
     float shown = linearize == 1 ? linearDepth(d) : d;
 #endif
     shown = clamp((shown - shownFrom) / (shownTo - shownFrom), 0.0, 1.0);

@@ -18,7 +18,10 @@ pub use choices::{
     MsmToward, OpaqueReceivers, PerspectiveDepth, PointPass, ShadowTechnique, TranslucentReceivers,
     Volumetric, Wrap,
 };
-pub use filter::{Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentMode, Taps};
+pub use filter::{
+    Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentDepth, MomentFacts, MomentKnob,
+    MomentMode, Taps,
+};
 pub use map_size::{parse_map_size, MapSize};
 
 names::named_by_clap!(

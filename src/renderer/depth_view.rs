@@ -145,11 +145,15 @@ impl DepthView {
         if let DepthViewKind::Array { layers } = kind {
             p.set_i32("layers", layers as i32);
         }
-        let warp = match kind {
-            DepthViewKind::Exponential { exponent_bits } => f32::from_bits(exponent_bits),
-            DepthViewKind::Flat | DepthViewKind::Cube | DepthViewKind::Array { .. } => 0.0,
+        let (warp, warped) = match kind {
+            DepthViewKind::Exponential {
+                exponent_bits,
+                warped,
+            } => (f32::from_bits(exponent_bits), warped),
+            DepthViewKind::Flat | DepthViewKind::Cube | DepthViewKind::Array { .. } => (0.0, false),
         };
         p.set_f32("warp", warp);
+        p.set_i32("warped", i32::from(warped));
         p.set_f32("shownFrom", shown.0);
         p.set_f32("shownTo", shown.1);
         technique.view_texture().bind(0);

@@ -1,6 +1,8 @@
 //! The settings' one-line summary, for window titles and reports.
 
-use super::{BiasMode, Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
+use super::{
+    BiasMode, Filter, Fit, LightProjection, MomentKnob, ShadowSettings, ShadowTechnique, Volumetric,
+};
 
 impl ShadowSettings {
     /// A short human summary, for window titles and reports: the map and its test, then
@@ -108,15 +110,9 @@ impl ShadowSettings {
             "perspective_fov" => return None,
             "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => return None,
             "depth_lookup" if self.filter.hardware() || self.filter.moments() => return None,
-            // The moment maps' knobs do nothing for a depth map.
-            "blur" | "min_variance" | "bleed_reduction" | "evsm_exponents" | "msm_bias"
-            | "msm_toward"
-                if !self.filter.moments() =>
-            {
-                return None
-            }
-            "soft_search_cells" | "soft_filter_cells"
-                if !Filter::SOFT_MOMENTS.contains(&self.filter) =>
+            // The moment maps' knobs do nothing where the filter's test does not read them.
+            k if moment_knob(k)
+                .is_some_and(|g| !self.filter.facts().moments.is_some_and(|m| m.reads(g))) =>
             {
                 return None
             }
@@ -144,4 +140,11 @@ impl ShadowSettings {
             _ => format!("{} {v}", key.replace('_', " ")),
         })
     }
+}
+
+/// The moment maps' group that `setting` belongs to, if any.
+fn moment_knob(setting: &str) -> Option<MomentKnob> {
+    MomentKnob::ALL
+        .into_iter()
+        .find(|g| g.settings().contains(&setting))
 }

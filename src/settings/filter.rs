@@ -179,8 +179,9 @@ impl Kernel {
     }
 }
 
-/// A moment filter, by name: which moments its depth pass stores and which function tests
-/// them (`crate::shadows::moment_mode` names their defines).
+/// A moment filter, by name: which moments its depth pass stores, which function tests
+/// them and which settings that test reads, in its row of [`MomentMode::facts`]
+/// (`crate::shadows::moment_mode` names their defines).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum MomentMode {
     Vsm,
@@ -191,6 +192,123 @@ pub enum MomentMode {
     Vssm,
     /// MSM's moments read from a summed-area table.
     MsmSoft,
+}
+
+/// What a moment map's depth pass stores (its `MOMENT_DEPTH_*` define in
+/// shaders/moments_depth.frag); what its texels are cleared to and how the depth view
+/// reads them back follow from it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MomentDepth {
+    /// (z, z^2).
+    Vsm,
+    /// exp(c w) and -exp(-c w) of the warped depth w = 2 z - 1, and their squares.
+    Evsm,
+    /// (z, z^2, z^3, z^4).
+    Msm,
+}
+
+/// The moment maps' settings, in the groups one test reads together.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MomentKnob {
+    Blur,
+    Variance,
+    EvsmExponents,
+    Msm,
+    Cells,
+}
+
+impl MomentKnob {
+    /// Every group, for the idle rules and the descriptions.
+    pub const ALL: [MomentKnob; 5] = [
+        MomentKnob::Blur,
+        MomentKnob::Variance,
+        MomentKnob::EvsmExponents,
+        MomentKnob::Msm,
+        MomentKnob::Cells,
+    ];
+
+    /// The settings of the group, as the scene file names them.
+    pub const fn settings(self) -> &'static [&'static str] {
+        match self {
+            MomentKnob::Blur => &["blur"],
+            MomentKnob::Variance => &["min_variance", "bleed_reduction"],
+            MomentKnob::EvsmExponents => &["evsm_exponents"],
+            MomentKnob::Msm => &["msm_bias", "msm_toward"],
+            MomentKnob::Cells => &["soft_search_cells", "soft_filter_cells"],
+        }
+    }
+
+    /// The filters whose test reads the group, and those filters in words
+    /// ("vsm, evsm2 or evsm4").
+    pub fn readers(self) -> (Vec<Filter>, String) {
+        let filters: Vec<Filter> = (<Filter as clap::ValueEnum>::value_variants().iter())
+            .copied()
+            .filter(|f| f.facts().moments.is_some_and(|m| m.reads(self)))
+            .collect();
+        let names: Vec<&str> = filters.iter().map(|f| f.name()).collect();
+        let words = match names.split_last() {
+            Some((last, [])) => last.to_string(),
+            Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+            None => String::new(),
+        };
+        (filters, words)
+    }
+}
+
+/// A moment filter's row: what its depth pass stores, its test and the settings it reads.
+#[derive(Debug, Clone, Copy)]
+pub struct MomentFacts {
+    pub depth: MomentDepth,
+    /// The test's GLSL function (shaders/lib/shadow_moments.glsl; a table's:
+    /// shaders/lib/soft_moments.glsl).
+    pub function: &'static str,
+    /// Whether the test reads a summed-area table of the moments (src/shadows/summed.rs).
+    pub table: bool,
+    /// The settings it reads, in the order of the function's arguments.
+    pub knobs: &'static [MomentKnob],
+}
+
+impl MomentMode {
+    /// The mode's row: the one table a new moment filter joins.
+    pub const fn facts(self) -> MomentFacts {
+        use MomentKnob::{Blur, Cells, EvsmExponents, Msm, Variance};
+        const fn row(
+            depth: MomentDepth,
+            function: &'static str,
+            knobs: &'static [MomentKnob],
+        ) -> MomentFacts {
+            MomentFacts {
+                depth,
+                function,
+                table: false,
+                knobs,
+            }
+        }
+        const fn table(
+            depth: MomentDepth,
+            function: &'static str,
+            knobs: &'static [MomentKnob],
+        ) -> MomentFacts {
+            MomentFacts {
+                table: true,
+                ..row(depth, function, knobs)
+            }
+        }
+        const EVSM: &[MomentKnob] = &[Blur, Variance, EvsmExponents];
+        match self {
+            MomentMode::Vsm => row(MomentDepth::Vsm, "calcShadowVsm", &[Blur, Variance]),
+            MomentMode::Evsm2 => row(MomentDepth::Evsm, "calcShadowEvsm", EVSM),
+            MomentMode::Evsm4 => row(MomentDepth::Evsm, "calcShadowEvsm", EVSM),
+            MomentMode::Msm => row(MomentDepth::Msm, "calcShadowMsm", &[Blur, Msm]),
+            MomentMode::Vssm => table(MomentDepth::Vsm, "vssm", &[Variance, Cells]),
+            MomentMode::MsmSoft => table(MomentDepth::Msm, "msmSoft", &[Msm, Cells]),
+        }
+    }
+
+    /// Whether the mode's test reads `knob`'s settings.
+    pub fn reads(self, knob: MomentKnob) -> bool {
+        self.facts().knobs.contains(&knob)
+    }
 }
 
 /// How many lookups a filter's test takes per fragment.

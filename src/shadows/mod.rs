@@ -241,9 +241,11 @@ pub struct ShadowView {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DepthViewKind {
     Flat,
-    /// A 2D map that stores exp(c (2 z - 1)) (EVSM's first moment): shown as the depth z.
+    /// A 2D map that stores exp(c w), `w` the depth z or, `warped`, 2 z - 1 (EVSM's first
+    /// moment): shown as the depth z.
     Exponential {
         exponent_bits: u32,
+        warped: bool,
     },
     /// A cube map, as a panorama.
     Cube,

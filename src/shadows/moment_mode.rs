@@ -1,8 +1,8 @@
 //! The moment filters by name (src/shadows/moments.rs draws their maps,
 //! src/shadows/summed.rs reads their summed-area tables): which moments a depth pass
-//! stores and which function tests them.
+//! stores and which function tests them, from their rows of [`MomentMode::facts`].
 
-use crate::settings::Filter;
+use crate::settings::{Filter, MomentDepth};
 
 pub use crate::settings::MomentMode;
 
@@ -15,18 +15,15 @@ impl MomentMode {
     /// The define the depth pass is compiled with (shaders/moments_depth.frag): the
     /// moments it stores (the soft filters store VSM's and MSM's).
     pub fn depth_define(self) -> &'static str {
-        match self {
-            MomentMode::Vsm | MomentMode::Vssm => "MOMENT_DEPTH_VSM",
-            MomentMode::Evsm2 | MomentMode::Evsm4 => "MOMENT_DEPTH_EVSM",
-            MomentMode::Msm | MomentMode::MsmSoft => "MOMENT_DEPTH_MSM",
+        match self.facts().depth {
+            MomentDepth::Vsm => "MOMENT_DEPTH_VSM",
+            MomentDepth::Evsm => "MOMENT_DEPTH_EVSM",
+            MomentDepth::Msm => "MOMENT_DEPTH_MSM",
         }
     }
 
     /// Whether the test reads a summed-area table of the moments (src/shadows/summed.rs).
     pub fn reads_table(self) -> bool {
-        match self {
-            MomentMode::Vssm | MomentMode::MsmSoft => true,
-            MomentMode::Vsm | MomentMode::Evsm2 | MomentMode::Evsm4 | MomentMode::Msm => false,
-        }
+        self.facts().table
     }
 }

@@ -30,7 +30,9 @@ use crate::engine::{
 };
 use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
-use crate::settings::{glsl_float, Blur, Filter, MapSize, ShadowSettings, Wrap, EVSM_MAX_EXPONENT};
+use crate::settings::{
+    glsl_float, Blur, MapSize, MomentDepth, MomentKnob, ShadowSettings, Wrap, EVSM_MAX_EXPONENT,
+};
 use crate::shaders;
 
 /// EVSM's exponents as the shaders use them: clamped so exp(2c) fits a 32-bit float.
@@ -40,15 +42,53 @@ pub fn evsm_exponents(settings: &ShadowSettings) -> [f32; 2] {
 
 /// The moments of depth 1 (where no caster was drawn), which the map is cleared to.
 pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
-    let [p, n] = evsm_exponents(settings);
-    match MomentMode::of(settings.filter) {
-        Some(MomentMode::Evsm2 | MomentMode::Evsm4) => {
+    let Some(mode) = MomentMode::of(settings.filter) else {
+        return [1.0; 4];
+    };
+    match mode.facts().depth {
+        MomentDepth::Evsm => {
+            let [p, n] = evsm_exponents(settings);
             let (pos, neg) = (p.exp(), -(-n).exp());
             [pos, pos * pos, neg, neg * neg]
         }
-        Some(MomentMode::Vsm | MomentMode::Vssm) => [1.0, 1.0, 0.0, 0.0],
-        Some(MomentMode::Msm | MomentMode::MsmSoft) | None => [1.0; 4],
+        MomentDepth::Vsm => [1.0, 1.0, 0.0, 0.0],
+        MomentDepth::Msm => [1.0; 4],
     }
+}
+
+/// How the depth view reads back what the depth pass under `settings` stores.
+fn view_kind(settings: &ShadowSettings) -> DepthViewKind {
+    let Some(mode) = MomentMode::of(settings.filter) else {
+        return DepthViewKind::Flat;
+    };
+    match mode.facts().depth {
+        MomentDepth::Evsm => DepthViewKind::Exponential {
+            exponent_bits: evsm_exponents(settings)[0].to_bits(),
+            warped: true,
+        },
+        MomentDepth::Vsm | MomentDepth::Msm => DepthViewKind::Flat,
+    }
+}
+
+/// A group of the test's constants as its function's arguments, if it takes them.
+fn knob_args(knob: MomentKnob, t: &MomentTest) -> Option<String> {
+    let f = |bits: u32| glsl_float(f32::from_bits(bits));
+    Some(match knob {
+        MomentKnob::Blur | MomentKnob::Cells => return None,
+        MomentKnob::Variance => {
+            format!("{}, {}", f(t.min_variance_bits), f(t.bleed_reduction_bits))
+        }
+        MomentKnob::EvsmExponents => format!(
+            "vec2({}, {}), {}",
+            f(t.evsm_bits[0]),
+            f(t.evsm_bits[1]),
+            t.evsm_negative
+        ),
+        MomentKnob::Msm => {
+            let [x, y, z, w] = t.msm_toward_bits.map(f);
+            format!("{}, vec4({x}, {y}, {z}, {w})", f(t.msm_bias_bits))
+        }
+    })
 }
 
 /// The constants of shaders/lib/shadow_moments.glsl for one light (with bias.glsl's, from
@@ -59,6 +99,8 @@ pub struct MomentTest {
     pub min_variance_bits: u32,
     pub bleed_reduction_bits: u32,
     pub evsm_bits: [u32; 2],
+    /// EVSM's 4-component map: the negative warp too.
+    pub evsm_negative: bool,
     pub msm_bias_bits: u32,
     pub msm_toward_bits: [u32; 4],
     pub border_lit: bool,
@@ -73,39 +115,22 @@ impl MomentTest {
             min_variance_bits: s.min_variance.to_bits(),
             bleed_reduction_bits: s.bleed_reduction.to_bits(),
             evsm_bits: evsm_exponents(s).map(f32::to_bits),
+            evsm_negative: s.filter.moment_components() == 4,
             msm_bias_bits: s.msm_bias.to_bits(),
             msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
             border_lit: s.wrap == Wrap::ClampToBorder,
         })
     }
 
-    /// The call of its filter's function (shaders/lib/shadow_moments.glsl), its own
-    /// constants between `head` (map, position, bias) and `tail` (borderLit, beyondFarLit);
-    /// `None` for a filter on a summed-area table (its call is [`summed::glsl`]'s).
-    pub fn call(&self, head: &str, tail: &str) -> Option<String> {
-        let f = |bits: u32| glsl_float(f32::from_bits(bits));
-        let (variance, bleed) = (f(self.min_variance_bits), f(self.bleed_reduction_bits));
-        Some(match self.mode {
-            MomentMode::Vsm => format!("calcShadowVsm({head}, {variance}, {bleed}, {tail})"),
-            MomentMode::Msm => {
-                let t = self.msm_toward_bits.map(f);
-                format!(
-                    "calcShadowMsm({head}, {}, vec4({}, {}, {}, {}), {tail})",
-                    f(self.msm_bias_bits),
-                    t[0],
-                    t[1],
-                    t[2],
-                    t[3]
-                )
-            }
-            MomentMode::Evsm2 | MomentMode::Evsm4 => format!(
-                "calcShadowEvsm({head}, {variance}, {bleed}, vec2({}, {}), {}, {tail})",
-                f(self.evsm_bits[0]),
-                f(self.evsm_bits[1]),
-                self.mode == MomentMode::Evsm4
-            ),
-            MomentMode::Vssm | MomentMode::MsmSoft => return None,
-        })
+    /// The call of its filter's function (its row's), its own constants group by group
+    /// between `head` (map, position, bias; a table's: [`summed::glsl`]'s) and `tail`
+    /// (borderLit, beyondFarLit).
+    pub fn call(&self, head: &str, tail: &str) -> String {
+        let facts = self.mode.facts();
+        let mut args = vec![head.to_string()];
+        args.extend(facts.knobs.iter().filter_map(|&k| knob_args(k, self)));
+        args.push(tail.to_string());
+        format!("{}({})", facts.function, args.join(", "))
     }
 }
 
@@ -166,10 +191,8 @@ pub struct Moments {
     /// The summed-area table of a soft filter (vssm, msm-soft), which the scene pass reads.
     summed: Option<Summed>,
     triangle: FullScreenTriangle,
-    /// What the last depth pass stored, for the depth view: the filter and EVSM's
-    /// positive exponent.
-    map_mode: Filter,
-    evsm_positive: f32,
+    /// How the depth view reads what the last depth pass stored.
+    view: DepthViewKind,
 }
 
 impl Moments {
@@ -189,8 +212,7 @@ impl Moments {
                 .then(|| Summed::new(gl, settings.map_size, components))
                 .transpose()?,
             triangle: FullScreenTriangle::new(gl)?,
-            map_mode: settings.filter,
-            evsm_positive: evsm_exponents(settings)[0],
+            view: view_kind(settings),
         })
     }
 
@@ -262,8 +284,7 @@ impl Technique for Moments {
     ) -> Result<ShadowView> {
         let settings = pass.settings;
         let view = camera(scene, index, settings);
-        self.map_mode = settings.filter;
-        self.evsm_positive = evsm_exponents(settings)[0];
+        self.view = view_kind(settings);
         let gl = pass.gl.clone();
         self.prepare_depth(&gl, settings)?;
         if let Some((_, program)) = &self.depth {
@@ -328,13 +349,7 @@ impl Technique for Moments {
     }
 
     fn depth_view(&self) -> DepthViewKind {
-        match MomentMode::of(self.map_mode) {
-            Some(MomentMode::Evsm2 | MomentMode::Evsm4) => DepthViewKind::Exponential {
-                exponent_bits: self.evsm_positive.to_bits(),
-            },
-            Some(MomentMode::Vsm | MomentMode::Msm | MomentMode::Vssm | MomentMode::MsmSoft)
-            | None => DepthViewKind::Flat,
-        }
+        self.view
     }
 }
 
@@ -355,7 +370,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     Some(LightGlsl {
         snippets: vec!["lib/shadow_moments.glsl"],
         sampler_type: "sampler2D",
-        test: moments.call(&head, &tail)?,
+        test: moments.call(&head, &tail),
         defines: Vec::new(),
     })
 }
@@ -363,7 +378,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::MsmToward;
+    use crate::settings::{Filter, MsmToward};
 
     #[test]
     fn kernels_sum_to_one_and_the_playgrounds_is_its_3x3() {
@@ -412,7 +427,7 @@ mod tests {
         };
         let test = MomentTest::of(&vsm).unwrap();
         assert_eq!(
-            test.call("m", "false, false").unwrap(),
+            test.call("m", "false, false"),
             format!(
                 "calcShadowVsm(m, {}, 0.15, false, false)",
                 glsl_float(vsm.min_variance)
@@ -427,8 +442,7 @@ mod tests {
         assert_eq!(
             MomentTest::of(&playground)
                 .unwrap()
-                .call("m", "true, false")
-                .unwrap(),
+                .call("m", "true, false"),
             "calcShadowMsm(m, 0.0009, vec4(0.0, 0.63, 0.0, 0.63), true, false)"
         );
         let evsm4 = ShadowSettings {
@@ -436,7 +450,7 @@ mod tests {
             evsm_exponents: [40.0, 5.0],
             ..pcf
         };
-        let call = MomentTest::of(&evsm4).unwrap().call("m", "t").unwrap();
+        let call = MomentTest::of(&evsm4).unwrap().call("m", "t");
         assert!(call.ends_with(", vec2(40.0, 5.0), true, t)"), "{call}");
         // A border of depth 1 is lit through the shader, not the sampler.
         let fitted = ShadowSettings {

@@ -13,12 +13,11 @@
 //! `shaders/summed_area.frag`) in unsigned fixed point; the test is
 //! `shaders/lib/soft_moments.glsl`.
 
-use super::moment_mode::MomentMode;
 use super::{LightGlsl, ShadowTest};
 use crate::engine::summed_area::{SAT_RADIX, SAT_SCALE};
 use crate::engine::{FullScreenTriangle, Gl, ShaderProgram, SummedAreaTable, Texture};
 use crate::error::Result;
-use crate::settings::{glsl_float, Filter, MapSize, ShadowSettings};
+use crate::settings::{Filter, MapSize, ShadowSettings};
 use crate::shaders;
 
 /// Whether `filter` reads a summed-area table ([`Filter::SOFT_MOMENTS`]).
@@ -97,7 +96,6 @@ impl SoftCells {
 /// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
 pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     let moments = test.moments?;
-    let f = |bits: u32| glsl_float(f32::from_bits(bits));
     let most = crate::settings::MAX_SOFT_CELLS;
     let cells = test.soft_cells.unwrap_or(SoftCells {
         search: most,
@@ -115,25 +113,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
         "{}, {}, {}",
         test.pcss_perspective, moments.border_lit, test.beyond_far_lit
     );
-    let call = match moments.mode {
-        MomentMode::MsmSoft => {
-            let t = moments.msm_toward_bits.map(f);
-            format!(
-                "msmSoft({head}, {}, vec4({}, {}, {}, {}), {tail})",
-                f(moments.msm_bias_bits),
-                t[0],
-                t[1],
-                t[2],
-                t[3]
-            )
-        }
-        MomentMode::Vssm => format!(
-            "vssm({head}, {}, {}, {tail})",
-            f(moments.min_variance_bits),
-            f(moments.bleed_reduction_bits)
-        ),
-        MomentMode::Vsm | MomentMode::Evsm2 | MomentMode::Evsm4 | MomentMode::Msm => return None,
-    };
+    let call = moments.call(&head, &tail);
     Some(LightGlsl {
         snippets: vec![
             "lib/shadow_depth.glsl",

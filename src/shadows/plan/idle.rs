@@ -2,7 +2,9 @@
 //! light of a scene ([`of_scene`], what the commands warn about when a flag gives one).
 
 use crate::scene::Light;
-use crate::settings::{Filter, Fit, LightProjection, ShadowSettings, ShadowTechnique, Volumetric};
+use crate::settings::{
+    Filter, Fit, LightProjection, MomentKnob, ShadowSettings, ShadowTechnique, Volumetric,
+};
 use crate::shadows::volumetric::method;
 use crate::shadows::ShadowKind;
 use crate::shadows::ShadowTest;
@@ -45,35 +47,6 @@ const MAP_SETTINGS: [&str; 17] = [
     "point_pass",
     "shadow_cache",
     "show_depth_map",
-];
-
-/// The moment maps' knobs, each with the filters that read it and those filters in words.
-const MOMENT_KNOBS: [(&[&str], &[Filter], &str); 5] = [
-    (
-        &["blur"],
-        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm],
-        "a moment filter (vsm, evsm2, evsm4, msm)",
-    ),
-    (
-        &["min_variance", "bleed_reduction"],
-        &[Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Vssm],
-        "vsm, evsm2, evsm4 or vssm",
-    ),
-    (
-        &["evsm_exponents"],
-        &[Filter::Evsm2, Filter::Evsm4],
-        "evsm2 or evsm4",
-    ),
-    (
-        &["msm_bias", "msm_toward"],
-        &[Filter::Msm, Filter::MsmSoft],
-        "msm or msm-soft",
-    ),
-    (
-        &["soft_search_cells", "soft_filter_cells"],
-        &Filter::SOFT_MOMENTS,
-        "vssm or msm-soft",
-    ),
 ];
 
 /// Why `depth_lookup` does nothing for a light whose shadow is `kind` under `filter`, if
@@ -167,10 +140,11 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
             push(name, "only the pcss filter takes its counts".into());
         }
     }
-    for (names, filters, which) in MOMENT_KNOBS {
+    for knob in MomentKnob::ALL {
+        let (filters, which) = knob.readers();
         let reads = kind == ShadowKind::Moments && filter.is_some_and(|f| filters.contains(&f));
         if !reads {
-            for name in names {
+            for name in knob.settings() {
                 push(name, format!("it is for {which}, on a 2D map"));
             }
         }
@@ -471,9 +445,10 @@ fn of_scene_maps(plans: &[LightPlan], idle: &mut Vec<Idle>) {
         .filter(|p| p.kind == ShadowKind::Moments)
         .map(|p| p.settings.filter)
         .collect();
-    for (names, filters, which) in MOMENT_KNOBS {
+    for knob in MomentKnob::ALL {
+        let (filters, which) = knob.readers();
         if !moment_filters.iter().any(|f| filters.contains(f)) {
-            for name in names {
+            for name in knob.settings() {
                 idle.push(Idle::new(
                     name,
                     format!("no light's filter reads it (it is for {which}, on a 2D map)"),

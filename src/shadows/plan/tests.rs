@@ -108,7 +108,7 @@ fn each_light_gets_its_own_table_over_the_scenes() {
     assert!(!plan.lights[0].is_idle("blur"));
     assert_eq!(
         idle_why(&plan.lights[2].idle, "blur"),
-        Some("it is for a moment filter (vsm, evsm2, evsm4, msm), on a 2D map")
+        Some("it is for vsm, evsm2, evsm4 or msm, on a 2D map")
     );
     assert_eq!(idle_why(&plan.idle, "blur"), None);
 }
