@@ -1,10 +1,11 @@
 #version 330 core
 // Depth pass of a filterable shadow map (src/shadows/moments.rs): instead of depth, the
 // moments of depth, which stay meaningful when averaged (blurred, filtered). Compiled with:
-//   MOMENT_DEPTH_VSM, MOMENT_DEPTH_EVSM or MOMENT_DEPTH_MSM: one of them, named by the
-//                filter's MomentMode (src/shadows/moments.rs): VSM (z, z^2), EVSM (the
-//                exponentials and their squares), MSM (z, z^2, z^3, z^4)
+//   MOMENT_DEPTH_VSM, _EVSM, _MSM or _ESM: one of them, named by the filter's MomentDepth
+//                (src/shadows/moment_mode.rs): VSM (z, z^2), EVSM (the exponentials and
+//                their squares), MSM (z, z^2, z^3, z^4), ESM (exp(c z))
 //   EVSM_POS, EVSM_NEG  EVSM's exponents, already clamped (src/settings.rs)
+//   ESM_EXPONENT        ESM's c, already clamped so exp(c) is a finite float
 // The vertex shader is the chapter's depth.vert.
 
 out vec4 moments;
@@ -24,6 +25,11 @@ void main()
     float pos = exp(EVSM_POS * w);
     float neg = -exp(-EVSM_NEG * w);
     moments = vec4(pos, pos * pos, neg, neg * neg);
+#elif defined(MOMENT_DEPTH_ESM)
+    // The exponential of depth itself (Annen et al. 2008): its average over a texel's
+    // footprint, times exp(-c d), is the receiver's lit fraction where the footprint's
+    // casters lie in front of it.
+    moments = vec4(exp(ESM_EXPONENT * z), 0.0, 0.0, 0.0);
 #else
 #error expected one of the MOMENT_DEPTH defines of MomentMode in src/shadows/moment_mode.rs
 #endif

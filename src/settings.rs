@@ -51,6 +51,9 @@ pub const PCSS_MAX_TAPS: u32 = 32;
 /// EVSM's largest exponent: exp(2 x 42) ~ 3e36 stays below 32-bit floats' 3.4e38, so
 /// the warped depth's square cannot overflow.
 pub const EVSM_MAX_EXPONENT: f32 = 42.0;
+/// ESM's largest exponent: exp(88 x 1) ~ 1.7e38 at depth 1 stays below 32-bit floats'
+/// 3.4e38 (ln 3.4e38 = 88.7), and a blur's weighted sums stay below their largest texel.
+pub const ESM_MAX_EXPONENT: f32 = 88.0;
 
 /// PCSS's taps per stage: 1 to [`PCSS_MAX_TAPS`].
 fn poisson_taps() -> Range<u32> {
@@ -271,7 +274,7 @@ shadow_settings! {
         /// What fragments beyond the light's far plane get.
         beyond_far: BeyondFar = BeyondFar::Shadowed;
     }
-    /// The filterable maps (`filter = "vsm"`, `"evsm2"`, `"evsm4"`, `"msm"`): a float
+    /// The filterable maps (`filter = "vsm"`, `"evsm2"`, `"evsm4"`, `"msm"`, `"esm"`): a float
     /// colour map of depth's moments, blurred, read with one filtered lookup.
     "Moment maps" {
         /// The blur before the lookup: the playground's 3 x 3, a wider Gaussian, or none.
@@ -304,6 +307,12 @@ shadow_settings! {
         /// vssm, msm-soft: cells a side of the filter's box, as `soft_search_cells`.
         soft_filter_cells: u32 = 4, range(Range::from_to(1, MAX_SOFT_CELLS)),
             arg(value_name = "N", allow_negative_numbers = true);
+        /// ESM's exponent c: the map stores exp(c z); larger is sharper and leaks less light
+        /// near contact (80 by default, Annen et al.'s; its map is 32-bit float).
+        esm_exponent: f32 = 80.0,
+            range(Range::above_to(0.0, ESM_MAX_EXPONENT)
+                .note(format!("exp({ESM_MAX_EXPONENT} x 1) stays inside 32-bit floats"))),
+            arg(value_name = "C", value_parser = parse_finite, allow_negative_numbers = true);
     }
     /// How the map is drawn.
     "Depth pass" {

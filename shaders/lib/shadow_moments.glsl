@@ -1,8 +1,9 @@
 // The test of a light with a filterable map (src/shadows/moments.rs): one filtered lookup
 // of the blurred moments, then a visibility reconstructed from them: one function per
-// filter (VSM, EVSM, MSM), each with the light's own constants as arguments:
+// filter (VSM, EVSM, MSM, ESM), each with the light's own constants as arguments:
 //   minVariance     the least variance Chebyshev's bound assumes (VSM; EVSM scales it)
 //   bleedReduction  bounds below it read as shadow, the rest stretch to [0, 1] (VSM, EVSM)
+//   exponent        ESM's c (the map holds exp(c z))
 //   borderLit       lookups outside the map are lit (a fitted box's border)
 //   position, bias, beyondFarLit  as calcShadow's (shadow_2d.glsl)
 
@@ -97,6 +98,22 @@ float calcShadowEvsm(sampler2D momentMap, vec4 position, float bias, float minVa
         lit = min(lit, chebyshevUpperBound(m.zw, neg, minVariance * slopeNeg * slopeNeg));
     }
     lit = reduceLightBleeding(lit, bleedReduction);
+    return outsideLit(projCoords, lit, borderLit, beyondFarLit);
+}
+
+// Exponential shadow maps: the map holds E = the filtered exp(c z); a receiver at d is lit
+// by exp(-c d) E, which is exp(-c (d - z)) behind one caster at z and the lit share of the
+// footprint where part of it lies behind the receiver. In logarithms, so that neither
+// factor leaves float range when c is near its limit (exp(-88) is below the normal floats).
+// Where the footprint also holds farther surfaces than the receiver, E grows past exp(c d)
+// and the clamp lights it: ESM's light bleeding, at depth edges and near contact.
+float calcShadowEsm(sampler2D momentMap, vec4 position, float bias, float exponent,
+                    bool borderLit, bool beyondFarLit)
+{
+    vec3 projCoords = position.xyz / position.w * 0.5 + 0.5;
+    float z = projCoords.z - bias;
+    float e = texture(momentMap, projCoords.xy).r;
+    float lit = exp(min(log(max(e, 1.0)) - exponent * z, 0.0));
     return outsideLit(projCoords, lit, borderLit, beyondFarLit);
 }
 

@@ -25,7 +25,7 @@ pub struct MomentMap {
 }
 
 impl MomentMap {
-    /// A `size` map of `components` (2: RG32F, 4: RGBA32F) float moments per texel.
+    /// A `size` map of `components` (1: R32F, 2: RG32F, 4: RGBA32F) float moments per texel.
     pub fn new(gl: &Gl, size: MapSize, components: u32) -> Result<MomentMap> {
         let (w, h) = (size.width, size.height);
         let textures = [

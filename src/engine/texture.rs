@@ -112,11 +112,12 @@ impl Texels {
     /// 32-bit floats of 2 or 4 components.
     fn float(components: u32, what: &str) -> Result<Texels> {
         let (internal, format) = match components {
+            1 => (glow::R32F, glow::RED),
             2 => (glow::RG32F, glow::RG),
             4 => (glow::RGBA32F, glow::RGBA),
             n => {
                 return Err(Error::Invalid(format!(
-                    "{what} with {n} components: expected 2 or 4"
+                    "{what} with {n} components: expected 1, 2 or 4"
                 )))
             }
         };

@@ -172,7 +172,9 @@ pub fn volumetric_refusal(
         );
     }
     if settings.filter.moments() {
-        return Some("the moment maps (vsm, evsm2, evsm4, msm) take volumetric = \"off\" only");
+        return Some(
+            "the moment maps (vsm, evsm2, evsm4, msm, esm) take volumetric = \"off\" only",
+        );
     }
     if settings.fit != Fit::Manual {
         return Some(

@@ -57,6 +57,9 @@ pub enum Filter {
     Evsm4,
     /// Moment shadow maps: (z, z^2, z^3, z^4), the Hamburger 4MSM reconstruction.
     Msm,
+    /// Exponential shadow maps (Annen et al. 2008): exp(c z), blurred; a receiver at d is
+    /// lit by exp(-c d) E[exp(c z)], clamped to 1.
+    Esm,
     // Soft shadows on summed-area tables of the moments (src/shadows/summed.rs).
     /// Variance soft shadow maps: a blocker search and a filter as wide as the penumbra,
     /// each 4 x 4 cells of (z, z^2) read from a summed-area table (texel by texel where
@@ -192,6 +195,7 @@ pub enum MomentMode {
     Vssm,
     /// MSM's moments read from a summed-area table.
     MsmSoft,
+    Esm,
 }
 
 /// What a moment map's depth pass stores (its `MOMENT_DEPTH_*` define in
@@ -205,6 +209,8 @@ pub enum MomentDepth {
     Evsm,
     /// (z, z^2, z^3, z^4).
     Msm,
+    /// exp(c z).
+    Esm,
 }
 
 /// The moment maps' settings, in the groups one test reads together.
@@ -215,16 +221,18 @@ pub enum MomentKnob {
     EvsmExponents,
     Msm,
     Cells,
+    EsmExponent,
 }
 
 impl MomentKnob {
     /// Every group, for the idle rules and the descriptions.
-    pub const ALL: [MomentKnob; 5] = [
+    pub const ALL: [MomentKnob; 6] = [
         MomentKnob::Blur,
         MomentKnob::Variance,
         MomentKnob::EvsmExponents,
         MomentKnob::Msm,
         MomentKnob::Cells,
+        MomentKnob::EsmExponent,
     ];
 
     /// The settings of the group, as the scene file names them.
@@ -235,6 +243,7 @@ impl MomentKnob {
             MomentKnob::EvsmExponents => &["evsm_exponents"],
             MomentKnob::Msm => &["msm_bias", "msm_toward"],
             MomentKnob::Cells => &["soft_search_cells", "soft_filter_cells"],
+            MomentKnob::EsmExponent => &["esm_exponent"],
         }
     }
 
@@ -271,7 +280,7 @@ pub struct MomentFacts {
 impl MomentMode {
     /// The mode's row: the one table a new moment filter joins.
     pub const fn facts(self) -> MomentFacts {
-        use MomentKnob::{Blur, Cells, EvsmExponents, Msm, Variance};
+        use MomentKnob::{Blur, Cells, EsmExponent, EvsmExponents, Msm, Variance};
         const fn row(
             depth: MomentDepth,
             function: &'static str,
@@ -302,6 +311,7 @@ impl MomentMode {
             MomentMode::Msm => row(MomentDepth::Msm, "calcShadowMsm", &[Blur, Msm]),
             MomentMode::Vssm => table(MomentDepth::Vsm, "vssm", &[Variance, Cells]),
             MomentMode::MsmSoft => table(MomentDepth::Msm, "msmSoft", &[Msm, Cells]),
+            MomentMode::Esm => row(MomentDepth::Esm, "calcShadowEsm", &[Blur, EsmExponent]),
         }
     }
 
@@ -394,10 +404,12 @@ const PCSS_ON_LAYERS: &str = "cascades and caster groups do not take pcss (its \
      penumbra is measured in one light camera's units, and each layer has its own box)";
 const POISSON_ON_LAYERS: &str = "cascades and caster groups do not take the Poisson disk \
      (poisson, poisson-rotated: it is a 2D map's filter); use pcf3x3 or pcf4x4-weighted";
-const MOMENTS_ON_CUBE: &str = "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and a \
+const MOMENTS_ON_CUBE: &str =
+    "the moment maps (vsm, evsm2, evsm4, msm, esm) need one 2D map and a \
      point light's shadow is a cube map; give the light a depth filter of its own (shadow = \
      { filter = \"pcf3x3\" }) or use one for the scene";
-const MOMENTS_ON_LAYERS: &str = "the moment maps (vsm, evsm2, evsm4, msm) need one 2D map and \
+const MOMENTS_ON_LAYERS: &str =
+    "the moment maps (vsm, evsm2, evsm4, msm, esm) need one 2D map and \
      cascades and caster groups have a layer each; use cascades = 1 and caster_groups = 1, \
      or a depth filter (pcf3x3) for the light";
 const SOFT_MOMENTS_ON_CUBE: &str = "the soft moment filters (vssm, msm-soft) read summed-area \
@@ -429,7 +441,13 @@ impl Filter {
     ];
 
     /// The moment maps' filters (a map of their own, `src/shadows/moments.rs`).
-    pub const MOMENTS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
+    pub const MOMENTS: [Filter; 5] = [
+        Filter::Vsm,
+        Filter::Evsm2,
+        Filter::Evsm4,
+        Filter::Msm,
+        Filter::Esm,
+    ];
 
     /// The soft filters on summed-area tables of a moment map (`src/shadows/summed.rs`).
     pub const SOFT_MOMENTS: [Filter; 2] = [Filter::Vssm, Filter::MsmSoft];
@@ -489,6 +507,7 @@ impl Filter {
                 "EVSM, exponential variance (4 moments)",
             ),
             Filter::Msm => moments(MomentMode::Msm, 4, "MSM, 4 moments of depth"),
+            Filter::Esm => moments(MomentMode::Esm, 1, "ESM, exponential of depth"),
             Filter::Vssm => soft_moments(
                 MomentMode::Vssm,
                 2,

@@ -19,6 +19,7 @@ impl MomentMode {
             MomentDepth::Vsm => "MOMENT_DEPTH_VSM",
             MomentDepth::Evsm => "MOMENT_DEPTH_EVSM",
             MomentDepth::Msm => "MOMENT_DEPTH_MSM",
+            MomentDepth::Esm => "MOMENT_DEPTH_ESM",
         }
     }
 

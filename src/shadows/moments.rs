@@ -31,13 +31,19 @@ use crate::engine::{
 use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{
-    glsl_float, Blur, MapSize, MomentDepth, MomentKnob, ShadowSettings, Wrap, EVSM_MAX_EXPONENT,
+    glsl_float, Blur, MapSize, MomentDepth, MomentKnob, ShadowSettings, Wrap, ESM_MAX_EXPONENT,
+    EVSM_MAX_EXPONENT,
 };
 use crate::shaders;
 
 /// EVSM's exponents as the shaders use them: clamped so exp(2c) fits a 32-bit float.
 pub fn evsm_exponents(settings: &ShadowSettings) -> [f32; 2] {
     settings.evsm_exponents.map(|c| c.min(EVSM_MAX_EXPONENT))
+}
+
+/// ESM's exponent as the shaders use it: clamped so exp(c) fits a 32-bit float.
+pub fn esm_exponent(settings: &ShadowSettings) -> f32 {
+    settings.esm_exponent.min(ESM_MAX_EXPONENT)
 }
 
 /// The moments of depth 1 (where no caster was drawn), which the map is cleared to.
@@ -53,6 +59,7 @@ pub fn far_moments(settings: &ShadowSettings) -> [f32; 4] {
         }
         MomentDepth::Vsm => [1.0, 1.0, 0.0, 0.0],
         MomentDepth::Msm => [1.0; 4],
+        MomentDepth::Esm => [esm_exponent(settings).exp(), 0.0, 0.0, 0.0],
     }
 }
 
@@ -65,6 +72,10 @@ fn view_kind(settings: &ShadowSettings) -> DepthViewKind {
         MomentDepth::Evsm => DepthViewKind::Exponential {
             exponent_bits: evsm_exponents(settings)[0].to_bits(),
             warped: true,
+        },
+        MomentDepth::Esm => DepthViewKind::Exponential {
+            exponent_bits: esm_exponent(settings).to_bits(),
+            warped: false,
         },
         MomentDepth::Vsm | MomentDepth::Msm => DepthViewKind::Flat,
     }
@@ -88,6 +99,7 @@ fn knob_args(knob: MomentKnob, t: &MomentTest) -> Option<String> {
             let [x, y, z, w] = t.msm_toward_bits.map(f);
             format!("{}, vec4({x}, {y}, {z}, {w})", f(t.msm_bias_bits))
         }
+        MomentKnob::EsmExponent => f(t.esm_bits),
     })
 }
 
@@ -103,6 +115,7 @@ pub struct MomentTest {
     pub evsm_negative: bool,
     pub msm_bias_bits: u32,
     pub msm_toward_bits: [u32; 4],
+    pub esm_bits: u32,
     pub border_lit: bool,
 }
 
@@ -118,6 +131,7 @@ impl MomentTest {
             evsm_negative: s.filter.moment_components() == 4,
             msm_bias_bits: s.msm_bias.to_bits(),
             msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
+            esm_bits: esm_exponent(s).to_bits(),
             border_lit: s.wrap == Wrap::ClampToBorder,
         })
     }
@@ -184,8 +198,8 @@ pub fn caster_footprint(
 /// A light's filterable map, with the programs that draw and blur it.
 pub struct Moments {
     map: MomentMap,
-    /// The depth program and the (mode, exponents) it was compiled for.
-    depth: Option<((&'static str, [u32; 2]), ShaderProgram)>,
+    /// The depth program and the (mode, EVSM's and ESM's exponents) it was compiled for.
+    depth: Option<((&'static str, [u32; 3]), ShaderProgram)>,
     /// The blur program and its kernel.
     blur: Option<(Blur, ShaderProgram)>,
     /// The summed-area table of a soft filter (vssm, msm-soft), which the scene pass reads.
@@ -218,7 +232,8 @@ impl Moments {
 
     /// Compiles the depth program for `s`' filter and exponents unless it is the one there.
     fn prepare_depth(&mut self, gl: &Gl, s: &ShadowSettings) -> Result<()> {
-        let exponents = evsm_exponents(s);
+        let [p, n] = evsm_exponents(s);
+        let exponents = [p, n, esm_exponent(s)];
         let Some(mode) = MomentMode::of(s.filter) else {
             return Err(Error::Invalid(format!(
                 "filter {} has no moment map",
@@ -231,6 +246,7 @@ impl Moments {
                 (key.0.to_string(), "1".to_string()),
                 ("EVSM_POS".to_string(), glsl_float(exponents[0])),
                 ("EVSM_NEG".to_string(), glsl_float(exponents[1])),
+                ("ESM_EXPONENT".to_string(), glsl_float(exponents[2])),
             ];
             let program = ShaderProgram::new(
                 gl,

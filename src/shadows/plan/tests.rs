@@ -27,7 +27,7 @@ fn a_point_light_refuses_a_moment_filter_naming_the_setting_and_the_light() {
     let e = ShadowPlan::resolve(&point.lights, &vsm, None).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "shadow.filter = vsm: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, msm) \
+        "shadow.filter = vsm: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, msm, esm) \
          need one 2D map and a point light's shadow is a cube map; give the light a depth \
          filter of its own (shadow = { filter = \"pcf3x3\" }) or use one for the scene"
     );
@@ -108,7 +108,7 @@ fn each_light_gets_its_own_table_over_the_scenes() {
     assert!(!plan.lights[0].is_idle("blur"));
     assert_eq!(
         idle_why(&plan.lights[2].idle, "blur"),
-        Some("it is for vsm, evsm2, evsm4 or msm, on a 2D map")
+        Some("it is for vsm, evsm2, evsm4, msm or esm, on a 2D map")
     );
     assert_eq!(idle_why(&plan.idle, "blur"), None);
 }
