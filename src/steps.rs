@@ -324,7 +324,7 @@ const OUTSIDE_THE_BOX: &[Stage] = &[
 ];
 
 /// The shadow-playground's demo pages in its order (basic, PCF, soft PCF; its variance and
-/// moment pages are filters of their own), then PCSS, which the engines add, and its two
+/// moment pages are filters of their own), then exponential shadow maps and PCSS, which the engines add, and its two
 /// stages on summed-area tables of the moments (docs/techniques/soft-moments.md).
 pub const PLAYGROUND_STEPS: &[Step] = &[
     Step {
@@ -411,6 +411,24 @@ pub const PLAYGROUND_STEPS: &[Step] = &[
             s.filter = Filter::Msm;
             s.msm_bias = 9e-4;
             s.msm_toward = MsmToward::Playground;
+        },
+    },
+    Step {
+        name: "esm",
+        change: "Exponential shadow maps (Annen et al. 2008), past the playground's pages: one \
+                 component, exp(40 z) (EVSM's positive exponent), the same blur; a receiver at \
+                 d is lit by exp(-40 d) times the blurred value, which behind one caster at z \
+                 is exp(-40 (d - z)).",
+        look_for: "Edges as soft as the moment step's, from one float a texel where it keeps \
+                   four; at the cube's foot a lit seam (blue in the error image): a caster \
+                   within about 1/40 of the light's depth range of its receiver darkens it \
+                   only partly (esm_exponent up to 88 narrows it).",
+        cumulative: true,
+        stages: &[],
+        same_picture: &[],
+        apply: |s, _| {
+            s.filter = Filter::Esm;
+            s.esm_exponent = 40.0;
         },
     },
     Step {

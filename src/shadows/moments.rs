@@ -434,6 +434,22 @@ mod tests {
     }
 
     #[test]
+    fn the_esm_exponent_keeps_the_cleared_map_finite_up_to_its_limit() {
+        let at = |c: f32| {
+            far_moments(&ShadowSettings {
+                filter: Filter::Esm,
+                esm_exponent: c,
+                ..ShadowSettings::default()
+            })[0]
+        };
+        assert!(at(ESM_MAX_EXPONENT).is_finite() && at(ESM_MAX_EXPONENT) > 1e38);
+        assert_eq!(at(500.0), at(ESM_MAX_EXPONENT));
+        // The limit is the last whole exponent whose exp(c) is a 32-bit float.
+        assert!(f32::MAX.ln() < ESM_MAX_EXPONENT + 1.0);
+        assert!(!(ESM_MAX_EXPONENT + 1.0).exp().is_finite());
+    }
+
+    #[test]
     fn moment_constants_reach_only_moment_programs() {
         let pcf = ShadowSettings::default();
         assert_eq!(MomentTest::of(&pcf), None);

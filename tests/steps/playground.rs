@@ -9,7 +9,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     let names: Vec<&str> = steps::of(&scene).iter().map(|s| s.name).collect();
     assert_eq!(
         names,
-        ["basic", "pcf", "soft-pcf", "variance", "moment", "pcss", "vssm", "msm-soft"]
+        ["basic", "pcf", "soft-pcf", "variance", "moment", "esm", "pcss", "vssm", "msm-soft"]
     );
     let at = |name| steps::settings_for(&scene, name).unwrap();
     let basic = at("basic");
@@ -48,7 +48,7 @@ fn the_playground_has_its_demo_pages_as_steps() {
     assert_eq!(
         e,
         "unknown step 'cull-front' for the playground scene (its [steps] list is \"playground\"): \
-         expected one of basic, pcf, soft-pcf, variance, moment, pcss, vssm, msm-soft"
+         expected one of basic, pcf, soft-pcf, variance, moment, esm, pcss, vssm, msm-soft"
     );
     let dummy = Scene::load("dummy").unwrap();
     let e = steps::settings_for(&dummy, "soft-pcf")

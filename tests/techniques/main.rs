@@ -9,6 +9,7 @@ mod common;
 
 mod behind_light;
 mod cascades;
+mod esm;
 mod extremes;
 mod groups;
 mod light_angle;

@@ -1,4 +1,4 @@
-//! The filterable maps (vsm, evsm2, evsm4, msm) against the exact reference: VSM's light
+//! The filterable maps (vsm, evsm2, evsm4, msm, esm) against the exact reference: VSM's light
 //! bleeding under overlapping occluders and what cuts it, agreement away from shadow edges,
 //! every built-in scene drawn (or refused with its exact message), and their costs.
 
@@ -12,7 +12,7 @@ use shadowmap::shadows::plan::ShadowPlan;
 use shadowmap::shadows::{filter_cost as cost, ShadowKind};
 use shadowmap::Scene;
 
-const MOMENT_FILTERS: [Filter; 4] = [Filter::Vsm, Filter::Evsm2, Filter::Evsm4, Filter::Msm];
+const MOMENT_FILTERS: [Filter; 5] = Filter::MOMENTS;
 
 fn overlap() -> Scene {
     Scene::load("overlap").unwrap_or_else(|e| panic!("{e}"))
