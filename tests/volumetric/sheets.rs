@@ -325,7 +325,7 @@ fn the_translucent_maps_are_refused_by_name_where_they_cannot_cast() {
     assert_eq!(
         refusal(&smoke, fom),
         "shadow.volumetric = fom: light 0 cannot use it: the moment maps (vsm, evsm2, evsm4, \
-         msm) take volumetric = \"off\" only"
+         msm, esm) take volumetric = \"off\" only"
     );
     let cascaded = ShadowSettings {
         volumetric: Volumetric::Osm,
