@@ -5,21 +5,21 @@
 use super::scene_inputs::Inputs;
 use super::shadow_mask::Plan;
 use super::{scene_pass, Renderer, Target};
-use crate::engine::{Outputs, Samplers};
-use crate::error::Result;
+use crate::engine::{Outputs, Samplers, ShaderProgram};
+use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shadows::program::slots::MaskMode;
 use crate::shadows::program::ProgramKey;
 
 impl Renderer {
-    /// Moves the program for this frame's key to the front of the cache, compiling it if it
-    /// is not there (the cache keeps the last few).
+    /// The key of the program this frame draws `outputs` with under `mask`, compiled if the
+    /// cache (the last few used, the last first) does not hold it.
     pub(super) fn use_program(
         &mut self,
         scene: &Scene,
         outputs: Outputs,
         mask: MaskMode,
-    ) -> Result<()> {
+    ) -> Result<ProgramKey> {
         // A bench alternates a timed target and a scored one, each maybe with the mask
         // written and read.
         const KEEP: usize = 6;
@@ -36,7 +36,13 @@ impl Renderer {
                 self.scene_programs.truncate(KEEP);
             }
         }
-        Ok(())
+        Ok(key)
+    }
+
+    /// The compiled program of `key` (one [`Renderer::use_program`] returned this frame).
+    pub(super) fn program(&self, key: ProgramKey) -> Option<&ShaderProgram> {
+        let found = self.scene_programs.iter().find(|(k, _)| *k == key);
+        found.map(|(_, p)| p)
     }
 
     /// The scene program's key for this frame's lights and `outputs`, before the mask:
@@ -56,11 +62,13 @@ impl Renderer {
         Ok(key)
     }
 
-    /// The scene pass' inputs: the program in front of the cache, the lights' techniques
-    /// and views, the mask when the program reads it.
-    pub(super) fn scene_inputs(&self, mode: MaskMode) -> Inputs<'_> {
-        Inputs {
-            program: &self.scene_programs[0].1,
+    /// The scene pass' inputs: `key`'s program, the lights' techniques and views, the mask
+    /// when the program reads it.
+    pub(super) fn scene_inputs(&self, key: ProgramKey) -> Result<Inputs<'_>> {
+        let mode = key.mask();
+        let missing = || Error::Invalid("the scene program was not compiled".into());
+        Ok(Inputs {
+            program: self.program(key).ok_or_else(missing)?,
             shadows: &self.shadows,
             views: &self.views,
             volumetric: &self.volumetric,
@@ -75,8 +83,8 @@ impl Renderer {
                 MaskMode::Read => self.mask.texture(),
                 MaskMode::Off | MaskMode::Write | MaskMode::Vertex => None,
             },
-            translucent: self.translucent_program(mode),
-        }
+            translucent: self.translucent_program(key),
+        })
     }
 
     /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
@@ -95,13 +103,13 @@ impl Renderer {
             self.draw_scene(scene, target, Plan::Test, samplers)?;
         }
         let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
+        let key = self.use_program(scene, target.outputs(), mode)?;
         self.keep_tests_program(scene, target.outputs(), mode)?;
-        self.use_program(scene, target.outputs(), mode)?;
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         if self.uses_volumes() {
-            return self.draw_volumes(scene, target.size(), mode, samplers);
+            return self.draw_volumes(scene, target.size(), key, samplers);
         }
-        let inputs = self.scene_inputs(mode);
+        let inputs = self.scene_inputs(key)?;
         scene_pass::draw(&inputs, samplers, &self.gl, scene, target.size())?;
         self.volume_counted.clear();
         Ok(())

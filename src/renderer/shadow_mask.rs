@@ -185,22 +185,19 @@ impl Renderer {
     /// writes the mask; their own when a light tests them per vertex or resolves its
     /// translucent map for the opaque items ([`MaskMode::Vertex`]); else itself when it tests, the testing one beside a program
     /// that reads the mask ([`Renderer::keep_tests_program`] keeps those compiled).
-    pub(super) fn translucent_program(&self, mode: MaskMode) -> Option<&ShaderProgram> {
-        let (front, program) = self.scene_programs.first()?;
-        let wanted = match mode {
+    pub(super) fn translucent_program(&self, key: ProgramKey) -> Option<&ShaderProgram> {
+        let wanted = match key.mask() {
             MaskMode::Write => return None,
-            _ if front.translucent_apart() => front.with_mask(MaskMode::Vertex),
-            MaskMode::Off | MaskMode::Vertex => return Some(program),
-            MaskMode::Read => front.with_mask(MaskMode::Off),
+            _ if key.translucent_apart() => key.with_mask(MaskMode::Vertex),
+            MaskMode::Off | MaskMode::Vertex => key,
+            MaskMode::Read => key.with_mask(MaskMode::Off),
         };
-        let found = self.scene_programs.iter().find(|(k, _)| *k == wanted);
-        found.map(|(_, p)| p)
+        self.program(wanted)
     }
 
     /// With translucent items to draw, makes sure the program they are drawn with beside
     /// `mode`'s (for `outputs`) is compiled: their own ([`MaskMode::Vertex`]), or beside a
-    /// program that reads the mask the one that tests; the caller then puts `mode`'s in
-    /// front.
+    /// program that reads the mask the one that tests.
     pub(super) fn keep_tests_program(
         &mut self,
         scene: &Scene,
@@ -224,8 +221,8 @@ impl Renderer {
     }
 
     /// Makes the mask's programs (writing it, and the scene program reading it for
-    /// `outputs`) and its target at `size` now, when the mask may serve the frames to come;
-    /// the scene program without the mask stays in front.
+    /// `outputs`) and its target at `size` now, when the mask may serve the frames to come,
+    /// beside the scene program without the mask.
     pub(super) fn prepare_mask(
         &mut self,
         scene: &Scene,
@@ -242,7 +239,8 @@ impl Renderer {
             let channels = self.mask_channels();
             self.mask.fit(&self.gl, size, channels)?;
         }
-        self.use_program(scene, outputs, MaskMode::Off)
+        self.use_program(scene, outputs, MaskMode::Off)?;
+        Ok(())
     }
 
     /// Writes the mask first if `plan` says so; returns how the scene program then takes
@@ -273,12 +271,12 @@ impl Renderer {
         key: u64,
         samplers: &mut Samplers,
     ) -> Result<()> {
-        self.use_program(scene, Outputs::default(), MaskMode::Write)?;
+        let program = self.use_program(scene, Outputs::default(), MaskMode::Write)?;
         let channels = self.mask_channels();
         self.mask
             .begin_write(&self.gl, (width, height), channels)?
             .bind_and_clear([1.0; 4]);
-        let inputs = self.scene_inputs(MaskMode::Write);
+        let inputs = self.scene_inputs(program)?;
         scene_pass::draw(&inputs, samplers, &self.gl, scene, (width, height))?;
         self.mask.written(key);
         Ok(())

@@ -16,7 +16,7 @@ use crate::engine::{VolumeDraw, VolumePassGuard};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::program::slots::MaskMode;
+use crate::shadows::program::ProgramKey;
 use crate::shadows::volumes::Volumes;
 use crate::shadows::ShadowKind;
 
@@ -41,13 +41,13 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         size: (u32, u32),
-        mode: MaskMode,
+        program: ProgramKey,
         samplers: &mut Samplers,
     ) -> Result<()> {
         let Some(volumes) = &self.volumes else {
             return Err(Error::Invalid("the shadow volumes are missing".into()));
         };
-        let (inputs, gl) = (self.scene_inputs(mode), &self.gl);
+        let (inputs, gl) = (self.scene_inputs(program)?, &self.gl);
         let queries = &self.volume_queries;
         let light = self.visibility_light;
         let counted = draw(&inputs, volumes, light, queries, samplers, gl, scene, size)?;

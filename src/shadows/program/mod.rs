@@ -109,6 +109,11 @@ impl ProgramKey {
         })
     }
 
+    /// Whether it writes or reads the cached shadow mask, or takes its own tests.
+    pub fn mask(&self) -> MaskMode {
+        self.mask
+    }
+
     /// The same program writing or reading the cached shadow mask.
     pub fn with_mask(self, mask: MaskMode) -> ProgramKey {
         ProgramKey { mask, ..self }
