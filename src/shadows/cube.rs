@@ -179,13 +179,13 @@ impl Technique for Cube {
 }
 /// Light `i`'s part of the generated snippets, its position relative to the fragment in
 /// map slot `p`: `calcShadowCube` (shaders/lib/shadow_cube.glsl), one lookup, or with a
-/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20.
-pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
-    let function = match test.pcf_radius {
+/// PCF filter `calcShadowCubeSoft`, LearnOpenGL's 20 (a depth map's test only).
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
+    let function = match test.depth()?.pcf_radius {
         0 => "calcShadowCube",
         _ => "calcShadowCubeSoft",
     };
-    LightGlsl {
+    Some(LightGlsl {
         snippets: vec!["lib/shadow_cube.glsl"],
         sampler_type: "samplerCube",
         test: format!(
@@ -195,5 +195,5 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
             test.beyond_far_lit
         ),
         defines: Vec::new(),
-    }
+    })
 }

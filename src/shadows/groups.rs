@@ -27,7 +27,7 @@ pub const SAMPLERS: [&str; crate::scene::MAX_LIGHTS] =
 /// and its `calcShadowGroups` call.
 /// Light `i`'s part of the scene program: the layered lookup of shadow_layers.glsl.
 pub fn glsl(i: usize, _p: usize, test: &super::ShadowTest) -> Option<super::LightGlsl> {
-    Some(layers::glsl(&SNIPPET, i, test))
+    layers::glsl(&SNIPPET, i, test)
 }
 
 pub const SNIPPET: layers::Snippet = layers::Snippet {

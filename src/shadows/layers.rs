@@ -204,14 +204,16 @@ pub fn camera_relative_matrix(b: &FittedBox, camera_position: Vec3) -> DMat4 {
         * DMat4::from_translation(camera_position.as_dvec3())
 }
 /// Light `i`'s part of the generated snippets: the file, its array sampler, its call,
-/// and its filter as the defines of shadow_layers.glsl (one light is layered).
-pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
-    let sampler_type = match test.hardware {
+/// and its filter as the defines of shadow_layers.glsl (one light is layered; a depth
+/// map's test only).
+pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> Option<LightGlsl> {
+    let depth = test.depth()?;
+    let sampler_type = match depth.hardware {
         true => "sampler2DArrayShadow",
         false => "sampler2DArray",
     };
     let fragment = if snippet.takes_fragment { ", f" } else { "" };
-    LightGlsl {
+    Some(LightGlsl {
         snippets: snippet.files.to_vec(),
         sampler_type,
         test: format!(
@@ -225,15 +227,16 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> LightGlsl {
         defines: [
             ("LAYER_SAMPLER", sampler_type.to_string()),
             ("LAYER_TEXEL", test.texel_glsl()),
-            ("LAYER_RADIUS", test.pcf_radius.to_string()),
+            ("LAYER_RADIUS", depth.pcf_radius.to_string()),
         ]
         .into_iter()
         .chain(
-            test.kernel
+            depth
+                .kernel
                 .glsl()
                 .layer_define
                 .map(|d| (d, "1".to_string())),
         )
         .collect(),
-    }
+    })
 }

@@ -122,13 +122,13 @@ impl ShadowKind {
             ShadowKind::None | ShadowKind::Volume => return None,
             ShadowKind::Map => descriptor(
                 |gl, s| Ok(Box::new(map2d::Map2d::new(gl, s)?)),
-                |i, p, t| Some(map2d::glsl(i, p, t)),
+                map2d::glsl,
                 &map2d::SAMPLERS,
                 true,
             ),
             ShadowKind::Cube => descriptor(
                 |gl, s| Ok(Box::new(cube::Cube::new(gl, s)?)),
-                |i, p, t| Some(cube::glsl(i, p, t)),
+                cube::glsl,
                 &cube::SAMPLERS,
                 true,
             ),
@@ -277,11 +277,11 @@ pub struct LightGlsl {
     pub defines: Vec<(&'static str, String)>,
 }
 
-/// The shadow test's settings, which the generated call passes as arguments.
+/// The shadow test's settings, which the generated call passes as arguments: those every
+/// map's test takes, then its own kind's ([`OwnTest`]), so that a program's key holds no
+/// constant its test does not read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ShadowTest {
-    pub pcf_radius: u32,
-    pub hardware: bool,
     pub bias_mode: BiasMode,
     pub bias_bits: u32,
     pub bias_min_bits: u32,
@@ -289,50 +289,73 @@ pub struct ShadowTest {
     pub normal_offset: bool,
     /// The map's size: the PCF grid steps one texel, 1 / width across and 1 / height up.
     pub map_size: MapSize,
-    /// The grid, or a soft filter's taps (shaders/lib/soft_filters.glsl).
-    pub kernel: map2d::Kernel,
-    /// PCSS's taps (0 for the other filters, so their key ignores them).
-    pub pcss_blocker_taps: u32,
-    pub pcss_filter_taps: u32,
-    /// PCSS: the light's map is a perspective one (its depth is not linear).
+    /// PCSS and the soft moment filters: the light's map is a perspective one (its depth
+    /// is not linear).
     pub pcss_perspective: bool,
-    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
-    pub map_depth: map2d::MapDepth,
-    /// A moment filter's own constants.
-    pub moments: Option<MomentTest>,
-    /// A soft moment filter's lattices ([`summed::SoftCells`]).
-    pub soft_cells: Option<summed::SoftCells>,
     /// The light's translucent map, whose transmittance multiplies the test
     /// ([`crate::shadows::volumetric`]).
     pub volumetric: Option<VolumetricKey>,
     /// `translucent_receivers = "vertex"`: translucent items take this test per vertex
     /// where it can run there ([`program::vertex`]).
     pub vertex_receivers: bool,
+    pub own: OwnTest,
+}
+
+/// What only one kind of map's test takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OwnTest {
+    /// A depth map's (2D, cube, layers).
+    Depth(DepthTest),
+    /// A moment map's constants ([`moments`], [`summed`]).
+    Moments(MomentTest),
+}
+
+/// A depth map's test: its filter's taps, PCSS's counts and how the map stores depth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct DepthTest {
+    pub pcf_radius: u32,
+    pub hardware: bool,
+    /// The grid, or a soft filter's taps (shaders/lib/soft_filters.glsl).
+    pub kernel: map2d::Kernel,
+    /// PCSS's taps (0 for the other filters, so their key ignores them).
+    pub pcss_blocker_taps: u32,
+    pub pcss_filter_taps: u32,
+    /// How the light's 2D map stores and tests depth ([`map2d::map_depth`]).
+    pub map_depth: map2d::MapDepth,
+}
+
+impl DepthTest {
+    fn of(s: &ShadowSettings) -> DepthTest {
+        let pcss = s.filter == Filter::Pcss;
+        DepthTest {
+            pcf_radius: s.filter.radius(),
+            hardware: s.filter.hardware(),
+            kernel: s.filter.facts().kernel,
+            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
+            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
+            map_depth: map2d::MapDepth::Projected,
+        }
+    }
 }
 
 impl ShadowTest {
     /// The test as the settings apply it ([`ShadowSettings::effective`]).
     pub fn of(settings: &ShadowSettings) -> ShadowTest {
         let s = settings.effective();
-        let pcss = s.filter == Filter::Pcss;
         ShadowTest {
-            pcf_radius: s.filter.radius(),
-            hardware: s.filter.hardware(),
             bias_mode: s.bias_mode,
             bias_bits: s.bias.to_bits(),
             bias_min_bits: s.bias_min.to_bits(),
             beyond_far_lit: s.beyond_far == BeyondFar::Lit,
             normal_offset: s.normal_offset != 0.0,
             map_size: s.map_size,
-            moments: MomentTest::of(&s),
-            soft_cells: summed::SoftCells::of(&s),
-            kernel: s.filter.facts().kernel,
-            pcss_blocker_taps: if pcss { s.pcss_blocker_taps } else { 0 },
-            pcss_filter_taps: if pcss { s.pcss_filter_taps } else { 0 },
             pcss_perspective: false,
-            map_depth: map2d::MapDepth::Projected,
             volumetric: None,
             vertex_receivers: s.translucent_receivers == TranslucentReceivers::Vertex,
+            own: match MomentTest::of(&s) {
+                Some(moments) => OwnTest::Moments(moments),
+                None => OwnTest::Depth(DepthTest::of(&s)),
+            },
         }
     }
 
@@ -344,11 +367,30 @@ impl ShadowTest {
             Light::Directional(_) => settings.light_projection == LightProjection::Perspective,
             Light::Point(_) => false,
         };
-        ShadowTest {
+        let mut test = ShadowTest {
             pcss_perspective: perspective
                 && (settings.filter == Filter::Pcss || summed::reads_table(settings.filter)),
-            map_depth: map2d::map_depth(perspective, settings),
             ..ShadowTest::of(settings)
+        };
+        if let OwnTest::Depth(depth) = &mut test.own {
+            depth.map_depth = map2d::map_depth(perspective, settings);
+        }
+        test
+    }
+
+    /// A depth map's own constants, if the test is a depth map's.
+    pub fn depth(&self) -> Option<&DepthTest> {
+        match &self.own {
+            OwnTest::Depth(d) => Some(d),
+            OwnTest::Moments(_) => None,
+        }
+    }
+
+    /// A moment map's own constants, if the test is a moment map's.
+    pub fn moments(&self) -> Option<&MomentTest> {
+        match &self.own {
+            OwnTest::Moments(m) => Some(m),
+            OwnTest::Depth(_) => None,
         }
     }
 }
@@ -360,8 +402,8 @@ impl ShadowTest {
     /// not).
     pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
         match kind {
-            ShadowKind::Map => !self.kernel.glsl().per_pixel,
-            ShadowKind::Moments => self.moments.is_some_and(|m| !m.mode.reads_table()),
+            ShadowKind::Map => self.depth().is_some_and(|d| !d.kernel.glsl().per_pixel),
+            ShadowKind::Moments => self.moments().is_some_and(|m| !m.mode.reads_table()),
             // A cube map's and a layered light's tests read per pixel; no map, no test.
             ShadowKind::Cube | ShadowKind::Cascades | ShadowKind::Groups => false,
             ShadowKind::None | ShadowKind::Volume => false,

@@ -117,6 +117,8 @@ pub struct MomentTest {
     pub msm_toward_bits: [u32; 4],
     pub esm_bits: u32,
     pub border_lit: bool,
+    /// A soft moment filter's lattices ([`summed::SoftCells`]).
+    pub soft_cells: Option<summed::SoftCells>,
 }
 
 impl MomentTest {
@@ -133,6 +135,7 @@ impl MomentTest {
             msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
             esm_bits: esm_exponent(s).to_bits(),
             border_lit: s.wrap == Wrap::ClampToBorder,
+            soft_cells: summed::SoftCells::of(s),
         })
     }
 
@@ -373,7 +376,7 @@ impl Technique for Moments {
 /// its filter's function in shaders/lib/shadow_moments.glsl, read through a plain
 /// `sampler2D` (the moments are filtered, not compared).
 pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
-    let moments = test.moments?;
+    let moments = test.moments()?;
     if moments.mode.reads_table() {
         return summed::glsl(i, p, test);
     }

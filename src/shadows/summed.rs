@@ -95,9 +95,9 @@ impl SoftCells {
 /// `vssm` or `msmSoft` (shaders/lib/soft_moments.glsl) on its table, through a
 /// `usampler2D`, with PCSS's light constants (`lightPenumbra`) and each stage's cells.
 pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
-    let moments = test.moments?;
+    let moments = test.moments()?;
     let most = crate::settings::MAX_SOFT_CELLS;
-    let cells = test.soft_cells.unwrap_or(SoftCells {
+    let cells = moments.soft_cells.unwrap_or(SoftCells {
         search: most,
         filter: most,
     });

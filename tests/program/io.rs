@@ -475,13 +475,25 @@ fn bench_reports_progress_from_the_start() {
         "{}",
         r.stderr
     );
+    // The count it announces, then each line names its phase and the configuration, out of
+    // two passes over them.
+    let count: usize = (r.stderr.lines())
+        .find_map(|l| {
+            l.strip_prefix("bench: ")?
+                .split_once(" configurations of ")?
+                .0
+                .parse()
+                .ok()
+        })
+        .unwrap_or_else(|| panic!("no count of configurations: {}", r.stderr));
+    assert!(count > 20, "{count} configurations");
+    let steps = 2 * count;
     for needle in [
-        "bench: tracing the exact reference at 32x18 ...",
-        // Each line names its phase and the configuration.
-        "[1/116] pass 1 of 2, compiling and timing: ",
-        "[116/116] pass 2 of 2, timing and scoring against the reference: ",
+        "bench: tracing the exact reference at 32x18 ...".to_string(),
+        format!("[1/{steps}] pass 1 of 2, compiling and timing: "),
+        format!("[{steps}/{steps}] pass 2 of 2, timing and scoring against the reference: "),
     ] {
-        assert!(r.stderr.contains(needle), "lacks {needle:?}: {}", r.stderr);
+        assert!(r.stderr.contains(&needle), "lacks {needle:?}: {}", r.stderr);
     }
     for f in ["bench.csv", "bench.md", "pareto.png"] {
         assert!(out.join(f).is_file(), "{f} missing");

@@ -8,11 +8,12 @@ use crate::shadows::{LightGlsl, ShadowTest};
 
 /// Light `i`'s part of the generated snippets, its light-space position in map slot `p`:
 /// the book's `calcShadow` (shaders/lib/shadow_2d.glsl), or the function of its filter
-/// (hardware comparisons, the playground's soft filters, PCSS).
-pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
+/// (hardware comparisons, the playground's soft filters, PCSS); a depth map's test only.
+pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     let map = super::SAMPLERS[i];
-    let test_depth = test.map_depth;
-    let (position, bias) = match test.map_depth {
+    let own = test.depth()?;
+    let test_depth = own.map_depth;
+    let (position, bias) = match own.map_depth {
         MapDepth::Projected => (format!("mlightviewVertexPos[{p}]"), test.bias_glsl(i)),
         MapDepth::Linear => (
             format!("linearDepthPosition(mlightviewVertexPos[{p}])"),
@@ -27,14 +28,14 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         ),
     };
     let head = format!("{map}, {position}, {bias}, {}", test.texel_glsl());
-    let (r, far) = (test.pcf_radius, test.beyond_far_lit);
-    let kernel = test.kernel.glsl();
+    let (r, far) = (own.pcf_radius, test.beyond_far_lit);
+    let kernel = own.kernel.glsl();
     let args = match kernel.args {
         KernelArgs::Plain => String::new(),
         KernelArgs::Radius => format!(", {r}"),
         KernelArgs::Pcss => format!(
             ", lightPenumbra[{i}], {}, {}, {}",
-            test.pcss_blocker_taps, test.pcss_filter_taps, test.pcss_perspective
+            own.pcss_blocker_taps, own.pcss_filter_taps, test.pcss_perspective
         ),
         KernelArgs::Pixel => ", gl_FragCoord.xy".into(),
     };
@@ -47,7 +48,7 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
     // has neither (lib/shadow_border.glsl, lib/shadow_depth.glsl).
     let test = format!("SHADOW_BORDER({i}, mlightviewVertexPos[{p}], {far}, {test})");
     let test = format!("SHADOW_DEPTH_OF({i}, {test})");
-    LightGlsl {
+    Some(LightGlsl {
         snippets: ["lib/shadow_border.glsl", "lib/shadow_depth.glsl"]
             .into_iter()
             .chain(linear)
@@ -56,5 +57,5 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> LightGlsl {
         sampler_type: kernel.sampler_type,
         test,
         defines: Vec::new(),
-    }
+    })
 }

@@ -7,8 +7,16 @@ use crate::settings::{Filter, ShadowSettings, Volumetric};
 use crate::shadows::map2d::MapDepth;
 use crate::shadows::units::{texture_unit, MATERIAL_UNIT};
 use crate::shadows::volumetric::VolumetricKey;
-use crate::shadows::{ShadowKind, ShadowTest};
+use crate::shadows::{OwnTest, ShadowKind, ShadowTest};
 use crate::Scene;
+
+/// `t` with its depth map storing depth as `map_depth`.
+fn with_depth(mut t: ShadowTest, map_depth: MapDepth) -> ShadowTest {
+    if let OwnTest::Depth(d) = &mut t.own {
+        d.map_depth = map_depth;
+    }
+    t
+}
 
 #[test]
 fn only_the_first_casting_directional_light_gets_cascades() {
@@ -184,9 +192,8 @@ fn every_library_snippet_is_reachable_from_the_scene_shader() {
     let resolved = crate::shaders::scene_frag(&generated).unwrap();
     let mut linear = slot(ShadowKind::Map, with(Filter::Pcf3x3));
     linear.test = linear.test.map(|t| ShadowTest {
-        map_depth: MapDepth::Linear,
         volumetric: beside(crate::settings::Volumetric::Osm, 16),
-        ..t
+        ..with_depth(t, MapDepth::Linear)
     });
     let mut pcss = slot(ShadowKind::Map, with(Filter::Pcss));
     pcss.test = pcss.test.map(|t| ShadowTest {
@@ -275,10 +282,10 @@ fn each_filter_calls_its_own_function() {
             shadow: Map,
             positional: true,
             cone: true,
-            test: Some(ShadowTest {
+            test: Some(with_depth(
+                ShadowTest::of(&ShadowSettings::default()),
                 map_depth,
-                ..ShadowTest::of(&ShadowSettings::default())
-            }),
+            )),
         };
         light_part(1, 0, &slot, MaskMode::Off)
     };
@@ -311,7 +318,7 @@ fn each_soft_moment_filter_calls_its_function_with_its_constants() {
         ..ShadowSettings::default()
     };
     let test = ShadowTest::of(&vssm);
-    assert!(test.moments.is_some(), "vssm is a moment filter");
+    assert!(test.moments().is_some(), "vssm is a moment filter");
     let g = crate::shadows::summed::glsl(1, 0, &test).unwrap();
     assert_eq!(g.sampler_type, "usampler2D");
     assert!(
