@@ -205,11 +205,11 @@ impl Renderer {
     pub fn render_scene(&mut self, scene: &Scene, target: Target) -> Result<()> {
         self.after_depth_map(scene, "render_scene")?;
         self.prepare_frame(scene, target)?;
-        let plan = self.mask_plan(scene, target.size())?;
+        let plan = self.plan_scene(scene, target)?;
         self.hook(Pass::Scene, true);
         // The samplers leave the renderer for the pass, so the inputs can borrow the rest.
         let mut samplers = std::mem::take(&mut self.samplers);
-        let result = self.draw_scene(scene, target, plan, &mut samplers);
+        let result = self.draw_scene(scene, target, &plan, &mut samplers);
         self.samplers = samplers;
         self.hook(Pass::Scene, false);
         result?;

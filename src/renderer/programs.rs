@@ -87,31 +87,78 @@ impl Renderer {
         })
     }
 
-    /// The scene pass into `target`, after writing the shadow mask if `plan` says so.
+    /// What this frame's scene pass draws, decided before it draws: the mask's plan, the
+    /// program that takes the tests or reads them (compiled, with those drawn beside it),
+    /// and whether a tested pass warms up the first mask written.
+    pub(super) fn plan_scene(&mut self, scene: &Scene, target: Target) -> Result<ScenePlan> {
+        let mask = self.mask_plan(scene, target.size())?;
+        let mode = match mask {
+            Plan::Test => MaskMode::Off,
+            Plan::Write(_) | Plan::Read => MaskMode::Read,
+        };
+        let outputs = target.outputs();
+        // The first mask written (in the first frame, unless that frame could not be
+        // cached): draw the frame with every light tested too, as the next frame will if
+        // anything moves. llvmpipe compiles a program's shaders for the pipeline's state
+        // at its first draw; this puts that here, not in the next frame.
+        let warm_up = matches!(mask, Plan::Write(_)) && self.mask.uses.written == 0;
+        let tests = match warm_up {
+            true => Some(self.use_program(scene, outputs, MaskMode::Off)?),
+            false => None,
+        };
+        let program = self.use_program(scene, outputs, mode)?;
+        self.keep_tests_program(scene, outputs, mode)?;
+        Ok(ScenePlan {
+            mask,
+            warm_up: tests,
+            program,
+        })
+    }
+
+    /// The scene pass into `target` as `plan` says: the warm-up, the mask written, then the
+    /// pass itself.
     pub(super) fn draw_scene(
         &mut self,
         scene: &Scene,
         target: Target,
-        plan: Plan,
+        plan: &ScenePlan,
         samplers: &mut Samplers,
     ) -> Result<()> {
-        if matches!(plan, Plan::Write(_)) && self.mask.uses.written == 0 {
-            // The first mask written (in the first frame, unless that frame could not be
-            // cached): draw the frame with every light tested too, as the next frame will if
-            // anything moves. llvmpipe compiles a program's shaders for the pipeline's state
-            // at its first draw; this puts that here, not in the next frame.
-            self.draw_scene(scene, target, Plan::Test, samplers)?;
+        if let Some(tests) = plan.warm_up {
+            self.draw_pass(scene, target, tests, samplers)?;
         }
-        let mode = self.apply_mask_plan(scene, target.size(), plan, samplers)?;
-        let key = self.use_program(scene, target.outputs(), mode)?;
-        self.keep_tests_program(scene, target.outputs(), mode)?;
+        if let Plan::Write(key) = plan.mask {
+            self.write_mask(scene, target.size(), key, samplers)?;
+        }
+        self.draw_pass(scene, target, plan.program, samplers)
+    }
+
+    /// One scene pass with `program` into `target`: the lights' volumes pass by pass, or the
+    /// book's one pass.
+    fn draw_pass(
+        &mut self,
+        scene: &Scene,
+        target: Target,
+        program: ProgramKey,
+        samplers: &mut Samplers,
+    ) -> Result<()> {
         target.bind_and_clear(&self.gl, scene.clear_colour.to_array());
         if self.uses_volumes() {
-            return self.draw_volumes(scene, target.size(), key, samplers);
+            return self.draw_volumes(scene, target.size(), program, samplers);
         }
-        let inputs = self.scene_inputs(key)?;
+        let inputs = self.scene_inputs(program)?;
         scene_pass::draw(&inputs, samplers, &self.gl, scene, target.size())?;
         self.volume_counted.clear();
         Ok(())
     }
+}
+
+/// What a frame's scene pass draws ([`Renderer::plan_scene`]).
+pub(super) struct ScenePlan {
+    /// Whether the mask is written first, read, or not used.
+    mask: Plan,
+    /// The program of a tested pass before the mask's first write, if this frame has one.
+    warm_up: Option<ProgramKey>,
+    /// The pass' program.
+    program: ProgramKey,
 }

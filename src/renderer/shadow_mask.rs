@@ -243,28 +243,10 @@ impl Renderer {
         Ok(())
     }
 
-    /// Writes the mask first if `plan` says so; returns how the scene program then takes
-    /// the shadow tests (its own, or read from the mask).
-    pub(super) fn apply_mask_plan(
-        &mut self,
-        scene: &Scene,
-        size: (u32, u32),
-        plan: Plan,
-        samplers: &mut Samplers,
-    ) -> Result<MaskMode> {
-        if let Plan::Write(key) = plan {
-            self.write_mask(scene, size, key, samplers)?;
-        }
-        Ok(match plan {
-            Plan::Test => MaskMode::Off,
-            Plan::Write(_) | Plan::Read => MaskMode::Read,
-        })
-    }
-
     /// Draws every pixel's shadow tests into the mask (the scene pass with
     /// `SHADOW_MASK_WRITE`, into the mask's own float target of the frame's size), as the
     /// tests of the frame `key`.
-    fn write_mask(
+    pub(super) fn write_mask(
         &mut self,
         scene: &Scene,
         (width, height): (u32, u32),
