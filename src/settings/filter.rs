@@ -247,20 +247,31 @@ impl MomentKnob {
         }
     }
 
-    /// The filters whose test reads the group, and those filters in words
-    /// ("vsm, evsm2 or evsm4").
-    pub fn readers(self) -> (Vec<Filter>, String) {
-        let filters: Vec<Filter> = (<Filter as clap::ValueEnum>::value_variants().iter())
-            .copied()
-            .filter(|f| f.facts().moments.is_some_and(|m| m.reads(self)))
-            .collect();
-        let names: Vec<&str> = filters.iter().map(|f| f.name()).collect();
-        let words = match names.split_last() {
-            Some((last, [])) => last.to_string(),
-            Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
-            None => String::new(),
-        };
-        (filters, words)
+    /// Whether `filter`'s test reads the group.
+    pub fn read_by(self, filter: Filter) -> bool {
+        filter.facts().moments.is_some_and(|m| m.reads(self))
+    }
+
+    /// The filters whose test reads the group, in words ("vsm, evsm2 or evsm4"): worked
+    /// out once, since the idle rules ask for every light of every plan.
+    pub fn readers(self) -> &'static str {
+        static WORDS: std::sync::OnceLock<Vec<String>> = std::sync::OnceLock::new();
+        let words = WORDS.get_or_init(|| {
+            let words = |knob: MomentKnob| {
+                let names: Vec<&str> = (<Filter as clap::ValueEnum>::value_variants().iter())
+                    .filter(|f| knob.read_by(**f))
+                    .map(|f| f.name())
+                    .collect();
+                match names.split_last() {
+                    Some((last, [])) => last.to_string(),
+                    Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+                    None => String::new(),
+                }
+            };
+            MomentKnob::ALL.map(words).to_vec()
+        });
+        let index = MomentKnob::ALL.iter().position(|k| *k == self);
+        index.map_or("", |i| &words[i])
     }
 }
 

@@ -141,9 +141,9 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         }
     }
     for knob in MomentKnob::ALL {
-        let (filters, which) = knob.readers();
-        let reads = kind == ShadowKind::Moments && filter.is_some_and(|f| filters.contains(&f));
+        let reads = kind == ShadowKind::Moments && filter.is_some_and(|f| knob.read_by(f));
         if !reads {
+            let which = knob.readers();
             for name in knob.settings() {
                 push(name, format!("it is for {which}, on a 2D map"));
             }
@@ -446,8 +446,8 @@ fn of_scene_maps(plans: &[LightPlan], idle: &mut Vec<Idle>) {
         .map(|p| p.settings.filter)
         .collect();
     for knob in MomentKnob::ALL {
-        let (filters, which) = knob.readers();
-        if !moment_filters.iter().any(|f| filters.contains(f)) {
+        if !moment_filters.iter().any(|f| knob.read_by(*f)) {
+            let which = knob.readers();
             for name in knob.settings() {
                 idle.push(Idle::new(
                     name,
