@@ -569,3 +569,33 @@ impl Filter {
         self.facts().kernel == Kernel::HardwareGrid
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::ValueEnum;
+
+    #[test]
+    fn every_knob_a_moment_row_reads_is_listed_and_named_once() {
+        for f in Filter::value_variants() {
+            let Some(mode) = f.facts().moments else {
+                continue;
+            };
+            for knob in mode.facts().knobs {
+                assert!(MomentKnob::ALL.contains(knob), "{}: {knob:?}", f.name());
+                assert!(!knob.readers().is_empty(), "{knob:?}");
+            }
+        }
+        let mut names: Vec<&str> = MomentKnob::ALL
+            .iter()
+            .flat_map(|k| k.settings())
+            .copied()
+            .collect();
+        let all = names.len();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), all, "a setting in two groups");
+        assert_eq!(MomentKnob::Variance.readers(), "vsm, evsm2, evsm4 or vssm");
+        assert_eq!(MomentKnob::EsmExponent.readers(), "esm");
+    }
+}
