@@ -6,8 +6,9 @@
 
 use crate::common;
 
+use crate::moments::options;
 use glam::DVec3;
-use shadowmap::compare::{compute_reference, render_visibility, CompareOptions, Reference};
+use shadowmap::compare::{compute_reference, render_visibility, Reference};
 use shadowmap::settings::{BiasMode, Blur, Filter, ShadowSettings, ESM_MAX_EXPONENT};
 use shadowmap::shadows::light_camera;
 use shadowmap::Scene;
@@ -28,17 +29,6 @@ fn contact() -> Scene {
     let scene = Scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
     std::fs::remove_dir_all(&dir).unwrap();
     scene
-}
-
-fn options(scene: &Scene) -> CompareOptions {
-    CompareOptions {
-        width: scene.size[0],
-        height: scene.size[1],
-        supersample: 1,
-        band: 1,
-        light: 0,
-        rays: shadowmap::compare::AREA_RAYS,
-    }
 }
 
 /// ESM with exponent `c`, unblurred and unbiased, so the closed form holds texel for texel.

@@ -18,7 +18,7 @@ fn overlap() -> Scene {
     Scene::load("overlap").unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn options(scene: &Scene) -> CompareOptions {
+pub(crate) fn options(scene: &Scene) -> CompareOptions {
     CompareOptions {
         width: scene.size[0],
         height: scene.size[1],
