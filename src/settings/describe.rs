@@ -111,11 +111,7 @@ impl ShadowSettings {
             "pcss_blocker_taps" | "pcss_filter_taps" if self.filter != Filter::Pcss => return None,
             "depth_lookup" if self.filter.hardware() || self.filter.moments() => return None,
             // The moment maps' knobs do nothing where the filter's test does not read them.
-            k if moment_knob(k)
-                .is_some_and(|g| !self.filter.facts().moments.is_some_and(|m| m.reads(g))) =>
-            {
-                return None
-            }
+            k if moment_knob(k).is_some_and(|g| !g.read_by(self.filter)) => return None,
             "osm_slices" if self.volumetric != Volumetric::Osm => return None,
             "fom_coefficients" if self.volumetric != Volumetric::Fom => return None,
             "avsm_nodes" | "peel_layers" if self.volumetric != Volumetric::Avsm => return None,

@@ -93,7 +93,8 @@ fn knob_args(knob: MomentKnob, t: &MomentTest) -> Option<String> {
             "vec2({}, {}), {}",
             f(t.evsm_bits[0]),
             f(t.evsm_bits[1]),
-            t.evsm_negative
+            // The 4-component map stores the negative warp too.
+            t.mode == MomentMode::Evsm4
         ),
         MomentKnob::Msm => {
             let [x, y, z, w] = t.msm_toward_bits.map(f);
@@ -111,8 +112,6 @@ pub struct MomentTest {
     pub min_variance_bits: u32,
     pub bleed_reduction_bits: u32,
     pub evsm_bits: [u32; 2],
-    /// EVSM's 4-component map: the negative warp too.
-    pub evsm_negative: bool,
     pub msm_bias_bits: u32,
     pub msm_toward_bits: [u32; 4],
     pub esm_bits: u32,
@@ -130,7 +129,6 @@ impl MomentTest {
             min_variance_bits: s.min_variance.to_bits(),
             bleed_reduction_bits: s.bleed_reduction.to_bits(),
             evsm_bits: evsm_exponents(s).map(f32::to_bits),
-            evsm_negative: s.filter.moment_components() == 4,
             msm_bias_bits: s.msm_bias.to_bits(),
             msm_toward_bits: s.msm_toward.vector().map(f32::to_bits),
             esm_bits: esm_exponent(s).to_bits(),
