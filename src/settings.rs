@@ -19,8 +19,8 @@ pub use choices::{
     Volumetric, Wrap,
 };
 pub use filter::{
-    Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentDepth, MomentFacts, MomentKnob,
-    MomentMode, Taps,
+    moments_without_volumetric, Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentDepth,
+    MomentFacts, MomentKnob, MomentMode, Taps,
 };
 pub use map_size::{parse_map_size, MapSize};
 

@@ -5,7 +5,8 @@
 //! renderer asks for it, and where the driver refuses it the refusal says why.
 
 use shadowmap::engine::Gl;
-use shadowmap::settings::{Filter, MapSize};
+use shadowmap::settings::MapSize;
+use shadowmap::shadows::kind::{Storage, DEPTH_TEXEL_BYTES};
 use shadowmap::shadows::plan::{LightPlan, ShadowPlan};
 use shadowmap::shadows::ShadowKind;
 use shadowmap::{Error, Result, ShadowSettings};
@@ -14,61 +15,12 @@ use shadowmap::{Error, Result, ShadowSettings};
 /// trying would cost every run a second allocation.
 const TRIED_ABOVE_BYTES: u64 = 256 << 20;
 
-/// A depth texel's bytes on the drivers this runs on, whatever the format asks (see
-/// `Technique::bytes`).
-const DEPTH_TEXEL_BYTES: u64 = 4;
-
 /// The smallest side a smaller map is suggested at.
 const SMALLEST_SUGGESTED: u32 = 256;
 
-/// One light's shadow storage, sized before it is made.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Storage {
-    /// What it is, naming the settings that size it ("shadow.cascades = 4 layers of
-    /// 16384 x 16384").
-    pub what: String,
-    /// Its bytes: its depth texels, or its moment maps and their depth buffer.
-    pub bytes: u64,
-}
-
 /// The storage a light of `kind` gets under `s`; `None` for a light with no map.
 pub fn storage(kind: ShadowKind, s: &ShadowSettings) -> Option<Storage> {
-    let size = s.map_size;
-    let texels = size.texels();
-    let sides = format!("{} x {}", size.width, size.height);
-    let layers = |n: u32, setting: &str| Storage {
-        what: format!("shadow.{setting} = {n} layers of {sides}"),
-        bytes: u64::from(n) * texels * DEPTH_TEXEL_BYTES,
-    };
-    match kind {
-        ShadowKind::None | ShadowKind::Volume => None,
-        ShadowKind::Map => Some(Storage {
-            what: format!("one {sides} depth texture"),
-            bytes: texels * DEPTH_TEXEL_BYTES,
-        }),
-        ShadowKind::Cube => Some(Storage {
-            what: format!("a cube of six {sides} faces"),
-            bytes: 6 * texels * DEPTH_TEXEL_BYTES,
-        }),
-        ShadowKind::Cascades => Some(layers(s.cascades, "cascades")),
-        ShadowKind::Groups => Some(layers(s.caster_groups, "caster_groups")),
-        ShadowKind::Moments => {
-            // Two float targets (the map and its blur's), a depth buffer, and for the soft
-            // filters a summed-area table of two 32-bit sums a moment.
-            let floats = u64::from(s.filter.moment_components()) * 4;
-            let table = match Filter::SOFT_MOMENTS.contains(&s.filter) {
-                true => texels * 2 * floats,
-                false => 0,
-            };
-            Some(Storage {
-                what: format!(
-                    "shadow.filter = {}'s moment maps of {sides}",
-                    s.filter.name()
-                ),
-                bytes: texels * (2 * floats + DEPTH_TEXEL_BYTES) + table,
-            })
-        }
-    }
+    (kind.facts().storage)(s)
 }
 
 /// Bytes as the message says them: "4 GiB", "1.5 GiB", "512 MiB".
@@ -157,6 +109,7 @@ fn smaller_that_fits(gl: &Gl, light: &LightPlan) -> Option<(MapSize, u64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use shadowmap::settings::Filter;
 
     #[test]
     fn storage_counts_every_layer_and_face() {

@@ -51,7 +51,7 @@ impl Renderer {
             let (kind, settings) = (own.kind, &own.settings);
             let fits = match shadow {
                 Some(t) => t.kind() == kind && t.fits(settings),
-                None => matches!(kind, ShadowKind::None | ShadowKind::Volume),
+                None => !kind.has_map(),
             };
             if !fits {
                 *shadow = kind.create(&self.gl, settings)?;

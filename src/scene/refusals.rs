@@ -151,34 +151,33 @@ fn book_angles_problem(
 
 /// Why a light cannot cast its translucent items by `settings.volumetric`, if it cannot:
 /// the techniques draw into one 2D depth map, with the box given by hand.
-pub fn volumetric_refusal(
-    settings: &ShadowSettings,
-    cube: bool,
-    layered: bool,
-) -> Option<&'static str> {
+pub fn volumetric_refusal(settings: &ShadowSettings, cube: bool, layered: bool) -> Option<String> {
     if settings.volumetric == Volumetric::Off {
         return None;
     }
     if settings.technique == ShadowTechnique::Volumes {
-        return Some("shadow volumes cast opaque silhouettes only; expected technique = \"maps\"");
+        return Some(
+            "shadow volumes cast opaque silhouettes only; expected technique = \"maps\""
+                .to_string(),
+        );
     }
     if cube {
-        return Some("a point light's cube map takes volumetric = \"off\" only");
+        return Some("a point light's cube map takes volumetric = \"off\" only".to_string());
     }
     if layered {
         return Some(
             "cascades and caster groups take volumetric = \"off\" only; use cascades = 1 and \
-             caster_groups = 1",
+             caster_groups = 1"
+                .to_string(),
         );
     }
     if settings.filter.moments() {
-        return Some(
-            "the moment maps (vsm, evsm2, evsm4, msm, esm) take volumetric = \"off\" only",
-        );
+        return Some(crate::settings::moments_without_volumetric(settings.filter));
     }
     if settings.fit != Fit::Manual {
         return Some(
-            "a fitted box is fitted to the opaque casters only; expected fit = \"manual\"",
+            "a fitted box is fitted to the opaque casters only; expected fit = \"manual\""
+                .to_string(),
         );
     }
     None
@@ -188,11 +187,12 @@ pub fn volumetric_refusal(
 /// groups) cannot use `filter`, if it cannot: the soft filters read a 2D texel grid, which
 /// a cube map has not; PCSS needs one light camera per map, which layers have not (each
 /// has its own box); the moment maps need one 2D map.
-pub fn filter_refusal(filter: Filter, cube: bool, layered: bool) -> Option<&'static str> {
+pub fn filter_refusal(filter: Filter, cube: bool, layered: bool) -> Option<String> {
     let facts = filter.facts();
-    match (cube, layered) {
+    let why = match (cube, layered) {
         (true, _) => facts.on_cube,
         (false, true) => facts.on_layers,
         (false, false) => None,
-    }
+    };
+    why.map(|why| why())
 }

@@ -356,10 +356,11 @@ pub struct FilterFacts {
     pub moments: Option<MomentMode>,
     /// What the filter does to each shaded pixel's test, for the HUD.
     pub words: &'static str,
-    /// Why a point light's cube map cannot take it, if it cannot.
-    pub on_cube: Option<&'static str>,
+    /// Why a point light's cube map cannot take it, if it cannot (the message names the
+    /// filters of its family from their lists, so a new member is named too).
+    pub on_cube: Option<fn() -> String>,
     /// Why cascades and caster groups cannot take it, if they cannot.
-    pub on_layers: Option<&'static str>,
+    pub on_layers: Option<fn() -> String>,
 }
 
 /// A depth map's filter, on every kind of map.
@@ -381,7 +382,7 @@ const fn soft(kernel: Kernel, taps: Taps, words: &'static str) -> FilterFacts {
     FilterFacts {
         taps,
         kernel,
-        on_cube: Some(SOFT_ON_CUBE),
+        on_cube: Some(soft_on_cube),
         ..grid(0, kernel, words)
     }
 }
@@ -392,8 +393,8 @@ const fn moments(mode: MomentMode, components: u32, words: &'static str) -> Filt
         taps: Taps::Fixed(1),
         components,
         moments: Some(mode),
-        on_cube: Some(MOMENTS_ON_CUBE),
-        on_layers: Some(MOMENTS_ON_LAYERS),
+        on_cube: Some(moments_on_cube),
+        on_layers: Some(moments_on_layers),
         ..grid(0, Kernel::Grid, words)
     }
 }
@@ -403,32 +404,90 @@ const fn moments(mode: MomentMode, components: u32, words: &'static str) -> Filt
 const fn soft_moments(mode: MomentMode, components: u32, words: &'static str) -> FilterFacts {
     FilterFacts {
         taps: Taps::Fixed(50),
-        on_cube: Some(SOFT_MOMENTS_ON_CUBE),
-        on_layers: Some(SOFT_MOMENTS_ON_LAYERS),
+        on_cube: Some(soft_moments_on_cube),
+        on_layers: Some(soft_moments_on_layers),
         ..moments(mode, components, words)
     }
 }
 
-const SOFT_ON_CUBE: &str = "a point light's cube map takes single, pcf3x3, pcf5x5, hw2x2 or \
-     hw3x3 (the soft filters read a 2D map's texel grid)";
-const PCSS_ON_LAYERS: &str = "cascades and caster groups do not take pcss (its \
-     penumbra is measured in one light camera's units, and each layer has its own box)";
-const POISSON_ON_LAYERS: &str = "cascades and caster groups do not take the Poisson disk \
-     (poisson, poisson-rotated: it is a 2D map's filter); use pcf3x3 or pcf4x4-weighted";
-const MOMENTS_ON_CUBE: &str =
-    "the moment maps (vsm, evsm2, evsm4, msm, esm) need one 2D map and a \
-     point light's shadow is a cube map; give the light a depth filter of its own (shadow = \
-     { filter = \"pcf3x3\" }) or use one for the scene";
-const MOMENTS_ON_LAYERS: &str =
-    "the moment maps (vsm, evsm2, evsm4, msm, esm) need one 2D map and \
-     cascades and caster groups have a layer each; use cascades = 1 and caster_groups = 1, \
-     or a depth filter (pcf3x3) for the light";
-const SOFT_MOMENTS_ON_CUBE: &str = "the soft moment filters (vssm, msm-soft) read summed-area \
-     tables of one 2D map and a point light's shadow is a cube map; give the light a depth \
-     filter of its own (shadow = { filter = \"pcf3x3\" }) or use one for the scene";
-const SOFT_MOMENTS_ON_LAYERS: &str = "the soft moment filters (vssm, msm-soft) measure the \
-     penumbra in one light camera's units and cascades and caster groups have a box each; use \
-     cascades = 1 and caster_groups = 1, or a depth filter (pcf3x3) for the light";
+/// Filters' names as a refusal lists them: "vsm, evsm2, evsm4" (`or`: "..., hw2x2 or hw3x3").
+fn names(filters: &[Filter], or: bool) -> String {
+    let names: Vec<&str> = filters.iter().map(|f| f.name()).collect();
+    match (or, names.split_last()) {
+        (true, Some((last, rest))) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(", "),
+    }
+}
+
+fn soft_on_cube() -> String {
+    format!(
+        "a point light's cube map takes {} (the soft filters read a 2D map's texel grid)",
+        names(&Filter::ALL, true)
+    )
+}
+
+fn pcss_on_layers() -> String {
+    "cascades and caster groups do not take pcss (its penumbra is measured in one light \
+     camera's units, and each layer has its own box)"
+        .to_string()
+}
+
+fn poisson_on_layers() -> String {
+    format!(
+        "cascades and caster groups do not take the Poisson disk ({}: it is a 2D map's \
+         filter); use pcf3x3 or pcf4x4-weighted",
+        names(&[Filter::Poisson, Filter::PoissonRotated], false)
+    )
+}
+
+fn moments_on_cube() -> String {
+    format!(
+        "the moment maps ({}) need one 2D map and a point light's shadow is a cube map; give \
+         the light a depth filter of its own (shadow = {{ filter = \"pcf3x3\" }}) or use one \
+         for the scene",
+        names(&Filter::MOMENTS, false)
+    )
+}
+
+fn moments_on_layers() -> String {
+    format!(
+        "the moment maps ({}) need one 2D map and cascades and caster groups have a layer \
+         each; use cascades = 1 and caster_groups = 1, or a depth filter (pcf3x3) for the light",
+        names(&Filter::MOMENTS, false)
+    )
+}
+
+fn soft_moments_on_cube() -> String {
+    format!(
+        "the soft moment filters ({}) read summed-area tables of one 2D map and a point \
+         light's shadow is a cube map; give the light a depth filter of its own (shadow = {{ \
+         filter = \"pcf3x3\" }}) or use one for the scene",
+        names(&Filter::SOFT_MOMENTS, false)
+    )
+}
+
+fn soft_moments_on_layers() -> String {
+    format!(
+        "the soft moment filters ({}) measure the penumbra in one light camera's units and \
+         cascades and caster groups have a box each; use cascades = 1 and caster_groups = 1, \
+         or a depth filter (pcf3x3) for the light",
+        names(&Filter::SOFT_MOMENTS, false)
+    )
+}
+
+/// Why a light whose maps are moments cannot keep a translucent map beside them.
+pub fn moments_without_volumetric(filter: Filter) -> String {
+    match filter.facts().moments.is_some_and(|m| m.reads_table()) {
+        true => format!(
+            "the soft moment filters ({}) take volumetric = \"off\" only",
+            names(&Filter::SOFT_MOMENTS, false)
+        ),
+        false => format!(
+            "the moment maps ({}) take volumetric = \"off\" only",
+            names(&Filter::MOMENTS, false)
+        ),
+    }
+}
 
 impl Filter {
     /// The chapters' filters (hard tests; the bench's full grid); the soft ones are
@@ -483,7 +542,7 @@ impl Filter {
             ),
             Filter::SoftPcf => soft(Kernel::SoftPcf, Taps::Fixed(16), "soft PCF, 16 depth tests"),
             Filter::Pcss => FilterFacts {
-                on_layers: Some(PCSS_ON_LAYERS),
+                on_layers: Some(pcss_on_layers),
                 ..soft(
                     Kernel::Pcss,
                     Taps::Pcss,
@@ -491,7 +550,7 @@ impl Filter {
                 )
             },
             Filter::Poisson => FilterFacts {
-                on_layers: Some(POISSON_ON_LAYERS),
+                on_layers: Some(poisson_on_layers),
                 ..soft(
                     Kernel::Poisson,
                     Taps::Fixed(16),
@@ -499,7 +558,7 @@ impl Filter {
                 )
             },
             Filter::PoissonRotated => FilterFacts {
-                on_layers: Some(POISSON_ON_LAYERS),
+                on_layers: Some(poisson_on_layers),
                 ..soft(
                     Kernel::PoissonRotated,
                     Taps::Fixed(16),

@@ -17,6 +17,7 @@ use glam::{DVec3, Vec3};
 
 use super::camera::fitted::{aabb, corners, FittedBox};
 use super::casters::casters;
+use super::kind::{self, Family, IdleRules, KindFacts, LayerLayout, TechniqueFacts};
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::engine::ShaderProgram;
@@ -310,6 +311,45 @@ pub const SNIPPET: layers::Snippet = layers::Snippet {
     function: "calcShadowCascades",
     takes_fragment: true,
     samplers: SAMPLERS,
+};
+
+/// The cascades' row of the kind table.
+pub const KIND: KindFacts = KindFacts {
+    technique: Some(TechniqueFacts {
+        create: |gl, s| Ok(Box::new(layers::Layered::<Cascades>::new(gl, s)?)),
+        glsl,
+        samplers: &SAMPLERS,
+        map_slot: false,
+    }),
+    words: |s| {
+        let (size, depth) = (kind::sides(s.map_size), kind::depth_words(s.depth_format));
+        format!("Shadow: {} cascades of {size}, {depth}", s.cascades)
+    },
+    storage: |s| layers::storage(s.cascades, "cascades", s),
+    // Fitted to the view's slices each frame.
+    follows_camera: |_, _| true,
+    layers: Some(|s| LayerLayout {
+        count: s.cascades,
+        blend_bits: s.cascade_blend.to_bits(),
+        show: s.show_cascades,
+    }),
+    // A layered light's test reads per pixel.
+    per_vertex: |_| false,
+    family: |_| Family::Cascades,
+    idle: IdleRules {
+        no_map: None,
+        depth_lookup: |_| Some(kind::LAYERS_READ_NEAREST),
+        light: |v, idle| {
+            if v.settings.cascades > 1 && v.kind != ShadowKind::Cascades {
+                idle.push("cascades", layers::not_for_light(v, "cascades"));
+            }
+        },
+        scene: |v, idle| {
+            if v.settings.cascades > 1 && !v.has(ShadowKind::Cascades) {
+                idle.push("cascades", layers::not_in_scene(v, "cascades"));
+            }
+        },
+    },
 };
 
 /// Cascades as a [`Layout`]: a layer per slice of the view, fitted each depth pass.

@@ -8,6 +8,7 @@ use glam::{DMat4, DVec3, Mat4, Vec3, Vec4};
 use super::camera::culling::{beyond_a_plane, may_land};
 use super::camera::point_camera;
 use super::casters::{casters, depth_state, draw_casters, draw_casters_with};
+use super::kind::{self, Family, IdleRules, KindFacts, Storage, TechniqueFacts};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
     Technique,
@@ -197,3 +198,58 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
         defines: Vec::new(),
     })
 }
+
+/// The cube map's row of the kind table.
+pub const KIND: KindFacts = KindFacts {
+    technique: Some(TechniqueFacts {
+        create: |gl, s| Ok(Box::new(Cube::new(gl, s)?)),
+        glsl,
+        samplers: &SAMPLERS,
+        map_slot: true,
+    }),
+    words: |s| {
+        let pass = match s.point_pass {
+            PointPass::Layered => "drawn in one pass",
+            PointPass::SixPasses => "drawn in six passes",
+        };
+        let (size, depth) = (kind::sides(s.map_size), kind::depth_words(s.depth_format));
+        format!("Shadow: a cube map, 6 faces of {size}, {depth}, {pass}")
+    },
+    storage: |s| {
+        Some(Storage {
+            what: format!("a cube of six {} faces", kind::sides(s.map_size)),
+            bytes: 6 * s.map_size.texels() * kind::DEPTH_TEXEL_BYTES,
+        })
+    },
+    follows_camera: |_, _| false,
+    // LearnOpenGL's 20 taps read per pixel.
+    layers: None,
+    per_vertex: |_| false,
+    family: |s| match s.point_pass {
+        PointPass::Layered => Family::PointLayered,
+        PointPass::SixPasses => Family::PointSixPasses,
+    },
+    idle: IdleRules {
+        no_map: None,
+        depth_lookup: |_| {
+            Some("it is for a 2D depth map; a point light's cube map is read NEAREST")
+        },
+        light: |v, idle| {
+            if v.kind != ShadowKind::Cube {
+                idle.push(
+                    "point_pass",
+                    "only a point light's cube map has faces to draw",
+                );
+            }
+        },
+        scene: |v, idle| {
+            if !v.has(ShadowKind::Cube) {
+                idle.push(
+                    "point_pass",
+                    "no point light casts shadows in this scene; it says how a cube map's faces \
+                     are drawn",
+                );
+            }
+        },
+    },
+};

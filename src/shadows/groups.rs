@@ -14,6 +14,7 @@ use glam::DVec3;
 
 use super::camera::fitted::{FittedBox, LightFit};
 use super::casters::casters;
+use super::kind::{self, Family, IdleRules, KindFacts, LayerLayout, TechniqueFacts};
 use super::layers::{self, Layout};
 use super::{DepthPass, ShadowKind};
 use crate::scene::{DirectionalLight, Scene};
@@ -35,6 +36,50 @@ pub const SNIPPET: layers::Snippet = layers::Snippet {
     function: "calcShadowGroups",
     takes_fragment: false,
     samplers: SAMPLERS,
+};
+
+/// The caster groups' row of the kind table.
+pub const KIND: KindFacts = KindFacts {
+    technique: Some(TechniqueFacts {
+        create: |gl, s| Ok(Box::new(layers::Layered::<Groups>::new(gl, s)?)),
+        glsl,
+        samplers: &SAMPLERS,
+        map_slot: false,
+    }),
+    words: |s| {
+        let (size, depth) = (kind::sides(s.map_size), kind::depth_words(s.depth_format));
+        format!(
+            "Shadow: {} caster groups, a {size} map each, {depth}",
+            s.caster_groups
+        )
+    },
+    storage: |s| layers::storage(s.caster_groups, "caster_groups", s),
+    // Each group's box is cut to the receivers in view.
+    follows_camera: |_, _| true,
+    // The cascades' layers (shadow_layers.glsl): the groups' count, no blend between them
+    // and nothing to tint.
+    layers: Some(|s| LayerLayout {
+        count: s.caster_groups,
+        blend_bits: 0f32.to_bits(),
+        show: false,
+    }),
+    // A layered light's test reads per pixel.
+    per_vertex: |_| false,
+    family: |_| Family::Groups,
+    idle: IdleRules {
+        no_map: None,
+        depth_lookup: |_| Some(kind::LAYERS_READ_NEAREST),
+        light: |v, idle| {
+            if v.settings.caster_groups > 1 && v.kind != ShadowKind::Groups {
+                idle.push("caster_groups", layers::not_for_light(v, "caster groups"));
+            }
+        },
+        scene: |v, idle| {
+            if v.settings.caster_groups > 1 && !v.has(ShadowKind::Groups) {
+                idle.push("caster_groups", layers::not_in_scene(v, "caster groups"));
+            }
+        },
+    },
 };
 
 /// `fit`'s casters in at most `count` groups (item indices, each group in item order, the

@@ -12,6 +12,7 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::camera::fitted::FittedBox;
 use super::casters::{depth_state, draw_casters};
+use super::kind::{self, LightIdle, SceneIdle, Storage};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
     Technique,
@@ -21,7 +22,7 @@ use crate::engine::{
 };
 use crate::error::{Error, Result};
 use crate::scene::{DirectionalLight, Light, Scene};
-use crate::settings::{ShadowSettings, Wrap};
+use crate::settings::{LightProjection, ShadowSettings, ShadowTechnique, Wrap};
 
 /// How a layered technique lays out its layers: what tells cascades (a layer per slice of
 /// the view) from caster groups (a layer per group of casters). [`Layered`] runs it over
@@ -239,4 +240,51 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> Option<LightGlsl>
         )
         .collect(),
     })
+}
+
+/// What `count` layers of `s.map_size` hold, `setting` naming the count.
+pub fn storage(count: u32, setting: &str, s: &ShadowSettings) -> Option<Storage> {
+    Some(Storage {
+        what: format!(
+            "shadow.{setting} = {count} layers of {}",
+            kind::sides(s.map_size)
+        ),
+        bytes: u64::from(count) * s.map_size.texels() * kind::DEPTH_TEXEL_BYTES,
+    })
+}
+
+/// Why a light (`v`) does not get the layers `what` (cascades, caster groups) it is set to.
+pub fn not_for_light(v: &LightIdle, what: &str) -> String {
+    if !matches!(v.light, Light::Directional(_)) {
+        format!("only a directional light has {what}")
+    } else if v.settings.light_projection == LightProjection::Perspective {
+        format!("{what} need an orthographic light projection")
+    } else {
+        format!("only the first casting directional light gets {what}; this one keeps one map")
+    }
+}
+
+/// Why no light of a scene (`v`) draws the layers `what` the scene's settings ask for.
+pub fn not_in_scene(v: &SceneIdle, what: &str) -> String {
+    let settings = v.settings;
+    if !settings.shadows {
+        "shadows are off (--shadows off)".to_string()
+    } else if settings.technique == ShadowTechnique::Volumes {
+        "the lights have shadow volumes (--technique volumes), which have no map".to_string()
+    } else if v.suns().next().is_none() {
+        format!(
+            "no directional light casts shadows in this scene, and only one gets {what}; each \
+             light keeps one map"
+        )
+    } else if settings.light_projection == LightProjection::Perspective {
+        format!(
+            "{what} need an orthographic light projection (--light-projection perspective is \
+             set); the light keeps one map"
+        )
+    } else if what != "cascades" && settings.cascades > 1 {
+        "cascades are set (--cascades), and a light has cascades or caster groups, not both"
+            .to_string()
+    } else {
+        format!("the directional light's own shadow table gives it no {what}")
+    }
 }

@@ -12,12 +12,14 @@
 
 mod camera;
 mod glsl;
+mod kind;
 mod technique;
 
 pub use super::casters::draw_map_casters;
 pub use crate::settings::Kernel;
 pub use camera::{camera, camera_and_casters};
 pub use glsl::glsl;
+pub use kind::{follows_camera, KIND};
 
 use super::cache::patch::{self, Patch};
 use super::casters::depth_state;

@@ -26,8 +26,9 @@
 //!
 //! A technique owns its storage (and says whether it still fits the settings), makes its
 //! light camera, runs its depth pass, writes its part of the scene program (its `glsl`:
-//! library files, sampler and call) and gives the scene pass its uniforms. [`ShadowKind`]'s
-//! one table (`descriptor`) names each technique's constructor, GLSL and samplers.
+//! library files, sampler and call) and gives the scene pass its uniforms. Each kind's row
+//! ([`kind::KindFacts`], in its technique's file) names its constructor, GLSL and samplers,
+//! its HUD words, its storage, its idle rules and its bench family.
 
 pub mod cache;
 pub mod camera;
@@ -35,6 +36,7 @@ pub mod cascades;
 pub mod casters;
 pub mod cube;
 pub mod groups;
+pub mod kind;
 pub mod layers;
 pub mod map2d;
 pub mod moment_mode;
@@ -55,6 +57,7 @@ use crate::settings::{
     glsl_float, BeyondFar, BiasMode, Filter, LightProjection, MapSize, ShadowSettings,
     TranslucentReceivers,
 };
+pub use kind::KindFacts;
 use moments::MomentTest;
 use volumetric::VolumetricKey;
 
@@ -79,87 +82,65 @@ pub enum ShadowKind {
 }
 
 impl ShadowKind {
+    /// Every kind, in the order the idle rules ask them.
+    pub const ALL: [ShadowKind; 7] = [
+        ShadowKind::None,
+        ShadowKind::Map,
+        ShadowKind::Cube,
+        ShadowKind::Cascades,
+        ShadowKind::Groups,
+        ShadowKind::Moments,
+        ShadowKind::Volume,
+    ];
+
+    /// The kind's row, kept in its technique's file: the one table a new technique joins.
+    pub fn facts(self) -> &'static KindFacts {
+        match self {
+            ShadowKind::None => &kind::NO_SHADOW,
+            ShadowKind::Map => &map2d::KIND,
+            ShadowKind::Cube => &cube::KIND,
+            ShadowKind::Cascades => &cascades::KIND,
+            ShadowKind::Groups => &groups::KIND,
+            ShadowKind::Moments => &moments::KIND,
+            ShadowKind::Volume => &volumes::KIND,
+        }
+    }
+
     /// Whether the kind is a depth array with a box per layer ([`layers`]).
     pub fn layered(self) -> bool {
-        matches!(self, ShadowKind::Cascades | ShadowKind::Groups)
+        self.facts().layers.is_some()
+    }
+
+    /// Whether a light of this kind keeps a map (and a test in the scene shader).
+    pub fn has_map(self) -> bool {
+        self.facts().technique.is_some()
     }
 
     /// Makes the storage of this kind for `settings` (`None` for a light that does not cast,
     /// and for volumes, which need none).
     pub fn create(self, gl: &Gl, settings: &ShadowSettings) -> Result<Option<Box<dyn Technique>>> {
-        self.descriptor()
-            .map(|r| (r.create)(gl, settings))
-            .transpose()
+        let technique = self.facts().technique.as_ref();
+        technique.map(|t| (t.create)(gl, settings)).transpose()
     }
 
     /// Light `i`'s test in the scene program, its light-space position (if any) in map slot
     /// `p`: the technique's library files, sampler type and call.
     pub fn glsl(self, i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
-        self.descriptor().and_then(|r| (r.glsl)(i, p, test))
+        let technique = self.facts().technique.as_ref();
+        technique.and_then(|t| (t.glsl)(i, p, test))
     }
 
     /// The sampler uniform of light `index`'s map, if it has one.
     pub fn sampler(self, index: usize) -> Option<&'static str> {
-        self.descriptor()
-            .and_then(|r| r.samplers.get(index).copied())
+        let technique = self.facts().technique.as_ref();
+        technique.and_then(|t| t.samplers.get(index).copied())
     }
 
     /// Whether the vertex shader gives the light a light-space position (a 2D or cube
     /// map's `mlightviewVertexPos` slot).
     pub fn map_slot(self) -> bool {
-        self.descriptor().is_some_and(|r| r.map_slot)
+        self.facts().technique.as_ref().is_some_and(|t| t.map_slot)
     }
-
-    /// The technique behind each kind: the one table a new technique joins.
-    fn descriptor(self) -> Option<Descriptor> {
-        let descriptor = |create, glsl, samplers, map_slot| Descriptor {
-            create,
-            glsl,
-            samplers,
-            map_slot,
-        };
-        Some(match self {
-            ShadowKind::None | ShadowKind::Volume => return None,
-            ShadowKind::Map => descriptor(
-                |gl, s| Ok(Box::new(map2d::Map2d::new(gl, s)?)),
-                map2d::glsl,
-                &map2d::SAMPLERS,
-                true,
-            ),
-            ShadowKind::Cube => descriptor(
-                |gl, s| Ok(Box::new(cube::Cube::new(gl, s)?)),
-                cube::glsl,
-                &cube::SAMPLERS,
-                true,
-            ),
-            ShadowKind::Cascades => descriptor(
-                |gl, s| Ok(Box::new(layers::Layered::<cascades::Cascades>::new(gl, s)?)),
-                cascades::glsl,
-                &cascades::SAMPLERS,
-                false,
-            ),
-            ShadowKind::Groups => descriptor(
-                |gl, s| Ok(Box::new(layers::Layered::<groups::Groups>::new(gl, s)?)),
-                groups::glsl,
-                &groups::SAMPLERS,
-                false,
-            ),
-            ShadowKind::Moments => descriptor(
-                |gl, s| Ok(Box::new(moments::Moments::new(gl, s)?)),
-                moments::glsl,
-                &map2d::SAMPLERS,
-                true,
-            ),
-        })
-    }
-}
-
-/// A technique's entries in the kind table ([`ShadowKind::descriptor`]).
-struct Descriptor {
-    create: fn(&Gl, &ShadowSettings) -> Result<Box<dyn Technique>>,
-    glsl: fn(usize, usize, &ShadowTest) -> Option<LightGlsl>,
-    samplers: &'static [&'static str; crate::scene::MAX_LIGHTS],
-    map_slot: bool,
 }
 
 /// What a filter costs per frame: lookups per shaded pixel, passes over the map and the
@@ -401,13 +382,7 @@ impl ShadowTest {
     /// taps by the pixel and size them by screen derivatives, which a vertex shader has
     /// not).
     pub fn runs_per_vertex(&self, kind: ShadowKind) -> bool {
-        match kind {
-            ShadowKind::Map => self.depth().is_some_and(|d| !d.kernel.glsl().per_pixel),
-            ShadowKind::Moments => self.moments().is_some_and(|m| !m.mode.reads_table()),
-            // A cube map's and a layered light's tests read per pixel; no map, no test.
-            ShadowKind::Cube | ShadowKind::Cascades | ShadowKind::Groups => false,
-            ShadowKind::None | ShadowKind::Volume => false,
-        }
+        (kind.facts().per_vertex)(self)
     }
 
     /// The bias argument of light `i`'s test (shaders/lib/bias.glsl): a number, or the

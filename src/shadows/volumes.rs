@@ -33,7 +33,8 @@ use std::collections::HashMap;
 
 use glam::{DMat4, Vec4};
 
-use super::Rays;
+use super::kind::{self, Family, IdleRules, KindFacts};
+use super::{Rays, ShadowKind};
 use crate::engine::{AdjacencyMesh, Gl, ShaderProgram};
 use crate::error::Result;
 use crate::geometry::MeshData;
@@ -275,6 +276,46 @@ impl Volumes {
         p.unbind();
     }
 }
+
+/// The shadow volumes' row of the kind table: no map, no technique behind
+/// [`super::Technique`] (the renderer draws them per light: `renderer::volume_pass`).
+pub const KIND: KindFacts = KindFacts {
+    technique: None,
+    words: |_| "Shadow: stencil shadow volumes (z-fail), no map".to_string(),
+    storage: |_| None,
+    follows_camera: |_, _| false,
+    layers: None,
+    per_vertex: |_| false,
+    family: |_| Family::Volumes,
+    idle: IdleRules {
+        no_map: Some(|_| "the light has shadow volumes, which have no map"),
+        depth_lookup: |_| Some(kind::LAYERS_READ_NEAREST),
+        light: |v, idle| {
+            if v.kind != ShadowKind::Volume {
+                idle.push("show_volumes", "the light has no shadow volumes");
+            }
+        },
+        scene: |v, idle| {
+            let volumes = v.has(ShadowKind::Volume);
+            let maps = (v.lights.iter()).any(|l| l.kind.facts().technique.is_some());
+            if volumes && !maps {
+                for name in kind::MAP_SETTINGS {
+                    idle.push(
+                        name,
+                        "every casting light has shadow volumes (technique = volumes): there is \
+                         no map to size, test or draw",
+                    );
+                }
+            }
+            if !volumes {
+                idle.push(
+                    "show_volumes",
+                    "no light has shadow volumes (--technique volumes): there are none to show",
+                );
+            }
+        },
+    },
+};
 
 #[cfg(test)]
 mod tests {

@@ -2,42 +2,16 @@
 //! student reads beside the chapters ("24-bit depth", not "24").
 
 use shadowmap::renderer::{DepthPasses, MaskUses};
-use shadowmap::settings::{BiasMode, Cull, DepthFormat, Filter, MapSize, PointPass};
+use shadowmap::settings::{BiasMode, Cull, Filter};
 use shadowmap::shadows::plan::LightPlan;
-use shadowmap::shadows::ShadowKind;
 
 /// The light's technique, its filter and its bias, a line each (one line without a map).
 pub fn shadow(light: &LightPlan) -> Vec<String> {
     let s = &light.settings;
-    let size = size(s.map_size);
-    let depth = depth(s.depth_format);
-    let technique = match light.kind {
-        ShadowKind::None if !s.shadows => return vec!["Shadows: off".to_string()],
-        ShadowKind::None => return vec!["Shadow: none (this light casts no shadow)".to_string()],
-        ShadowKind::Volume => {
-            return vec!["Shadow: stencil shadow volumes (z-fail), no map".to_string()];
-        }
-        ShadowKind::Map => format!("Shadow: one {size} depth map, {depth}"),
-        ShadowKind::Moments => format!(
-            "Shadow: one {size} moment map, {}",
-            match s.blur.taps() {
-                0 => "not blurred".to_string(),
-                n => format!("blurred {n} x {n}"),
-            }
-        ),
-        ShadowKind::Cube => format!(
-            "Shadow: a cube map, 6 faces of {size}, {depth}, {}",
-            match s.point_pass {
-                PointPass::Layered => "drawn in one pass",
-                PointPass::SixPasses => "drawn in six passes",
-            }
-        ),
-        ShadowKind::Cascades => format!("Shadow: {} cascades of {size}, {depth}", s.cascades),
-        ShadowKind::Groups => format!(
-            "Shadow: {} caster groups, a {size} map each, {depth}",
-            s.caster_groups
-        ),
-    };
+    let technique = (light.kind.facts().words)(s);
+    if light.kind.facts().technique.is_none() {
+        return vec![technique];
+    }
     let bias = match s.bias_mode {
         BiasMode::None => "Bias: none".to_string(),
         BiasMode::Constant => format!("Bias: {}", s.bias),
@@ -57,19 +31,6 @@ pub fn shadow(light: &LightPlan) -> Vec<String> {
         format!("Filter: {}", filter(s.filter)),
         bias.join(", "),
     ]
-}
-
-/// "2048 x 2048".
-fn size(m: MapSize) -> String {
-    format!("{} x {}", m.width, m.height)
-}
-
-fn depth(f: DepthFormat) -> &'static str {
-    match f {
-        DepthFormat::D16 => "16-bit depth",
-        DepthFormat::D24 => "24-bit depth",
-        DepthFormat::D32F => "32-bit float depth",
-    }
 }
 
 /// What the filter does to each shaded pixel's test.

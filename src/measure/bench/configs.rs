@@ -10,8 +10,8 @@ use crate::settings::{
     BiasMode, Cull, DepthFormat, Filter, Fit, MapSize, PointPass, ShadowPatch, ShadowSettings,
     ShadowTechnique,
 };
+pub use crate::shadows::kind::Family;
 use crate::shadows::plan::ShadowPlan;
-use crate::shadows::ShadowKind;
 
 /// The bias configurations the sweep tries, by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -83,26 +83,6 @@ impl BiasPreset {
     }
 }
 
-/// What kind of shadow a configuration draws, for the plot's series and the tables.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Family {
-    /// One 2D map (the chapters).
-    OneMap,
-    /// A directional light's cascades.
-    Cascades,
-    /// A directional light's box per group of casters (`caster_groups`).
-    Groups,
-    /// A point light's cube map drawn in one layered pass.
-    PointLayered,
-    /// A point light's cube map drawn face by face.
-    PointSixPasses,
-    /// Stencil shadow volumes (no map).
-    Volumes,
-    /// One 2D map read through a soft filter (the playground's, PCSS).
-    Soft,
-}
-
 impl Family {
     /// Every family, in the order plots list them.
     pub const ALL: [Family; 7] = [
@@ -118,18 +98,7 @@ impl Family {
     pub fn of(light: &Light, s: &ShadowSettings) -> Family {
         let plan = ShadowPlan::decide(std::slice::from_ref(light), s);
         let own = &plan.lights[0];
-        match (own.kind, s.point_pass) {
-            (ShadowKind::Cascades, _) => Family::Cascades,
-            (ShadowKind::Groups, _) => Family::Groups,
-            (ShadowKind::Cube, PointPass::Layered) => Family::PointLayered,
-            (ShadowKind::Cube, PointPass::SixPasses) => Family::PointSixPasses,
-            (ShadowKind::Volume, _) => Family::Volumes,
-            (ShadowKind::Map, _) if own.settings.filter.soft() => Family::Soft,
-            (ShadowKind::Moments, _) if Filter::SOFT_MOMENTS.contains(&own.settings.filter) => {
-                Family::Soft
-            }
-            (ShadowKind::Map | ShadowKind::Moments | ShadowKind::None, _) => Family::OneMap,
-        }
+        (own.kind.facts().family)(&own.settings)
     }
 
     pub fn name(self) -> &'static str {

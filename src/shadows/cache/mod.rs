@@ -132,20 +132,10 @@ pub fn hash_placement(item: &crate::scene::GameItem, h: &mut impl Hasher) {
     }
 }
 
-/// Whether `light`'s map of kind `kind` under `settings` follows the camera (its box is fitted to what the
-/// camera sees).
+/// Whether `light`'s map of kind `kind` under `settings` follows the camera (its box is
+/// fitted to what the camera sees).
 pub fn follows_camera(light: &Light, kind: ShadowKind, settings: &ShadowSettings) -> bool {
-    use crate::settings::{Fit, LightProjection};
-    match kind {
-        ShadowKind::Cascades | ShadowKind::Groups => true,
-        // The same case `map2d::camera` fits to the scene.
-        ShadowKind::Map | ShadowKind::Moments => {
-            matches!(light, Light::Directional(_))
-                && settings.light_projection == LightProjection::Ortho
-                && settings.fit == Fit::Scene
-        }
-        ShadowKind::Cube | ShadowKind::None | ShadowKind::Volume => false,
-    }
+    (kind.facts().follows_camera)(light, settings)
 }
 
 #[cfg(test)]

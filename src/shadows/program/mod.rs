@@ -6,6 +6,7 @@
 pub mod slots;
 pub mod vertex;
 
+use super::kind::LayerLayout;
 use super::plan::ShadowPlan;
 use super::volumetric::VolumetricKey;
 use super::{ShadowKind, ShadowTest};
@@ -16,14 +17,6 @@ use crate::settings::glsl_float;
 use crate::shaders;
 use slots::{LightSlot, MaskMode};
 
-/// A cascaded light's constants (shaders/lib/shadow_cascades.glsl).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct CascadeLayout {
-    pub count: u32,
-    pub blend_bits: u32,
-    pub show: bool,
-}
-
 /// Everything a scene program is compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ProgramKey {
@@ -31,7 +24,7 @@ pub struct ProgramKey {
     lights: [Option<LightSlot>; MAX_LIGHTS],
     light_count: usize,
     /// The cascades, when a light has them.
-    cascades: Option<CascadeLayout>,
+    cascades: Option<LayerLayout>,
     blinn: bool,
     specular_power_bits: u32,
     visibility_light: usize,
@@ -67,32 +60,17 @@ impl ProgramKey {
                 Shading::Direction(_) => (false, false),
                 Shading::Position { cone, .. } => (true, cone.is_some()),
             };
-            if shadow == ShadowKind::Cascades {
-                cascades = Some(CascadeLayout {
-                    count: own.cascades,
-                    blend_bits: own.cascade_blend.to_bits(),
-                    show: own.show_cascades,
-                });
-            }
-            // Caster groups share the cascades' layers (shadow_layers.glsl): their count,
-            // no blend between them and nothing to tint.
-            if shadow == ShadowKind::Groups {
-                cascades = Some(CascadeLayout {
-                    count: own.caster_groups,
-                    blend_bits: 0f32.to_bits(),
-                    show: false,
-                });
+            if let Some(layout) = shadow.facts().layers {
+                cascades = Some(layout(own));
             }
             *slot = Some(LightSlot {
                 shadow,
                 positional,
                 cone,
                 // Volumes have no test in the shader: the stencil decides.
-                test: (!matches!(shadow, ShadowKind::None | ShadowKind::Volume)).then(|| {
-                    ShadowTest {
-                        volumetric: planned.volumetric.and_then(|_| VolumetricKey::of(own)),
-                        ..ShadowTest::for_light(light, own)
-                    }
+                test: shadow.has_map().then(|| ShadowTest {
+                    volumetric: planned.volumetric.and_then(|_| VolumetricKey::of(own)),
+                    ..ShadowTest::for_light(light, own)
                 }),
             });
         }

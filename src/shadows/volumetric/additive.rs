@@ -12,8 +12,9 @@ use crate::shaders;
 
 /// One additive technique, as data.
 pub struct Additive {
-    /// The setting it counts (slices, terms).
+    /// The setting it counts (slices, terms), and its name in the scene file.
     pub count: fn(&ShadowSettings) -> u32,
+    pub setting: &'static [&'static str],
     /// RGBA layers for a count.
     pub layers: fn(u32) -> u32,
     /// The map shader's define for the count (`SLICES`, `TERMS`).
@@ -70,6 +71,10 @@ impl Method for Additive {
 
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
         (16 * (self.layers)((self.count)(settings)), 1)
+    }
+
+    fn settings(&self) -> &'static [&'static str] {
+        self.setting
     }
 }
 

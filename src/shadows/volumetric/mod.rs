@@ -15,6 +15,7 @@ mod additive;
 pub mod avsm;
 pub mod cache;
 pub mod fom;
+pub mod idle;
 pub mod maps;
 pub mod osm;
 pub mod resolved;
@@ -68,6 +69,8 @@ pub trait Method: Sync {
     fn texel_call(&self, parameter: u32) -> (&'static str, String);
     /// Bytes a texel and passes over the map a frame, without GL (the bench's rows).
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32);
+    /// The settings only it reads, as the scene file names them (idle without it).
+    fn settings(&self) -> &'static [&'static str];
 }
 
 /// The technique behind `volumetric`, if it keeps a map: the one match over them.

@@ -84,6 +84,10 @@ impl Method for Avsm {
     fn cost(&self, settings: &ShadowSettings) -> (u32, u32) {
         (16 * layers(settings.avsm_nodes), settings.peel_layers + 2)
     }
+
+    fn settings(&self) -> &'static [&'static str] {
+        &["avsm_nodes", "peel_layers"]
+    }
 }
 
 /// A light's curves, its peeling and the programs.
