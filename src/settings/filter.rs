@@ -47,7 +47,7 @@ pub enum Filter {
     /// tutorial suggests: the bands become fine noise.
     #[value(name = "poisson-rotated")]
     PoissonRotated,
-    // Filterable maps (src/shadows/moments.rs): the map stores moments of depth, blurred,
+    // Filterable maps (src/shadows/moments/mod.rs): the map stores moments of depth, blurred,
     // and the test reconstructs a visibility from them.
     /// Variance shadow maps: (z, z^2), blurred, Chebyshev's upper bound.
     Vsm,
@@ -510,7 +510,7 @@ impl Filter {
         Filter::PoissonRotated,
     ];
 
-    /// The moment maps' filters (a map of their own, `src/shadows/moments.rs`).
+    /// The moment maps' filters (a map of their own, `src/shadows/moments/mod.rs`).
     pub const MOMENTS: [Filter; 5] = [
         Filter::Vsm,
         Filter::Evsm2,

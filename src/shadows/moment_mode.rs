@@ -1,4 +1,4 @@
-//! The moment filters by name (src/shadows/moments.rs draws their maps,
+//! The moment filters by name (src/shadows/moments/mod.rs draws their maps,
 //! src/shadows/summed.rs reads their summed-area tables): which moments a depth pass
 //! stores and which function tests them, from their rows of [`MomentMode::facts`].
 

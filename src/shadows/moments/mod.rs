@@ -13,12 +13,15 @@
 //! Cube maps and cascades have no moment form here: the shadow plan ([`super::plan`]) refuses
 //! those combinations, naming the light and the filter.
 
+mod kind;
+
+pub use kind::KIND;
+
 use glam::{DVec2, DVec3};
 
 use super::camera::culling::may_land;
 use super::camera::fitted;
 use super::casters::depth_state;
-use super::kind::{self, Family, IdleRules, KindFacts, Storage, TechniqueFacts};
 use super::map2d::{camera, draw_map_casters};
 pub use super::moment_mode::MomentMode;
 use super::summed::{self, Summed};
@@ -32,8 +35,8 @@ use crate::engine::{
 use crate::error::{Error, Result};
 use crate::scene::{Light, Scene};
 use crate::settings::{
-    glsl_float, Blur, Filter, MapSize, MomentDepth, MomentKnob, ShadowSettings, Wrap,
-    ESM_MAX_EXPONENT, EVSM_MAX_EXPONENT,
+    glsl_float, Blur, MapSize, MomentDepth, MomentKnob, ShadowSettings, Wrap, ESM_MAX_EXPONENT,
+    EVSM_MAX_EXPONENT,
 };
 use crate::shaders;
 
@@ -393,84 +396,10 @@ pub fn glsl(i: usize, p: usize, test: &ShadowTest) -> Option<LightGlsl> {
     })
 }
 
-/// The moment maps' row of the kind table.
-pub const KIND: KindFacts = KindFacts {
-    technique: Some(TechniqueFacts {
-        create: |gl, s| Ok(Box::new(Moments::new(gl, s)?)),
-        glsl,
-        samplers: &super::map2d::SAMPLERS,
-        map_slot: true,
-    }),
-    words: |s| {
-        let blur = match s.blur.taps() {
-            0 => "not blurred".to_string(),
-            n => format!("blurred {n} x {n}"),
-        };
-        format!("Shadow: one {} moment map, {blur}", kind::sides(s.map_size))
-    },
-    storage,
-    follows_camera: super::map2d::follows_camera,
-    // A summed-area table's box is sized by the pixel's screen derivatives.
-    layers: None,
-    per_vertex: |t| t.moments().is_some_and(|m| !m.mode.reads_table()),
-    family: |s| match Filter::SOFT_MOMENTS.contains(&s.filter) {
-        true => Family::Soft,
-        false => Family::OneMap,
-    },
-    idle: IdleRules {
-        no_map: None,
-        depth_lookup: |_| Some("a moment map is always read LINEAR (its filtering is the filter)"),
-        light: |v, idle| {
-            for knob in MomentKnob::ALL {
-                if !(v.kind == ShadowKind::Moments && knob.read_by(v.settings.filter)) {
-                    let which = knob.readers();
-                    for name in knob.settings() {
-                        idle.push(name, format!("it is for {which}, on a 2D map"));
-                    }
-                }
-            }
-        },
-        scene: |v, idle| {
-            let filters = (v.lights.iter())
-                .filter(|l| l.kind == ShadowKind::Moments)
-                .map(|l| l.settings.filter);
-            for knob in MomentKnob::ALL {
-                if !filters.clone().any(|f| knob.read_by(f)) {
-                    let which = knob.readers();
-                    for name in knob.settings() {
-                        let why =
-                            format!("no light's filter reads it (it is for {which}, on a 2D map)");
-                        idle.push(name, why);
-                    }
-                }
-            }
-        },
-    },
-};
-
-/// A moment map's storage: two float targets (the map and its blur's), a depth buffer, and
-/// for the soft filters a summed-area table of two 32-bit sums a moment.
-fn storage(s: &ShadowSettings) -> Option<Storage> {
-    let texels = s.map_size.texels();
-    let floats = u64::from(s.filter.moment_components()) * 4;
-    let table = match Filter::SOFT_MOMENTS.contains(&s.filter) {
-        true => texels * 2 * floats,
-        false => 0,
-    };
-    Some(Storage {
-        what: format!(
-            "shadow.filter = {}'s moment maps of {}",
-            s.filter.name(),
-            kind::sides(s.map_size)
-        ),
-        bytes: texels * (2 * floats + kind::DEPTH_TEXEL_BYTES) + table,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::settings::MsmToward;
+    use crate::settings::{Filter, MsmToward};
 
     #[test]
     fn kernels_sum_to_one_and_the_playgrounds_is_its_3x3() {
