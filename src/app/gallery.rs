@@ -110,7 +110,9 @@ pub fn run(args: &StepsArgs) -> Result<()> {
     // first against the chapter's start.
     let start = match scene.steps.list {
         shadowmap::scene::StepList::Volumetric => "the scene's own settings",
-        _ => "the chapter's start",
+        shadowmap::scene::StepList::Chapters | shadowmap::scene::StepList::Playground => {
+            "the chapter's start"
+        }
     };
     let mut base = (steps::start(&scene), start.to_string());
     for (i, step) in steps::of(&scene).iter().enumerate() {

@@ -361,6 +361,9 @@ pub struct FilterFacts {
     pub on_cube: Option<fn() -> String>,
     /// Why cascades and caster groups cannot take it, if they cannot.
     pub on_layers: Option<fn() -> String>,
+    /// The settings only this filter reads (idle under any other), and what they are in
+    /// the idle rules' words ("its counts").
+    pub own_settings: (&'static [&'static str], &'static str),
 }
 
 /// A depth map's filter, on every kind of map.
@@ -374,6 +377,7 @@ const fn grid(radius: u32, kernel: Kernel, words: &'static str) -> FilterFacts {
         words,
         on_cube: None,
         on_layers: None,
+        own_settings: (&[], ""),
     }
 }
 
@@ -543,6 +547,7 @@ impl Filter {
             Filter::SoftPcf => soft(Kernel::SoftPcf, Taps::Fixed(16), "soft PCF, 16 depth tests"),
             Filter::Pcss => FilterFacts {
                 on_layers: Some(pcss_on_layers),
+                own_settings: (&["pcss_blocker_taps", "pcss_filter_taps"], "its counts"),
                 ..soft(
                     Kernel::Pcss,
                     Taps::Pcss,

@@ -1,6 +1,8 @@
 //! Settings that are legal but do nothing: for one light ([`of_light`]), and for every
 //! light of a scene ([`of_scene`], what the commands warn about when a flag gives one).
 
+use clap::ValueEnum;
+
 use crate::scene::Light;
 use crate::settings::{Filter, Fit, LightProjection, ShadowSettings};
 pub use crate::shadows::kind::Idle;
@@ -38,9 +40,11 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
     if let Some(why) = (rules.depth_lookup)(s.filter).filter(|_| none.is_none()) {
         idle.push("depth_lookup", why);
     }
-    if none.is_some() || s.filter != Filter::Pcss {
-        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
-            idle.push(name, "only the pcss filter takes its counts");
+    for f in Filter::value_variants() {
+        let (names, what) = f.facts().own_settings;
+        if none.is_some() || s.filter != *f {
+            let why = format!("only the {} filter takes {what}", f.name());
+            names.iter().for_each(|n| idle.push(n, why.clone()));
         }
     }
     if !vertex_capable(kind, s) {
@@ -86,14 +90,15 @@ pub(super) fn of_scene(
              perspective); spot lights use their own fov",
         );
     }
-    let pcss =
-        (view.lights.iter()).any(|l| l.light.casts_shadows() && l.settings.filter == Filter::Pcss);
-    if !pcss {
-        for name in ["pcss_blocker_taps", "pcss_filter_taps"] {
-            idle.push(
-                name,
-                "no light's filter is pcss (--filter pcss); only PCSS takes its counts",
+    for f in Filter::value_variants() {
+        let (names, what) = f.facts().own_settings;
+        let used = (view.lights.iter()).any(|l| l.light.casts_shadows() && l.settings.filter == *f);
+        if !used {
+            let name = f.name();
+            let why = format!(
+                "no light's filter is {name} (--filter {name}), the only one that takes {what}"
             );
+            names.iter().for_each(|n| idle.push(n, why.clone()));
         }
     }
     if !view.suns().any(snapped) {
@@ -124,7 +129,6 @@ pub(super) fn of_scene(
 /// Why `translucent_receivers` does nothing for a light, naming the filters whose test
 /// reads the pixel itself (their kernel's `per_pixel`, or a summed-area table's box).
 fn no_vertex_test() -> String {
-    use clap::ValueEnum;
     let per_pixel = |f: &&Filter| {
         let facts = f.facts();
         facts.kernel.glsl().per_pixel || facts.moments.is_some_and(|m| m.reads_table())

@@ -130,7 +130,7 @@ fn the_scene_idle_settings_give_the_commands_reasons_and_in_use_drops_them() {
     );
     assert_eq!(
         idle_why(&plan.idle, "pcss_filter_taps"),
-        Some("no light's filter is pcss (--filter pcss); only PCSS takes its counts")
+        Some("no light's filter is pcss (--filter pcss), the only one that takes its counts")
     );
     assert_eq!(idle_why(&plan.idle, "point_pass"), None);
     let used = plan.in_use();
