@@ -1,7 +1,8 @@
 //! Exponential shadow maps against their closed form: behind one flat caster a receiver's
 //! light is exp(-c d), d the depth gap between them, so a caster near its receiver leaks
 //! light (ESM's bleeding at contact) and a larger exponent leaks less; at the exponent's
-//! limit (exp(88) near 32-bit floats' largest) every value stays finite and lit stays lit;
+//! limit (exp(88) near 32-bit floats' largest) every value stays finite and lit stays lit,
+//! even where exp(-c d) alone is below the least normal float (receivers at the map's far end);
 //! past it the exponent is refused, from the flag and from the file.
 
 use crate::common;
@@ -132,6 +133,56 @@ fn behind_one_flat_caster_the_light_left_is_exp_of_minus_c_times_the_depth_gap()
     // The nearer the caster, the more it leaks; the larger c, the less.
     assert!(leaks.windows(2).all(|w| w[1] < w[0]), "{leaks:?}");
     assert!(leaks[0] > 0.5 && leaks[3] < 0.25, "{leaks:?}");
+}
+
+/// The contact scene with the light's box reaching 1,500 units behind the light, so that
+/// every receiver lies in the last 1% of the map's depth: at c = 88, exp(-c d) there is
+/// below the least normal 32-bit float, which a GPU may flush to zero.
+fn far_receivers() -> Scene {
+    let text = include_str!("../data/contact.toml")
+        .replace("size = 6.0", "size = 0.0")
+        .replace("angle = 80.0", "angle = 45.0")
+        .replace("near = -10.0, far = 20.0", "near = -1500.0, far = 16.0");
+    let dir = std::env::temp_dir().join(format!("shadowmap-esm-far-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("far.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&dir).unwrap();
+    scene
+}
+
+#[test]
+fn at_the_exponents_limit_a_receiver_at_the_far_end_of_the_map_stays_lit() {
+    let ctx = common::context();
+    let scene = far_receivers();
+    let opts = options(&scene);
+    let reference = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts).unwrap();
+    let view = light_camera(&scene, 0, &scene.shadow);
+    let clip = view.projection.as_dmat4() * view.view64;
+    let depth = |p: DVec3| {
+        let c = clip * p.extend(1.0);
+        c.z / c.w * 0.5 + 0.5
+    };
+    let c = ESM_MAX_EXPONENT;
+    // Lit receivers away from both slabs' shadows (whose edges a map's texels blur).
+    let lit: Vec<usize> = (0..reference.hard.len())
+        .filter(|&i| reference.hard[i].receiver && reference.hard[i].visibility == 1.0)
+        .filter(|&i| reference.world_position(i).x.abs() > 4.0)
+        .collect();
+    assert!(lit.len() > 10_000, "{} lit receivers", lit.len());
+    // The case this holds: exp(-c d) alone is not a normal float at any of them.
+    let nearest = (lit.iter())
+        .map(|&i| depth(reference.world_position(i)))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (-f64::from(c) * nearest).exp() < f64::from(f32::MIN_POSITIVE),
+        "the nearest lit receiver's depth {nearest} leaves exp(-c d) a normal float"
+    );
+    let frame = render_visibility(ctx.gl(), &scene, &esm(&scene, c), 640, 360, 0).unwrap();
+    let vis = frame.visibility.as_deref().unwrap();
+    let dark = lit.iter().filter(|&&i| vis[i].unwrap() < 0.999).count();
+    assert_eq!(dark, 0, "{dark} of {} lit receivers darkened", lit.len());
 }
 
 #[test]
