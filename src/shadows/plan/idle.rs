@@ -42,7 +42,7 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
     }
     for f in Filter::value_variants() {
         let (names, what) = f.facts().own_settings;
-        if none.is_some() || s.filter != *f {
+        if !names.is_empty() && (none.is_some() || s.filter != *f) {
             let why = format!("only the {} filter takes {what}", f.name());
             names.iter().for_each(|n| idle.push(n, why.clone()));
         }
@@ -93,7 +93,7 @@ pub(super) fn of_scene(
     for f in Filter::value_variants() {
         let (names, what) = f.facts().own_settings;
         let used = (view.lights.iter()).any(|l| l.light.casts_shadows() && l.settings.filter == *f);
-        if !used {
+        if !used && !names.is_empty() {
             let name = f.name();
             let why = format!(
                 "no light's filter is {name} (--filter {name}), the only one that takes {what}"
