@@ -1,4 +1,4 @@
-// The test of a light with a filterable map (src/shadows/moments.rs): one filtered lookup
+// The test of a light with a filterable map (src/shadows/moments/mod.rs): one filtered lookup
 // of the blurred moments, then a visibility reconstructed from them: one function per
 // filter (VSM, EVSM, MSM, ESM), each with the light's own constants as arguments:
 //   minVariance     the least variance Chebyshev's bound assumes (VSM; EVSM scales it)

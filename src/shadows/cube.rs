@@ -222,8 +222,8 @@ pub const KIND: KindFacts = KindFacts {
         })
     },
     follows_camera: |_, _| false,
-    // LearnOpenGL's 20 taps read per pixel.
     layers: None,
+    // LearnOpenGL's 20 taps read per pixel.
     per_vertex: |_| false,
     family: |s| match s.point_pass {
         PointPass::Layered => Family::PointLayered,

@@ -223,7 +223,9 @@ pub const NO_SHADOW: KindFacts = KindFacts {
     },
 };
 
-/// Why `depth_lookup` does nothing where no 2D depth map is read by the shader's lookups.
+/// Why `depth_lookup` does nothing for cascades and caster groups. The rows without a map
+/// give it too, though a light without a map never shows it: its map settings are all idle
+/// for having no map first.
 pub const LAYERS_READ_NEAREST: &str =
     "it is for one 2D depth map; cascades and caster groups are read NEAREST";
 
@@ -232,36 +234,36 @@ mod tests {
     use super::*;
     use crate::scene::Scene;
 
-    /// Its place in [`ShadowKind::ALL`]: a new kind needs an arm here, and then a place there.
-    fn place(kind: ShadowKind) -> usize {
-        match kind {
-            ShadowKind::None => 0,
-            ShadowKind::Map => 1,
-            ShadowKind::Cube => 2,
-            ShadowKind::Cascades => 3,
-            ShadowKind::Groups => 4,
-            ShadowKind::Moments => 5,
-            ShadowKind::Volume => 6,
-        }
+    /// How many variants src/shadows/mod.rs declares `ShadowKind` with.
+    fn declared_kinds() -> usize {
+        let source = include_str!("mod.rs");
+        let body = source.split("pub enum ShadowKind {").nth(1).unwrap();
+        let body = body.split("\n}").next().unwrap();
+        (body.lines().map(str::trim))
+            .filter(|l| !l.is_empty() && !l.starts_with("//"))
+            .count()
     }
 
     #[test]
-    fn every_kind_has_one_row_and_the_rows_agree_with_themselves() {
+    fn every_kind_is_in_the_list_once_and_its_row_agrees_with_itself() {
+        assert_eq!(ShadowKind::ALL.len(), declared_kinds(), "ShadowKind::ALL");
         let s = Scene::load("dummy").unwrap().shadow;
+        let test = ShadowTest::of(&s);
         for (i, kind) in ShadowKind::ALL.into_iter().enumerate() {
-            assert_eq!(place(kind), i, "{kind:?}");
+            assert!(!ShadowKind::ALL[..i].contains(&kind), "{kind:?} twice");
             let facts = kind.facts();
-            let map = facts.technique.is_some();
-            // A kind keeps a map exactly when it has storage and a reason for none is absent.
+            let map = kind.has_map();
+            // A kind keeps a map exactly when it has storage and no reason for having none.
             assert_eq!((facts.storage)(&s).is_some(), map, "{kind:?}");
             assert_eq!(facts.idle.no_map.is_none(), map, "{kind:?}");
-            assert!(!(facts.words)(&s).is_empty(), "{kind:?}");
-            if !map {
-                assert!(!(facts.follows_camera)(
-                    &Scene::load("dummy").unwrap().lights[0],
-                    &s
-                ));
-            }
+            // Layers, a vertex test and a depth-map lookup need a map.
+            assert!(map || facts.layers.is_none(), "{kind:?}");
+            assert!(map || !(facts.per_vertex)(&test), "{kind:?}");
+            assert!(
+                map || (facts.idle.depth_lookup)(s.filter).is_some(),
+                "{kind:?}"
+            );
+            assert_eq!(kind.layered(), facts.layers.is_some(), "{kind:?}");
         }
     }
 
@@ -271,7 +273,9 @@ mod tests {
         let light = &scene.lights[0];
         let s = ShadowSettings {
             cascades: 4,
+            caster_groups: 3,
             filter: Filter::Vsm,
+            volumetric: Volumetric::Osm,
             ..scene.shadow
         };
         let idle_for = |kind: ShadowKind| {
@@ -286,20 +290,37 @@ mod tests {
             }
             idle
         };
+        let owners = [
+            ("cascades", ShadowKind::Cascades),
+            ("caster_groups", ShadowKind::Groups),
+            ("point_pass", ShadowKind::Cube),
+            ("show_volumes", ShadowKind::Volume),
+            ("blur", ShadowKind::Moments),
+            ("min_variance", ShadowKind::Moments),
+            ("osm_slices", ShadowKind::Map),
+            ("volumetric_size", ShadowKind::Map),
+        ];
         for kind in ShadowKind::ALL {
             let idle = idle_for(kind);
-            assert_eq!(
-                idle.has("cascades"),
-                kind != ShadowKind::Cascades,
-                "{kind:?}"
-            );
-            assert_eq!(idle.has("point_pass"), kind != ShadowKind::Cube, "{kind:?}");
-            assert_eq!(
-                idle.has("show_volumes"),
-                kind != ShadowKind::Volume,
-                "{kind:?}"
-            );
-            assert_eq!(idle.has("blur"), kind != ShadowKind::Moments, "{kind:?}");
+            for (setting, owner) in owners {
+                assert_eq!(idle.has(setting), kind != owner, "{setting} for {kind:?}");
+            }
         }
+        let why = |setting: &str| {
+            let idle = idle_for(ShadowKind::Map);
+            idle.0
+                .into_iter()
+                .find(|i| i.setting == setting)
+                .unwrap()
+                .why
+        };
+        assert_eq!(
+            why("point_pass"),
+            "only a point light's cube map has faces to draw"
+        );
+        assert_eq!(
+            why("cascades"),
+            "only the first casting directional light gets cascades; this one keeps one map"
+        );
     }
 }

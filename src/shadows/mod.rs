@@ -77,12 +77,15 @@ pub enum ShadowKind {
     Groups,
     /// No map: stencil shadow volumes ([`volumes`]), any kind of light.
     Volume,
-    /// One 2D map of depth's moments, blurred (a moment filter: vsm, evsm2, evsm4, msm).
+    /// One 2D map of depth's moments, blurred (a moment filter: `Filter::MOMENTS` and
+    /// `Filter::SOFT_MOMENTS`).
     Moments,
 }
 
 impl ShadowKind {
-    /// Every kind, in the order the idle rules ask them.
+    /// Every kind, in the order the idle rules ask them. A setting keeps the first reason
+    /// given for it, so the volumes' row, which calls every map setting idle in a scene of
+    /// volumes alone, comes after the rows that give their own settings their own reasons.
     pub const ALL: [ShadowKind; 7] = [
         ShadowKind::None,
         ShadowKind::Map,

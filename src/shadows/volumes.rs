@@ -297,7 +297,7 @@ pub const KIND: KindFacts = KindFacts {
         },
         scene: |v, idle| {
             let volumes = v.has(ShadowKind::Volume);
-            let maps = (v.lights.iter()).any(|l| l.kind.facts().technique.is_some());
+            let maps = (v.lights.iter()).any(|l| l.kind.has_map());
             if volumes && !maps {
                 for name in kind::MAP_SETTINGS {
                     idle.push(

@@ -328,15 +328,15 @@ fn the_translucent_maps_are_refused_by_name_where_they_cannot_cast() {
          msm, esm) take volumetric = \"off\" only"
     );
     // The soft moment filters are moment maps too, and named as themselves.
-    let vssm = ShadowSettings {
-        filter: Filter::Vssm,
-        ..fom
-    };
-    assert_eq!(
-        refusal(&smoke, vssm),
-        "shadow.volumetric = fom: light 0 cannot use it: the soft moment filters (vssm, \
-         msm-soft) take volumetric = \"off\" only"
-    );
+    for filter in Filter::SOFT_MOMENTS {
+        let soft = ShadowSettings { filter, ..fom };
+        assert_eq!(
+            refusal(&smoke, soft),
+            "shadow.volumetric = fom: light 0 cannot use it: the soft moment filters (vssm, \
+             msm-soft) take volumetric = \"off\" only",
+            "{filter:?}"
+        );
+    }
     let cascaded = ShadowSettings {
         volumetric: Volumetric::Osm,
         cascades: 2,

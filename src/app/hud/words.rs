@@ -9,7 +9,7 @@ use shadowmap::shadows::plan::LightPlan;
 pub fn shadow(light: &LightPlan) -> Vec<String> {
     let s = &light.settings;
     let technique = (light.kind.facts().words)(s);
-    if light.kind.facts().technique.is_none() {
+    if !light.kind.has_map() {
         return vec![technique];
     }
     let bias = match s.bias_mode {

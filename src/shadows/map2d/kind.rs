@@ -28,8 +28,8 @@ pub const KIND: KindFacts = KindFacts {
         })
     },
     follows_camera,
-    // Not PCSS's nor the rotated disk's: they read the pixel itself.
     layers: None,
+    // Not PCSS's nor the rotated disk's: they read the pixel itself.
     per_vertex: |t| t.depth().is_some_and(|d| !d.kernel.glsl().per_pixel),
     family: |s| match s.filter.soft() {
         true => Family::Soft,

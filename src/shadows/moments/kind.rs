@@ -23,8 +23,8 @@ pub const KIND: KindFacts = KindFacts {
     },
     storage,
     follows_camera: map2d::follows_camera,
-    // A summed-area table's box is sized by the pixel's screen derivatives.
     layers: None,
+    // A summed-area table's box is sized by the pixel's screen derivatives.
     per_vertex: |t| t.moments().is_some_and(|m| !m.mode.reads_table()),
     family: |s| match Filter::SOFT_MOMENTS.contains(&s.filter) {
         true => Family::Soft,

@@ -23,7 +23,7 @@ pub struct ProgramKey {
     /// The scene's lights in order (the first `light_count`).
     lights: [Option<LightSlot>; MAX_LIGHTS],
     light_count: usize,
-    /// The cascades, when a light has them.
+    /// The layers of the light with cascades or caster groups, if one has them.
     cascades: Option<LayerLayout>,
     blinn: bool,
     specular_power_bits: u32,

@@ -12,9 +12,10 @@ use crate::shaders;
 
 /// One additive technique, as data.
 pub struct Additive {
-    /// The setting it counts (slices, terms), and its name in the scene file.
+    /// The setting it counts (slices, terms).
     pub count: fn(&ShadowSettings) -> u32,
-    pub setting: &'static [&'static str],
+    /// That setting's name in the scene file, the one only it reads.
+    pub settings: &'static [&'static str],
     /// RGBA layers for a count.
     pub layers: fn(u32) -> u32,
     /// The map shader's define for the count (`SLICES`, `TERMS`).
@@ -74,7 +75,7 @@ impl Method for Additive {
     }
 
     fn settings(&self) -> &'static [&'static str] {
-        self.setting
+        self.settings
     }
 }
 

@@ -14,7 +14,7 @@ use crate::shaders;
 /// sine pairs, four to a layer.
 pub static FOM: Additive = Additive {
     count: |s| s.fom_coefficients,
-    setting: &["fom_coefficients"],
+    settings: &["fom_coefficients"],
     layers: |terms| (1 + 2 * terms).div_ceil(4),
     define: "TERMS",
     fragment: shaders::fom_map_frag,

@@ -12,7 +12,7 @@ use crate::shaders;
 /// The technique (`volumetric = "osm"`, `osm_slices` K): four slices to a layer.
 pub static OSM: Additive = Additive {
     count: |s| s.osm_slices,
-    setting: &["osm_slices"],
+    settings: &["osm_slices"],
     layers: |slices| slices.div_ceil(4),
     define: "SLICES",
     fragment: shaders::osm_map_frag,
