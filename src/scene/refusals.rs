@@ -5,8 +5,8 @@
 
 use super::light::{DirectionalLight, Light, BOOK_ANGLES_MAX_X};
 use crate::settings::{
-    DirectionalLayers, Filter, Fit, LightProjection, LightView, ShadowSettings, ShadowTechnique,
-    Volumetric,
+    filter_names, DirectionalLayers, Filter, Fit, LightProjection, LightView, ShadowSettings,
+    ShadowTechnique, Volumetric,
 };
 
 /// Why a light cannot be drawn with its settings: the setting, and the message (which
@@ -172,7 +172,7 @@ pub fn volumetric_refusal(settings: &ShadowSettings, cube: bool, layered: bool) 
         );
     }
     if settings.filter.moments() {
-        return Some(crate::settings::moments_without_volumetric(settings.filter));
+        return Some(moments_without_volumetric(settings.filter));
     }
     if settings.fit != Fit::Manual {
         return Some(
@@ -181,6 +181,20 @@ pub fn volumetric_refusal(settings: &ShadowSettings, cube: bool, layered: bool) 
         );
     }
     None
+}
+
+/// Why a light whose maps are moments cannot keep a translucent map beside them.
+fn moments_without_volumetric(filter: Filter) -> String {
+    match filter.facts().moments.is_some_and(|m| m.reads_table()) {
+        true => format!(
+            "the soft moment filters ({}) take volumetric = \"off\" only",
+            filter_names(&Filter::SOFT_MOMENTS, false)
+        ),
+        false => format!(
+            "the moment maps ({}) take volumetric = \"off\" only",
+            filter_names(&Filter::MOMENTS, false)
+        ),
+    }
 }
 
 /// Why a light whose shadow is a cube map (`cube`) or layers (`layered`: cascades, caster

@@ -415,7 +415,7 @@ const fn soft_moments(mode: MomentMode, components: u32, words: &'static str) ->
 }
 
 /// Filters' names as a refusal lists them: "vsm, evsm2, evsm4" (`or`: "..., hw2x2 or hw3x3").
-fn names(filters: &[Filter], or: bool) -> String {
+pub fn filter_names(filters: &[Filter], or: bool) -> String {
     let names: Vec<&str> = filters.iter().map(|f| f.name()).collect();
     match (or, names.split_last()) {
         (true, Some((last, rest))) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
@@ -426,7 +426,7 @@ fn names(filters: &[Filter], or: bool) -> String {
 fn soft_on_cube() -> String {
     format!(
         "a point light's cube map takes {} (the soft filters read a 2D map's texel grid)",
-        names(&Filter::ALL, true)
+        filter_names(&Filter::ALL, true)
     )
 }
 
@@ -440,7 +440,7 @@ fn poisson_on_layers() -> String {
     format!(
         "cascades and caster groups do not take the Poisson disk ({}: it is a 2D map's \
          filter); use pcf3x3 or pcf4x4-weighted",
-        names(&[Filter::Poisson, Filter::PoissonRotated], false)
+        filter_names(&[Filter::Poisson, Filter::PoissonRotated], false)
     )
 }
 
@@ -449,7 +449,7 @@ fn moments_on_cube() -> String {
         "the moment maps ({}) need one 2D map and a point light's shadow is a cube map; give \
          the light a depth filter of its own (shadow = {{ filter = \"pcf3x3\" }}) or use one \
          for the scene",
-        names(&Filter::MOMENTS, false)
+        filter_names(&Filter::MOMENTS, false)
     )
 }
 
@@ -457,7 +457,7 @@ fn moments_on_layers() -> String {
     format!(
         "the moment maps ({}) need one 2D map and cascades and caster groups have a layer \
          each; use cascades = 1 and caster_groups = 1, or a depth filter (pcf3x3) for the light",
-        names(&Filter::MOMENTS, false)
+        filter_names(&Filter::MOMENTS, false)
     )
 }
 
@@ -466,7 +466,7 @@ fn soft_moments_on_cube() -> String {
         "the soft moment filters ({}) read summed-area tables of one 2D map and a point \
          light's shadow is a cube map; give the light a depth filter of its own (shadow = {{ \
          filter = \"pcf3x3\" }}) or use one for the scene",
-        names(&Filter::SOFT_MOMENTS, false)
+        filter_names(&Filter::SOFT_MOMENTS, false)
     )
 }
 
@@ -475,22 +475,8 @@ fn soft_moments_on_layers() -> String {
         "the soft moment filters ({}) measure the penumbra in one light camera's units and \
          cascades and caster groups have a box each; use cascades = 1 and caster_groups = 1, \
          or a depth filter (pcf3x3) for the light",
-        names(&Filter::SOFT_MOMENTS, false)
+        filter_names(&Filter::SOFT_MOMENTS, false)
     )
-}
-
-/// Why a light whose maps are moments cannot keep a translucent map beside them.
-pub fn moments_without_volumetric(filter: Filter) -> String {
-    match filter.facts().moments.is_some_and(|m| m.reads_table()) {
-        true => format!(
-            "the soft moment filters ({}) take volumetric = \"off\" only",
-            names(&Filter::SOFT_MOMENTS, false)
-        ),
-        false => format!(
-            "the moment maps ({}) take volumetric = \"off\" only",
-            names(&Filter::MOMENTS, false)
-        ),
-    }
 }
 
 impl Filter {

@@ -2,9 +2,9 @@
 //! and the settings only a moment filter's test reads.
 
 use super::{glsl, Moments};
-use crate::settings::{Filter, MomentKnob, ShadowSettings};
+use crate::settings::{MomentKnob, ShadowSettings};
 use crate::shadows::kind::{self, Family, IdleRules, KindFacts, Storage, TechniqueFacts};
-use crate::shadows::{map2d, ShadowKind};
+use crate::shadows::{map2d, summed, ShadowKind};
 
 /// The moment maps' row of the kind table.
 pub const KIND: KindFacts = KindFacts {
@@ -26,7 +26,7 @@ pub const KIND: KindFacts = KindFacts {
     layers: None,
     // A summed-area table's box is sized by the pixel's screen derivatives.
     per_vertex: |t| t.moments().is_some_and(|m| !m.mode.reads_table()),
-    family: |s| match Filter::SOFT_MOMENTS.contains(&s.filter) {
+    family: |s| match summed::reads_table(s.filter) {
         true => Family::Soft,
         false => Family::OneMap,
     },
@@ -66,7 +66,7 @@ pub const KIND: KindFacts = KindFacts {
 fn storage(s: &ShadowSettings) -> Option<Storage> {
     let texels = s.map_size.texels();
     let floats = u64::from(s.filter.moment_components()) * 4;
-    let table = match Filter::SOFT_MOMENTS.contains(&s.filter) {
+    let table = match summed::reads_table(s.filter) {
         true => texels * 2 * floats,
         false => 0,
     };
