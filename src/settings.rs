@@ -19,8 +19,8 @@ pub use choices::{
     Volumetric, Wrap,
 };
 pub use filter::{
-    filter_names, Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentDepth, MomentFacts,
-    MomentKnob, MomentMode, Taps,
+    filter_names, Exclusive, Filter, FilterFacts, Kernel, KernelArgs, KernelGlsl, MomentDepth,
+    MomentFacts, MomentKnob, MomentMode, Taps,
 };
 pub use map_size::{parse_map_size, MapSize};
 

@@ -361,9 +361,16 @@ pub struct FilterFacts {
     pub on_cube: Option<fn() -> String>,
     /// Why cascades and caster groups cannot take it, if they cannot.
     pub on_layers: Option<fn() -> String>,
-    /// The settings only this filter reads (idle under any other), and what they are in
-    /// the idle rules' words ("its counts").
-    pub own_settings: (&'static [&'static str], &'static str),
+    /// The settings only this filter reads (idle under any other).
+    pub exclusive: Exclusive,
+}
+
+/// Settings only one filter reads, as the scene file names them, and what they are in the
+/// idle rules' words ("its counts").
+#[derive(Debug, Clone, Copy)]
+pub struct Exclusive {
+    pub names: &'static [&'static str],
+    pub what: &'static str,
 }
 
 /// A depth map's filter, on every kind of map.
@@ -377,7 +384,10 @@ const fn grid(radius: u32, kernel: Kernel, words: &'static str) -> FilterFacts {
         words,
         on_cube: None,
         on_layers: None,
-        own_settings: (&[], ""),
+        exclusive: Exclusive {
+            names: &[],
+            what: "",
+        },
     }
 }
 
@@ -533,7 +543,10 @@ impl Filter {
             Filter::SoftPcf => soft(Kernel::SoftPcf, Taps::Fixed(16), "soft PCF, 16 depth tests"),
             Filter::Pcss => FilterFacts {
                 on_layers: Some(pcss_on_layers),
-                own_settings: (&["pcss_blocker_taps", "pcss_filter_taps"], "its counts"),
+                exclusive: Exclusive {
+                    names: &["pcss_blocker_taps", "pcss_filter_taps"],
+                    what: "its counts",
+                },
                 ..soft(
                     Kernel::Pcss,
                     Taps::Pcss,

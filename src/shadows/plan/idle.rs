@@ -4,7 +4,7 @@
 use clap::ValueEnum;
 
 use crate::scene::Light;
-use crate::settings::{Filter, Fit, LightProjection, ShadowSettings};
+use crate::settings::{Exclusive, Filter, Fit, LightProjection, ShadowSettings};
 pub use crate::shadows::kind::Idle;
 use crate::shadows::kind::{Idles, LightIdle, PlannedLight, SceneIdle, MAP_SETTINGS};
 use crate::shadows::ShadowKind;
@@ -41,7 +41,7 @@ pub(super) fn of_light(light: &Light, kind: ShadowKind, s: &ShadowSettings) -> V
         idle.push("depth_lookup", why);
     }
     for f in Filter::value_variants() {
-        let (names, what) = f.facts().own_settings;
+        let Exclusive { names, what } = f.facts().exclusive;
         if !names.is_empty() && (none.is_some() || s.filter != *f) {
             let why = format!("only the {} filter takes {what}", f.name());
             names.iter().for_each(|n| idle.push(n, why.clone()));
@@ -91,7 +91,7 @@ pub(super) fn of_scene(
         );
     }
     for f in Filter::value_variants() {
-        let (names, what) = f.facts().own_settings;
+        let Exclusive { names, what } = f.facts().exclusive;
         let used = (view.lights.iter()).any(|l| l.light.casts_shadows() && l.settings.filter == *f);
         if !used && !names.is_empty() {
             let name = f.name();
