@@ -19,19 +19,12 @@ use shadowmap::Scene;
 /// that the floor under the low slab shows too; a point light, so the truth is the hard
 /// shadow.
 fn contact() -> Scene {
-    let text = contact_text(&[("position = [0.0, 9.0, 2.0]", "position = [0.0, 7.0, -7.0]")]);
-    let dir = std::env::temp_dir().join(format!("shadowmap-esm-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("contact.toml");
-    std::fs::write(&path, text).unwrap();
-    let scene = Scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
-    std::fs::remove_dir_all(&dir).unwrap();
-    scene
+    contact_with(&[("position = [0.0, 9.0, 2.0]", "position = [0.0, 7.0, -7.0]")])
 }
 
 /// tests/data/contact.toml under a point light 45 degrees up, with `edits` too, each of
 /// which must find its text.
-fn contact_text(edits: &[(&str, &str)]) -> String {
+fn contact_with(edits: &[(&str, &str)]) -> Scene {
     let mut text = include_str!("../data/contact.toml").to_string();
     let own = [
         ("size = 6.0", "size = 0.0"),
@@ -41,7 +34,8 @@ fn contact_text(edits: &[(&str, &str)]) -> String {
         assert!(text.contains(from), "contact.toml has no {from}");
         text = text.replace(from, to);
     }
-    text
+    let source = std::path::Path::new("tests/data/contact.toml (edited)");
+    shadowmap::scene::file::parse(&text, source, None).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// ESM with exponent `c`, unblurred and unbiased, so the closed form holds texel for texel.
@@ -151,14 +145,7 @@ fn behind_one_flat_caster_the_light_left_is_exp_of_minus_c_times_the_depth_gap()
 /// every receiver lies in the last 1% of the map's depth: at c = 88, exp(-c d) there is
 /// below the least normal 32-bit float, which a GPU may flush to zero.
 fn far_receivers() -> Scene {
-    let text = contact_text(&[("near = -10.0, far = 20.0", "near = -1500.0, far = 16.0")]);
-    let dir = std::env::temp_dir().join(format!("shadowmap-esm-far-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("far.toml");
-    std::fs::write(&path, text).unwrap();
-    let scene = Scene::load(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
-    std::fs::remove_dir_all(&dir).unwrap();
-    scene
+    contact_with(&[("near = -10.0, far = 20.0", "near = -1500.0, far = 16.0")])
 }
 
 #[test]
