@@ -325,7 +325,7 @@ pub const KIND: KindFacts = KindFacts {
         let (size, depth) = (kind::sides(s.map_size), kind::depth_words(s.depth_format));
         format!("Shadow: {} cascades of {size}, {depth}", s.cascades)
     },
-    storage: |s| layers::storage(s.cascades, "cascades", s),
+    storage: layers::storage::<Cascades>,
     // Fitted to the view's slices each frame.
     follows_camera: |_, _| true,
     layers: Some(|s| LayerLayout {
@@ -339,16 +339,8 @@ pub const KIND: KindFacts = KindFacts {
     idle: IdleRules {
         no_map: None,
         depth_lookup: |_| Some(kind::LAYERS_READ_NEAREST),
-        light: |v, idle| {
-            if v.settings.cascades > 1 && v.kind != ShadowKind::Cascades {
-                idle.push("cascades", layers::not_for_light(v, "cascades"));
-            }
-        },
-        scene: |v, idle| {
-            if v.settings.cascades > 1 && !v.has(ShadowKind::Cascades) {
-                idle.push("cascades", layers::not_in_scene(v, "cascades"));
-            }
-        },
+        light: layers::idle_for_light::<Cascades>,
+        scene: layers::idle_in_scene::<Cascades>,
     },
 };
 
@@ -360,6 +352,7 @@ pub struct Cascades {
 
 impl Layout for Cascades {
     const KIND: ShadowKind = ShadowKind::Cascades;
+    const SETTING: &'static str = "cascades";
     const NAME: &'static str = "cascades";
 
     fn count(s: &ShadowSettings) -> u32 {

@@ -53,7 +53,7 @@ pub const KIND: KindFacts = KindFacts {
             s.caster_groups
         )
     },
-    storage: |s| layers::storage(s.caster_groups, "caster_groups", s),
+    storage: layers::storage::<Groups>,
     // Each group's box is cut to the receivers in view.
     follows_camera: |_, _| true,
     // The cascades' layers (shadow_layers.glsl): the groups' count, no blend between them
@@ -69,16 +69,8 @@ pub const KIND: KindFacts = KindFacts {
     idle: IdleRules {
         no_map: None,
         depth_lookup: |_| Some(kind::LAYERS_READ_NEAREST),
-        light: |v, idle| {
-            if v.settings.caster_groups > 1 && v.kind != ShadowKind::Groups {
-                idle.push("caster_groups", layers::not_for_light(v, "caster groups"));
-            }
-        },
-        scene: |v, idle| {
-            if v.settings.caster_groups > 1 && !v.has(ShadowKind::Groups) {
-                idle.push("caster_groups", layers::not_in_scene(v, "caster groups"));
-            }
-        },
+        light: layers::idle_for_light::<Groups>,
+        scene: layers::idle_in_scene::<Groups>,
     },
 };
 
@@ -193,6 +185,7 @@ pub struct Groups {
 
 impl Layout for Groups {
     const KIND: ShadowKind = ShadowKind::Groups;
+    const SETTING: &'static str = "caster_groups";
     const NAME: &'static str = "caster groups";
 
     fn count(s: &ShadowSettings) -> u32 {

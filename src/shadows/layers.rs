@@ -12,7 +12,7 @@ use glam::{DMat4, Mat4, Vec3};
 
 use super::camera::fitted::FittedBox;
 use super::casters::{depth_state, draw_casters};
-use super::kind::{self, LightIdle, SceneIdle, Storage};
+use super::kind::{self, Idles, LightIdle, SceneIdle, Storage};
 use super::{
     DepthPass, DepthViewKind, LightGlsl, ShadowKind, ShadowTest, ShadowView, SlotTransform,
     Technique,
@@ -31,6 +31,8 @@ pub trait Layout {
     /// The kind it is, and its name in errors ("cascades").
     const KIND: ShadowKind;
     const NAME: &'static str;
+    /// The setting that counts its layers, as the scene file names it.
+    const SETTING: &'static str;
     /// Its layers under `settings`.
     fn count(settings: &ShadowSettings) -> u32;
     /// Fits the layers for directional light `light` of `scene` (the depth pass' item
@@ -242,19 +244,32 @@ pub fn glsl(snippet: &Snippet, i: usize, test: &ShadowTest) -> Option<LightGlsl>
     })
 }
 
-/// What `count` layers of `s.map_size` hold, `setting` naming the count.
-pub fn storage(count: u32, setting: &str, s: &ShadowSettings) -> Option<Storage> {
+/// What a layout's layers of `s.map_size` hold, naming the setting that counts them.
+pub fn storage<L: Layout>(s: &ShadowSettings) -> Option<Storage> {
+    let count = L::count(s);
+    let sides = kind::sides(s.map_size);
     Some(Storage {
-        what: format!(
-            "shadow.{setting} = {count} layers of {}",
-            kind::sides(s.map_size)
-        ),
+        what: format!("shadow.{} = {count} layers of {sides}", L::SETTING),
         bytes: u64::from(count) * s.map_size.texels() * kind::DEPTH_TEXEL_BYTES,
     })
 }
 
+/// A layout's count, idle for light `v` when it is set but the light is not of its kind.
+pub fn idle_for_light<L: Layout>(v: &LightIdle, idle: &mut Idles) {
+    if L::count(v.settings) > 1 && v.kind != L::KIND {
+        idle.push(L::SETTING, not_for_light(v, L::NAME));
+    }
+}
+
+/// A layout's count, idle in scene `v` when it is set but no light is of its kind.
+pub fn idle_in_scene<L: Layout>(v: &SceneIdle, idle: &mut Idles) {
+    if L::count(v.settings) > 1 && !v.has(L::KIND) {
+        idle.push(L::SETTING, not_in_scene(v, L::NAME));
+    }
+}
+
 /// Why a light (`v`) does not get the layers `what` (cascades, caster groups) it is set to.
-pub fn not_for_light(v: &LightIdle, what: &str) -> String {
+fn not_for_light(v: &LightIdle, what: &str) -> String {
     if !matches!(v.light, Light::Directional(_)) {
         format!("only a directional light has {what}")
     } else if v.settings.light_projection == LightProjection::Perspective {
@@ -265,7 +280,7 @@ pub fn not_for_light(v: &LightIdle, what: &str) -> String {
 }
 
 /// Why no light of a scene (`v`) draws the layers `what` the scene's settings ask for.
-pub fn not_in_scene(v: &SceneIdle, what: &str) -> String {
+fn not_in_scene(v: &SceneIdle, what: &str) -> String {
     let settings = v.settings;
     if !settings.shadows {
         "shadows are off (--shadows off)".to_string()

@@ -49,16 +49,21 @@ fn esm(scene: &Scene, c: f32) -> ShadowSettings {
     }
 }
 
+/// A world point's depth in light 0's map, in [0, 1].
+fn map_depth(scene: &Scene) -> impl Fn(DVec3) -> f64 {
+    let view = light_camera(scene, 0, &scene.shadow);
+    let clip = view.projection.as_dmat4() * view.view64;
+    move |p: DVec3| {
+        let c = clip * p.extend(1.0);
+        c.z / c.w * 0.5 + 0.5
+    }
+}
+
 /// The floor pixels well inside the shadow of the slab whose top is at `top` (x < 0: the
 /// low slab, x > 0 the high one), each with the depth gap (in the map's [0, 1] depth)
 /// between the floor and the slab top above it along the light.
 fn umbra(scene: &Scene, reference: &Reference, top: f64) -> Vec<(usize, f64)> {
-    let view = light_camera(scene, 0, &scene.shadow);
-    let clip = view.projection.as_dmat4() * view.view64;
-    let depth = |p: DVec3| {
-        let c = clip * p.extend(1.0);
-        c.z / c.w * 0.5 + 0.5
-    };
+    let depth = map_depth(scene);
     let sun = scene.lights[0]
         .as_directional()
         .expect("a directional light");
@@ -154,12 +159,7 @@ fn at_the_exponents_limit_a_receiver_at_the_far_end_of_the_map_stays_lit() {
     let scene = far_receivers();
     let opts = options(&scene);
     let reference = compute_reference(ctx.gl(), &scene, &scene.shadow, &opts).unwrap();
-    let view = light_camera(&scene, 0, &scene.shadow);
-    let clip = view.projection.as_dmat4() * view.view64;
-    let depth = |p: DVec3| {
-        let c = clip * p.extend(1.0);
-        c.z / c.w * 0.5 + 0.5
-    };
+    let depth = map_depth(&scene);
     let c = ESM_MAX_EXPONENT;
     // Lit receivers away from both slabs' shadows (whose edges a map's texels blur).
     let lit: Vec<usize> = (0..reference.hard.len())
